@@ -1,0 +1,3 @@
+//! Closed-form references and the analysis of simulated curves.
+
+pub mod reference;

@@ -1,0 +1,86 @@
+//! Linear elastic half-space: pressure → normal surface displacement.
+//!
+//! Sign convention: pressure p > 0 is compressive, displacement u > 0 points into the
+//! body. Both operators discretise Boussinesq's solution with uniform pressure on square
+//! elements and collocation at element centres.
+
+mod free;
+pub mod influence;
+mod periodic;
+mod spectral;
+
+pub use free::FreeOperator;
+pub use periodic::{PeriodicKernel, PeriodicOperator};
+
+use crate::grid::{Boundary, Grid};
+use crate::material::ElasticMaterial;
+
+/// Matrix-free, symmetric positive (semi-)definite compliance operator u = K p.
+pub trait ElasticOperator: Send {
+    /// The grid the operator acts on.
+    fn grid(&self) -> &Grid;
+
+    /// Contact modulus E* of the half-space.
+    fn contact_modulus(&self) -> f64;
+
+    /// Writes u = K p. Both slices hold one value per element, row-major.
+    ///
+    /// # Panics
+    /// If a slice length differs from the number of elements.
+    fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]);
+
+    /// Diagonal entry K(0,0): displacement of an element under its own unit pressure.
+    fn self_compliance(&self) -> f64;
+
+    /// Number of applications so far (each is one forward+inverse FFT pair).
+    fn applications(&self) -> u64;
+}
+
+/// The half-space operator of either boundary kind, chosen by the grid's [`Boundary`].
+pub enum HalfSpace {
+    /// Non-periodic, DC-FFT.
+    Free(FreeOperator),
+    /// Periodic, element-consistent kernel.
+    Periodic(PeriodicOperator),
+}
+
+impl HalfSpace {
+    /// Builds the operator that matches `grid.boundary()` (plans FFTs and computes the
+    /// kernel spectrum once).
+    pub fn new(grid: Grid, material: ElasticMaterial) -> Self {
+        match grid.boundary() {
+            Boundary::Free => Self::Free(FreeOperator::new(grid, material)),
+            Boundary::Periodic => {
+                Self::Periodic(PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent))
+            }
+        }
+    }
+
+    fn inner(&self) -> &dyn ElasticOperator {
+        match self {
+            Self::Free(op) => op,
+            Self::Periodic(op) => op,
+        }
+    }
+}
+
+impl ElasticOperator for HalfSpace {
+    fn grid(&self) -> &Grid {
+        self.inner().grid()
+    }
+    fn contact_modulus(&self) -> f64 {
+        self.inner().contact_modulus()
+    }
+    fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        match self {
+            Self::Free(op) => op.apply(pressure, displacement),
+            Self::Periodic(op) => op.apply(pressure, displacement),
+        }
+    }
+    fn self_compliance(&self) -> f64 {
+        self.inner().self_compliance()
+    }
+    fn applications(&self) -> u64 {
+        self.inner().applications()
+    }
+}

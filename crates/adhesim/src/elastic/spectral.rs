@@ -1,0 +1,205 @@
+//! Real-to-complex 2-D convolution with a real, even kernel spectrum.
+//!
+//! Shared engine of the free (zero-padded) and periodic operators. Only the rows that
+//! carry data are transformed forward and only the rows that are kept are transformed
+//! back: for the free operator half of the 2N row transforms are skipped in each
+//! direction, which puts one application below the cost of a bare 2N×2N FFT pair.
+//! Plans and buffers are made once; `convolve` does not allocate. Work is split into a
+//! fixed number of row and column blocks run by rayon; every row or column transform is
+//! independent of the split, so results are bit-identical for any thread count.
+
+use num_complex::Complex64;
+use rayon::prelude::*;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::{Fft, FftPlanner};
+use std::sync::Arc;
+
+pub(crate) struct SpectralConvolution {
+    /// Data rows/columns of input and output (N).
+    n: usize,
+    /// Padded row length and column length (2N free, N periodic).
+    padded: usize,
+    /// Complex columns after the row transform: padded/2 + 1.
+    spectrum_columns: usize,
+    /// Kernel spectrum, real, transposed: `[column * padded + row]`, normalised.
+    kernel: Vec<f64>,
+    forward_rows: Arc<dyn RealToComplex<f64>>,
+    inverse_rows: Arc<dyn ComplexToReal<f64>>,
+    forward_columns: Arc<dyn Fft<f64>>,
+    inverse_columns: Arc<dyn Fft<f64>>,
+    /// Row spectra, `[row * spectrum_columns + column]` for the N data rows.
+    row_spectra: Vec<Complex64>,
+    /// Column-major spectrum, `[column * padded + row]`.
+    columns: Vec<Complex64>,
+    blocks: Vec<BlockScratch>,
+}
+
+struct BlockScratch {
+    real_row: Vec<f64>,
+    real_scratch: Vec<Complex64>,
+    complex_scratch: Vec<Complex64>,
+}
+
+fn block_len(total: usize, blocks: usize) -> usize {
+    total.div_ceil(blocks).max(1)
+}
+
+impl SpectralConvolution {
+    /// `kernel_real_space(i, j)` gives the padded×padded kernel entry at row i, column j
+    /// (already wrapped); its spectrum is computed here once.
+    pub(crate) fn new(n: usize, padded: usize, kernel_real_space: impl Fn(usize, usize) -> f64 + Sync) -> Self {
+        let mut planner = RealFftPlanner::<f64>::new();
+        let forward_rows = planner.plan_fft_forward(padded);
+        let inverse_rows = planner.plan_fft_inverse(padded);
+        let mut complex_planner = FftPlanner::<f64>::new();
+        let forward_columns = complex_planner.plan_fft_forward(padded);
+        let inverse_columns = complex_planner.plan_fft_inverse(padded);
+        let spectrum_columns = padded / 2 + 1;
+        let threads = rayon::current_num_threads().max(1);
+        let scratch_len = forward_rows.get_scratch_len().max(inverse_rows.get_scratch_len());
+        let complex_scratch_len = forward_columns
+            .get_inplace_scratch_len()
+            .max(inverse_columns.get_inplace_scratch_len());
+        let blocks = (0..threads)
+            .map(|_| BlockScratch {
+                real_row: vec![0.0; padded],
+                real_scratch: vec![Complex64::default(); scratch_len],
+                complex_scratch: vec![Complex64::default(); complex_scratch_len],
+            })
+            .collect();
+        let mut engine = Self {
+            n,
+            padded,
+            spectrum_columns,
+            kernel: vec![0.0; spectrum_columns * padded],
+            forward_rows,
+            inverse_rows,
+            forward_columns,
+            inverse_columns,
+            row_spectra: vec![Complex64::default(); padded * spectrum_columns],
+            columns: vec![Complex64::default(); spectrum_columns * padded],
+            blocks,
+        };
+        engine.kernel = engine.kernel_spectrum(kernel_real_space);
+        engine
+    }
+
+    /// Full 2-D forward transform of the padded kernel; keeps the real part (the kernel
+    /// is even in both directions, so its spectrum is real) divided by padded².
+    fn kernel_spectrum(&mut self, kernel_real_space: impl Fn(usize, usize) -> f64 + Sync) -> Vec<f64> {
+        let padded = self.padded;
+        let columns = self.spectrum_columns;
+        let forward_rows = &self.forward_rows;
+        let mut rows: Vec<Complex64> = vec![Complex64::default(); padded * columns];
+        rows.par_chunks_mut(columns).enumerate().for_each(|(i, spectrum)| {
+            let mut real: Vec<f64> = (0..padded).map(|j| kernel_real_space(i, j)).collect();
+            forward_rows
+                .process(&mut real, spectrum)
+                .expect("row transform of the kernel");
+        });
+        let forward_columns = &self.forward_columns;
+        let normalisation = 1.0 / (padded as f64 * padded as f64);
+        let mut spectrum = vec![0.0; columns * padded];
+        spectrum.par_chunks_mut(padded).enumerate().for_each(|(c, out)| {
+            let mut column: Vec<Complex64> = (0..padded).map(|i| rows[i * columns + c]).collect();
+            forward_columns.process(&mut column);
+            for (o, value) in out.iter_mut().zip(&column) {
+                *o = value.re * normalisation;
+            }
+        });
+        spectrum
+    }
+
+    /// The normalised real kernel spectrum at (row frequency index, column frequency index).
+    #[cfg(test)]
+    pub(crate) fn kernel_at(&self, row: usize, column: usize) -> f64 {
+        self.kernel[column * self.padded + row]
+    }
+
+    /// Overwrites the kernel spectrum with `value(row_frequency, column_frequency)`
+    /// (already normalised by padded²).
+    pub(crate) fn set_kernel_spectrum(&mut self, value: impl Fn(usize, usize) -> f64 + Sync) {
+        let padded = self.padded;
+        self.kernel.par_chunks_mut(padded).enumerate().for_each(|(c, out)| {
+            for (r, o) in out.iter_mut().enumerate() {
+                *o = value(r, c);
+            }
+        });
+    }
+
+    /// output = kernel ∗ input on the N×N data window.
+    pub(crate) fn convolve(&mut self, input: &[f64], output: &mut [f64]) {
+        let (n, padded, columns) = (self.n, self.padded, self.spectrum_columns);
+        assert_eq!(input.len(), n * n, "input field does not match the grid");
+        assert_eq!(output.len(), n * n, "output field does not match the grid");
+        let blocks = self.blocks.len();
+        let rows_per_block = block_len(n, blocks);
+
+        // 1. Row transforms of the N data rows (the padded rows are zero: skipped).
+        let forward_rows = &self.forward_rows;
+        self.row_spectra[..n * columns]
+            .par_chunks_mut(rows_per_block * columns)
+            .zip(input.par_chunks(rows_per_block * n))
+            .zip(self.blocks.par_iter_mut())
+            .for_each(|((spectra, data), scratch)| {
+                for (spectrum, row) in spectra.chunks_mut(columns).zip(data.chunks(n)) {
+                    scratch.real_row[..n].copy_from_slice(row);
+                    scratch.real_row[n..].fill(0.0);
+                    forward_rows
+                        .process_with_scratch(&mut scratch.real_row, spectrum, &mut scratch.real_scratch)
+                        .expect("forward row transform");
+                }
+            });
+
+        // 2. Transpose, column transforms, kernel product, inverse column transforms.
+        let columns_per_block = block_len(columns, blocks);
+        let row_spectra = &self.row_spectra;
+        let kernel = &self.kernel;
+        let (forward_columns, inverse_columns) = (&self.forward_columns, &self.inverse_columns);
+        self.columns
+            .par_chunks_mut(columns_per_block * padded)
+            .zip(kernel.par_chunks(columns_per_block * padded))
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(block, ((data, kernel), scratch))| {
+                for (local, (column, kernel)) in data.chunks_mut(padded).zip(kernel.chunks(padded)).enumerate() {
+                    let c = block * columns_per_block + local;
+                    for (i, value) in column[..n].iter_mut().enumerate() {
+                        *value = row_spectra[i * columns + c];
+                    }
+                    column[n..].fill(Complex64::default());
+                    forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
+                    for (value, &k) in column.iter_mut().zip(kernel) {
+                        *value *= k;
+                    }
+                    inverse_columns.process_with_scratch(column, &mut scratch.complex_scratch);
+                }
+            });
+
+        // 3. Transpose back the N kept rows and transform them to real space.
+        let columns_data = &self.columns;
+        let inverse_rows = &self.inverse_rows;
+        self.row_spectra[..n * columns]
+            .par_chunks_mut(rows_per_block * columns)
+            .zip(output.par_chunks_mut(rows_per_block * n))
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(block, ((spectra, out), scratch))| {
+                for (local, (spectrum, row_out)) in spectra.chunks_mut(columns).zip(out.chunks_mut(n)).enumerate() {
+                    let i = block * rows_per_block + local;
+                    for (c, value) in spectrum.iter_mut().enumerate() {
+                        *value = columns_data[c * padded + i];
+                    }
+                    // Exactly real in exact arithmetic; drop round-off so c2r accepts it.
+                    spectrum[0].im = 0.0;
+                    if padded % 2 == 0 {
+                        spectrum[columns - 1].im = 0.0;
+                    }
+                    inverse_rows
+                        .process_with_scratch(spectrum, &mut scratch.real_row, &mut scratch.real_scratch)
+                        .expect("inverse row transform");
+                    row_out.copy_from_slice(&scratch.real_row[..n]);
+                }
+            });
+    }
+}

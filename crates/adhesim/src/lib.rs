@@ -1,0 +1,31 @@
+//! # adhesim
+//!
+//! FFT-accelerated boundary element method for normal and tangential contacts of rough,
+//! adhesive, elastic bodies, after Popov, Li, Lyashenko & Pohrt (2021), "Adhesion and
+//! friction in hard and soft contacts: theory and experiment", *Friction* 9, 1688–1706,
+//! doi:10.1007/s40544-020-0482-0.
+//!
+//! ## Units and signs
+//! Any consistent unit system. A rigid indenter touches an elastic half-space of contact
+//! modulus E* = E/(1 − ν²).
+//! - pressure p > 0 is compressive, p < 0 tensile (adhesion); normal force F = Δ²Σp;
+//! - indentation depth d > 0 pushes the indenter into the half-space;
+//! - surface displacement u > 0 points into the body; gap g = z − d + u ≥ 0;
+//! - the work of adhesion γ is an energy per unit area.
+//!
+//! ## Modules (one-way dependencies, see ARCHITECTURE.md)
+//! `grid`, `material` → `geometry`, `elastic` → `solver` → `protocol` → `analysis`.
+#![warn(missing_docs)]
+
+pub mod analysis;
+pub mod elastic;
+pub mod geometry;
+pub mod grid;
+pub mod material;
+pub mod solver;
+
+pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
+pub use geometry::{EllipticPunch, FlatPunch, Indenter, Profile, Sphere, Topography, Waviness, WavySphere};
+pub use grid::{Boundary, Grid, GridError};
+pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
+pub use solver::{Ccg, CcgParams, ContactState, Control, SolveError, SolveReport};

@@ -1,0 +1,73 @@
+//! Contact solvers: non-adhesive (Polonsky–Keer CCG) and adhesive (JKR-type active set).
+//!
+//! A solve takes the operator, the indenter heights on the grid and a control, and a
+//! [`ContactState`] that is both the warm start and the result. Gap g = z − d + u ≥ 0,
+//! pressure p > 0 compressive; contact means g = 0.
+
+mod ccg;
+mod state;
+
+pub use ccg::{Ccg, CcgParams};
+pub use state::ContactState;
+
+use thiserror::Error;
+
+/// What is prescribed in a normal contact solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Control {
+    /// Indentation depth d of the indenter's reference point (rigid-body approach).
+    Displacement(f64),
+    /// Total normal force F = Δ²Σp (> 0 compressive).
+    Load(f64),
+}
+
+/// What a solve did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SolveReport {
+    /// Iterations of the (outer) solver.
+    pub iterations: usize,
+    /// Final convergence measure (solver specific, relative).
+    pub residual: f64,
+    /// Number of elements in contact.
+    pub contact_elements: usize,
+    /// Real contact area Δ²·|C|.
+    pub contact_area: f64,
+    /// Total normal force Δ²Σp.
+    pub force: f64,
+    /// Indentation depth (prescribed, or found under load control).
+    pub depth: f64,
+    /// Elastic operator applications (FFT pairs) spent.
+    pub operator_applications: u64,
+}
+
+/// Why a solve failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SolveError {
+    /// The iteration limit was reached before the tolerance.
+    #[error("solver did not converge in {iterations} iterations: residual {residual:.3e} > tolerance {tolerance:.1e}")]
+    NotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// Residual reached.
+        residual: f64,
+        /// Tolerance asked for.
+        tolerance: f64,
+    },
+    /// A NaN or infinity appeared in the iteration (bad heights or operator).
+    #[error("solver produced a non-finite value at iteration {iteration}")]
+    NonFinite {
+        /// Iteration at which it was detected.
+        iteration: usize,
+    },
+    /// A load-controlled solve was asked for a non-positive or non-finite load.
+    #[error("load control needs a finite load > 0, got {0}")]
+    InvalidLoad(f64),
+    /// The heights do not match the grid.
+    #[error("heights have {got} values, the grid has {expected} elements")]
+    SizeMismatch {
+        /// Elements of the grid.
+        expected: usize,
+        /// Values given.
+        got: usize,
+    },
+}
