@@ -22,10 +22,17 @@ pub mod elastic;
 pub mod geometry;
 pub mod grid;
 pub mod material;
+pub mod protocol;
 pub mod solver;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
 pub use geometry::{EllipticPunch, FlatPunch, Indenter, Profile, Sphere, Topography, Waviness, WavySphere};
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
-pub use solver::{Ccg, CcgParams, ContactState, Control, SolveError, SolveReport};
+pub use protocol::{
+    IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, StepRecord, StepView,
+};
+pub use solver::{
+    AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, SolveError,
+    SolveReport, StepReport,
+};
