@@ -1,6 +1,7 @@
 //! Smooth sphere against JKR: indentation and pull-off on a free half-space.
 //!
 //! `cargo run --release -p adhesim --example jkr_pull_off -- [a_JKR/Δ] [d_max/|d_JKR|] [steps per |d_JKR|]`
+#![allow(clippy::needless_range_loop)]
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,

@@ -1,5 +1,6 @@
 //! Non-adhesive contact against Hertz and the flat punch.
 
+#![allow(clippy::needless_range_loop)]
 use adhesim::analysis::reference::{FlatPunchReference, Hertz};
 use adhesim::{
     Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FlatPunch, FreeOperator, Grid, Profile, Sphere,

@@ -1,5 +1,6 @@
 //! The elastic operators against Love's and Boussinesq's closed forms.
 
+#![allow(clippy::needless_range_loop)]
 use adhesim::elastic::influence::love_coefficient;
 use adhesim::{Boundary, ElasticMaterial, ElasticOperator, FreeOperator, Grid, PeriodicKernel, PeriodicOperator};
 use std::f64::consts::{PI, TAU};
