@@ -1,3 +1,4 @@
 //! Closed-form references and the analysis of simulated curves.
 
+pub mod contact;
 pub mod reference;
