@@ -68,6 +68,19 @@ fn main() {
         summary.cg_iterations as f64 / summary.steps as f64,
         summary.operator_applications as f64 / summary.steps as f64
     );
+    if std::env::var_os("ADHESIM_VERBOSE").is_some() {
+        for r in records.iter().step_by(10) {
+            println!(
+                "{:?} d={:.3} solves={} cg={} att={} det={}",
+                r.phase.unwrap(),
+                r.depth / d_jkr,
+                r.report.solves,
+                r.report.cg_iterations,
+                r.report.attached,
+                r.report.detached
+            );
+        }
+    }
     let (mut worst_retract, mut worst_approach) = (0.0f64, 0.0f64);
     for r in &records {
         let d = r.depth / d_jkr;

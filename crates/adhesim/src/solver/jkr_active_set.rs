@@ -1,6 +1,6 @@
 use super::{ContactState, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
-use crate::elastic::ElasticOperator;
+use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::Grid;
 
 /// c_U = [2 ln(1+√2) − (2/3)(√2 − 1)]/π: elastic energy U = c_U σ²Δ³/E* stored by one
@@ -56,6 +56,8 @@ pub struct AdhesiveParams {
     pub attachment: Attachment,
     /// Detachment rule.
     pub detachment: Detachment,
+    /// Precondition the fixed-set CG with the |q| spectral preconditioner (default true).
+    pub preconditioned: bool,
 }
 
 impl Default for AdhesiveParams {
@@ -67,6 +69,7 @@ impl Default for AdhesiveParams {
             max_rounds: 100_000,
             attachment: Attachment::Trial,
             detachment: Detachment::AllViolators,
+            preconditioned: true,
         }
     }
 }
@@ -115,13 +118,21 @@ pub struct AdhesiveSolver {
     minimum_critical_stress: f64,
     // scratch, allocated once
     residual: Vec<f64>,
+    preconditioned_residual: Vec<f64>,
     direction: Vec<f64>,
+    preconditioner: Option<SpectralPreconditioner>,
+    preconditioner_applications: u64,
     response: Vec<f64>,
     banned: Vec<bool>,
     trial: Vec<bool>,
     start_contact: Vec<bool>,
     violators: Vec<usize>,
     candidates: Vec<usize>,
+    /// Solution on C saved before a trial ring is attached: restored if the whole ring fails.
+    saved_pressure: Vec<f64>,
+    saved_displacement: Vec<f64>,
+    /// Final states of the last two steps, for the extrapolated warm start.
+    history: Vec<(f64, Vec<f64>, Vec<bool>)>,
 }
 
 impl AdhesiveSolver {
@@ -146,13 +157,21 @@ impl AdhesiveSolver {
             critical_stress,
             minimum_critical_stress,
             residual: vec![0.0; len],
+            preconditioned_residual: vec![0.0; len],
             direction: vec![0.0; len],
+            preconditioner: params
+                .preconditioned
+                .then(|| SpectralPreconditioner::new(&grid, contact_modulus)),
+            preconditioner_applications: 0,
             response: vec![0.0; len],
             banned: vec![false; len],
             trial: vec![false; len],
             start_contact: vec![false; len],
             violators: Vec::new(),
             candidates: Vec::new(),
+            saved_pressure: vec![0.0; len],
+            saved_displacement: vec![0.0; len],
+            history: Vec::with_capacity(2),
         }
     }
 
@@ -212,7 +231,21 @@ impl AdhesiveSolver {
                 state.contact[k] = false;
             }
         }
+        // Warm start: on a contact set unchanged over the last two steps p is linear in d
+        // (physics notes §2.5), so extrapolate; CG then only cleans up round-off.
+        if self.history.len() == 2 && self.history[0].2 == state.contact && self.history[1].2 == state.contact {
+            let (d0, d1) = (self.history[0].0, self.history[1].0);
+            if d1 != d0 && state.pressure == self.history[1].1 {
+                let factor = (depth - d1) / (d1 - d0);
+                for k in 0..len {
+                    if state.contact[k] {
+                        state.pressure[k] += factor * (self.history[1].1[k] - self.history[0].1[k]);
+                    }
+                }
+            }
+        }
         let mut first = true;
+        let mut ring_restorable = false;
         loop {
             report.solves += 1;
             if report.solves > self.params.max_rounds {
@@ -238,8 +271,17 @@ impl AdhesiveSolver {
                     for &k in &self.violators {
                         self.trial[k] = false;
                     }
+                    if ring_restorable && !self.trial.iter().any(|&t| t) {
+                        // The whole ring failed and nothing else changed: C is the saved
+                        // set, stable before the ring was tried. Restore and stop.
+                        state.pressure.copy_from_slice(&self.saved_pressure);
+                        state.displacement.copy_from_slice(&self.saved_displacement);
+                        break;
+                    }
+                    ring_restorable = false;
                     continue;
                 }
+                ring_restorable = false;
                 self.trial.iter_mut().for_each(|t| *t = false);
                 for index in 0..self.violators.len() {
                     let k = self.violators[index];
@@ -270,6 +312,11 @@ impl AdhesiveSolver {
             if self.candidates.is_empty() {
                 break;
             }
+            ring_restorable = self.candidates.iter().all(|&k| self.trial[k]);
+            if ring_restorable {
+                self.saved_pressure.copy_from_slice(&state.pressure);
+                self.saved_displacement.copy_from_slice(&state.displacement);
+            }
             for &k in &self.candidates {
                 state.contact[k] = true;
             }
@@ -280,6 +327,16 @@ impl AdhesiveSolver {
                 (true, false) => report.detached += 1,
                 _ => {}
             }
+        }
+        if self.history.len() == 2 {
+            let mut oldest = self.history.remove(0);
+            oldest.0 = depth;
+            oldest.1.copy_from_slice(&state.pressure);
+            oldest.2.copy_from_slice(&state.contact);
+            self.history.push(oldest);
+        } else {
+            self.history
+                .push((depth, state.pressure.clone(), state.contact.clone()));
         }
         report.force = state.force(self.grid.element_area());
         report.energy = self.energy(state);
@@ -323,6 +380,31 @@ impl AdhesiveSolver {
                 self.violators.push(k);
             }
         }
+    }
+
+    /// z = M⁻¹r restricted to C (or z = r without preconditioner); returns r·z.
+    fn precondition(&mut self, contact: &[bool]) -> f64 {
+        match &mut self.preconditioner {
+            Some(preconditioner) => {
+                preconditioner.apply(&self.residual, &mut self.preconditioned_residual);
+                self.preconditioner_applications += 1;
+            }
+            None => self.preconditioned_residual.copy_from_slice(&self.residual),
+        }
+        let mut rho = 0.0;
+        for k in 0..contact.len() {
+            if contact[k] {
+                rho += self.residual[k] * self.preconditioned_residual[k];
+            } else {
+                self.preconditioned_residual[k] = 0.0;
+            }
+        }
+        rho
+    }
+
+    /// Applications of the preconditioner so far (each an N×N FFT pair).
+    pub fn preconditioner_applications(&self) -> u64 {
+        self.preconditioner_applications
     }
 
     /// CG for K_CC p_C = (d − z)_C with p = 0 outside C, warm started from `state`.
@@ -379,7 +461,8 @@ impl AdhesiveSolver {
         if converged(residual_norm, &self.residual, &state.contact) {
             return Ok(0);
         }
-        self.direction.copy_from_slice(&self.residual);
+        let mut rho = self.precondition(&state.contact);
+        self.direction.copy_from_slice(&self.preconditioned_residual);
         for iteration in 1..=self.params.max_cg_iterations {
             operator.apply(&self.direction, &mut self.response);
             let mut curvature = 0.0;
@@ -391,24 +474,25 @@ impl AdhesiveSolver {
             if !(curvature.is_finite() && curvature > 0.0) {
                 return Err(SolveError::NonFinite { iteration });
             }
-            let step = residual_norm / curvature;
-            let mut new_norm = 0.0;
+            let step = rho / curvature;
+            residual_norm = 0.0;
             for k in 0..len {
                 state.displacement[k] += step * self.response[k];
                 if state.contact[k] {
                     state.pressure[k] += step * self.direction[k];
                     self.residual[k] -= step * self.response[k];
-                    new_norm += self.residual[k] * self.residual[k];
+                    residual_norm += self.residual[k] * self.residual[k];
                 }
             }
-            if converged(new_norm, &self.residual, &state.contact) {
+            if converged(residual_norm, &self.residual, &state.contact) {
                 return Ok(iteration);
             }
-            let ratio = new_norm / residual_norm;
-            residual_norm = new_norm;
+            let new_rho = self.precondition(&state.contact);
+            let ratio = new_rho / rho;
+            rho = new_rho;
             for k in 0..len {
                 self.direction[k] = if state.contact[k] {
-                    self.residual[k] + ratio * self.direction[k]
+                    self.preconditioned_residual[k] + ratio * self.direction[k]
                 } else {
                     0.0
                 };
