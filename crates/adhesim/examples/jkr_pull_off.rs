@@ -34,7 +34,13 @@ fn main() {
         grid,
         modulus,
         vec![gamma; grid.len()],
-        AdhesiveParams::default(),
+        AdhesiveParams {
+            relative_tolerance: std::env::var("ADHESIM_RTOL")
+                .map(|v| v.parse().unwrap())
+                .unwrap_or(1e-9),
+            carry_bans_when_retracting: std::env::var_os("ADHESIM_EXACT_RINGS").is_none(),
+            ..AdhesiveParams::default()
+        },
     )));
     let protocol = IndentPulloff {
         start_depth: 0.0,

@@ -69,6 +69,7 @@ impl IndentPulloff {
             )));
         }
         let grid = *operator.grid();
+        solver.reset();
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
         let mut summary = ProtocolSummary::default();

@@ -137,6 +137,13 @@ pub enum NormalSolver {
 }
 
 impl NormalSolver {
+    /// Forgets the history of previous steps before a new load path.
+    pub fn reset(&mut self) {
+        if let Self::Adhesive(solver) = self {
+            solver.reset();
+        }
+    }
+
     /// One displacement-controlled step.
     pub fn step<O: ElasticOperator + ?Sized>(
         &mut self,

@@ -58,6 +58,12 @@ pub struct AdhesiveParams {
     pub detachment: Detachment,
     /// Precondition the fixed-set CG with the |q| spectral preconditioner (default true).
     pub preconditioned: bool,
+    /// Keep the bans of the previous step while the depth keeps decreasing (default true).
+    /// On a fixed set p(d) = p₀ + d·p₁ with p₁ ≥ 0 (the positive equilibrium pressure of
+    /// a flat punch of that shape), so at a smaller depth every trial element would be
+    /// more tensile than when it failed: re-testing it is futile. This removes the trial
+    /// cascade from quiet retraction steps; the tests check it leaves curves unchanged.
+    pub carry_bans_when_retracting: bool,
 }
 
 impl Default for AdhesiveParams {
@@ -70,6 +76,7 @@ impl Default for AdhesiveParams {
             attachment: Attachment::Trial,
             detachment: Detachment::AllViolators,
             preconditioned: true,
+            carry_bans_when_retracting: true,
         }
     }
 }
@@ -190,6 +197,13 @@ impl AdhesiveSolver {
         &self.work_of_adhesion
     }
 
+    /// Forgets the history of previous steps (warm-start extrapolation, carried bans):
+    /// call before driving a new, unrelated load path with the same solver.
+    pub fn reset(&mut self) {
+        self.history.clear();
+        self.banned.iter_mut().for_each(|b| *b = false);
+    }
+
     /// Π = ½Δ²Σp·u − Δ²Σ_C γ: elastic energy minus adhesion energy of the state.
     pub fn energy(&self, state: &ContactState) -> f64 {
         let area = self.grid.element_area();
@@ -222,7 +236,10 @@ impl AdhesiveSolver {
         }
         let applications_before = operator.applications();
         let mut report = StepReport::default();
-        self.banned.iter_mut().for_each(|b| *b = false);
+        let retracting = self.history.last().is_some_and(|last| depth < last.0);
+        if !(retracting && self.params.carry_bans_when_retracting) {
+            self.banned.iter_mut().for_each(|b| *b = false);
+        }
         self.trial.iter_mut().for_each(|t| *t = false);
         self.start_contact.copy_from_slice(&state.contact);
         // Elements that can no longer exist (no surface) leave the contact.
