@@ -29,7 +29,10 @@ pub mod protocol;
 pub mod solver;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
-pub use geometry::{EllipticPunch, FlatPunch, Indenter, Profile, Sphere, Topography, Waviness, WavySphere};
+pub use geometry::{
+    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, Sphere, Topography, TranslatingContact, Waviness,
+    WavySphere,
+};
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{

@@ -4,6 +4,16 @@ use crate::grid::Boundary;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
+/// Largest |y| over the contact set.
+pub(crate) fn half_width(grid: &crate::grid::Grid, contact: &[bool]) -> f64 {
+    contact
+        .iter()
+        .enumerate()
+        .filter(|(_, &c)| c)
+        .map(|(k, _)| grid.centre(k).1.abs())
+        .fold(0.0, f64::max)
+}
+
 /// Displacement-controlled indentation to `max_depth` and retraction until contact is
 /// lost, in fixed steps of `depth_step` (paper Sect. 2.1, Fig. 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,6 +106,7 @@ impl IndentPulloff {
                 force_tangential: 0.0,
                 area: contact_elements as f64 * grid.element_area(),
                 radius: state.contact_radius(&grid, (0.0, 0.0)),
+                half_width: half_width(&grid, &state.contact),
                 contact_elements,
                 report,
                 cumulative_dissipated_energy: summary.dissipated_energy,

@@ -3,8 +3,10 @@
 //! library's).
 
 mod indentation;
+mod translation;
 
 pub use indentation::{IndentPulloff, ProtocolSummary};
+pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
 use crate::solver::{AdhesiveSolver, Ccg, ContactState, Control, SolveError, StepReport};
@@ -55,6 +57,8 @@ pub struct StepRecord {
     pub area: f64,
     /// Distance from the indenter axis to the farthest element in contact.
     pub radius: f64,
+    /// Largest |y − Y| of the contact, i.e. the half-width perpendicular to the motion.
+    pub half_width: f64,
     /// |C|.
     pub contact_elements: usize,
     /// Solver counters and energies of this step.
