@@ -98,7 +98,6 @@ impl Translation {
         let mut heights = vec![0.0; grid.len()];
         let mut summary = TranslationSummary::default();
         let mut cumulative = 0.0;
-        let mut step = 0usize;
         let phase = match contact.kinematics() {
             Kinematics::Roll => Phase::Roll,
             _ => Phase::Slide,
@@ -119,7 +118,7 @@ impl Translation {
         }
         let forward_end = self.approach_steps + self.steps;
         let mut stationary = Vec::new();
-        for (index, &(stage, depth, offset)) in schedule.iter().enumerate() {
+        for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
             contact.fill_heights(&grid, offset, &mut heights);
             previous.copy_from_slice(&state.contact);
             let report = solver
@@ -154,7 +153,7 @@ impl Translation {
             summary.operator_applications += report.operator_applications;
             summary.jumps += record.jumped as usize;
             summary.touches_border |= record.touches_border;
-            if stage != Phase::Approach && index < forward_end {
+            if stage != Phase::Approach && step < forward_end {
                 summary.dissipated_energy += report.dissipated_energy;
                 if offset > self.stationary_from * self.distance {
                     stationary.push(record);
@@ -167,7 +166,6 @@ impl Translation {
             }) {
                 return Err(ProtocolError::Interrupted(step));
             }
-            step += 1;
         }
         if !stationary.is_empty() {
             let count = stationary.len() as f64;
