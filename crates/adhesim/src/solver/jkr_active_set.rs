@@ -140,6 +140,27 @@ pub struct AdhesiveSolver {
     saved_displacement: Vec<f64>,
     /// Final states of the last two steps, for the extrapolated warm start.
     history: Vec<(f64, Vec<f64>, Vec<bool>)>,
+    /// Completely failed trial rings of the last two steps, for exact prediction.
+    ring_history: Vec<RingAttempt>,
+    /// The ring being tried in this step.
+    current_ring: Option<RingAttempt>,
+}
+
+/// One round of a trial-ring peel: the trial elements present, their pressures after the
+/// solve, and which of them failed.
+#[derive(Debug, Clone, PartialEq)]
+struct RingRound {
+    members: Vec<usize>,
+    pressures: Vec<f64>,
+    failed: Vec<bool>,
+}
+
+/// A trial ring tried on contact set `contact` at `depth` that failed completely.
+#[derive(Debug, Clone, PartialEq)]
+struct RingAttempt {
+    depth: f64,
+    contact: Vec<bool>,
+    rounds: Vec<RingRound>,
 }
 
 impl AdhesiveSolver {
@@ -179,6 +200,8 @@ impl AdhesiveSolver {
             saved_pressure: vec![0.0; len],
             saved_displacement: vec![0.0; len],
             history: Vec::with_capacity(2),
+            ring_history: Vec::with_capacity(2),
+            current_ring: None,
         }
     }
 
@@ -201,6 +224,8 @@ impl AdhesiveSolver {
     /// call before driving a new, unrelated load path with the same solver.
     pub fn reset(&mut self) {
         self.history.clear();
+        self.ring_history.clear();
+        self.current_ring = None;
         self.banned.iter_mut().for_each(|b| *b = false);
     }
 
@@ -294,6 +319,23 @@ impl AdhesiveSolver {
                 first = false;
             }
             self.find_violators(state);
+            if ring_restorable {
+                if let Some(ring) = self.current_ring.as_mut() {
+                    let members: Vec<usize> = (0..len).filter(|&k| self.trial[k]).collect();
+                    let pressures = members.iter().map(|&k| state.pressure[k]).collect();
+                    let mut failed = vec![false; members.len()];
+                    for &k in &self.violators {
+                        if let Ok(position) = members.binary_search(&k) {
+                            failed[position] = true;
+                        }
+                    }
+                    ring.rounds.push(RingRound {
+                        members,
+                        pressures,
+                        failed,
+                    });
+                }
+            }
             if !self.violators.is_empty() {
                 let failed_trials: Vec<usize> = self.violators.iter().cloned().filter(|&k| self.trial[k]).collect();
                 if !failed_trials.is_empty() {
@@ -308,9 +350,14 @@ impl AdhesiveSolver {
                         // set, stable before the ring was tried. Restore and stop.
                         state.pressure.copy_from_slice(&self.saved_pressure);
                         state.displacement.copy_from_slice(&self.saved_displacement);
+                        if let Some(ring) = self.current_ring.take() {
+                            if self.ring_history.len() == 2 {
+                                self.ring_history.remove(0);
+                            }
+                            self.ring_history.push(ring);
+                        }
                         break;
                     }
-                    ring_restorable = false;
                     continue;
                 }
                 ring_restorable = false;
@@ -344,10 +391,29 @@ impl AdhesiveSolver {
             if self.candidates.is_empty() {
                 break;
             }
-            ring_restorable = self.candidates.iter().all(|&k| self.trial[k]);
+            let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
+            if !pure_ring || self.current_ring.is_some() {
+                // A ring that partly held (or penetration) breaks the chain of identical
+                // failed rings the prediction needs.
+                self.ring_history.clear();
+            }
+            self.current_ring = None;
+            ring_restorable = pure_ring;
             if ring_restorable {
+                if self.predict_failed_ring(depth, state) {
+                    for &k in &self.candidates {
+                        self.trial[k] = false;
+                        self.banned[k] = true;
+                    }
+                    break;
+                }
                 self.saved_pressure.copy_from_slice(&state.pressure);
                 self.saved_displacement.copy_from_slice(&state.displacement);
+                self.current_ring = Some(RingAttempt {
+                    depth,
+                    contact: state.contact.clone(),
+                    rounds: Vec::new(),
+                });
             }
             for &k in &self.candidates {
                 state.contact[k] = true;
@@ -375,6 +441,73 @@ impl AdhesiveSolver {
         report.dissipated_energy = report.energy_before_change - report.energy;
         report.operator_applications = operator.applications() - applications_before;
         Ok(report)
+    }
+
+    /// Exact shortcut for a quiet step: if the last two steps tried the same trial ring on
+    /// the same contact set and every round of its peel released the same elements, the
+    /// trial pressures of each round are linear in d (fixed sets), so this step's rounds
+    /// are known by extrapolation. When every extrapolated round releases exactly the
+    /// recorded elements, the ring fails again: record it and report `true` (no solve).
+    fn predict_failed_ring(&mut self, depth: f64, state: &ContactState) -> bool {
+        if self.params.detachment != Detachment::AllViolators || self.ring_history.len() < 2 {
+            return false;
+        }
+        let (older, newer) = (&self.ring_history[0], &self.ring_history[1]);
+        if older.depth == newer.depth
+            || newer.depth == depth
+            || older.rounds.len() != newer.rounds.len()
+            || newer.contact != state.contact
+            || older.contact != state.contact
+        {
+            return false;
+        }
+        if newer.rounds.first().map(|r| &r.members) != Some(&self.candidates) {
+            return false;
+        }
+        let factor = (depth - newer.depth) / (newer.depth - older.depth);
+        let mut predicted = Vec::with_capacity(newer.rounds.len());
+        for (a, b) in older.rounds.iter().zip(&newer.rounds) {
+            if a.members != b.members || a.failed != b.failed {
+                return false;
+            }
+            let pressures: Vec<f64> = a
+                .pressures
+                .iter()
+                .zip(&b.pressures)
+                .map(|(p0, p1)| p1 + factor * (p1 - p0))
+                .collect();
+            // The same violator rule as find_violators, on the trial members.
+            let ratios: Vec<f64> = b
+                .members
+                .iter()
+                .zip(&pressures)
+                .map(|(&k, p)| -p / self.critical_stress[k])
+                .collect();
+            let smallest = ratios
+                .iter()
+                .cloned()
+                .filter(|&r| r > 1.0)
+                .fold(f64::INFINITY, f64::min);
+            let failed: Vec<bool> = ratios
+                .iter()
+                .map(|&r| smallest.is_finite() && r >= smallest * (1.0 - 1e-9))
+                .collect();
+            if failed != b.failed {
+                return false;
+            }
+            predicted.push(RingRound {
+                members: b.members.clone(),
+                pressures,
+                failed,
+            });
+        }
+        self.ring_history.remove(0);
+        self.ring_history.push(RingAttempt {
+            depth,
+            contact: state.contact.clone(),
+            rounds: predicted,
+        });
+        true
     }
 
     fn release(&mut self, k: usize, state: &mut ContactState) {
