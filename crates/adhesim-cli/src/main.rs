@@ -1,10 +1,15 @@
 //! `adhesim`: command-line front end of the adhesim simulator (see `docs/cli.md`).
 
+mod friction_study;
+mod master_plots;
 mod output;
 mod plots;
 mod reference;
 mod scenario;
 mod summary;
+mod sweep;
+mod tangential;
+mod tangential_plots;
 
 use adhesim::analysis::reference::Hertz;
 use adhesim::{
@@ -36,6 +41,13 @@ enum Command {
     Run(RunArgs),
     /// Print a closed-form reference curve as CSV to stdout.
     Reference(reference::ReferenceArgs),
+    /// Run a parameter study (resumable, parallel, shardable); `sweep merge DIR` rebuilds
+    /// its table and plots.
+    Sweep(sweep::SweepArgs),
+    /// Redraw figures, e.g. `plot master TABLE.csv... [--out DIR]` (master curves).
+    Plot(master_plots::PlotArgs),
+    /// Rolling / sliding friction study over the Johnson parameter (paper Figs. 7, 8, 10).
+    Study(friction_study::StudyArgs),
     // ── merge point ─────────────────────────────────────────────────────────────────
     // `Experiment(experiment::ExperimentArgs)` (analysis of filmed contact experiments,
     // `adhesim experiment SPEC.toml [--out DIR]`) is merged here from its own branch,
@@ -84,6 +96,9 @@ fn main() -> ExitCode {
         None => run_default(),
         Some(Command::Run(args)) => run_file(&args),
         Some(Command::Reference(args)) => reference::print(&args),
+        Some(Command::Sweep(args)) => sweep::command(&args),
+        Some(Command::Plot(args)) => master_plots::command(&args),
+        Some(Command::Study(args)) => friction_study::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -128,6 +143,9 @@ fn run(scenario: scenario::Scenario, out: &Path, options: &RunOptions) -> Result
             .context("cannot set up the thread pool")?;
     }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
+    if scenario.translation.is_some() {
+        return tangential::run(scenario, out, options);
+    }
     let start = Instant::now();
     let grid = scenario.grid;
     let contact_modulus = scenario.material.contact_modulus();
@@ -195,7 +213,15 @@ fn run(scenario: scenario::Scenario, out: &Path, options: &RunOptions) -> Result
             max_depth: scenario.max_depth,
         },
     );
-    let plot_files = plots::write_all(&out.join("plots"), &figures)?;
+    let (fits, _) = summary::fit_results(&scenario, &observer.records);
+    let overlays = match scenario.jkr {
+        Some(jkr) => vec![(
+            "force_radius",
+            plots::fitted_jkr_overlays(&jkr, &observer.records, fits.gamma_approach, fits.gamma_pulloff),
+        )],
+        None => Vec::new(),
+    };
+    let plot_files = plots::write_all_with_overlays(&out.join("plots"), &figures, &overlays)?;
     let wall_seconds = start.elapsed().as_secs_f64();
     let mut warnings = observer.warnings.clone();
     if protocol_summary.touches_border && warnings.is_empty() {
@@ -205,7 +231,10 @@ fn run(scenario: scenario::Scenario, out: &Path, options: &RunOptions) -> Result
         adhesim_version: env!("CARGO_PKG_VERSION"),
         inputs: &scenario.file,
         derived: &scenario.derived,
-        results: summary::Results::from_protocol(&protocol_summary),
+        results: summary::Results {
+            fits,
+            ..summary::Results::from_protocol(&protocol_summary)
+        },
         performance: summary::Performance {
             wall_seconds,
             solver_iterations: protocol_summary.cg_iterations,

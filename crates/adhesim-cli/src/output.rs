@@ -51,6 +51,10 @@ pub struct RunObserver {
     pub error: Option<anyhow::Error>,
     /// Snapshot files written, relative to the output folder.
     pub snapshot_files: Vec<String>,
+    /// Steps whose contact sets are kept in `captured` (see [`RunObserver::capture`]).
+    capture_steps: BTreeSet<usize>,
+    /// (step, contact, previous contact) of the captured steps, in step order.
+    pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
 }
 
 impl RunObserver {
@@ -79,6 +83,8 @@ impl RunObserver {
             "radius",
             "n_contact",
             "dissipated_energy",
+            "force_tangential_before_change",
+            "half_width",
         ];
         if jkr.is_some() {
             header.extend(["d_norm", "force_norm", "radius_norm"]);
@@ -120,7 +126,15 @@ impl RunObserver {
             border_warned: false,
             error: None,
             snapshot_files: Vec::new(),
+            capture_steps: BTreeSet::new(),
+            captured: Vec::new(),
         })
+    }
+
+    /// Keeps the contact sets of these steps in memory (for composite pictures such as
+    /// the consecutive sliding snapshots of the paper's Fig. 9).
+    pub fn capture(&mut self, steps: impl IntoIterator<Item = usize>) {
+        self.capture_steps.extend(steps);
     }
 
     fn write_row(&mut self, r: &StepRecord) -> Result<()> {
@@ -135,6 +149,8 @@ impl RunObserver {
             r.radius.to_string(),
             r.contact_elements.to_string(),
             r.cumulative_dissipated_energy.to_string(),
+            r.force_tangential_before_change.to_string(),
+            r.half_width.to_string(),
         ];
         if let Some(jkr) = &self.jkr {
             row.push((r.depth / jkr.critical_depth().abs()).to_string());
@@ -190,6 +206,10 @@ impl RunObserver {
         }
         if step == self.plan.max_depth_step {
             self.snapshot("max_depth", &view.state.contact, view.previous_contact)?;
+        }
+        if self.capture_steps.contains(&step) {
+            self.captured
+                .push((step, view.state.contact.clone(), view.previous_contact.to_vec()));
         }
         if r.contact_elements > self.largest.0 {
             self.largest = (r.contact_elements, step, view.state.contact.clone());

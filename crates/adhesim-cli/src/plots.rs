@@ -188,7 +188,56 @@ fn range(figure: &Figure) -> ((f64, f64), (f64, f64)) {
     (pad(x0, x1), pad(y0, y1))
 }
 
+#[allow(dead_code)] // figures without overlays
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, figure: &Figure) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    draw_with_overlays(root, figure, &[])
+}
+
+/// Dashed curves drawn over a figure (fitted JKR curves), with their legend labels.
+pub type Overlays = [(String, Vec<(f64, f64)>)];
+
+/// The overlays of the figure with this name.
+pub type FigureOverlays<'a> = (&'a str, Vec<(String, Vec<(f64, f64)>)>);
+
+const OVERLAY_COLOURS: [RGBColor; 2] = [RGBColor(23, 120, 200), RGBColor(200, 30, 30)];
+
+/// The fitted JKR curves F(a) for γ1 and γ2 in the force–radius plot's units (normalised
+/// by a_JKR and |F_JKR|), over contact radii up to the largest one seen.
+pub fn fitted_jkr_overlays(
+    jkr: &Jkr,
+    records: &[StepRecord],
+    gamma_approach: Option<f64>,
+    gamma_pulloff: Option<f64>,
+) -> Vec<(String, Vec<(f64, f64)>)> {
+    let (f, a) = (jkr.critical_force().abs(), jkr.critical_radius());
+    let top = records.iter().map(|r| r.radius).fold(0.0, f64::max) * 1.05;
+    let mut out = Vec::new();
+    for (name, gamma) in [("γ1", gamma_approach), ("γ2", gamma_pulloff)] {
+        let Some(gamma) = gamma else { continue };
+        let fitted = Jkr {
+            work_of_adhesion: gamma,
+            ..*jkr
+        };
+        let curve = (0..=300)
+            .map(|i| top * i as f64 / 300.0)
+            .map(|x| (x / a, fitted.force(x) / f))
+            .collect();
+        out.push((
+            format!("JKR fit {name}/γ0 = {:.3}", gamma / jkr.work_of_adhesion),
+            curve,
+        ));
+    }
+    out
+}
+
+fn draw_with_overlays<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    figure: &Figure,
+    overlays: &Overlays,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -239,6 +288,19 @@ where
             .label(label)
             .legend(move |(x, y)| Circle::new((x + 9, y), 3, colour.filled()));
     }
+    for (k, (label, curve)) in overlays.iter().enumerate() {
+        let colour = OVERLAY_COLOURS[k % OVERLAY_COLOURS.len()];
+        // Only the part inside the figure's range: fits can run far off at large radii.
+        let inside = curve
+            .iter()
+            .copied()
+            .filter(|&(x, y)| x >= x0 && x <= x1 && y >= y0 && y <= y1);
+        chart
+            .draw_series(DashedLineSeries::new(inside, 8, 5, colour.stroke_width(2)))
+            .map_err(e)?
+            .label(label.as_str())
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
+    }
     if !figure.jumps.is_empty() {
         chart
             .draw_series(figure.jumps.iter().map(|&p| Cross::new(p, 4, BLACK.stroke_width(1))))
@@ -259,15 +321,30 @@ where
 }
 
 /// Writes `NAME.svg` and `NAME.png` for every figure into `dir`; returns the file names.
+#[allow(dead_code)] // plots without overlays
 pub fn write_all(dir: &Path, figures: &[(&'static str, Figure)]) -> Result<Vec<String>> {
+    write_all_with_overlays(dir, figures, &[])
+}
+
+/// As [`write_all`], with dashed overlay curves on the figures named in `overlays`.
+pub fn write_all_with_overlays(
+    dir: &Path,
+    figures: &[(&'static str, Figure)],
+    overlays: &[FigureOverlays<'_>],
+) -> Result<Vec<String>> {
     register_font()?;
     std::fs::create_dir_all(dir)?;
     let mut written = Vec::new();
     for (name, figure) in figures {
+        let extra: &Overlays = overlays
+            .iter()
+            .find(|(target, _)| target == name)
+            .map(|(_, curves)| curves.as_slice())
+            .unwrap_or(&[]);
         let svg = dir.join(format!("{name}.svg"));
-        draw(&SVGBackend::new(&svg, (800, 600)).into_drawing_area(), figure)?;
+        draw_with_overlays(&SVGBackend::new(&svg, (800, 600)).into_drawing_area(), figure, extra)?;
         let png = dir.join(format!("{name}.png"));
-        draw(&BitMapBackend::new(&png, (800, 600)).into_drawing_area(), figure)?;
+        draw_with_overlays(&BitMapBackend::new(&png, (800, 600)).into_drawing_area(), figure, extra)?;
         written.push(format!("plots/{name}.svg"));
         written.push(format!("plots/{name}.png"));
     }

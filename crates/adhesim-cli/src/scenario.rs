@@ -8,7 +8,10 @@
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::geometry::{EllipticPunch, FlatPunch, Sphere, Topography, WavySphere};
 use adhesim::solver::critical_stress;
-use adhesim::{Axis, Boundary, ElasticMaterial, Grid, Indenter, Profile, WorkOfAdhesion};
+use adhesim::{
+    Axis, Boundary, ElasticMaterial, Grid, Indenter, Kinematics, Profile, TranslatingContact, Translation,
+    WorkOfAdhesion,
+};
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -24,6 +27,30 @@ pub struct ScenarioFile {
     pub protocol: ProtocolSection,
     #[serde(default)]
     pub output: OutputSection,
+    /// Inputs of the analysis of a run (roll/slide: γ1, γ2 for Eq. 12, τ0 for Eq. 16).
+    #[serde(default, skip_serializing_if = "AnalysisSection::is_empty")]
+    pub analysis: AnalysisSection,
+}
+
+/// `[analysis]`: numbers the analysis of a run needs but the run does not produce.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSection {
+    /// γ1 (approach branch of a normal run at the same α), for Eq. 12 of a rolling run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_approach: Option<f64>,
+    /// γ2 (pull-off branch), for Eq. 12.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_pulloff: Option<f64>,
+    /// Shear strength τ0 of the contact area, for the friction law of Eqs. 16–18.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tau0: Option<f64>,
+}
+
+impl AnalysisSection {
+    fn is_empty(&self) -> bool {
+        self.gamma_approach.is_none() && self.gamma_pulloff.is_none() && self.tau0.is_none()
+    }
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -136,6 +163,34 @@ pub enum ProtocolKind {
     IndentPulloff,
     Roll,
     Slide,
+    /// The frictionless control: the whole rough profile translates over a smooth body.
+    Translate,
+}
+
+impl ProtocolKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::IndentPulloff => "indent_pulloff",
+            Self::Roll => "roll",
+            Self::Slide => "slide",
+            Self::Translate => "translate",
+        }
+    }
+
+    /// Roll, slide or translate: motion at fixed indentation.
+    pub fn is_translation(self) -> bool {
+        !matches!(self, Self::IndentPulloff)
+    }
+}
+
+/// Unit of `protocol.distance`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DistanceUnit {
+    #[default]
+    Length,
+    /// Multiples of the waviness wavelength λ.
+    Wavelength,
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -150,9 +205,31 @@ pub enum DepthUnit {
 #[serde(deny_unknown_fields)]
 pub struct ProtocolSection {
     pub kind: ProtocolKind,
-    pub max_depth: f64,
+    /// Deepest indentation of `indent_pulloff`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_depth: Option<f64>,
     #[serde(default)]
     pub depth_unit: DepthUnit,
+    /// roll / slide / translate: indentation held during the motion (in `depth_unit`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth: Option<f64>,
+    /// roll / slide / translate: travel of the indenter axis in +x.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance_unit: Option<DistanceUnit>,
+    /// roll / slide / translate: steps of the approach to `depth` (default 50).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_steps: Option<i64>,
+    /// roll / slide / translate: travel back to x = 0 after the forward stroke.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_stroke: Option<bool>,
+    /// roll / slide / translate: means are taken over x > stationary_from·distance (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stationary_from: Option<f64>,
+    /// slide: rotation of the substrate's waviness against the indenter's, degrees (default 30).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substrate_angle: Option<f64>,
     /// Steps per branch (approach); the retraction uses the same step size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps: Option<i64>,
@@ -195,6 +272,10 @@ pub struct OutputSection {
     /// At most this many jump snapshots (chosen steps are always written).
     #[serde(default = "default_max_snapshots")]
     pub max_snapshots: i64,
+    /// Contact radii below this (length units) are left out of the JKR fits of γ1/γ2
+    /// [default: max(0.5·a_JKR, 2λ) for a wavy sphere, 0.5·a_JKR otherwise].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_fit_radius: Option<f64>,
 }
 
 impl Default for OutputSection {
@@ -205,6 +286,7 @@ impl Default for OutputSection {
             jump_snapshot_elements: default_jump_snapshot_elements(),
             jump_force_threshold: default_jump_force_threshold(),
             max_snapshots: default_max_snapshots(),
+            min_fit_radius: None,
         }
     }
 }
@@ -231,6 +313,23 @@ pub struct Scenario {
     pub derived: Derived,
     /// Absolute force threshold for a jump.
     pub jump_force_threshold: f64,
+    /// roll / slide / translate: the motion (`None` for indent_pulloff).
+    pub translation: Option<TranslationSetup>,
+}
+
+/// A validated roll / slide / translate protocol.
+#[derive(Debug, Clone, Copy)]
+pub struct TranslationSetup {
+    pub kind: ProtocolKind,
+    pub contact: TranslatingContact,
+    /// Library protocol (start_depth is the depth of first contact at x = 0).
+    pub protocol: Translation,
+    /// γ1, γ2 from `[analysis]` (Eq. 12), absolute units.
+    pub gammas: Option<(f64, f64)>,
+    /// τ0 from `[analysis]` (Eqs. 16–18).
+    pub tau0: Option<f64>,
+    /// Waviness wavelength λ (None for a smooth sphere).
+    pub wavelength: Option<f64>,
 }
 
 /// Derived quantities for `summary.json`; `None` is written as null.
@@ -281,7 +380,9 @@ pub fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<
     Ok(())
 }
 
-const SECTIONS: [&str; 6] = ["grid", "material", "adhesion", "indenter", "protocol", "output"];
+const SECTIONS: [&str; 7] = [
+    "grid", "material", "adhesion", "indenter", "protocol", "output", "analysis",
+];
 
 /// Deserialises the table section by section so that every message names the dotted key.
 pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
@@ -313,6 +414,7 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
     let indenter = section(table, "indenter", true)?.expect("required");
     let protocol = section(table, "protocol", true)?.expect("required");
     let output = section(table, "output", false)?.unwrap_or_default();
+    let analysis = section(table, "analysis", false)?.unwrap_or_default();
     Ok(ScenarioFile {
         grid,
         material,
@@ -320,6 +422,7 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
         indenter,
         protocol,
         output,
+        analysis,
     })
 }
 
@@ -657,12 +760,12 @@ impl ScenarioFile {
 
         // [protocol]
         let p = &self.protocol;
-        match p.kind {
-            ProtocolKind::IndentPulloff => {}
-            ProtocolKind::Roll | ProtocolKind::Slide => bail!(
-                "protocol.kind = \"{}\" is not implemented yet (supported: \"indent_pulloff\")",
-                if p.kind == ProtocolKind::Roll { "roll" } else { "slide" }
-            ),
+        if p.kind.is_translation() && !matches!(shape, ShapeName::Sphere | ShapeName::WavySphere) {
+            bail!(
+                "protocol.kind = \"{}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+                p.kind.name(),
+                shape.name()
+            );
         }
         let unit = match p.depth_unit {
             DepthUnit::Length => 1.0,
@@ -674,12 +777,47 @@ impl ScenarioFile {
                 ),
             },
         };
-        let max_depth = finite("protocol.max_depth", p.max_depth)? * unit;
+        if p.kind.is_translation() {
+            return self.validate_translation(TranslationInputs {
+                grid,
+                material,
+                gamma,
+                gamma0,
+                indenter,
+                unit,
+                jkr,
+                derived,
+            });
+        }
+        for (key, is_set) in [
+            ("depth", p.depth.is_some()),
+            ("distance", p.distance.is_some()),
+            ("distance_unit", p.distance_unit.is_some()),
+            ("approach_steps", p.approach_steps.is_some()),
+            ("return_stroke", p.return_stroke.is_some()),
+            ("stationary_from", p.stationary_from.is_some()),
+            ("substrate_angle", p.substrate_angle.is_some()),
+        ] {
+            if is_set {
+                bail!(
+                    "protocol.{key} is not used by protocol.kind = \"indent_pulloff\" (it belongs to \"roll\", \"slide\", \"translate\")"
+                );
+            }
+        }
+        if !self.analysis.is_empty() {
+            bail!(
+                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only"
+            );
+        }
+        let raw_max_depth = p.max_depth.ok_or_else(|| {
+            anyhow!("missing key `protocol.max_depth` (needed by protocol.kind = \"indent_pulloff\")")
+        })?;
+        let max_depth = finite("protocol.max_depth", raw_max_depth)? * unit;
         if max_depth <= start_depth {
             bail!(
                 "protocol.max_depth must exceed the depth of first contact ({:.6e} in length units), got {}",
                 start_depth / unit,
-                p.max_depth
+                raw_max_depth
             );
         }
         let span = max_depth - start_depth;
@@ -704,7 +842,30 @@ impl ScenarioFile {
             None => (20 * approach_steps).max(1000),
         };
 
-        // [output]
+        let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, contact_modulus)?;
+
+        Ok(Scenario {
+            file: self,
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            heights,
+            start_depth,
+            max_depth,
+            depth_step,
+            approach_steps,
+            max_retract_steps,
+            jkr,
+            derived,
+            jump_force_threshold,
+            translation: None,
+        })
+    }
+
+    /// Checks `[output]` and returns the absolute jump force threshold.
+    fn output_checks(&self, gamma0: f64, jkr: &Option<Jkr>, indenter: &Indenter, contact_modulus: f64) -> Result<f64> {
         let o = &self.output;
         for &s in &o.snapshot_steps {
             if s < 0 {
@@ -724,6 +885,9 @@ impl ScenarioFile {
             bail!("output.max_snapshots must be >= 0, got {}", o.max_snapshots);
         }
         non_negative("output.jump_force_threshold", o.jump_force_threshold)?;
+        if let Some(radius) = o.min_fit_radius {
+            non_negative("output.min_fit_radius", radius)?;
+        }
         let force_scale = if gamma0 > 0.0 {
             match (&jkr, &indenter) {
                 (Some(j), _) => j.critical_force().abs(),
@@ -741,8 +905,147 @@ impl ScenarioFile {
         } else {
             0.0
         };
-        let jump_force_threshold = o.jump_force_threshold * force_scale;
+        Ok(o.jump_force_threshold * force_scale)
+    }
+}
 
+/// What `validate` has built before the protocol section, handed to the roll/slide part.
+struct TranslationInputs {
+    grid: Grid,
+    material: ElasticMaterial,
+    gamma: Vec<f64>,
+    gamma0: f64,
+    indenter: Indenter,
+    /// Length of one `depth_unit`.
+    unit: f64,
+    jkr: Option<Jkr>,
+    derived: Derived,
+}
+
+/// Default approach steps of roll / slide / translate.
+pub const DEFAULT_APPROACH_STEPS: i64 = 50;
+/// Default stationary fraction.
+pub const DEFAULT_STATIONARY_FROM: f64 = 0.5;
+/// Default substrate angle of a slide, degrees.
+pub const DEFAULT_SUBSTRATE_ANGLE: f64 = 30.0;
+
+impl ScenarioFile {
+    /// `[protocol]` of kind roll / slide / translate (and `[analysis]`).
+    fn validate_translation(self, inputs: TranslationInputs) -> Result<Scenario> {
+        let TranslationInputs {
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            unit,
+            jkr,
+            derived,
+        } = inputs;
+        let p = &self.protocol;
+        let kind = p.kind;
+        let name = kind.name();
+        for (key, is_set) in [
+            ("max_depth", p.max_depth.is_some()),
+            ("step", p.step.is_some()),
+            ("max_retract_steps", p.max_retract_steps.is_some()),
+        ] {
+            if is_set {
+                let hint = if key == "max_depth" {
+                    " (use protocol.depth)"
+                } else {
+                    ""
+                };
+                bail!("protocol.{key} is not used by protocol.kind = \"{name}\"{hint}");
+            }
+        }
+        if p.substrate_angle.is_some() && kind != ProtocolKind::Slide {
+            bail!("protocol.substrate_angle is used by protocol.kind = \"slide\" only, not \"{name}\"");
+        }
+        let wavy = match &indenter {
+            Indenter::WavySphere(w) => *w,
+            Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
+            _ => bail!(
+                "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+                self.indenter.shape.name()
+            ),
+        };
+        let wavelength = matches!(indenter, Indenter::WavySphere(_)).then(|| wavy.waviness().wavelength());
+        let kinematics = match kind {
+            ProtocolKind::Roll => Kinematics::Roll,
+            ProtocolKind::Translate => Kinematics::Translate,
+            _ => {
+                let degrees = finite(
+                    "protocol.substrate_angle",
+                    p.substrate_angle.unwrap_or(DEFAULT_SUBSTRATE_ANGLE),
+                )?;
+                Kinematics::Slide {
+                    substrate_angle: degrees.to_radians(),
+                }
+            }
+        };
+        let contact = TranslatingContact::new(wavy, kinematics);
+        let mut heights = vec![0.0; grid.len()];
+        contact.fill_heights(&grid, 0.0, &mut heights);
+        let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
+        let raw_depth = p
+            .depth
+            .ok_or_else(|| anyhow!("missing key `protocol.depth` (needed by protocol.kind = \"{name}\")"))?;
+        let depth = finite("protocol.depth", raw_depth)? * unit;
+        if depth <= start_depth {
+            bail!(
+                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
+                start_depth / unit
+            );
+        }
+        let raw_distance = p
+            .distance
+            .ok_or_else(|| anyhow!("missing key `protocol.distance` (needed by protocol.kind = \"{name}\")"))?;
+        let distance_scale = match p.distance_unit.unwrap_or_default() {
+            DistanceUnit::Length => 1.0,
+            DistanceUnit::Wavelength => wavelength.ok_or_else(|| {
+                anyhow!(
+                    "protocol.distance_unit = \"wavelength\" needs indenter.shape = \"wavy_sphere\" (its indenter.wavelength)"
+                )
+            })?,
+        };
+        let distance = positive("protocol.distance", raw_distance)? * distance_scale;
+        let steps = p
+            .steps
+            .ok_or_else(|| anyhow!("missing key `protocol.steps` (steps of the travel, protocol.kind = \"{name}\")"))?;
+        if !(1..=10_000_000).contains(&steps) {
+            bail!("protocol.steps must be in 1..=10000000, got {steps}");
+        }
+        let approach_steps = p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS);
+        if !(1..=10_000_000).contains(&approach_steps) {
+            bail!("protocol.approach_steps must be in 1..=10000000, got {approach_steps}");
+        }
+        let stationary_from = p.stationary_from.unwrap_or(DEFAULT_STATIONARY_FROM);
+        if !(0.0..1.0).contains(&stationary_from) {
+            bail!("protocol.stationary_from must lie in [0, 1), got {stationary_from}");
+        }
+        let a = &self.analysis;
+        let gammas = match (a.gamma_approach, a.gamma_pulloff) {
+            (Some(g1), Some(g2)) => Some((
+                non_negative("analysis.gamma_approach", g1)?,
+                non_negative("analysis.gamma_pulloff", g2)?,
+            )),
+            (None, None) => None,
+            (Some(_), None) => bail!("analysis.gamma_pulloff is required with analysis.gamma_approach"),
+            (None, Some(_)) => bail!("analysis.gamma_approach is required with analysis.gamma_pulloff"),
+        };
+        let tau0 = a.tau0.map(|t| non_negative("analysis.tau0", t)).transpose()?;
+        let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
+        let protocol = Translation {
+            start_depth,
+            depth,
+            approach_steps: approach_steps as usize,
+            distance,
+            steps: steps as usize,
+            return_stroke: p.return_stroke.unwrap_or(false),
+            stationary_from,
+            jump_force_threshold,
+        };
         Ok(Scenario {
             file: self,
             grid,
@@ -752,13 +1055,21 @@ impl ScenarioFile {
             indenter,
             heights,
             start_depth,
-            max_depth,
-            depth_step,
-            approach_steps,
-            max_retract_steps,
+            max_depth: depth,
+            depth_step: (depth - start_depth) / approach_steps as f64,
+            approach_steps: approach_steps as usize,
+            max_retract_steps: 0,
             jkr,
             derived,
             jump_force_threshold,
+            translation: Some(TranslationSetup {
+                kind,
+                contact,
+                protocol,
+                gammas,
+                tau0,
+                wavelength,
+            }),
         })
     }
 }

@@ -1,0 +1,495 @@
+//! Sweep files: a base scenario plus parameters to vary ([vary] cartesian product, [zip]
+//! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
+//! the deterministic case list.
+
+use crate::scenario;
+use adhesim::analysis::reference::Jkr;
+use anyhow::{anyhow, bail, Context, Result};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// Pseudo-keys: dimensionless inputs turned into scenario keys for each case.
+pub const PSEUDO_KEYS: [&str; 4] = ["lambda_over_radius", "h_over_lambda", "alpha", "size_over_a_jkr"];
+
+/// Keys that `alpha` may solve for ([derived] alpha = "...").
+const ALPHA_TARGETS: [&str; 4] = [
+    "indenter.amplitude",
+    "adhesion.work_of_adhesion",
+    "indenter.wavelength",
+    "material.contact_modulus",
+];
+
+/// One case of a sweep.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Case {
+    /// 0-based position in the case list.
+    pub index: usize,
+    /// `<index>-<short hash of the overrides>`, the folder name under `cases/`.
+    pub id: String,
+    /// Hash of the whole effective scenario; written into the case's `done` marker.
+    pub hash: String,
+    /// The varied values, in the order of [`Plan::keys`], as table cells.
+    pub values: Vec<String>,
+    /// The effective scenario (TOML text) the case runs.
+    pub scenario: String,
+}
+
+/// The whole sweep: what `DIR/sweep.json` holds.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Plan {
+    /// Series label for the master-curve plots.
+    pub series: String,
+    /// Varied keys (dotted scenario keys or pseudo-keys), as the table's columns.
+    pub keys: Vec<String>,
+    pub cases: Vec<Case>,
+    /// Folder that relative file paths in the scenario are resolved against.
+    pub base_dir: PathBuf,
+}
+
+/// 64-bit FNV-1a (stable across platforms and Rust versions, unlike `DefaultHasher`).
+pub fn fnv1a(text: &str) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for byte in text.bytes() {
+        hash ^= u64::from(byte);
+        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    hash
+}
+
+/// splitmix64: a tiny, fully specified PRNG, so random case lists are reproducible.
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1) with 53 random bits.
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// A value as a table cell: numbers in Rust's shortest round-trip form, strings bare.
+pub fn cell(value: &toml::Value) -> String {
+    match value {
+        toml::Value::String(s) => s.clone(),
+        toml::Value::Integer(i) => i.to_string(),
+        toml::Value::Float(f) => f.to_string(),
+        toml::Value::Boolean(b) => b.to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// Rounds to 10 significant digits so that log-scale draws (which go through the
+/// platform's `ln`/`exp`) give the same numbers everywhere.
+fn round10(x: f64) -> f64 {
+    format!("{x:.9e}").parse().unwrap_or(x)
+}
+
+fn get<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+    let mut parts = key.split('.');
+    let mut value = table.get(parts.next()?)?;
+    for part in parts {
+        value = value.as_table()?.get(part)?;
+    }
+    Some(value)
+}
+
+fn number(table: &toml::Table, key: &str, why: &str) -> Result<f64> {
+    match get(table, key) {
+        Some(toml::Value::Float(f)) => Ok(*f),
+        Some(toml::Value::Integer(i)) => Ok(*i as f64),
+        Some(other) => bail!("{why} needs {key} to be a number, got {other}"),
+        None => bail!("{why} needs {key} in the scenario"),
+    }
+}
+
+fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        bail!("invalid key `{key}`");
+    }
+    let mut current = table;
+    for (depth, part) in parts[..parts.len() - 1].iter().enumerate() {
+        current = current
+            .entry(part.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .ok_or_else(|| anyhow!("`{}` is not a table", parts[..=depth].join(".")))?;
+    }
+    current.insert(parts[parts.len() - 1].to_string(), value);
+    Ok(())
+}
+
+fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
+    if get(table, "material.contact_modulus").is_some() {
+        return number(table, "material.contact_modulus", why);
+    }
+    let e = number(table, "material.youngs_modulus", why)?;
+    let nu = number(table, "material.poisson_ratio", why)?;
+    Ok(e / (1.0 - nu * nu))
+}
+
+/// Applies one case's overrides: plain dotted keys first, then the pseudo-keys in the
+/// order lambda_over_radius, h_over_lambda, alpha, size_over_a_jkr.
+pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha_target: &str) -> Result<()> {
+    let mut pseudo: Vec<(&str, f64)> = Vec::new();
+    for (key, value) in overrides {
+        if PSEUDO_KEYS.contains(&key.as_str()) {
+            let v = value
+                .as_float()
+                .or_else(|| value.as_integer().map(|i| i as f64))
+                .ok_or_else(|| anyhow!("{key} must be a number, got {value}"))?;
+            if !(v.is_finite() && v > 0.0) {
+                bail!("{key} must be > 0, got {v}");
+            }
+            pseudo.push((key.as_str(), v));
+        } else {
+            set(table, key, value.clone()).with_context(|| format!("sweep key `{key}`"))?;
+        }
+    }
+    let value_of = |name: &str| pseudo.iter().find(|(k, _)| *k == name).map(|(_, v)| *v);
+    if let Some(v) = value_of("lambda_over_radius") {
+        let radius = number(table, "indenter.radius", "lambda_over_radius")?;
+        set(table, "indenter.wavelength", toml::Value::Float(v * radius))?;
+    }
+    if let Some(v) = value_of("h_over_lambda") {
+        let wavelength = number(table, "indenter.wavelength", "h_over_lambda")?;
+        set(table, "indenter.amplitude", toml::Value::Float(v * wavelength))?;
+    }
+    if let Some(alpha) = value_of("alpha") {
+        // α² = 2λγ0/(π²h²E*), solved for the target key.
+        let pi2 = std::f64::consts::PI.powi(2);
+        let why = "alpha";
+        let e = || contact_modulus(table, why);
+        let lambda = || number(table, "indenter.wavelength", why);
+        let h = || number(table, "indenter.amplitude", why);
+        let gamma = || number(table, "adhesion.work_of_adhesion", why);
+        let solved = match alpha_target {
+            "indenter.amplitude" => (2.0 * lambda()? * gamma()? / (pi2 * e()? * alpha * alpha)).sqrt(),
+            "adhesion.work_of_adhesion" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * lambda()?),
+            "indenter.wavelength" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * gamma()?),
+            "material.contact_modulus" => {
+                if get(table, "material.contact_modulus").is_none() {
+                    bail!(
+                        "[derived] alpha = \"material.contact_modulus\" needs material.contact_modulus in the scenario"
+                    );
+                }
+                2.0 * lambda()? * gamma()? / (pi2 * h()?.powi(2) * alpha * alpha)
+            }
+            other => bail!(
+                "[derived] alpha = \"{other}\": alpha can set one of {}",
+                ALPHA_TARGETS.join(", ")
+            ),
+        };
+        set(table, alpha_target, toml::Value::Float(solved))?;
+    }
+    if let Some(v) = value_of("size_over_a_jkr") {
+        let why = "size_over_a_jkr";
+        let jkr = Jkr {
+            radius: number(table, "indenter.radius", why)?,
+            contact_modulus: contact_modulus(table, why)?,
+            work_of_adhesion: number(table, "adhesion.work_of_adhesion", why)?,
+        };
+        set(table, "grid.size", toml::Value::Float(v * jkr.critical_radius()))?;
+    }
+    Ok(())
+}
+
+/// A [random] range.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Range {
+    min: toml::Value,
+    max: toml::Value,
+    #[serde(default)]
+    scale: Option<String>,
+}
+
+/// Reads the sweep file and builds the validated case list.
+pub fn load(path: &Path) -> Result<Plan> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read sweep file {}", path.display()))?;
+    let origin = path.display().to_string();
+    let sweep_dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "sweep".into());
+    from_text(&text, &origin, &sweep_dir, &stem)
+}
+
+/// As [`load`], from text (`sweep_dir` resolves `base`).
+pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Result<Plan> {
+    let sweep = scenario::parse_toml(text, origin)?;
+    const TOP: [&str; 8] = ["base", "scenario", "series", "set", "vary", "zip", "random", "derived"];
+    for key in sweep.keys() {
+        if !TOP.contains(&key.as_str()) {
+            bail!("{origin}: unknown key `{key}` (expected: {})", TOP.join(", "));
+        }
+    }
+    // Base scenario.
+    let (base, base_dir) = match (sweep.get("base"), sweep.get("scenario")) {
+        (Some(toml::Value::String(file)), None) => {
+            let base_path = sweep_dir.join(file);
+            let text = std::fs::read_to_string(&base_path)
+                .with_context(|| format!("base = \"{file}\": cannot read {}", base_path.display()))?;
+            let table = scenario::parse_toml(&text, &base_path.display().to_string())?;
+            (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
+        }
+        (None, Some(toml::Value::Table(table))) => (table.clone(), sweep_dir.to_path_buf()),
+        (Some(_), Some(_)) => bail!("{origin}: give either base = \"file.toml\" or an inline [scenario], not both"),
+        (Some(other), None) => bail!("base must be a file name (string), got {other}"),
+        (None, Some(other)) => bail!("scenario must be a table [scenario], got {other}"),
+        (None, None) => bail!("{origin}: missing base = \"scenario.toml\" (or an inline [scenario] table)"),
+    };
+    scenario::deserialize(&base)
+        .and_then(|file| file.validate(&base_dir).map(|_| ()))
+        .context("base scenario")?;
+    let series = match sweep.get("series") {
+        None => stem.to_string(),
+        Some(toml::Value::String(s)) => s.clone(),
+        Some(other) => bail!("series must be a string, got {other}"),
+    };
+    let table_of = |name: &str| -> Result<toml::Table> {
+        match sweep.get(name) {
+            None => Ok(toml::Table::new()),
+            Some(toml::Value::Table(t)) => Ok(t.clone()),
+            Some(other) => bail!("`{name}` must be a table [{name}], got {other}"),
+        }
+    };
+    let derived = table_of("derived")?;
+    let mut alpha_target = "indenter.amplitude".to_string();
+    for (key, value) in &derived {
+        match (key.as_str(), value) {
+            ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.contains(&target.as_str()) => {
+                alpha_target = target.clone()
+            }
+            ("alpha", other) => bail!(
+                "derived.alpha must name the key alpha sets, one of {}; got {other}",
+                ALPHA_TARGETS.join(", ")
+            ),
+            (other, _) => bail!("unknown key `derived.{other}` (known: alpha)"),
+        }
+    }
+    let fixed: Vec<(String, toml::Value)> = table_of("set")?.into_iter().collect();
+
+    // [vary]: cartesian product.
+    let mut keys: Vec<String> = Vec::new();
+    let mut vary: Vec<(String, Vec<toml::Value>)> = Vec::new();
+    for (key, value) in table_of("vary")? {
+        match value {
+            toml::Value::Array(list) if !list.is_empty() => vary.push((key.clone(), list)),
+            toml::Value::Array(_) => bail!("vary.\"{key}\" is an empty list"),
+            other => bail!("vary.\"{key}\" must be a list of values, got {other}"),
+        }
+        keys.push(key);
+    }
+    // [zip]: equal-length lists.
+    let mut zip: Vec<(String, Vec<toml::Value>)> = Vec::new();
+    for (key, value) in table_of("zip")? {
+        match value {
+            toml::Value::Array(list) => zip.push((key.clone(), list)),
+            other => bail!("zip.\"{key}\" must be a list of values, got {other}"),
+        }
+        keys.push(key);
+    }
+    let zip_rows = match zip.first() {
+        None => 1,
+        Some((first_key, first)) => {
+            for (key, list) in &zip {
+                if list.len() != first.len() {
+                    bail!(
+                        "[zip] lists must have equal lengths: zip.\"{key}\" has {}, zip.\"{first_key}\" has {}",
+                        list.len(),
+                        first.len()
+                    );
+                }
+            }
+            if first.is_empty() {
+                bail!("zip.\"{first_key}\" is an empty list");
+            }
+            first.len()
+        }
+    };
+    // [random]: seeded draws.
+    let mut random = table_of("random")?;
+    let mut draws: Vec<Vec<(String, toml::Value)>> = Vec::new();
+    if !random.is_empty() {
+        let seed = match random.remove("seed") {
+            Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
+            Some(other) => bail!("random.seed must be an integer >= 0, got {other}"),
+            None => bail!("missing key `random.seed`"),
+        };
+        let cases = match random.remove("cases") {
+            Some(toml::Value::Integer(c)) if c >= 1 => c as usize,
+            Some(other) => bail!("random.cases must be an integer >= 1, got {other}"),
+            None => bail!("missing key `random.cases`"),
+        };
+        let mut ranges = Vec::new();
+        for (key, value) in random {
+            let range = Range::deserialize(value.clone()).map_err(|e| {
+                anyhow!(
+                    "random.\"{key}\" must be {{ min = .., max = .., scale = \"log\"|\"linear\" }}: {}",
+                    e.message()
+                )
+            })?;
+            let as_f64 = |v: &toml::Value, which: &str| -> Result<f64> {
+                v.as_float()
+                    .or_else(|| v.as_integer().map(|i| i as f64))
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| anyhow!("random.\"{key}\".{which} must be a number, got {v}"))
+            };
+            let (min, max) = (as_f64(&range.min, "min")?, as_f64(&range.max, "max")?);
+            if min > max {
+                bail!("random.\"{key}\": min ({min}) > max ({max})");
+            }
+            let log = match range.scale.as_deref() {
+                None | Some("linear") => false,
+                Some("log") => {
+                    if min <= 0.0 {
+                        bail!("random.\"{key}\": scale = \"log\" needs min > 0, got {min}");
+                    }
+                    true
+                }
+                Some(other) => bail!("random.\"{key}\".scale must be \"log\" or \"linear\", got \"{other}\""),
+            };
+            let integer = range.min.is_integer() && range.max.is_integer();
+            ranges.push((key.clone(), min, max, log, integer));
+            keys.push(key);
+        }
+        let mut rng = SplitMix64::new(seed);
+        for _ in 0..cases {
+            let mut draw = Vec::new();
+            for (key, min, max, log, integer) in &ranges {
+                let u = rng.next_f64();
+                let x = if *log {
+                    (min.ln() + u * (max.ln() - min.ln())).exp()
+                } else if *integer {
+                    (min + (u * (max - min + 1.0)).floor()).min(*max)
+                } else {
+                    min + u * (max - min)
+                };
+                let value = if *integer {
+                    toml::Value::Integer(x.round() as i64)
+                } else {
+                    toml::Value::Float(round10(x))
+                };
+                draw.push((key.clone(), value));
+            }
+            draws.push(draw);
+        }
+    }
+    if draws.is_empty() {
+        draws.push(Vec::new());
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for key in keys.iter().chain(fixed.iter().map(|(k, _)| k)) {
+        if !seen.insert(key.clone()) {
+            bail!("sweep key `{key}` is given more than once (in [set], [vary], [zip] or [random])");
+        }
+        if key == "alpha" && get(&base, &alpha_target).is_none() && alpha_target != "indenter.amplitude" {
+            bail!("alpha sets {alpha_target}, which the base scenario lacks");
+        }
+    }
+    // Every key must be a scenario key (or a pseudo-key): set it alone on the base and
+    // deserialise, so that an unknown key is named.
+    for (key, value) in vary
+        .iter()
+        .map(|(k, l)| (k, &l[0]))
+        .chain(zip.iter().map(|(k, l)| (k, &l[0])))
+        .chain(draws[0].iter().map(|(k, v)| (k, v)))
+        .chain(fixed.iter().map(|(k, v)| (k, v)))
+    {
+        if PSEUDO_KEYS.contains(&key.as_str()) {
+            continue;
+        }
+        if key.split('.').any(str::is_empty) || !key.contains('.') {
+            bail!(
+                "unknown sweep key `{key}`: expected a dotted scenario key such as \"indenter.amplitude\" or one of {}",
+                PSEUDO_KEYS.join(", ")
+            );
+        }
+        let mut table = base.clone();
+        set(&mut table, key, value.clone()).with_context(|| format!("sweep key `{key}`"))?;
+        scenario::deserialize(&table).with_context(|| format!("sweep key `{key}`"))?;
+    }
+
+    // The case list: vary (last key fastest) × zip rows × random draws.
+    let mut combos: Vec<Vec<(String, toml::Value)>> = vec![Vec::new()];
+    for (key, list) in &vary {
+        let mut next = Vec::with_capacity(combos.len() * list.len());
+        for combo in &combos {
+            for value in list {
+                let mut c = combo.clone();
+                c.push((key.clone(), value.clone()));
+                next.push(c);
+            }
+        }
+        combos = next;
+    }
+    let mut cases = Vec::new();
+    for combo in &combos {
+        for row in 0..zip_rows {
+            for draw in &draws {
+                let mut overrides = combo.clone();
+                overrides.extend(zip.iter().map(|(k, l)| (k.clone(), l[row].clone())));
+                overrides.extend(draw.iter().cloned());
+                let index = cases.len();
+                let values: Vec<String> = overrides.iter().map(|(_, v)| cell(v)).collect();
+                let canonical: String = overrides.iter().map(|(k, v)| format!("{k}={v}\n")).collect();
+                let mut table = base.clone();
+                let all: Vec<(String, toml::Value)> = fixed.iter().cloned().chain(overrides.iter().cloned()).collect();
+                let describe = || {
+                    let list: Vec<String> = overrides.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                    format!("case {index} ({})", list.join(", "))
+                };
+                apply(&mut table, &all, &alpha_target).with_context(describe)?;
+                scenario::deserialize(&table)
+                    .and_then(|file| file.validate(&base_dir).map(|_| ()))
+                    .with_context(describe)?;
+                let scenario_text = toml::to_string(&table).context("cannot serialise a case scenario")?;
+                cases.push(Case {
+                    index,
+                    id: format!("{index:04}-{:08x}", fnv1a(&canonical) >> 32),
+                    hash: format!("{:016x}", fnv1a(&scenario_text)),
+                    values,
+                    scenario: scenario_text,
+                });
+            }
+        }
+    }
+    Ok(Plan {
+        series,
+        keys,
+        cases,
+        base_dir,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn splitmix64_matches_the_reference_sequence() {
+        // Reference values of splitmix64 seeded with 1234567 (Vigna's C code).
+        let mut rng = SplitMix64::new(1_234_567);
+        assert_eq!(rng.next_u64(), 6_457_827_717_110_365_317);
+        assert_eq!(rng.next_u64(), 3_203_168_211_198_807_973);
+        let u = rng.next_f64();
+        assert!((0.0..1.0).contains(&u));
+    }
+
+    #[test]
+    fn fnv1a_is_the_standard_hash() {
+        assert_eq!(fnv1a(""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a("a"), 0xaf63_dc4c_8601_ec8c);
+    }
+}

@@ -1,0 +1,318 @@
+//! End-to-end tests of `adhesim sweep`: resuming after SIGKILL, shards + merge, bad sweep
+//! files, and the JKR fits of a smooth-sphere run.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+
+fn sweeps_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps")
+}
+
+fn adhesim(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().expect("binary runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+fn assert_ok(output: &Output) {
+    assert!(output.status.success(), "failed: {}", stderr(output));
+}
+
+fn assert_fails_with(output: &Output, fragments: &[&str]) {
+    let message = stderr(output);
+    assert!(!output.status.success(), "expected failure, stderr: {message}");
+    assert!(!message.contains("panicked"), "panic: {message}");
+    for fragment in fragments {
+        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
+    }
+}
+
+/// Eight cases of a few tenths of a second each (64×64 grid).
+const SLOW_SWEEP: &str = r#"
+series = "kill-test"
+
+[scenario]
+grid = { n = 64, size = 0.8 }
+material = { contact_modulus = 1.0 }
+adhesion = { work_of_adhesion = 6.16850275068085e-4 }
+indenter = { shape = "wavy_sphere", radius = 1.0, amplitude = 0.0025, wavelength = 0.05 }
+protocol = { kind = "indent_pulloff", max_depth = 8.0, depth_unit = "jkr", steps = 40 }
+
+[vary]
+alpha = [0.4, 0.6, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0]
+"#;
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn finished_cases(dir: &Path) -> Vec<String> {
+    let mut ids: Vec<String> = std::fs::read_dir(dir.join("cases"))
+        .map(|entries| {
+            entries
+                .flatten()
+                .filter(|e| e.path().join("done").exists())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    ids.sort();
+    ids
+}
+
+#[test]
+fn sweep_killed_and_restarted_gives_the_uninterrupted_table() {
+    let temp = tempfile::tempdir().unwrap();
+    let sweep = write(temp.path(), "slow.toml", SLOW_SWEEP);
+    let sweep = sweep.to_str().unwrap();
+
+    // Uninterrupted reference, two cases at a time.
+    let reference = temp.path().join("reference");
+    let reference_s = reference.to_str().unwrap();
+    assert_ok(&adhesim(&[
+        "sweep",
+        sweep,
+        "--out",
+        reference_s,
+        "--jobs",
+        "2",
+        "--threads",
+        "1",
+        "--quiet",
+    ]));
+    let expected = std::fs::read(reference.join("table.csv")).unwrap();
+    assert_eq!(finished_cases(&reference).len(), 8);
+
+    // Killed (SIGKILL) as soon as one case is finished, then restarted.
+    let killed = temp.path().join("killed");
+    let killed_s = killed.to_str().unwrap();
+    let args = [
+        "sweep",
+        sweep,
+        "--out",
+        killed_s,
+        "--jobs",
+        "1",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    let mut child = Command::new(BIN)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while finished_cases(&killed).is_empty() {
+        assert!(start.elapsed() < Duration::from_secs(120), "no case finished");
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let before = finished_cases(&killed);
+    assert!(!before.is_empty());
+    let first_summary = std::fs::read(killed.join("cases").join(&before[0]).join("summary.json")).unwrap();
+    if before.len() < 8 {
+        assert!(!killed.join("table.csv").exists() || std::fs::read(killed.join("table.csv")).unwrap() != expected);
+    }
+
+    let output = adhesim(&args);
+    assert_ok(&output);
+    let after = finished_cases(&killed);
+    assert_eq!(after.len(), 8);
+    for id in &before {
+        assert!(after.contains(id), "finished case {id} lost");
+    }
+    // Not redone: the summary (with its wall time) is the one written before the kill.
+    let again = std::fs::read(killed.join("cases").join(&before[0]).join("summary.json")).unwrap();
+    assert_eq!(first_summary, again, "finished case {} was redone", before[0]);
+    assert_eq!(
+        String::from_utf8(std::fs::read(killed.join("table.csv")).unwrap()).unwrap(),
+        String::from_utf8(expected).unwrap()
+    );
+    // Nothing left in the temporary folder of this (single) shard.
+    assert_eq!(std::fs::read_dir(killed.join("tmp")).unwrap().count(), 0);
+    assert!(killed.join("plots/fig3_master.png").exists());
+}
+
+#[test]
+fn three_shards_merged_give_the_single_run_table() {
+    let temp = tempfile::tempdir().unwrap();
+    let sweep = sweeps_dir().join("tiny.toml");
+    let sweep = sweep.to_str().unwrap();
+    let single = temp.path().join("single");
+    assert_ok(&adhesim(&[
+        "sweep",
+        sweep,
+        "--out",
+        single.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let expected = std::fs::read_to_string(single.join("table.csv")).unwrap();
+    assert_eq!(expected.lines().count(), 7, "{expected}");
+
+    let sharded = temp.path().join("sharded");
+    let sharded_s = sharded.to_str().unwrap();
+    for shard in ["2/3", "0/3", "1/3"] {
+        assert_ok(&adhesim(&[
+            "sweep", sweep, "--out", sharded_s, "--shard", shard, "--jobs", "1", "--quiet",
+        ]));
+    }
+    // A shard runs only its own cases.
+    let partial = temp.path().join("partial");
+    assert_ok(&adhesim(&[
+        "sweep",
+        sweep,
+        "--out",
+        partial.to_str().unwrap(),
+        "--shard",
+        "1/3",
+        "--quiet",
+    ]));
+    let ids = finished_cases(&partial);
+    assert_eq!(
+        ids,
+        ["0001", "0004"]
+            .iter()
+            .map(|p| {
+                finished_cases(&single)
+                    .into_iter()
+                    .find(|id| id.starts_with(p))
+                    .unwrap()
+            })
+            .collect::<Vec<_>>()
+    );
+
+    std::fs::remove_file(sharded.join("table.csv")).unwrap();
+    assert_ok(&adhesim(&["sweep", "merge", sharded_s, "--quiet"]));
+    assert_eq!(std::fs::read_to_string(sharded.join("table.csv")).unwrap(), expected);
+    assert_ok(&adhesim(&[
+        "sweep",
+        sweep,
+        "--out",
+        sharded_s,
+        "--merge-only",
+        "--quiet",
+    ]));
+    assert_eq!(std::fs::read_to_string(sharded.join("table.csv")).unwrap(), expected);
+
+    // `plot master` redraws from tables (two tables: two series).
+    let plots = temp.path().join("figs");
+    let table = single.join("table.csv");
+    let table2 = sharded.join("table.csv");
+    assert_ok(&adhesim(&[
+        "plot",
+        "master",
+        table.to_str().unwrap(),
+        table2.to_str().unwrap(),
+        "--out",
+        plots.to_str().unwrap(),
+    ]));
+    for name in [
+        "fig3_master.svg",
+        "fig3_master.png",
+        "fig5_master.png",
+        "force_radius_cases.png",
+    ] {
+        assert!(plots.join(name).exists(), "{name} missing");
+    }
+}
+
+#[test]
+fn bad_sweep_files_name_the_key() {
+    let temp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(sweeps_dir().join("tiny.toml")).unwrap();
+    let scenario = &base[base.find("[scenario]").unwrap()..base.find("[vary]").unwrap()];
+    let cases: [(&str, &[&str]); 7] = [
+        (
+            "[vary]\n\"indenter.amplitud\" = [1e-4, 2e-4]\n",
+            &["indenter.amplitud", "unknown key"],
+        ),
+        ("[vary]\n\"nosuch.key\" = [1, 2]\n", &["nosuch"]),
+        (
+            "[zip]\n\"grid.n\" = [32, 40]\n\"grid.size\" = [0.8, 0.9, 1.0]\n",
+            &["zip.\"grid.size\" has 3", "zip.\"grid.n\" has 2", "equal lengths"],
+        ),
+        (
+            "[random]\nseed = 1\ncases = 3\n\"material.contact_modulus\" = { min = 2.0, max = 1.0 }\n",
+            &["random.\"material.contact_modulus\"", "min (2) > max (1)"],
+        ),
+        (
+            "[random]\nseed = 1\ncases = 3\n\"material.contact_modulus\" = { min = 0.0, max = 1.0, scale = \"log\" }\n",
+            &["random.\"material.contact_modulus\"", "min > 0"],
+        ),
+        (
+            "[vary]\n\"indenter.radius\" = [1.0, -1.0]\n",
+            &["indenter.radius = -1.0", "indenter.radius must be > 0, got -1"],
+        ),
+        (
+            "[vary]\n\"grid.n\" = [32]\n[zip]\n\"grid.n\" = [40]\n",
+            &["grid.n", "more than once"],
+        ),
+    ];
+    for (k, (tail, fragments)) in cases.iter().enumerate() {
+        let path = write(temp.path(), &format!("bad{k}.toml"), &format!("{scenario}{tail}"));
+        let out = temp.path().join(format!("out{k}"));
+        let output = adhesim(&["sweep", path.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        assert_fails_with(&output, fragments);
+        assert!(!out.exists(), "a bad sweep file must not create {}", out.display());
+    }
+    let output = adhesim(&[
+        "sweep",
+        sweeps_dir().join("tiny.toml").to_str().unwrap(),
+        "--shard",
+        "3/3",
+    ]);
+    assert_fails_with(&output, &["--shard", "3/3"]);
+}
+
+#[test]
+fn smooth_sphere_fits_recover_the_work_of_adhesion() {
+    let temp = tempfile::tempdir().unwrap();
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/jkr.toml");
+    let out = temp.path().join("jkr");
+    assert_ok(&adhesim(&[
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--set",
+        "grid.n=64",
+        "--set",
+        "protocol.steps=40",
+    ]));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let results = &summary["results"];
+    for key in ["gamma_approach_norm", "gamma_pulloff_norm"] {
+        let value = results[key].as_f64().unwrap();
+        assert!((value - 1.0).abs() < 0.1, "{key} = {value}");
+    }
+    let g0 = summary["inputs"]["adhesion"]["work_of_adhesion"].as_f64().unwrap();
+    let g1 = results["gamma_approach"].as_f64().unwrap();
+    let g2 = results["gamma_pulloff"].as_f64().unwrap();
+    assert!((g1 / g0 - 1.0).abs() < 0.1 && (g2 / g0 - 1.0).abs() < 0.1);
+    let q = results["boundary_friction"].as_f64().unwrap();
+    assert!((q - 0.5 * (g2 - g1)).abs() < 1e-15);
+    for key in [
+        "gamma_approach_residual",
+        "adhesive_force_ratio",
+        "compactness_at_max_depth",
+        "pinned_steps",
+    ] {
+        assert!(results[key].is_number(), "{key} = {}", results[key]);
+    }
+    assert!(out.join("plots/force_radius.svg").exists());
+}
