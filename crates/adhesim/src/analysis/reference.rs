@@ -158,7 +158,7 @@ mod tests {
             jkr.critical_depth().abs(),
             jkr.critical_radius(),
         );
-        for &ah in &[0.3, 1.0, 1.2114, 2.68] {
+        for &ah in &[0.3f64, 1.0, 1.2114, 2.68] {
             let expected_f = ah.powi(3) - 2.0 * ah.powf(1.5);
             let expected_d = 3.0 * ah * ah - 4.0 * ah.sqrt();
             assert!((jkr.force(ah * a) / f - expected_f).abs() < 1e-12);
