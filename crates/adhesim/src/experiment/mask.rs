@@ -1,0 +1,629 @@
+//! Contact masks: background flattening, thresholding and morphological cleaning.
+
+use super::image::check_size;
+use super::{invalid, ExperimentError, GrayImage, Roi};
+
+/// Binary contact mask, row-major, one byte per pixel (1 = contact).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ContactMask {
+    width: usize,
+    height: usize,
+    cells: Vec<u8>,
+}
+
+impl ContactMask {
+    /// An all-free mask.
+    pub fn empty(width: usize, height: usize) -> Result<Self, ExperimentError> {
+        check_size(width, height, width.saturating_mul(height))?;
+        Ok(Self {
+            width,
+            height,
+            cells: vec![0; width * height],
+        })
+    }
+
+    /// Builds a mask from a predicate on pixel (column, row).
+    pub fn from_fn(
+        width: usize,
+        height: usize,
+        mut in_contact: impl FnMut(usize, usize) -> bool,
+    ) -> Result<Self, ExperimentError> {
+        let mut mask = Self::empty(width, height)?;
+        for y in 0..height {
+            for x in 0..width {
+                mask.cells[y * width + x] = u8::from(in_contact(x, y));
+            }
+        }
+        Ok(mask)
+    }
+
+    /// Wraps row-major cells; any non-zero value counts as contact.
+    pub fn from_cells(width: usize, height: usize, cells: Vec<u8>) -> Result<Self, ExperimentError> {
+        check_size(width, height, cells.len())?;
+        let cells = cells.into_iter().map(|c| u8::from(c != 0)).collect();
+        Ok(Self { width, height, cells })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Row-major cells, 1 = contact, 0 = free.
+    pub fn cells(&self) -> &[u8] {
+        &self.cells
+    }
+
+    /// Whether pixel (column `x`, row `y`) is in contact; `false` outside the image.
+    pub fn get(&self, x: usize, y: usize) -> bool {
+        x < self.width && y < self.height && self.cells[y * self.width + x] != 0
+    }
+
+    /// Number of contact pixels.
+    pub fn count(&self) -> usize {
+        self.cells.iter().map(|&c| c as usize).sum()
+    }
+
+    /// Morphological opening (erosion then dilation) with a (2r+1)² square: removes specks
+    /// narrower than 2r+1 pixels. Windows are clipped at the image border.
+    pub fn open(&self, radius: usize) -> ContactMask {
+        if radius == 0 {
+            return self.clone();
+        }
+        let eroded = self.filtered(radius, Window::Erode);
+        eroded.filtered(radius, Window::Dilate)
+    }
+
+    /// Morphological closing (dilation then erosion): fills holes narrower than 2r+1 pixels.
+    pub fn close(&self, radius: usize) -> ContactMask {
+        if radius == 0 {
+            return self.clone();
+        }
+        let dilated = self.filtered(radius, Window::Dilate);
+        dilated.filtered(radius, Window::Erode)
+    }
+
+    /// Dilation with a (2r+1)² square.
+    pub fn dilate(&self, radius: usize) -> ContactMask {
+        self.filtered(radius, Window::Dilate)
+    }
+
+    /// Square-window min/max filter, separable, with running counts: O(pixels) for any radius.
+    fn filtered(&self, radius: usize, window: Window) -> ContactMask {
+        let (w, h) = (self.width, self.height);
+        let decide = |count: usize, len: usize| match window {
+            Window::Dilate => count > 0,
+            Window::Erode => count == len,
+        };
+        let mut rows = vec![0u8; w * h];
+        for y in 0..h {
+            let src = &self.cells[y * w..(y + 1) * w];
+            let dst = &mut rows[y * w..(y + 1) * w];
+            let mut count: usize = src[..radius.min(w)].iter().map(|&c| c as usize).sum();
+            for x in 0..w {
+                if x + radius < w {
+                    count += src[x + radius] as usize;
+                }
+                if x > radius {
+                    count -= src[x - radius - 1] as usize;
+                }
+                let len = (x + radius).min(w - 1) + 1 - x.saturating_sub(radius);
+                dst[x] = u8::from(decide(count, len));
+            }
+        }
+        let mut out = vec![0u8; w * h];
+        let mut counts = vec![0usize; w];
+        for y in 0..radius.min(h) {
+            for (c, &v) in counts.iter_mut().zip(&rows[y * w..(y + 1) * w]) {
+                *c += v as usize;
+            }
+        }
+        for y in 0..h {
+            if y + radius < h {
+                let add = &rows[(y + radius) * w..(y + radius + 1) * w];
+                for (c, &v) in counts.iter_mut().zip(add) {
+                    *c += v as usize;
+                }
+            }
+            if y > radius {
+                let sub = &rows[(y - radius - 1) * w..(y - radius) * w];
+                for (c, &v) in counts.iter_mut().zip(sub) {
+                    *c -= v as usize;
+                }
+            }
+            let len = (y + radius).min(h - 1) + 1 - y.saturating_sub(radius);
+            for (o, &c) in out[y * w..(y + 1) * w].iter_mut().zip(&counts) {
+                *o = u8::from(decide(c, len));
+            }
+        }
+        ContactMask {
+            width: w,
+            height: h,
+            cells: out,
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Window {
+    Erode,
+    Dilate,
+}
+
+/// Whether contact appears brighter or darker than the free surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Polarity {
+    /// Contact pixels are above the threshold.
+    Bright,
+    /// Contact pixels are below the threshold.
+    Dark,
+}
+
+/// How the grey-level threshold is chosen.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ThresholdRule {
+    /// Otsu's method on the pooled histogram of the calibration frames (after flattening).
+    Otsu,
+    /// A fixed fraction of full scale, in 0..1.
+    Fraction(f32),
+}
+
+/// Correction of uneven illumination before thresholding. Both corrections are
+/// multiplicative (flat field), scaled so that the mean background level is kept.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BackgroundModel {
+    /// No correction.
+    None,
+    /// Per frame, a quadratic surface fitted by least squares to the free (non-contact)
+    /// pixels, away from the contact edge; two passes.
+    Fitted,
+    /// A frame of the free surface under the same illumination.
+    Reference(GrayImage),
+}
+
+/// Parameters of the segmentation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SegmentationParams {
+    /// Contact bright or dark.
+    pub polarity: Polarity,
+    /// Threshold rule.
+    pub threshold: ThresholdRule,
+    /// Illumination correction.
+    pub background: BackgroundModel,
+    /// Opening radius in pixels (0 = none); removes noise specks.
+    pub open_radius: usize,
+    /// Closing radius in pixels (0 = none); fills pinholes.
+    pub close_radius: usize,
+    /// Region of interest; `None` = whole frame.
+    pub roi: Option<Roi>,
+}
+
+impl Default for SegmentationParams {
+    fn default() -> Self {
+        Self {
+            polarity: Polarity::Bright,
+            threshold: ThresholdRule::Otsu,
+            background: BackgroundModel::None,
+            open_radius: 1,
+            close_radius: 1,
+            roi: None,
+        }
+    }
+}
+
+/// A calibrated segmentation: parameters plus the grey-level threshold fixed for a sequence
+/// (one threshold for all frames, so that frames without contact stay empty).
+#[derive(Debug, Clone)]
+pub struct Segmenter {
+    params: SegmentationParams,
+    threshold: f32,
+}
+
+/// Pixels this far from the provisional contact are excluded from the background fit: the
+/// blurred contact edge would otherwise bias it.
+const FIT_MARGIN_PX: usize = 3;
+/// Stride of the subsampled background fit; the surface is smooth, so every 3rd pixel suffices.
+const FIT_STRIDE: usize = 3;
+const OTSU_BINS: usize = 1024;
+
+impl Segmenter {
+    /// Calibrates the threshold on sample frames (e.g. a few evenly spaced frames of the
+    /// sequence). With [`ThresholdRule::Fraction`] the samples may be empty.
+    pub fn new(params: SegmentationParams, samples: &[GrayImage]) -> Result<Self, ExperimentError> {
+        if let ThresholdRule::Fraction(f) = params.threshold {
+            if !(0.0..=1.0).contains(&f) {
+                return Err(invalid("contact.threshold", "must be in 0..1", f));
+            }
+        }
+        if let BackgroundModel::Reference(reference) = &params.background {
+            if let Some(s) = samples.first() {
+                same_size(reference.width(), reference.height(), s.width(), s.height())?;
+            }
+        }
+        let threshold = match params.threshold {
+            ThresholdRule::Fraction(f) => f,
+            ThresholdRule::Otsu => {
+                if samples.is_empty() {
+                    return Err(ExperimentError::TooFewPoints {
+                        fit: "Otsu threshold",
+                        needed: 1,
+                        got: 0,
+                    });
+                }
+                let raw = otsu_pooled(samples.iter(), params.roi)?;
+                if params.background == BackgroundModel::None {
+                    raw
+                } else {
+                    let provisional = Segmenter {
+                        params: params.clone(),
+                        threshold: raw,
+                    };
+                    let flat: Vec<GrayImage> = samples
+                        .iter()
+                        .map(|s| provisional.flatten(s))
+                        .collect::<Result<_, _>>()?;
+                    otsu_pooled(flat.iter(), params.roi)?
+                }
+            }
+        };
+        Ok(Self { params, threshold })
+    }
+
+    /// The grey-level threshold (in the units of the flattened frames).
+    pub fn threshold(&self) -> f32 {
+        self.threshold
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &SegmentationParams {
+        &self.params
+    }
+
+    /// The frame with the illumination correction applied.
+    pub fn flatten(&self, frame: &GrayImage) -> Result<GrayImage, ExperimentError> {
+        match &self.params.background {
+            BackgroundModel::None => Ok(frame.clone()),
+            BackgroundModel::Reference(reference) => {
+                same_size(reference.width(), reference.height(), frame.width(), frame.height())?;
+                let mean =
+                    reference.pixels().iter().map(|&v| f64::from(v)).sum::<f64>() / reference.pixels().len() as f64;
+                let pixels = frame
+                    .pixels()
+                    .iter()
+                    .zip(reference.pixels())
+                    .map(|(&v, &b)| v * (mean as f32 / b.max(1e-6)))
+                    .collect();
+                GrayImage::new(frame.width(), frame.height(), pixels)
+            }
+            BackgroundModel::Fitted => {
+                let mut current = frame.clone();
+                for _ in 0..2 {
+                    let provisional = self.classify(&current).dilate(FIT_MARGIN_PX);
+                    match fit_background(frame, &provisional, self.roi(frame)) {
+                        Some(surface) => current = apply_surface(frame, &surface)?,
+                        None => return Ok(current),
+                    }
+                }
+                Ok(current)
+            }
+        }
+    }
+
+    /// Contact mask of one frame: flatten, threshold, open, close, restrict to the ROI.
+    pub fn segment(&self, frame: &GrayImage) -> Result<ContactMask, ExperimentError> {
+        let flat = self.flatten(frame)?;
+        let mask = self.classify(&flat);
+        Ok(mask
+            .open(self.params.open_radius)
+            .close(self.params.close_radius)
+            .restricted(self.roi(frame)))
+    }
+
+    fn roi(&self, frame: &GrayImage) -> Roi {
+        let full = Roi::full(frame.width(), frame.height());
+        match self.params.roi {
+            Some(r) => r.clipped(frame.width(), frame.height()).unwrap_or(Roi {
+                x0: 0,
+                y0: 0,
+                width: 0,
+                height: 0,
+            }),
+            None => full,
+        }
+    }
+
+    fn classify(&self, frame: &GrayImage) -> ContactMask {
+        let t = self.threshold;
+        let cells = match self.params.polarity {
+            Polarity::Bright => frame.pixels().iter().map(|&v| u8::from(v > t)).collect(),
+            Polarity::Dark => frame.pixels().iter().map(|&v| u8::from(v < t)).collect(),
+        };
+        ContactMask {
+            width: frame.width(),
+            height: frame.height(),
+            cells,
+        }
+        .restricted(self.roi(frame))
+    }
+}
+
+impl ContactMask {
+    fn restricted(mut self, roi: Roi) -> ContactMask {
+        if roi == Roi::full(self.width, self.height) {
+            return self;
+        }
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let inside = x >= roi.x0 && x < roi.x0 + roi.width && y >= roi.y0 && y < roi.y0 + roi.height;
+                if !inside {
+                    self.cells[y * self.width + x] = 0;
+                }
+            }
+        }
+        self
+    }
+}
+
+fn same_size(w1: usize, h1: usize, w2: usize, h2: usize) -> Result<(), ExperimentError> {
+    if (w1, h1) == (w2, h2) {
+        Ok(())
+    } else {
+        Err(ExperimentError::SizeMismatch(w1, h1, w2, h2))
+    }
+}
+
+/// Otsu's threshold on the pooled histogram of the ROI pixels of several frames.
+fn otsu_pooled<'a>(
+    frames: impl Iterator<Item = &'a GrayImage> + Clone,
+    roi: Option<Roi>,
+) -> Result<f32, ExperimentError> {
+    let roi_of = |f: &GrayImage| match roi {
+        Some(r) => r.clipped(f.width(), f.height()),
+        None => Some(Roi::full(f.width(), f.height())),
+    };
+    let for_each_value = |visit: &mut dyn FnMut(f32)| {
+        for f in frames.clone() {
+            if let Some(r) = roi_of(f) {
+                for y in r.y0..r.y0 + r.height {
+                    for &v in &f.pixels()[y * f.width() + r.x0..y * f.width() + r.x0 + r.width] {
+                        visit(v);
+                    }
+                }
+            }
+        }
+    };
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for_each_value(&mut |v| {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    });
+    if !lo.is_finite() || !hi.is_finite() {
+        return Err(ExperimentError::TooFewPoints {
+            fit: "Otsu threshold",
+            needed: 1,
+            got: 0,
+        });
+    }
+    if hi <= lo {
+        return Ok(lo);
+    }
+    let scale = OTSU_BINS as f32 / (hi - lo);
+    let mut hist = vec![0u64; OTSU_BINS];
+    for_each_value(&mut |v| hist[(((v - lo) * scale) as usize).min(OTSU_BINS - 1)] += 1);
+    Ok(lo + (otsu_bin(&hist) as f32 + 1.0) / scale)
+}
+
+/// Index of the last bin of the lower class maximising the between-class variance.
+pub(crate) fn otsu_bin(hist: &[u64]) -> usize {
+    let total: f64 = hist.iter().map(|&c| c as f64).sum();
+    let sum_all: f64 = hist.iter().enumerate().map(|(i, &c)| i as f64 * c as f64).sum();
+    let (mut w0, mut sum0, mut best, mut best_bin) = (0.0, 0.0, -1.0, 0);
+    for (i, &c) in hist.iter().enumerate() {
+        w0 += c as f64;
+        sum0 += i as f64 * c as f64;
+        let w1 = total - w0;
+        if w0 == 0.0 || w1 == 0.0 {
+            continue;
+        }
+        let diff = sum0 / w0 - (sum_all - sum0) / w1;
+        let between = w0 * w1 * diff * diff;
+        if between > best {
+            best = between;
+            best_bin = i;
+        }
+    }
+    best_bin
+}
+
+/// Quadratic background surface b(u,v) = c·[1, u, v, u², uv, v²] in centred, scaled coordinates.
+struct Surface {
+    coeffs: [f64; 6],
+    width: usize,
+    height: usize,
+}
+
+impl Surface {
+    fn basis(&self, x: usize, y: usize) -> [f64; 6] {
+        let u = (x as f64 + 0.5) / self.width as f64 - 0.5;
+        let v = (y as f64 + 0.5) / self.height as f64 - 0.5;
+        [1.0, u, v, u * u, u * v, v * v]
+    }
+}
+
+#[allow(clippy::needless_range_loop)] // index form mirrors the matrix algebra
+fn fit_background(frame: &GrayImage, contact: &ContactMask, roi: Roi) -> Option<Surface> {
+    let mut surface = Surface {
+        coeffs: [0.0; 6],
+        width: frame.width(),
+        height: frame.height(),
+    };
+    let mut normal = [[0.0f64; 6]; 6];
+    let mut rhs = [0.0f64; 6];
+    let mut n = 0usize;
+    for y in (roi.y0..roi.y0 + roi.height).step_by(FIT_STRIDE) {
+        for x in (roi.x0..roi.x0 + roi.width).step_by(FIT_STRIDE) {
+            if contact.get(x, y) {
+                continue;
+            }
+            let b = surface.basis(x, y);
+            let v = f64::from(frame.pixels()[y * frame.width() + x]);
+            for i in 0..6 {
+                rhs[i] += b[i] * v;
+                for j in 0..=i {
+                    normal[i][j] += b[i] * b[j];
+                }
+            }
+            n += 1;
+        }
+    }
+    if n < 60 {
+        return None;
+    }
+    for i in 0..6 {
+        for j in i + 1..6 {
+            normal[i][j] = normal[j][i];
+        }
+    }
+    surface.coeffs = solve6(normal, rhs)?;
+    Some(surface)
+}
+
+fn apply_surface(frame: &GrayImage, surface: &Surface) -> Result<GrayImage, ExperimentError> {
+    let (w, h) = (frame.width(), frame.height());
+    // Mean level of the surface over the frame keeps the corrected frame in raw units.
+    let mut mean = 0.0;
+    let mut level = vec![0.0f32; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let b = surface.basis(x, y);
+            let s: f64 = b.iter().zip(&surface.coeffs).map(|(a, c)| a * c).sum();
+            level[y * w + x] = s as f32;
+            mean += s;
+        }
+    }
+    let mean = (mean / (w * h) as f64) as f32;
+    if !(mean.is_finite() && mean > 0.0) {
+        return Ok(frame.clone());
+    }
+    let floor = mean * 1e-3;
+    let pixels = frame
+        .pixels()
+        .iter()
+        .zip(&level)
+        .map(|(&v, &s)| v * mean / s.max(floor))
+        .collect();
+    GrayImage::new(w, h, pixels)
+}
+
+/// Gaussian elimination with partial pivoting; `None` if singular.
+#[allow(clippy::needless_range_loop)] // index form mirrors the matrix algebra
+fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
+    let scale = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    for col in 0..6 {
+        let pivot = (col..6).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if a[pivot][col].abs() <= scale * 1e-12 {
+            return None;
+        }
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for row in col + 1..6 {
+            let f = a[row][col] / a[col][col];
+            for k in col..6 {
+                a[row][k] -= f * a[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 6];
+    for row in (0..6).rev() {
+        let s: f64 = (row + 1..6).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - s) / a[row][row];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn brute(mask: &ContactMask, r: usize, erode: bool) -> ContactMask {
+        let (w, h) = (mask.width() as isize, mask.height() as isize);
+        ContactMask::from_fn(mask.width(), mask.height(), |x, y| {
+            let mut any = false;
+            let mut all = true;
+            for dy in -(r as isize)..=r as isize {
+                for dx in -(r as isize)..=r as isize {
+                    let (xx, yy) = (x as isize + dx, y as isize + dy);
+                    if xx < 0 || yy < 0 || xx >= w || yy >= h {
+                        continue;
+                    }
+                    let v = mask.get(xx as usize, yy as usize);
+                    any |= v;
+                    all &= v;
+                }
+            }
+            if erode {
+                all
+            } else {
+                any
+            }
+        })
+        .unwrap()
+    }
+
+    /// The running-count filters equal a brute-force window min/max exactly (pixel logic,
+    /// no tolerance) on a pseudo-random mask, including border pixels.
+    #[test]
+    fn running_filters_match_brute_force() {
+        let mut state = 12345u64;
+        let mask = ContactMask::from_fn(23, 17, |_, _| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % 3 >= 1
+        })
+        .unwrap();
+        for r in 1..4 {
+            assert_eq!(mask.filtered(r, Window::Erode), brute(&mask, r, true), "erode r={r}");
+            assert_eq!(mask.filtered(r, Window::Dilate), brute(&mask, r, false), "dilate r={r}");
+        }
+    }
+
+    /// Opening removes an isolated speck and closing fills a pinhole; a solid block survives
+    /// both unchanged (exact).
+    #[test]
+    fn open_and_close_clean() {
+        let block = |x: usize, y: usize| (5..15).contains(&x) && (5..15).contains(&y);
+        let mask = ContactMask::from_fn(20, 20, |x, y| (block(x, y) && (x, y) != (9, 9)) || (x, y) == (1, 1)).unwrap();
+        let cleaned = mask.open(1).close(1);
+        assert_eq!(cleaned, ContactMask::from_fn(20, 20, block).unwrap());
+    }
+
+    /// Otsu separates a bimodal histogram between its modes.
+    #[test]
+    fn otsu_between_modes() {
+        let mut hist = vec![0u64; 100];
+        hist[20] = 500;
+        hist[21] = 300;
+        hist[70] = 200;
+        hist[72] = 100;
+        let t = otsu_bin(&hist);
+        assert!((21..70).contains(&t), "{t}");
+    }
+
+    /// A fraction outside 0..1 is a named parameter error, not a panic.
+    #[test]
+    fn bad_fraction_is_error() {
+        let params = SegmentationParams {
+            threshold: ThresholdRule::Fraction(1.5),
+            ..Default::default()
+        };
+        let err = Segmenter::new(params, &[]).unwrap_err();
+        assert!(err.to_string().contains("contact.threshold"), "{err}");
+    }
+}
