@@ -118,7 +118,7 @@ impl Default for SyntheticSpec {
             half_width_px: 280.0,
             speed_px_per_frame: 1.0,
             stick_frames: 12,
-            size_change_per_slip: -0.01,
+            size_change_per_slip: -0.03,
             spots: 6,
             tau0: 0.036,
             boundary_friction: 0.005,
