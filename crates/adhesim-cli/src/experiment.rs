@@ -471,14 +471,19 @@ fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], 
             let raw = read_frame(&files[rb.frame])?;
             let current_mask = segmenter.segment(&raw)?;
             let map = change_map(&reference_mask, &current_mask)?;
-            let mut rgb = image::RgbImage::new(raw.width() as u32, raw.height() as u32);
-            for ((px, &v), &c) in rgb.pixels_mut().zip(raw.pixels()).zip(map.changes()) {
-                let g = (v.clamp(0.0, 1.0) * 255.0) as u8;
-                *px = match c {
-                    Change::New => image::Rgb([255, 0, 0]),
-                    Change::Vanished => image::Rgb([0, 0, 255]),
-                    Change::Unchanged => image::Rgb([g, g, g]),
-                };
+            let (x0, y0, x1, y1) = crop_box(&reference_mask, &current_mask, CHANGE_MAP_MARGIN_PX);
+            let width = raw.width();
+            let mut rgb = image::RgbImage::new((x1 - x0) as u32, (y1 - y0) as u32);
+            for (y, row) in (y0..y1).zip(rgb.rows_mut()) {
+                for (x, px) in (x0..x1).zip(row) {
+                    let i = y * width + x;
+                    let g = (raw.pixels()[i].clamp(0.0, 1.0) * 255.0) as u8;
+                    *px = match map.changes()[i] {
+                        Change::New => image::Rgb([255, 0, 0]),
+                        Change::Vanished => image::Rgb([0, 0, 255]),
+                        Change::Unchanged => image::Rgb([g, g, g]),
+                    };
+                }
             }
             let name = format!("change_{:05}_vs_{:05}.png", rb.frame, ra.frame);
             rgb.save(dir.join(&name)).with_context(|| format!("cannot write changes/{name}"))?;
@@ -493,6 +498,27 @@ fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], 
         }
     }
     Ok(count)
+}
+
+/// Change maps show the contact's bounding box (both masks) plus this margin, like the
+/// paper's Figs. 16 and 24; the whole frame when there is no contact.
+const CHANGE_MAP_MARGIN_PX: usize = 20;
+
+/// Bounding box [x0, x1) × [y0, y1) of the union of two masks, widened by `margin`.
+fn crop_box(a: &adhesim::experiment::ContactMask, b: &adhesim::experiment::ContactMask, margin: usize) -> (usize, usize, usize, usize) {
+    let (w, h) = (a.width(), a.height());
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            if a.get(x, y) || b.get(x, y) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x + 1), y1.max(y + 1));
+            }
+        }
+    }
+    if x0 == usize::MAX {
+        return (0, 0, w, h);
+    }
+    (x0.saturating_sub(margin), y0.saturating_sub(margin), (x1 + margin).min(w), (y1 + margin).min(h))
 }
 
 const RED: RGBColor = RGBColor(214, 39, 40);

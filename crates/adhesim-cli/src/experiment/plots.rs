@@ -59,6 +59,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, title: &str, panels: &
             .map_err(err)?;
         chart
             .configure_mesh()
+            .light_line_style(TRANSPARENT) // fine grid lines add clutter (and PNG size)
             .x_desc("time")
             .y_desc(panel.y_label)
             .label_style(("sans-serif", 14))
