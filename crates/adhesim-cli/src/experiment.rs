@@ -94,7 +94,9 @@ pub fn main(args: ExperimentArgs) -> Result<()> {
     match (args.command, args.spec) {
         (Some(ExperimentCommand::Synth(synth)), _) => run_synth(&synth),
         (None, Some(spec)) => run_experiment(&spec, args.out.as_deref(), args.quiet),
-        (None, None) => bail!("give a spec file (adhesim experiment SPEC.toml) or a subcommand (adhesim experiment synth)"),
+        (None, None) => {
+            bail!("give a spec file (adhesim experiment SPEC.toml) or a subcommand (adhesim experiment synth)")
+        }
     }
 }
 
@@ -144,7 +146,8 @@ fn read_frame(path: &Path) -> Result<GrayImage> {
 }
 
 fn name_of(path: &Path) -> String {
-    path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+    path.file_name()
+        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
 }
 
 /// A column of a CSV file by header name, as numbers (unparsable cells are `None`).
@@ -158,7 +161,11 @@ fn read_columns(path: &Path, names: &[&str], key: &str) -> Result<Vec<Vec<Option
         .iter()
         .map(|n| {
             headers.iter().position(|h| h == *n).with_context(|| {
-                format!("{key}: column \"{n}\" not in {} (columns: {})", path.display(), headers.iter().collect::<Vec<_>>().join(", "))
+                format!(
+                    "{key}: column \"{n}\" not in {} (columns: {})",
+                    path.display(),
+                    headers.iter().collect::<Vec<_>>().join(", ")
+                )
             })
         })
         .collect::<Result<_>>()?;
@@ -166,7 +173,12 @@ fn read_columns(path: &Path, names: &[&str], key: &str) -> Result<Vec<Vec<Option
     for record in reader.records() {
         let record = record.with_context(|| format!("{key}: malformed CSV in {}", path.display()))?;
         for (col, &i) in columns.iter_mut().zip(&index) {
-            col.push(record.get(i).and_then(|s| s.parse::<f64>().ok()).filter(|v| v.is_finite()));
+            col.push(
+                record
+                    .get(i)
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .filter(|v| v.is_finite()),
+            );
         }
     }
     Ok(columns)
@@ -214,7 +226,11 @@ impl ForceLog {
         }
         let (t0, t1) = (self.time[hi - 1], self.time[hi]);
         let (v0, v1) = (values[hi - 1]?, values[hi]?);
-        let v = if t1 > t0 { v0 + (v1 - v0) * (t - t0) / (t1 - t0) } else { v1 };
+        let v = if t1 > t0 {
+            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+        } else {
+            v1
+        };
         v.is_finite().then_some(v)
     }
 }
@@ -251,15 +267,23 @@ fn build_segmenter(settings: &Settings, files: &[PathBuf]) -> Result<Segmenter> 
         polarity: settings.polarity,
         threshold: settings.threshold,
         background,
+        smooth_radius: settings.smooth_radius,
         open_radius: settings.open_radius,
         close_radius: settings.close_radius,
         roi: settings.roi,
     };
     // Calibration frames: up to 5, evenly spaced, readable ones only.
-    let picks: Vec<usize> = if files.len() <= 5 { (0..files.len()).collect() } else { (0..5).map(|i| i * (files.len() - 1) / 4).collect() };
+    let picks: Vec<usize> = if files.len() <= 5 {
+        (0..files.len()).collect()
+    } else {
+        (0..5).map(|i| i * (files.len() - 1) / 4).collect()
+    };
     let samples: Vec<GrayImage> = picks.par_iter().filter_map(|&i| read_frame(&files[i]).ok()).collect();
     if let Some(first) = samples.first() {
-        if samples.iter().any(|s| (s.width(), s.height()) != (first.width(), first.height())) {
+        if samples
+            .iter()
+            .any(|s| (s.width(), s.height()) != (first.width(), first.height()))
+        {
             bail!("frames differ in size; all frames must have the same size");
         }
     }
@@ -277,11 +301,25 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     let files = list_frames(&settings.frames_dir)?;
     let times: Vec<f64> = match (&settings.timestamps, settings.rate) {
         (Some(path), _) => {
-            let mut reader = csv::ReaderBuilder::new().has_headers(true).trim(csv::Trim::All).from_path(path).with_context(|| format!("frames.timestamps: cannot read {}", path.display()))?;
+            let mut reader = csv::ReaderBuilder::new()
+                .has_headers(true)
+                .trim(csv::Trim::All)
+                .from_path(path)
+                .with_context(|| format!("frames.timestamps: cannot read {}", path.display()))?;
             let mut t = Vec::new();
             for (row, record) in reader.records().enumerate() {
                 let record = record?;
-                let v: f64 = record.get(0).and_then(|s| s.parse().ok()).filter(|v: &f64| v.is_finite()).with_context(|| format!("frames.timestamps: row {} of {} is not a number", row + 1, path.display()))?;
+                let v: f64 = record
+                    .get(0)
+                    .and_then(|s| s.parse().ok())
+                    .filter(|v: &f64| v.is_finite())
+                    .with_context(|| {
+                        format!(
+                            "frames.timestamps: row {} of {} is not a number",
+                            row + 1,
+                            path.display()
+                        )
+                    })?;
                 t.push(v);
             }
             if t.len() < files.len() {
@@ -305,7 +343,15 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         .par_iter()
         .enumerate()
         .map(|(i, path)| {
-            let row = analyse_frame(i, path, times[i], &segmenter, log.as_ref(), track.as_ref(), settings.pixel_size);
+            let row = analyse_frame(
+                i,
+                path,
+                times[i],
+                &segmenter,
+                log.as_ref(),
+                track.as_ref(),
+                settings.pixel_size,
+            );
             bar.inc(1);
             match row {
                 Ok(r) => Some(r),
@@ -318,7 +364,12 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         .collect();
     bar.finish_and_clear();
     let analysis_seconds = decoded_at.elapsed().as_secs_f64();
-    let skipped: Vec<String> = files.iter().zip(&results).filter(|(_, r)| r.is_none()).map(|(p, _)| name_of(p)).collect();
+    let skipped: Vec<String> = files
+        .iter()
+        .zip(&results)
+        .filter(|(_, r)| r.is_none())
+        .map(|(p, _)| name_of(p))
+        .collect();
     let mut rows: Vec<FrameRow> = results.into_iter().flatten().collect();
     if rows.is_empty() {
         bail!("no readable frames in {}", settings.frames_dir.display());
@@ -359,7 +410,12 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     });
     std::fs::write(out_dir.join("summary.json"), serde_json::to_string_pretty(&summary)?)?;
     if !quiet {
-        eprintln!("analysed {} of {} frames into {}", rows.len(), files.len(), out_dir.display());
+        eprintln!(
+            "analysed {} of {} frames into {}",
+            rows.len(),
+            files.len(),
+            out_dir.display()
+        );
     }
     Ok(())
 }
@@ -408,8 +464,23 @@ fn cell(v: Option<f64>) -> String {
 fn write_frames_csv(path: &Path, rows: &[FrameRow]) -> Result<()> {
     let mut w = csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
     w.write_record([
-        "frame", "time", "area", "area_front", "area_rear", "force_normal", "force_tangential", "pressure",
-        "tangential_stress", "stage_x", "stage_z", "jump", "phase", "pixels", "centroid_x_px", "centroid_y_px", "width",
+        "frame",
+        "time",
+        "area",
+        "area_front",
+        "area_rear",
+        "force_normal",
+        "force_tangential",
+        "pressure",
+        "tangential_stress",
+        "stage_x",
+        "stage_z",
+        "jump",
+        "phase",
+        "pixels",
+        "centroid_x_px",
+        "centroid_y_px",
+        "width",
         "length",
     ])?;
     for r in rows {
@@ -440,7 +511,13 @@ fn write_frames_csv(path: &Path, rows: &[FrameRow]) -> Result<()> {
 }
 
 /// Change-map overlays on the raw frame: new contact red, vanished contact blue.
-fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], segmenter: &Segmenter, dir: &Path) -> Result<usize> {
+fn write_change_maps(
+    settings: &Settings,
+    files: &[PathBuf],
+    rows: &[FrameRow],
+    segmenter: &Segmenter,
+    dir: &Path,
+) -> Result<usize> {
     // Pairs (reference row, current row) by position in `rows`.
     let mut picks: Vec<(usize, usize)> = Vec::new();
     let reference_of = |k: usize| -> Option<usize> {
@@ -461,7 +538,9 @@ fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], 
     if picks.len() > settings.changes_max {
         // Keep an evenly spread subset.
         let n = picks.len();
-        picks = (0..settings.changes_max).map(|i| picks[i * n / settings.changes_max]).collect();
+        picks = (0..settings.changes_max)
+            .map(|i| picks[i * n / settings.changes_max])
+            .collect();
     }
     let written: Vec<Result<()>> = picks
         .par_iter()
@@ -486,7 +565,8 @@ fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], 
                 }
             }
             let name = format!("change_{:05}_vs_{:05}.png", rb.frame, ra.frame);
-            rgb.save(dir.join(&name)).with_context(|| format!("cannot write changes/{name}"))?;
+            rgb.save(dir.join(&name))
+                .with_context(|| format!("cannot write changes/{name}"))?;
             Ok(())
         })
         .collect();
@@ -505,7 +585,11 @@ fn write_change_maps(settings: &Settings, files: &[PathBuf], rows: &[FrameRow], 
 const CHANGE_MAP_MARGIN_PX: usize = 20;
 
 /// Bounding box [x0, x1) × [y0, y1) of the union of two masks, widened by `margin`.
-fn crop_box(a: &adhesim::experiment::ContactMask, b: &adhesim::experiment::ContactMask, margin: usize) -> (usize, usize, usize, usize) {
+fn crop_box(
+    a: &adhesim::experiment::ContactMask,
+    b: &adhesim::experiment::ContactMask,
+    margin: usize,
+) -> (usize, usize, usize, usize) {
     let (w, h) = (a.width(), a.height());
     let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
     for y in 0..h {
@@ -518,7 +602,12 @@ fn crop_box(a: &adhesim::experiment::ContactMask, b: &adhesim::experiment::Conta
     if x0 == usize::MAX {
         return (0, 0, w, h);
     }
-    (x0.saturating_sub(margin), y0.saturating_sub(margin), (x1 + margin).min(w), (y1 + margin).min(h))
+    (
+        x0.saturating_sub(margin),
+        y0.saturating_sub(margin),
+        (x1 + margin).min(w),
+        (y1 + margin).min(h),
+    )
 }
 
 const RED: RGBColor = RGBColor(214, 39, 40);
@@ -526,7 +615,14 @@ const BLUE: RGBColor = RGBColor(31, 119, 180);
 const BLACK: RGBColor = RGBColor(0, 0, 0);
 
 fn series(rows: &[FrameRow], label: &'static str, color: RGBColor, value: impl Fn(&FrameRow) -> Option<f64>) -> Series {
-    Series { label, color, points: rows.iter().filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.time, v))).collect() }
+    Series {
+        label,
+        color,
+        points: rows
+            .iter()
+            .filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.time, v)))
+            .collect(),
+    }
 }
 
 fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
@@ -539,17 +635,36 @@ fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
         ],
     };
     plots::write_panels(dir, "areas", "Contact area", &[area_panel()])?;
-    let fx = || Panel { y_label: "F_x", series: vec![series(rows, "F_x", BLACK, |r| r.force_tangential)] };
+    let fx = || Panel {
+        y_label: "F_x",
+        series: vec![series(rows, "F_x", BLACK, |r| r.force_tangential)],
+    };
     let tau = || Panel {
         y_label: "tau = F_x/A",
         series: vec![series(rows, "tau", BLACK, |r| ratio(r.force_tangential, r.m.area))],
     };
     // Paper Fig. 19: F_x, areas (total/front/rear), τ.
-    plots::write_panels(dir, "sliding", "Tangential force, contact areas, tangential stress", &[fx(), area_panel(), tau()])?;
+    plots::write_panels(
+        dir,
+        "sliding",
+        "Tangential force, contact areas, tangential stress",
+        &[fx(), area_panel(), tau()],
+    )?;
     // Paper Fig. 22: F_N, F_x, p, τ.
-    let fn_panel = Panel { y_label: "F_N", series: vec![series(rows, "F_N", BLACK, |r| r.force_normal)] };
-    let p_panel = Panel { y_label: "p = F_N/A", series: vec![series(rows, "p", BLACK, |r| ratio(r.force_normal, r.m.area))] };
-    plots::write_panels(dir, "forces", "Normal force, tangential force, pressure, tangential stress", &[fn_panel, fx(), p_panel, tau()])?;
+    let fn_panel = Panel {
+        y_label: "F_N",
+        series: vec![series(rows, "F_N", BLACK, |r| r.force_normal)],
+    };
+    let p_panel = Panel {
+        y_label: "p = F_N/A",
+        series: vec![series(rows, "p", BLACK, |r| ratio(r.force_normal, r.m.area))],
+    };
+    plots::write_panels(
+        dir,
+        "forces",
+        "Normal force, tangential force, pressure, tangential stress",
+        &[fn_panel, fx(), p_panel, tau()],
+    )?;
     Ok(())
 }
 
@@ -566,7 +681,9 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
         .filter_map(|r| ratio(r.force_tangential, r.m.area).map(|tau| (r.m.area, tau)))
         .unzip();
     let mean_stress = (!ft.is_empty()).then(|| ft.iter().sum::<f64>() / ft.len() as f64);
-    let friction = friction_law_fit(&fa, &ft).ok().map(|f| json!({"tau0": finite(f.tau0), "q": finite(f.q), "r2": finite(f.r2), "points": f.points}));
+    let friction = friction_law_fit(&fa, &ft)
+        .ok()
+        .map(|f| json!({"tau0": finite(f.tau0), "q": finite(f.q), "r2": finite(f.r2), "points": f.points}));
     // Normal curve: JKR fits on approach and pull-off, pinned phase after reversal.
     let depth: Vec<f64> = rows.iter().map(|r| r.stage_z.unwrap_or(f64::NAN)).collect();
     let radius: Vec<f64> = areas.iter().map(|a| (a / std::f64::consts::PI).sqrt()).collect();
@@ -575,8 +692,12 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
         .filter(|p| p.last > p.reversal && depth.iter().any(|d| d.is_finite() && *d != depth[p.reversal]));
     let (mut gamma_approach, mut gamma_pulloff) = (None, None);
     if let (Some(e), Some(r), Some(p)) = (settings.fits.contact_modulus, settings.fits.indenter_radius, pinned) {
-        gamma_approach = jkr_work_of_adhesion(&force[..=p.reversal], &radius[..=p.reversal], e, r).ok().map(|f| f.gamma);
-        gamma_pulloff = jkr_work_of_adhesion(&force[p.last + 1..], &radius[p.last + 1..], e, r).ok().map(|f| f.gamma);
+        gamma_approach = jkr_work_of_adhesion(&force[..=p.reversal], &radius[..=p.reversal], e, r)
+            .ok()
+            .map(|f| f.gamma);
+        gamma_pulloff = jkr_work_of_adhesion(&force[p.last + 1..], &radius[p.last + 1..], e, r)
+            .ok()
+            .map(|f| f.gamma);
     }
     let power_law = match &settings.fits.power_law {
         Some(pl) => {
@@ -587,7 +708,10 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
         }
         None => None,
     };
-    let max_adhesive = force.iter().filter(|f| f.is_finite() && **f < 0.0).fold(None, |m: Option<f64>, f| Some(m.map_or(-f, |m| m.max(-f))));
+    let max_adhesive = force
+        .iter()
+        .filter(|f| f.is_finite() && **f < 0.0)
+        .fold(None, |m: Option<f64>, f| Some(m.map_or(-f, |m| m.max(-f))));
     Ok(json!({
         "max_area": finite(max_area),
         "jumps": jumps,
@@ -657,7 +781,9 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             } else {
                 image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, frame.image.to_u16()).map(|b| b.save(&path))
             };
-            result.context("image buffer size")?.with_context(|| format!("cannot write {}", path.display()))?;
+            result
+                .context("image buffer size")?
+                .with_context(|| format!("cannot write {}", path.display()))?;
             bar.inc(1);
             Ok(frame.log)
         })
@@ -689,7 +815,11 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
     );
     std::fs::write(out_dir.join("experiment.toml"), toml)?;
     if !args.quiet {
-        eprintln!("wrote {} frames, log.csv, truth.csv and experiment.toml to {}", args.frames, out_dir.display());
+        eprintln!(
+            "wrote {} frames, log.csv, truth.csv and experiment.toml to {}",
+            args.frames,
+            out_dir.display()
+        );
     }
     Ok(())
 }

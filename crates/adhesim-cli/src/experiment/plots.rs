@@ -39,7 +39,11 @@ pub fn write_panels(dir: &Path, stem: &str, title: &str, panels: &[Panel]) -> Re
     let svg = dir.join(format!("{stem}.svg"));
     draw(SVGBackend::new(&svg, (900, height)).into_drawing_area(), title, panels)?;
     let png = dir.join(format!("{stem}.png"));
-    draw(BitMapBackend::new(&png, (900, height)).into_drawing_area(), title, panels)?;
+    draw(
+        BitMapBackend::new(&png, (900, height)).into_drawing_area(),
+        title,
+        panels,
+    )?;
     Ok(())
 }
 
@@ -48,7 +52,11 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, title: &str, panels: &
     root.fill(&WHITE).map_err(err)?;
     let root = root.titled(title, ("sans-serif", 22)).map_err(err)?;
     let areas = root.split_evenly((panels.len().max(1), 1));
-    let t_range = range(panels.iter().flat_map(|p| p.series.iter().flat_map(|s| s.points.iter().map(|q| q.0))));
+    let t_range = range(
+        panels
+            .iter()
+            .flat_map(|p| p.series.iter().flat_map(|s| s.points.iter().map(|q| q.0))),
+    );
     for (area, panel) in areas.iter().zip(panels) {
         let y_range = range(panel.series.iter().flat_map(|s| s.points.iter().map(|q| q.1)));
         let mut chart = ChartBuilder::on(area)
@@ -89,7 +97,9 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, title: &str, panels: &
 
 /// Finite min/max with padding; a unit range around a constant or empty series.
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
     if !lo.is_finite() {
         return (0.0, 1.0);
     }

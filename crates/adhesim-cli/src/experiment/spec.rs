@@ -60,6 +60,8 @@ pub struct ContactSpec {
     #[serde(default = "default_background")]
     pub background: String,
     #[serde(default = "one")]
+    pub smooth_radius: usize,
+    #[serde(default = "one")]
     pub open_radius: usize,
     #[serde(default = "one")]
     pub close_radius: usize,
@@ -73,6 +75,7 @@ impl Default for ContactSpec {
             threshold: default_threshold(),
             contact_is: default_contact_is(),
             background: default_background(),
+            smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
             roi: None,
@@ -116,7 +119,12 @@ pub struct ChangesSpec {
 
 impl Default for ChangesSpec {
     fn default() -> Self {
-        Self { reference: default_reference(), every: default_every(), at_jumps: true, max: default_max_changes() }
+        Self {
+            reference: default_reference(),
+            every: default_every(),
+            at_jumps: true,
+            max: default_max_changes(),
+        }
     }
 }
 
@@ -234,6 +242,7 @@ pub struct Settings {
     pub polarity: Polarity,
     pub threshold: ThresholdRule,
     pub background: BackgroundChoice,
+    pub smooth_radius: usize,
     pub open_radius: usize,
     pub close_radius: usize,
     pub roi: Option<Roi>,
@@ -282,7 +291,11 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         "" => bail!("contact.background must be \"none\", \"fit\" or a file path, got \"\""),
         path => BackgroundChoice::File(resolve(Path::new(path))),
     };
-    for (name, r) in [("contact.open_radius", spec.contact.open_radius), ("contact.close_radius", spec.contact.close_radius)] {
+    for (name, r) in [
+        ("contact.smooth_radius", spec.contact.smooth_radius),
+        ("contact.open_radius", spec.contact.open_radius),
+        ("contact.close_radius", spec.contact.close_radius),
+    ] {
         if r > 50 {
             bail!("{name} must be <= 50, got {r}");
         }
@@ -313,7 +326,9 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
     let reference = match &spec.changes.reference {
         ReferenceSpec::Name(n) if n == "first" => Reference::First,
         ReferenceSpec::Name(n) if n == "previous" => Reference::Previous,
-        ReferenceSpec::Name(n) => bail!("changes.reference must be \"first\", \"previous\" or a frame number, got \"{n}\""),
+        ReferenceSpec::Name(n) => {
+            bail!("changes.reference must be \"first\", \"previous\" or a frame number, got \"{n}\"")
+        }
         ReferenceSpec::Frame(i) if *i >= 0 => Reference::Frame(*i as usize),
         ReferenceSpec::Frame(i) => bail!("changes.reference must be >= 0, got {i}"),
     };
@@ -364,6 +379,7 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         polarity,
         threshold,
         background,
+        smooth_radius: spec.contact.smooth_radius,
         open_radius: spec.contact.open_radius,
         close_radius: spec.contact.close_radius,
         roi,

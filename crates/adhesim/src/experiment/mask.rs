@@ -120,7 +120,11 @@ impl ContactMask {
             combine(&mut out[..(h - d) * w], &rows[d * w..]);
             combine(&mut out[d * w..], &rows[..(h - d) * w]);
         }
-        ContactMask { width: w, height: h, cells: out }
+        ContactMask {
+            width: w,
+            height: h,
+            cells: out,
+        }
     }
 
     fn counting_filtered(&self, radius: usize, window: Window) -> ContactMask {
@@ -199,7 +203,8 @@ pub enum Polarity {
 /// How the grey-level threshold is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ThresholdRule {
-    /// Otsu's method on the pooled histogram of the calibration frames (after flattening).
+    /// Otsu's method on the pooled histogram of the calibration frames (after flattening),
+    /// refined to the midpoint of the two class means (isodata): removes Otsu's class-size bias.
     Otsu,
     /// A fixed fraction of full scale, in 0..1.
     Fraction(f32),
@@ -227,6 +232,11 @@ pub struct SegmentationParams {
     pub threshold: ThresholdRule,
     /// Illumination correction.
     pub background: BackgroundModel,
+    /// Radius of a (2r+1)² box mean applied to the flattened frame before thresholding
+    /// (0 = none). Averaging 9 pixels (r = 1) cuts the noise 3×, so the thresholded edge is
+    /// smooth and the cleaning below does not erode it; a symmetric kernel leaves the
+    /// half-level of a straight edge in place.
+    pub smooth_radius: usize,
     /// Opening radius in pixels (0 = none); removes noise specks.
     pub open_radius: usize,
     /// Closing radius in pixels (0 = none); fills pinholes.
@@ -241,6 +251,7 @@ impl Default for SegmentationParams {
             polarity: Polarity::Bright,
             threshold: ThresholdRule::Otsu,
             background: BackgroundModel::None,
+            smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
             roi: None,
@@ -278,7 +289,8 @@ impl Segmenter {
                 if let Some(s) = samples.first() {
                     same_size(reference.width(), reference.height(), s.width(), s.height())?;
                 }
-                let mean = reference.pixels().iter().map(|&v| f64::from(v)).sum::<f64>() / reference.pixels().len() as f64;
+                let mean =
+                    reference.pixels().iter().map(|&v| f64::from(v)).sum::<f64>() / reference.pixels().len() as f64;
                 Some(reference.pixels().iter().map(|&b| mean as f32 / b.max(1e-6)).collect())
             }
             _ => None,
@@ -310,7 +322,11 @@ impl Segmenter {
                 }
             }
         };
-        Ok(Self { params, threshold, reference_gain })
+        Ok(Self {
+            params,
+            threshold,
+            reference_gain,
+        })
     }
 
     /// The grey-level threshold (in the units of the flattened frames).
@@ -341,13 +357,33 @@ impl Segmenter {
     /// Contact mask of one frame: flatten, threshold, open, close, restrict to the ROI.
     pub fn segment(&self, frame: &GrayImage) -> Result<ContactMask, ExperimentError> {
         let gain = self.gain(frame)?;
-        let mask = self.classify(frame, &gain, None);
-        Ok(mask.open(self.params.open_radius).close(self.params.close_radius).restricted(self.roi(frame)))
+        let mask = if self.params.smooth_radius == 0 {
+            self.classify(frame, &gain, None)
+        } else {
+            let (w, h) = (frame.width(), frame.height());
+            let mut flat = frame.pixels().to_vec();
+            let mut row_gain = vec![1.0f32; w];
+            for (y, row) in flat.chunks_exact_mut(w).enumerate() {
+                gain.fill_row(y, &mut row_gain);
+                row.iter_mut().zip(&row_gain).for_each(|(v, g)| *v *= g);
+            }
+            box_mean(&mut flat, w, h, self.params.smooth_radius);
+            self.classify(&GrayImage::from_trusted(w, h, flat), &Gain::One, None)
+        };
+        Ok(mask
+            .open(self.params.open_radius)
+            .close(self.params.close_radius)
+            .restricted(self.roi(frame)))
     }
 
     fn roi(&self, frame: &GrayImage) -> Roi {
         match self.params.roi {
-            Some(r) => r.clipped(frame.width(), frame.height()).unwrap_or(Roi { x0: 0, y0: 0, width: 0, height: 0 }),
+            Some(r) => r.clipped(frame.width(), frame.height()).unwrap_or(Roi {
+                x0: 0,
+                y0: 0,
+                width: 0,
+                height: 0,
+            }),
             None => Roi::full(frame.width(), frame.height()),
         }
     }
@@ -402,7 +438,51 @@ impl Segmenter {
                 }
             }
         }
-        ContactMask { width: w, height: h, cells }.restricted(self.roi(frame))
+        ContactMask {
+            width: w,
+            height: h,
+            cells,
+        }
+        .restricted(self.roi(frame))
+    }
+}
+
+/// In-place (2r+1)² box mean with windows clipped at the border; running sums, O(pixels).
+fn box_mean(field: &mut [f32], w: usize, h: usize, radius: usize) {
+    let mut rows = vec![0.0f32; w * h];
+    for (src, dst) in field.chunks_exact(w).zip(rows.chunks_exact_mut(w)) {
+        let mut sum: f32 = src[..radius.min(w)].iter().sum();
+        for x in 0..w {
+            if x + radius < w {
+                sum += src[x + radius];
+            }
+            if x > radius {
+                sum -= src[x - radius - 1];
+            }
+            let len = (x + radius).min(w - 1) + 1 - x.saturating_sub(radius);
+            dst[x] = sum / len as f32;
+        }
+    }
+    let mut sums = vec![0.0f32; w];
+    for row in rows.chunks_exact(w).take(radius.min(h)) {
+        sums.iter_mut().zip(row).for_each(|(s, v)| *s += v);
+    }
+    for y in 0..h {
+        if y + radius < h {
+            sums.iter_mut()
+                .zip(&rows[(y + radius) * w..(y + radius + 1) * w])
+                .for_each(|(s, v)| *s += v);
+        }
+        if y > radius {
+            sums.iter_mut()
+                .zip(&rows[(y - radius - 1) * w..(y - radius) * w])
+                .for_each(|(s, v)| *s -= v);
+        }
+        let inv = 1.0 / ((y + radius).min(h - 1) + 1 - y.saturating_sub(radius)) as f32;
+        field[y * w..(y + 1) * w]
+            .iter_mut()
+            .zip(&sums)
+            .for_each(|(f, s)| *f = s * inv);
     }
 }
 
@@ -497,7 +577,41 @@ fn otsu_pooled<'a>(
     let scale = OTSU_BINS as f32 / (hi - lo);
     let mut hist = vec![0u64; OTSU_BINS];
     for_each_value(&mut |v| hist[(((v - lo) * scale) as usize).min(OTSU_BINS - 1)] += 1);
-    Ok(lo + (otsu_bin(&hist) as f32 + 1.0) / scale)
+    let bin = midpoint_bin(&hist, otsu_bin(&hist));
+    Ok(lo + (bin as f32 + 1.0) / scale)
+}
+
+/// Refines a split to the midpoint of the two class means (Ridler–Calvard isodata iteration).
+/// Otsu's split leans towards the smaller class when the classes differ in size (a small
+/// contact in a large frame), which would bias the area; the midpoint of the class levels is
+/// the half-height of a blurred contact edge, where the true boundary lies.
+pub(crate) fn midpoint_bin(hist: &[u64], start: usize) -> usize {
+    let mut bin = start;
+    for _ in 0..100 {
+        let (mut n0, mut s0, mut n1, mut s1) = (0.0, 0.0, 0.0, 0.0);
+        for (i, &c) in hist.iter().enumerate() {
+            let (c, x) = (c as f64, i as f64 + 0.5);
+            if i <= bin {
+                n0 += c;
+                s0 += c * x;
+            } else {
+                n1 += c;
+                s1 += c * x;
+            }
+        }
+        if n0 == 0.0 || n1 == 0.0 {
+            return bin;
+        }
+        // Bin whose upper edge is closest to the midpoint of the class means.
+        let next = (((s0 / n0 + s1 / n1) / 2.0).round() as usize)
+            .saturating_sub(1)
+            .min(hist.len() - 1);
+        if next == bin {
+            break;
+        }
+        bin = next;
+    }
+    bin
 }
 
 /// Index of the last bin of the lower class maximising the between-class variance.
@@ -571,7 +685,13 @@ impl BlockGrid {
                 (s, n, cx, cy)
             })
             .collect();
-        Self { nx, ny, blocks, width: w, height: h }
+        Self {
+            nx,
+            ny,
+            blocks,
+            width: w,
+            height: h,
+        }
     }
 
     /// Weighted least-squares quadratic through the means of the blocks that neither hold nor
@@ -592,7 +712,10 @@ impl BlockGrid {
                 if near_contact {
                     continue;
                 }
-                let b = basis((cx + 0.5) / self.width as f64 - 0.5, (cy + 0.5) / self.height as f64 - 0.5);
+                let b = basis(
+                    (cx + 0.5) / self.width as f64 - 0.5,
+                    (cy + 0.5) / self.height as f64 - 0.5,
+                );
                 let (mean, weight) = (sum / n as f64, n as f64);
                 for i in 0..6 {
                     rhs[i] += weight * b[i] * mean;
@@ -616,7 +739,12 @@ impl BlockGrid {
         // Mean of u² over k pixel centres u = (i + 0.5)/k − 0.5; u and uv average to 0.
         let mean_square = |k: usize| (1.0 - 1.0 / (k * k) as f64) / 12.0;
         let mean = coeffs[0] + coeffs[3] * mean_square(self.width) + coeffs[5] * mean_square(self.height);
-        (mean.is_finite() && mean > 0.0).then_some(Surface { coeffs, width: self.width, height: self.height, mean })
+        (mean.is_finite() && mean > 0.0).then_some(Surface {
+            coeffs,
+            width: self.width,
+            height: self.height,
+            mean,
+        })
     }
 }
 
@@ -703,6 +831,16 @@ mod tests {
         let mask = ContactMask::from_fn(20, 20, |x, y| (block(x, y) && (x, y) != (9, 9)) || (x, y) == (1, 1)).unwrap();
         let cleaned = mask.open(1).close(1);
         assert_eq!(cleaned, ContactMask::from_fn(20, 20, block).unwrap());
+    }
+
+    /// The midpoint refinement lands halfway between two equal-width modes of very different
+    /// size (exact bins: class means 20.5 and 81.5 → threshold 51, the upper edge of bin 50).
+    #[test]
+    fn midpoint_of_unequal_classes() {
+        let mut hist = vec![0u64; 100];
+        hist[20] = 100_000;
+        hist[81] = 500;
+        assert_eq!(midpoint_bin(&hist, otsu_bin(&hist)), 50);
     }
 
     /// Otsu separates a bimodal histogram between its modes.

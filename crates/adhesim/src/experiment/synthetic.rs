@@ -413,6 +413,7 @@ mod tests {
             polarity: Polarity::Bright,
             threshold: ThresholdRule::Otsu,
             background,
+            smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
             roi: None,
@@ -483,7 +484,8 @@ mod tests {
     }
 
     /// On noise-free, unblurred frames (uneven illumination kept) the segmentation without
-    /// morphological cleaning (which by design trims one-pixel tips of the pixelated outline)
+    /// smoothing and morphological cleaning (which by design round one-pixel tips of the
+    /// pixelated outline)
     /// reproduces the true masks, so change maps against the first frame and against the
     /// previous frame are pixel-exact (zero tolerance).
     #[test]
@@ -495,6 +497,7 @@ mod tests {
         };
         let samples = vec![spec.render(0).unwrap().image];
         let uncleaned = SegmentationParams {
+            smooth_radius: 0,
             open_radius: 0,
             close_radius: 0,
             ..params(BackgroundModel::Fitted)
