@@ -16,6 +16,9 @@
 //! ## Modules (one-way dependencies, see ARCHITECTURE.md)
 //! `grid`, `material` → `geometry`, `elastic` → `solver` → `protocol` → `analysis`.
 #![warn(missing_docs)]
+// Numerical kernels index several parallel fields with one index; iterator zips over
+// four or five slices would be harder to read.
+#![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
 pub mod elastic;
@@ -23,10 +26,20 @@ pub mod experiment;
 pub mod geometry;
 pub mod grid;
 pub mod material;
+pub mod protocol;
 pub mod solver;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
-pub use geometry::{EllipticPunch, FlatPunch, Indenter, Profile, Sphere, Topography, Waviness, WavySphere};
+pub use geometry::{
+    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, Sphere, Topography, TranslatingContact, Waviness,
+    WavySphere,
+};
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
-pub use solver::{Ccg, CcgParams, ContactState, Control, SolveError, SolveReport};
+pub use protocol::{
+    IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, StepRecord, StepView,
+};
+pub use solver::{
+    AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, SolveError,
+    SolveReport, StepReport,
+};

@@ -7,10 +7,12 @@
 mod free;
 pub mod influence;
 mod periodic;
+mod preconditioner;
 mod spectral;
 
 pub use free::FreeOperator;
 pub use periodic::{PeriodicKernel, PeriodicOperator};
+pub use preconditioner::SpectralPreconditioner;
 
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;

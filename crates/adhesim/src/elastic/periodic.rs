@@ -117,12 +117,6 @@ impl PeriodicOperator {
         operator.applications = 0;
         operator
     }
-
-    /// The normalised multiplier at frequency indices (row, column) — for tests.
-    #[cfg(test)]
-    pub(crate) fn multiplier(&self, row: usize, column: usize) -> f64 {
-        self.engine.kernel_at(row, column) * (self.grid.len() as f64)
-    }
 }
 
 impl ElasticOperator for PeriodicOperator {

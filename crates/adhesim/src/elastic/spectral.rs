@@ -110,12 +110,6 @@ impl SpectralConvolution {
         spectrum
     }
 
-    /// The normalised real kernel spectrum at (row frequency index, column frequency index).
-    #[cfg(test)]
-    pub(crate) fn kernel_at(&self, row: usize, column: usize) -> f64 {
-        self.kernel[column * self.padded + row]
-    }
-
     /// Overwrites the kernel spectrum with `value(row_frequency, column_frequency)`
     /// (already normalised by padded²).
     pub(crate) fn set_kernel_spectrum(&mut self, value: impl Fn(usize, usize) -> f64 + Sync) {

@@ -35,6 +35,9 @@ impl Profile for EllipticPunch {
             f64::INFINITY
         }
     }
+    fn slope_x(&self, _x: f64, _y: f64) -> f64 {
+        0.0
+    }
     fn reach(&self, _depth: f64) -> Option<f64> {
         Some(self.semi_axes.0.max(self.semi_axes.1))
     }

@@ -30,6 +30,9 @@ impl Profile for FlatPunch {
             f64::INFINITY
         }
     }
+    fn slope_x(&self, _x: f64, _y: f64) -> f64 {
+        0.0
+    }
     fn reach(&self, _depth: f64) -> Option<f64> {
         Some(self.radius)
     }

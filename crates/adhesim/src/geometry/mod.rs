@@ -11,6 +11,7 @@ mod elliptic_punch;
 mod flat_punch;
 mod sphere;
 mod topography;
+mod translating;
 mod waviness;
 mod wavy_sphere;
 
@@ -18,6 +19,7 @@ pub use elliptic_punch::EllipticPunch;
 pub use flat_punch::FlatPunch;
 pub use sphere::Sphere;
 pub use topography::Topography;
+pub use translating::{Kinematics, TranslatingContact};
 pub use waviness::Waviness;
 pub use wavy_sphere::WavySphere;
 
@@ -95,6 +97,19 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
     fn radius_of_curvature(&self) -> Option<f64> {
         None
     }
+
+    /// ∂z/∂x at (x, y): the slope that turns pressure into tangential force when the
+    /// profile moves in x. Default: central difference with a step of 1e-6 of |x|+|y|+1
+    /// relative; profiles with a closed form override it.
+    fn slope_x(&self, x: f64, y: f64) -> f64 {
+        let h = 1e-6 * (x.abs() + y.abs()).max(1e-12);
+        let (right, left) = (self.height(x + h, y), self.height(x - h, y));
+        if right.is_finite() && left.is_finite() {
+            (right - left) / (2.0 * h)
+        } else {
+            0.0
+        }
+    }
 }
 
 /// Any indenter the library knows, as one owned type.
@@ -136,5 +151,8 @@ impl Profile for Indenter {
     }
     fn radius_of_curvature(&self) -> Option<f64> {
         self.inner().radius_of_curvature()
+    }
+    fn slope_x(&self, x: f64, y: f64) -> f64 {
+        self.inner().slope_x(x, y)
     }
 }

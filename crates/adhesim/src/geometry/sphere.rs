@@ -32,4 +32,8 @@ impl Profile for Sphere {
     fn radius_of_curvature(&self) -> Option<f64> {
         Some(self.radius)
     }
+    #[inline]
+    fn slope_x(&self, x: f64, _y: f64) -> f64 {
+        x / self.radius
+    }
 }

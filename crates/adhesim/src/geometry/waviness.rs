@@ -54,4 +54,15 @@ impl Profile for Waviness {
     fn reach(&self, _depth: f64) -> Option<f64> {
         None
     }
+    #[inline]
+    fn slope_x(&self, x: f64, y: f64) -> f64 {
+        let along = self.cos_angle * x + self.sin_angle * y;
+        let across = -self.sin_angle * x + self.cos_angle * y;
+        let k = std::f64::consts::TAU / self.wavelength;
+        // d/dx of h·sin(k·along)·sin(k·across), along_x = cos θ, across_x = −sin θ
+        self.amplitude
+            * k
+            * (self.cos_angle * (k * along).cos() * (k * across).sin()
+                - self.sin_angle * (k * along).sin() * (k * across).cos())
+    }
 }

@@ -44,4 +44,8 @@ impl Profile for WavySphere {
     fn radius_of_curvature(&self) -> Option<f64> {
         Some(self.sphere.radius())
     }
+    #[inline]
+    fn slope_x(&self, x: f64, y: f64) -> f64 {
+        self.sphere.slope_x(x, y) + self.waviness.slope_x(x, y)
+    }
 }

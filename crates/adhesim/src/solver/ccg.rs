@@ -101,14 +101,11 @@ impl Ccg {
                 };
             }
             if let Some(total) = load {
-                // Load control from nothing: start from a uniform pressure on the lowest elements.
-                let lowest_elements = heights.iter().filter(|&&z| z == lowest).count().max(1);
+                // Load control from nothing: Polonsky & Keer's uniform pressure on every
+                // element the indenter can touch; the iteration shrinks the set.
+                let reachable = heights.iter().filter(|z| z.is_finite()).count().max(1);
                 for (p, &z) in pressure.iter_mut().zip(heights) {
-                    *p = if z == lowest {
-                        total / lowest_elements as f64
-                    } else {
-                        0.0
-                    };
+                    *p = if z.is_finite() { total / reachable as f64 } else { 0.0 };
                 }
             }
         } else {
@@ -196,18 +193,24 @@ impl Ccg {
                     denominator += (self.response[k] - mean_response) * self.direction[k];
                 }
             }
+            if !(numerator.is_finite() && denominator.is_finite()) {
+                return Err(SolveError::NonFinite { iteration });
+            }
             let step = if denominator > 0.0 {
                 numerator / denominator
             } else {
                 0.0
             };
+            // With a single active element (or a vanishing direction) the CG step is zero;
+            // penetrating elements are then closed by the element's own compliance.
+            let overlap_step = if step > 0.0 { step } else { 1.0 / self_compliance };
             self.previous.copy_from_slice(pressure);
             let mut overlap = false;
             for k in 0..len {
                 if self.previous[k] > 0.0 {
                     pressure[k] = (pressure[k] - step * self.direction[k]).max(0.0);
                 } else if self.gap[k] < 0.0 {
-                    pressure[k] -= step * self.gap[k];
+                    pressure[k] -= overlap_step * self.gap[k];
                     overlap = true;
                 }
             }
@@ -228,7 +231,7 @@ impl Ccg {
             if !residual.is_finite() {
                 return Err(SolveError::NonFinite { iteration });
             }
-            if residual < self.params.tolerance {
+            if residual < self.params.tolerance && !overlap {
                 operator.apply(pressure, &mut state.displacement);
                 return Ok(self.finish(
                     operator,

@@ -5,9 +5,13 @@
 //! pressure p > 0 compressive; contact means g = 0.
 
 mod ccg;
+mod jkr_active_set;
 mod state;
 
 pub use ccg::{Ccg, CcgParams};
+pub use jkr_active_set::{
+    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
+};
 pub use state::ContactState;
 
 use thiserror::Error;

@@ -1,0 +1,93 @@
+//! Analysis of one indentation–pull-off run (paper Sect. 2.3–2.5): effective works of
+//! adhesion of both branches, boundary friction, pinned phase, compactness.
+
+use super::fit::{fit_jkr_work_of_adhesion, JkrFit};
+use super::reference::Jkr;
+use crate::protocol::{Phase, StepRecord};
+
+/// Options of [`analyse_indentation`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveAnalysisOptions {
+    /// Radius of curvature R of the indenter's paraboloid.
+    pub radius: f64,
+    /// Contact modulus E*.
+    pub contact_modulus: f64,
+    /// Reference work of adhesion γ0.
+    pub work_of_adhesion: f64,
+    /// Points with a smaller contact radius are left out of the fits (the paper fits
+    /// a ≥ a few wavelengths; tiny contacts are dominated by discreteness).
+    pub min_fit_radius: f64,
+}
+
+/// Results of [`analyse_indentation`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CurveAnalysis {
+    /// γ1: JKR fit of the approach branch (force vs contact radius).
+    pub gamma_approach: Option<JkrFit>,
+    /// γ2: JKR fit of the pull-off branch after the pinned phase.
+    pub gamma_pulloff: Option<JkrFit>,
+    /// q = (γ2 − γ1)/2 (paper Eq. 11).
+    pub boundary_friction: Option<f64>,
+    /// |F_ad|/|F_JKR|: largest tensile force over (3/2)πγ0R.
+    pub adhesive_force_ratio: Option<f64>,
+    /// Depth travelled after reversal before the contact set first changes (phase II of
+    /// Fig. 1): the pinned phase.
+    pub pinned_depth: Option<f64>,
+    /// Number of retraction steps in the pinned phase.
+    pub pinned_steps: usize,
+    /// A_real/(πa²) at the deepest point.
+    pub compactness_at_max_depth: Option<f64>,
+}
+
+/// Analyses the records of an `indent_pulloff` run.
+pub fn analyse_indentation(records: &[StepRecord], options: &CurveAnalysisOptions) -> CurveAnalysis {
+    let mut analysis = CurveAnalysis::default();
+    let approach: Vec<&StepRecord> = records.iter().filter(|r| r.phase == Some(Phase::Approach)).collect();
+    let retract: Vec<&StepRecord> = records.iter().filter(|r| r.phase == Some(Phase::Retract)).collect();
+    let usable = |r: &&&StepRecord| r.contact_elements > 0 && r.radius >= options.min_fit_radius;
+    let approach_points: Vec<(f64, f64)> = approach
+        .iter()
+        .filter(usable)
+        .map(|r| (r.radius, r.force_normal))
+        .collect();
+    analysis.gamma_approach = fit_jkr_work_of_adhesion(&approach_points, options.radius, options.contact_modulus);
+
+    if let Some(deepest) = approach.last() {
+        if deepest.radius > 0.0 {
+            analysis.compactness_at_max_depth =
+                Some(deepest.area / (std::f64::consts::PI * deepest.radius * deepest.radius));
+        }
+        // Pinned phase: retraction steps before the contact set first changes.
+        let mut pinned_steps = 0;
+        let mut pinned_depth = None;
+        for r in &retract {
+            if r.report.attached + r.report.detached > 0 {
+                pinned_depth = Some(deepest.depth - r.depth);
+                break;
+            }
+            pinned_steps += 1;
+        }
+        analysis.pinned_steps = pinned_steps;
+        analysis.pinned_depth = pinned_depth;
+        let pulloff_points: Vec<(f64, f64)> = retract
+            .iter()
+            .skip(pinned_steps)
+            .filter(usable)
+            .map(|r| (r.radius, r.force_normal))
+            .collect();
+        analysis.gamma_pulloff = fit_jkr_work_of_adhesion(&pulloff_points, options.radius, options.contact_modulus);
+    }
+    if let (Some(g1), Some(g2)) = (analysis.gamma_approach, analysis.gamma_pulloff) {
+        analysis.boundary_friction = Some(0.5 * (g2.work_of_adhesion - g1.work_of_adhesion));
+    }
+    if options.work_of_adhesion > 0.0 {
+        let jkr = Jkr {
+            radius: options.radius,
+            contact_modulus: options.contact_modulus,
+            work_of_adhesion: options.work_of_adhesion,
+        };
+        let max_tension = records.iter().map(|r| -r.force_normal).fold(0.0, f64::max);
+        analysis.adhesive_force_ratio = Some(max_tension / jkr.critical_force().abs());
+    }
+    analysis
+}

@@ -1,0 +1,160 @@
+use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use crate::elastic::ElasticOperator;
+use crate::grid::Boundary;
+use crate::solver::ContactState;
+use std::ops::ControlFlow;
+
+/// Largest |y| over the contact set.
+pub(crate) fn half_width(grid: &crate::grid::Grid, contact: &[bool]) -> f64 {
+    contact
+        .iter()
+        .enumerate()
+        .filter(|(_, &c)| c)
+        .map(|(k, _)| grid.centre(k).1.abs())
+        .fold(0.0, f64::max)
+}
+
+/// Displacement-controlled indentation to `max_depth` and retraction until contact is
+/// lost, in fixed steps of `depth_step` (paper Sect. 2.1, Fig. 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IndentPulloff {
+    /// Depth of the first step's reference (first contact; the approach starts above it).
+    pub start_depth: f64,
+    /// Deepest indentation.
+    pub max_depth: f64,
+    /// Depth increment per step (> 0).
+    pub depth_step: f64,
+    /// Retraction stops with an error after this many steps without losing contact.
+    pub max_retract_steps: usize,
+    /// A step is a jump when the force changes by more than this at fixed depth.
+    pub jump_force_threshold: f64,
+}
+
+/// Totals over a protocol run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ProtocolSummary {
+    /// Steps done.
+    pub steps: usize,
+    /// Largest tensile force magnitude seen (0 if never tensile).
+    pub max_adhesive_force: f64,
+    /// Depth at which the largest tensile force was seen.
+    pub depth_at_max_adhesive_force: f64,
+    /// Depth of the last step in contact before contact was lost (the final jump).
+    pub pull_off_depth: Option<f64>,
+    /// Steps flagged as jumps.
+    pub jumps: usize,
+    /// Total dissipated energy.
+    pub dissipated_energy: f64,
+    /// Fixed-set solves.
+    pub solves: usize,
+    /// CG iterations.
+    pub cg_iterations: usize,
+    /// Operator applications (FFT pairs).
+    pub operator_applications: u64,
+    /// Largest contact (elements) and the step where it occurred.
+    pub largest_contact: (usize, usize),
+    /// Some step had contact on the border of a free grid.
+    pub touches_border: bool,
+}
+
+impl IndentPulloff {
+    /// Runs approach then retraction; reports each step to `observer`.
+    pub fn run<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+    ) -> Result<ProtocolSummary, ProtocolError> {
+        if !(self.depth_step.is_finite() && self.depth_step > 0.0) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "depth step must be > 0, got {}",
+                self.depth_step
+            )));
+        }
+        if !(self.max_depth.is_finite() && self.max_depth > self.start_depth) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "max depth ({}) must exceed the depth of first contact ({})",
+                self.max_depth, self.start_depth
+            )));
+        }
+        let grid = *operator.grid();
+        solver.reset();
+        let mut state = ContactState::new(&grid);
+        let mut previous = state.contact.clone();
+        let mut summary = ProtocolSummary::default();
+        let approach_steps = ((self.max_depth - self.start_depth) / self.depth_step).ceil() as usize;
+        let mut step = 0usize;
+        let mut run_step = |depth: f64,
+                            phase: Phase,
+                            state: &mut ContactState,
+                            previous: &mut Vec<bool>,
+                            summary: &mut ProtocolSummary|
+         -> Result<StepRecord, ProtocolError> {
+            previous.copy_from_slice(&state.contact);
+            let report = solver
+                .step(operator, heights, depth, state)
+                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+            let contact_elements = state.contact_elements();
+            summary.dissipated_energy += report.dissipated_energy;
+            let record = StepRecord {
+                step,
+                phase: Some(phase),
+                depth,
+                offset: 0.0,
+                force_normal: report.force,
+                force_tangential: 0.0,
+                area: contact_elements as f64 * grid.element_area(),
+                radius: state.contact_radius(&grid, (0.0, 0.0)),
+                half_width: half_width(&grid, &state.contact),
+                contact_elements,
+                report,
+                cumulative_dissipated_energy: summary.dissipated_energy,
+                jumped: (report.attached + report.detached) > 0
+                    && (report.force - report.force_before_change).abs() > self.jump_force_threshold,
+                touches_border: grid.boundary() == Boundary::Free && state.touches_border(&grid),
+            };
+            summary.steps += 1;
+            summary.solves += report.solves;
+            summary.cg_iterations += report.cg_iterations;
+            summary.operator_applications += report.operator_applications;
+            summary.jumps += record.jumped as usize;
+            summary.touches_border |= record.touches_border;
+            if -record.force_normal > summary.max_adhesive_force {
+                summary.max_adhesive_force = -record.force_normal;
+                summary.depth_at_max_adhesive_force = depth;
+            }
+            if contact_elements > summary.largest_contact.0 {
+                summary.largest_contact = (contact_elements, step);
+            }
+            if let ControlFlow::Break(()) = observer.on_step(StepView {
+                record: &record,
+                state,
+                previous_contact: previous,
+            }) {
+                return Err(ProtocolError::Interrupted(step));
+            }
+            step += 1;
+            Ok(record)
+        };
+        for i in 1..=approach_steps {
+            let depth = (self.start_depth + i as f64 * self.depth_step).min(self.max_depth);
+            run_step(depth, Phase::Approach, &mut state, &mut previous, &mut summary)?;
+        }
+        let mut depth = self.max_depth;
+        let mut last_in_contact = None;
+        for _ in 0..self.max_retract_steps {
+            depth -= self.depth_step;
+            let record = run_step(depth, Phase::Retract, &mut state, &mut previous, &mut summary)?;
+            if record.contact_elements == 0 {
+                summary.pull_off_depth = last_in_contact;
+                return Ok(summary);
+            }
+            last_in_contact = Some(depth);
+        }
+        Err(ProtocolError::ContactNotLost {
+            steps: self.max_retract_steps,
+            depth,
+        })
+    }
+}

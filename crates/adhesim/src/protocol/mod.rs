@@ -1,0 +1,196 @@
+//! Quasi-static load schedules. A protocol drives a solver through displacement steps
+//! and reports every step to an [`Observer`] (writing files is an observer's job, not the
+//! library's).
+
+mod indentation;
+mod translation;
+
+pub use indentation::{IndentPulloff, ProtocolSummary};
+pub use translation::{Translation, TranslationSummary};
+
+use crate::elastic::ElasticOperator;
+use crate::solver::{AdhesiveSolver, Ccg, ContactState, Control, SolveError, StepReport};
+use std::ops::ControlFlow;
+use thiserror::Error;
+
+/// Stage of a protocol a step belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Phase {
+    /// Indentation grows.
+    Approach,
+    /// Indentation shrinks (pull-off).
+    Retract,
+    /// Rolling at fixed indentation.
+    Roll,
+    /// Sliding at fixed indentation.
+    Slide,
+}
+
+impl Phase {
+    /// Lower-case name as written in `curve.csv`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Approach => "approach",
+            Self::Retract => "retract",
+            Self::Roll => "roll",
+            Self::Slide => "slide",
+        }
+    }
+}
+
+/// One quasi-static step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepRecord {
+    /// Step counter from 0.
+    pub step: usize,
+    /// Stage of the protocol.
+    pub phase: Option<Phase>,
+    /// Indentation depth d.
+    pub depth: f64,
+    /// Lateral position X of the indenter axis.
+    pub offset: f64,
+    /// Normal force (> 0 compressive).
+    pub force_normal: f64,
+    /// Tangential force (resistance to motion in +x); 0 for normal protocols.
+    pub force_tangential: f64,
+    /// Real contact area Δ²|C|.
+    pub area: f64,
+    /// Distance from the indenter axis to the farthest element in contact.
+    pub radius: f64,
+    /// Largest |y − Y| of the contact, i.e. the half-width perpendicular to the motion.
+    pub half_width: f64,
+    /// |C|.
+    pub contact_elements: usize,
+    /// Solver counters and energies of this step.
+    pub report: StepReport,
+    /// Cumulative dissipated energy up to and including this step.
+    pub cumulative_dissipated_energy: f64,
+    /// The configuration changed by an instability: the force changed by more than the
+    /// protocol's jump threshold at fixed indentation.
+    pub jumped: bool,
+    /// An element on the border of a free grid is in contact (domain too small).
+    pub touches_border: bool,
+}
+
+/// What an observer sees of a step.
+pub struct StepView<'a> {
+    /// The record.
+    pub record: &'a StepRecord,
+    /// The configuration at the end of the step.
+    pub state: &'a ContactState,
+    /// The contact set at the start of the step (to mark attached/detached elements).
+    pub previous_contact: &'a [bool],
+}
+
+/// Receives every step of a protocol; returning `ControlFlow::Break` stops the protocol.
+pub trait Observer {
+    /// Called after each step.
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()>;
+}
+
+/// An observer that does nothing.
+impl Observer for () {
+    fn on_step(&mut self, _view: StepView<'_>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
+
+/// Collects the records (handy in tests and small studies).
+impl Observer for Vec<StepRecord> {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        self.push(*view.record);
+        ControlFlow::Continue(())
+    }
+}
+
+/// Why a protocol stopped early.
+#[derive(Debug, Error)]
+pub enum ProtocolError {
+    /// A solve failed.
+    #[error("step {step} (d = {depth:e}): {source}")]
+    Solve {
+        /// Step at which it failed.
+        step: usize,
+        /// Depth of that step.
+        depth: f64,
+        /// The solver's error.
+        source: SolveError,
+    },
+    /// The observer asked to stop.
+    #[error("stopped by the observer at step {0}")]
+    Interrupted(usize),
+    /// Pull-off did not end within the step limit.
+    #[error("contact not lost after {steps} retraction steps (d = {depth:e}); raise the step limit")]
+    ContactNotLost {
+        /// Retraction steps done.
+        steps: usize,
+        /// Depth reached.
+        depth: f64,
+    },
+    /// Parameters out of range.
+    #[error("invalid protocol parameter: {0}")]
+    InvalidParameter(String),
+}
+
+/// The normal-contact solver a protocol drives.
+pub enum NormalSolver {
+    /// Non-adhesive (γ = 0): Polonsky–Keer CCG at each depth.
+    NonAdhesive(Ccg),
+    /// JKR-type adhesive active set.
+    Adhesive(Box<AdhesiveSolver>),
+}
+
+impl NormalSolver {
+    /// Forgets the history of previous steps before a new load path.
+    pub fn reset(&mut self) {
+        if let Self::Adhesive(solver) = self {
+            solver.reset();
+        }
+    }
+
+    /// One displacement-controlled step.
+    pub fn step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<StepReport, SolveError> {
+        match self {
+            Self::Adhesive(solver) => solver.step(operator, heights, depth, state),
+            Self::NonAdhesive(solver) => {
+                let before = state.contact.clone();
+                let solve = solver.solve(operator, heights, Control::Displacement(depth), state)?;
+                let area = operator.grid().element_area();
+                let energy = 0.5
+                    * area
+                    * state
+                        .pressure
+                        .iter()
+                        .zip(&state.displacement)
+                        .map(|(p, u)| p * u)
+                        .sum::<f64>();
+                let (mut attached, mut detached) = (0, 0);
+                for (&was, &is) in before.iter().zip(&state.contact) {
+                    match (was, is) {
+                        (false, true) => attached += 1,
+                        (true, false) => detached += 1,
+                        _ => {}
+                    }
+                }
+                Ok(StepReport {
+                    solves: 1,
+                    cg_iterations: solve.iterations,
+                    operator_applications: solve.operator_applications,
+                    attached,
+                    detached,
+                    force_before_change: solve.force,
+                    force: solve.force,
+                    energy_before_change: energy,
+                    energy,
+                    dissipated_energy: 0.0,
+                })
+            }
+        }
+    }
+}

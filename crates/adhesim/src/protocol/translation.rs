@@ -1,0 +1,195 @@
+use super::indentation::half_width;
+use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use crate::elastic::ElasticOperator;
+use crate::geometry::{Kinematics, TranslatingContact};
+use crate::grid::Boundary;
+use crate::solver::ContactState;
+use std::ops::ControlFlow;
+
+/// Rolling or sliding at fixed indentation (paper Sect. 2.6 and 3, Figs. 6–10): indent to
+/// `depth` in `approach_steps` steps, then move the indenter axis from X = 0 to
+/// `distance` in `steps` quasi-static steps, the contact set carried from step to step;
+/// optionally back again. The profile is evaluated analytically at every X.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Translation {
+    /// Depth of first contact (the approach starts there).
+    pub start_depth: f64,
+    /// Indentation held during the motion.
+    pub depth: f64,
+    /// Steps of the approach to `depth`.
+    pub approach_steps: usize,
+    /// Travel of the axis in +x.
+    pub distance: f64,
+    /// Steps of the travel.
+    pub steps: usize,
+    /// Travel back to X = 0 after the forward stroke.
+    pub return_stroke: bool,
+    /// The mean tangential force is taken over the part of the forward stroke beyond this
+    /// fraction of `distance` (the stationary part; default 0.5).
+    pub stationary_from: f64,
+    /// A step is a jump when the normal force changes by more than this at fixed X.
+    pub jump_force_threshold: f64,
+}
+
+/// Results of a translation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TranslationSummary {
+    /// Steps done (approach and travel).
+    pub steps: usize,
+    /// Mean tangential force over the stationary part of the forward stroke.
+    pub mean_tangential_force: f64,
+    /// Standard deviation of the tangential force there.
+    pub tangential_force_fluctuation: f64,
+    /// Mean normal force there.
+    pub mean_normal_force: f64,
+    /// Mean contact half-width perpendicular to the motion there.
+    pub mean_half_width: f64,
+    /// Mean contact radius (farthest element from the axis) there.
+    pub mean_radius: f64,
+    /// Mean real contact area there.
+    pub mean_area: f64,
+    /// Mean A_real/(π a²) with a the contact radius there.
+    pub compactness: f64,
+    /// Energy released by configuration changes during the forward stroke.
+    pub dissipated_energy: f64,
+    /// Dissipated energy per travelled distance over the stationary part: must equal the
+    /// mean tangential force (energy balance).
+    pub dissipation_per_distance: f64,
+    /// Steps flagged as jumps.
+    pub jumps: usize,
+    /// Fixed-set solves, CG iterations and FFT pairs.
+    pub solves: usize,
+    /// CG iterations.
+    pub cg_iterations: usize,
+    /// Operator applications.
+    pub operator_applications: u64,
+    /// Some step had contact on the border of a free grid.
+    pub touches_border: bool,
+}
+
+impl Translation {
+    /// Runs the approach and the stroke(s).
+    pub fn run<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        contact: &TranslatingContact,
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+    ) -> Result<TranslationSummary, ProtocolError> {
+        if self.steps == 0 || self.approach_steps == 0 {
+            return Err(ProtocolError::InvalidParameter("steps must be >= 1".into()));
+        }
+        if !(self.distance.is_finite() && self.distance > 0.0) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "distance must be > 0, got {}",
+                self.distance
+            )));
+        }
+        if !(self.depth.is_finite() && self.depth > self.start_depth) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "depth ({}) must exceed the depth of first contact ({})",
+                self.depth, self.start_depth
+            )));
+        }
+        let grid = *operator.grid();
+        solver.reset();
+        let mut state = ContactState::new(&grid);
+        let mut previous = state.contact.clone();
+        let mut heights = vec![0.0; grid.len()];
+        let mut summary = TranslationSummary::default();
+        let mut cumulative = 0.0;
+        let phase = match contact.kinematics() {
+            Kinematics::Roll => Phase::Roll,
+            _ => Phase::Slide,
+        };
+        let mut schedule: Vec<(Phase, f64, f64)> = (1..=self.approach_steps)
+            .map(|i| {
+                let depth = self.start_depth + (self.depth - self.start_depth) * i as f64 / self.approach_steps as f64;
+                (Phase::Approach, depth, 0.0)
+            })
+            .collect();
+        schedule.extend((1..=self.steps).map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)));
+        if self.return_stroke {
+            schedule.extend(
+                (0..self.steps)
+                    .rev()
+                    .map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)),
+            );
+        }
+        let forward_end = self.approach_steps + self.steps;
+        let mut stationary = Vec::new();
+        for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
+            contact.fill_heights(&grid, offset, &mut heights);
+            previous.copy_from_slice(&state.contact);
+            let report = solver
+                .step(operator, &heights, depth, &mut state)
+                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+            cumulative += report.dissipated_energy;
+            let contact_elements = state.contact_elements();
+            let record = StepRecord {
+                step,
+                phase: Some(stage),
+                depth,
+                offset,
+                force_normal: report.force,
+                force_tangential: if stage == Phase::Approach {
+                    0.0
+                } else {
+                    contact.tangential_force(&grid, &state.pressure, offset)
+                },
+                area: contact_elements as f64 * grid.element_area(),
+                radius: state.contact_radius(&grid, (offset, 0.0)),
+                half_width: half_width(&grid, &state.contact),
+                contact_elements,
+                report,
+                cumulative_dissipated_energy: cumulative,
+                jumped: (report.attached + report.detached) > 0
+                    && (report.force - report.force_before_change).abs() > self.jump_force_threshold,
+                touches_border: grid.boundary() == Boundary::Free && state.touches_border(&grid),
+            };
+            summary.steps += 1;
+            summary.solves += report.solves;
+            summary.cg_iterations += report.cg_iterations;
+            summary.operator_applications += report.operator_applications;
+            summary.jumps += record.jumped as usize;
+            summary.touches_border |= record.touches_border;
+            if stage != Phase::Approach && step < forward_end {
+                summary.dissipated_energy += report.dissipated_energy;
+                if offset > self.stationary_from * self.distance {
+                    stationary.push(record);
+                }
+            }
+            if let ControlFlow::Break(()) = observer.on_step(StepView {
+                record: &record,
+                state: &state,
+                previous_contact: &previous,
+            }) {
+                return Err(ProtocolError::Interrupted(step));
+            }
+        }
+        if !stationary.is_empty() {
+            let count = stationary.len() as f64;
+            let mean = |f: &dyn Fn(&StepRecord) -> f64| stationary.iter().map(f).sum::<f64>() / count;
+            summary.mean_tangential_force = mean(&|r| r.force_tangential);
+            let mean_force = summary.mean_tangential_force;
+            summary.tangential_force_fluctuation = mean(&|r| (r.force_tangential - mean_force).powi(2)).sqrt();
+            summary.mean_normal_force = mean(&|r| r.force_normal);
+            summary.mean_half_width = mean(&|r| r.half_width);
+            summary.mean_radius = mean(&|r| r.radius);
+            summary.mean_area = mean(&|r| r.area);
+            summary.compactness = mean(&|r| {
+                if r.radius > 0.0 {
+                    r.area / (std::f64::consts::PI * r.radius * r.radius)
+                } else {
+                    0.0
+                }
+            });
+            let travelled = stationary.last().map_or(0.0, |r| r.offset) - stationary[0].offset;
+            if travelled > 0.0 {
+                let released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
+                summary.dissipation_per_distance = released / travelled;
+            }
+        }
+        Ok(summary)
+    }
+}

@@ -1,0 +1,124 @@
+//! Adhesive smooth-sphere indentation and pull-off against JKR (Johnson, Kendall &
+//! Roberts 1971), and the energy balance of the quasi-static cycle.
+//!
+//! The lattice detachment criterion converges to JKR at first order in Δ/a_JKR, from
+//! above: |F_min|/|F_JKR| ≈ 1 + 1.4Δ/a_JKR (physics notes §4). The default tests run at
+//! a_JKR/Δ = 8 and 16 (seconds); the 3 % accuracy at a_JKR/Δ ≥ 60 is checked by the
+//! ignored tests (`cargo test --release -- --ignored`), which take minutes.
+
+mod common;
+
+use adhesim::Phase;
+use common::{loop_area, JkrCase};
+
+/// Pull-off force converges at first order from above: the error at a_JKR/Δ = 16 is
+/// between 0.3 and 0.7 of that at 8 (0.5 for exact first order; the staircase front makes
+/// it irregular), and both lie within ±50 % of the expected 1.4Δ/a_JKR.
+#[test]
+fn pull_off_force_converges_at_first_order() {
+    let mut errors = Vec::new();
+    for resolution in [8.0, 16.0] {
+        let case = JkrCase::new(resolution, 2.0);
+        let (summary, _) = case.run(2.0, 40.0);
+        let error = summary.max_adhesive_force / case.jkr.critical_force().abs() - 1.0;
+        let expected = 1.4 / resolution;
+        assert!(
+            error > 0.5 * expected && error < 1.5 * expected,
+            "a/Δ = {resolution}: |F_min|/|F_JKR| − 1 = {error:.4}, expected ≈ {expected:.4}"
+        );
+        errors.push(error);
+    }
+    let ratio = errors[1] / errors[0];
+    assert!((0.3..0.7).contains(&ratio), "error ratio {ratio:.3}");
+}
+
+/// At a_JKR/Δ = 16: the retraction branch stays within 0.08|F_JKR| of JKR for
+/// d ≥ 0.5|d_JKR| (issue target 0.03 at a/Δ ≥ 60, where the first-order error is 2.3×
+/// smaller — see the ignored test), the approach branch within 0.08|F_JKR| for
+/// d ≥ 2|d_JKR| (trial attachment gives γ1 → γ0 on smooth spheres), and the final jump
+/// under displacement control lies within 0.3|d_JKR| of −9^{1/3}|d_JKR| = −2.080|d_JKR|.
+#[test]
+fn branches_follow_jkr_at_moderate_resolution() {
+    let case = JkrCase::new(16.0, 3.0);
+    let (summary, records) = case.run(3.0, 50.0);
+    check_branches(&case, &summary, &records, 0.08, 0.08, 0.3);
+}
+
+fn check_branches(
+    case: &JkrCase,
+    summary: &adhesim::ProtocolSummary,
+    records: &[adhesim::StepRecord],
+    retract_tolerance: f64,
+    approach_tolerance: f64,
+    jump_tolerance: f64,
+) {
+    let f_jkr = case.jkr.critical_force().abs();
+    let d_jkr = case.jkr.critical_depth().abs();
+    for record in records {
+        let d = record.depth / d_jkr;
+        let Some(expected) = case.jkr.force_at_depth(record.depth) else {
+            continue;
+        };
+        let error = (record.force_normal - expected).abs() / f_jkr;
+        match record.phase {
+            Some(Phase::Retract) if d >= 0.5 => {
+                assert!(
+                    error < retract_tolerance,
+                    "retract d/|d_JKR| = {d:.3}: error {error:.4}"
+                )
+            }
+            Some(Phase::Approach) if d >= 2.0 => {
+                assert!(
+                    error < approach_tolerance,
+                    "approach d/|d_JKR| = {d:.3}: error {error:.4}"
+                )
+            }
+            _ => {}
+        }
+    }
+    let final_jump = summary.pull_off_depth.unwrap() / d_jkr;
+    assert!(
+        (final_jump + 9f64.cbrt()).abs() < jump_tolerance,
+        "final jump at d/|d_JKR| = {final_jump:.3}"
+    );
+}
+
+/// Over a full cycle the work done on the indenter, ∮F dd, equals the energy released by
+/// the configuration changes: exactly when each step's fixed-set path is integrated with
+/// the force before the change (F is linear in d on a fixed set; 1e-6 relative: each
+/// solve is converged to 1e-9 and the error accumulates over ~400 steps), and within 2 % for the recorded polyline at 100 steps per |d_JKR| (the
+/// polyline cuts the corners of the jumps).
+#[test]
+fn loop_area_equals_dissipated_energy() {
+    let case = JkrCase::new(8.0, 2.0);
+    let (summary, records) = case.run(2.0, 100.0);
+    let mut exact = 0.5 * records[0].report.force_before_change * records[0].depth;
+    for pair in records.windows(2) {
+        exact += 0.5 * (pair[0].force_normal + pair[1].report.force_before_change) * (pair[1].depth - pair[0].depth);
+    }
+    let dissipated: f64 = records.iter().map(|r| r.report.dissipated_energy).sum();
+    assert!((dissipated - summary.dissipated_energy).abs() < 1e-12 * dissipated.abs());
+    assert!(dissipated > 0.0);
+    assert!((exact / dissipated - 1.0).abs() < 1e-6, "{exact} vs {dissipated}");
+    let polyline = loop_area(&records);
+    assert!((polyline / dissipated - 1.0).abs() < 0.02, "{polyline} vs {dissipated}");
+    // the jump steps carry the dissipation: steps without configuration change release nothing
+    for record in &records {
+        if record.report.attached + record.report.detached == 0 {
+            assert!(record.report.dissipated_energy.abs() < 1e-9 * dissipated);
+        }
+    }
+}
+
+/// Issue #3 targets at a_JKR/Δ = 64 (≥ 60): pull-off force within 3 %, retraction branch
+/// within 0.03|F_JKR| for d ≥ 0.5|d_JKR|, approach within 0.05|F_JKR| for d ≥ 2|d_JKR|,
+/// final jump near −2.08|d_JKR| (0.15 tolerance: the last stage involves few elements).
+#[test]
+#[ignore = "minutes: run with cargo test --release -- --ignored"]
+fn jkr_targets_at_high_resolution() {
+    let case = JkrCase::new(64.0, 3.0);
+    let (summary, records) = case.run(3.0, 50.0);
+    let error = summary.max_adhesive_force / case.jkr.critical_force().abs() - 1.0;
+    assert!(error.abs() < 0.03, "pull-off error {error:.4}");
+    check_branches(&case, &summary, &records, 0.03, 0.05, 0.15);
+}
