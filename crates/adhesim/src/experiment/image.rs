@@ -21,12 +21,6 @@ impl GrayImage {
         Ok(Self { width, height, pixels })
     }
 
-    /// Wraps a buffer known to have the right length and finite values.
-    pub(crate) fn from_trusted(width: usize, height: usize, pixels: Vec<f32>) -> Self {
-        debug_assert_eq!(width * height, pixels.len());
-        Self { width, height, pixels }
-    }
-
     /// Converts 8-bit samples (full scale 255).
     pub fn from_u8(width: usize, height: usize, samples: &[u8]) -> Result<Self, ExperimentError> {
         check_size(width, height, samples.len())?;

@@ -72,20 +72,16 @@ impl ContactMask {
     /// Morphological opening (erosion then dilation) with a (2r+1)² square: removes specks
     /// narrower than 2r+1 pixels. Windows are clipped at the image border.
     pub fn open(&self, radius: usize) -> ContactMask {
-        if radius == 0 {
-            return self.clone();
-        }
-        let eroded = self.filtered(radius, Window::Erode);
-        eroded.filtered(radius, Window::Dilate)
+        let mut mask = self.clone();
+        mask.open_in_place(radius);
+        mask
     }
 
     /// Morphological closing (dilation then erosion): fills holes narrower than 2r+1 pixels.
     pub fn close(&self, radius: usize) -> ContactMask {
-        if radius == 0 {
-            return self.clone();
-        }
-        let dilated = self.filtered(radius, Window::Dilate);
-        dilated.filtered(radius, Window::Erode)
+        let mut mask = self.clone();
+        mask.close_in_place(radius);
+        mask
     }
 
     /// Dilation with a (2r+1)² square.
@@ -93,38 +89,55 @@ impl ContactMask {
         self.filtered(radius, Window::Dilate)
     }
 
-    /// Square-window min/max filter (windows clipped at the border), separable. Small radii
-    /// OR/AND shifted rows (vectorises well); larger ones use running counts, O(pixels).
-    fn filtered(&self, radius: usize, window: Window) -> ContactMask {
-        if radius <= SHIFT_FILTER_MAX_RADIUS {
-            return self.shift_filtered(radius, window);
-        }
-        self.counting_filtered(radius, window)
+    fn open_in_place(&mut self, radius: usize) {
+        self.filter_in_place(radius, Window::Erode);
+        self.filter_in_place(radius, Window::Dilate);
     }
 
-    fn shift_filtered(&self, radius: usize, window: Window) -> ContactMask {
+    fn close_in_place(&mut self, radius: usize) {
+        self.filter_in_place(radius, Window::Dilate);
+        self.filter_in_place(radius, Window::Erode);
+    }
+
+    fn filtered(&self, radius: usize, window: Window) -> ContactMask {
+        let mut mask = self.clone();
+        mask.filter_in_place(radius, window);
+        mask
+    }
+
+    /// Square-window min/max filter (windows clipped at the border), separable. Small radii
+    /// OR/AND shifted rows (vectorises well) in place with a reused per-thread buffer; larger
+    /// ones use running counts, O(pixels).
+    fn filter_in_place(&mut self, radius: usize, window: Window) {
+        if radius == 0 {
+            return;
+        }
+        if radius > SHIFT_FILTER_MAX_RADIUS {
+            *self = self.counting_filtered(radius, window);
+            return;
+        }
         let (w, h) = (self.width, self.height);
         let combine = |dst: &mut [u8], src: &[u8]| match window {
             Window::Dilate => dst.iter_mut().zip(src).for_each(|(d, s)| *d |= s),
             Window::Erode => dst.iter_mut().zip(src).for_each(|(d, s)| *d &= s),
         };
-        let mut rows = self.cells.clone();
-        for (dst, src) in rows.chunks_exact_mut(w).zip(self.cells.chunks_exact(w)) {
-            for d in 1..=radius.min(w - 1) {
-                combine(&mut dst[..w - d], &src[d..]);
-                combine(&mut dst[d..], &src[..w - d]);
+        BYTE_WORK.with(|work| {
+            let mut src = work.borrow_mut();
+            src.clear();
+            src.extend_from_slice(&self.cells);
+            for (dst, row) in self.cells.chunks_exact_mut(w).zip(src.chunks_exact(w)) {
+                for d in 1..=radius.min(w - 1) {
+                    combine(&mut dst[..w - d], &row[d..]);
+                    combine(&mut dst[d..], &row[..w - d]);
+                }
             }
-        }
-        let mut out = rows.clone();
-        for d in 1..=radius.min(h - 1) {
-            combine(&mut out[..(h - d) * w], &rows[d * w..]);
-            combine(&mut out[d * w..], &rows[..(h - d) * w]);
-        }
-        ContactMask {
-            width: w,
-            height: h,
-            cells: out,
-        }
+            src.clear();
+            src.extend_from_slice(&self.cells);
+            for d in 1..=radius.min(h - 1) {
+                combine(&mut self.cells[..(h - d) * w], &src[d * w..]);
+                combine(&mut self.cells[d * w..], &src[..(h - d) * w]);
+            }
+        });
     }
 
     fn counting_filtered(&self, radius: usize, window: Window) -> ContactMask {
@@ -180,6 +193,13 @@ impl ContactMask {
             cells: out,
         }
     }
+}
+
+thread_local! {
+    /// Per-thread work buffers reused across frames: allocating tens of MB per 1600×1200
+    /// frame afresh made page faults about a third of the analysis time.
+    static BYTE_WORK: std::cell::RefCell<Vec<u8>> = const { std::cell::RefCell::new(Vec::new()) };
+    static FLOAT_WORK: std::cell::RefCell<(Vec<f32>, Vec<f32>)> = const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
 /// Up to this radius the shifted-row filter beats running counts.
@@ -357,34 +377,41 @@ impl Segmenter {
     /// Contact mask of one frame: flatten, threshold, open, close, restrict to the ROI.
     pub fn segment(&self, frame: &GrayImage) -> Result<ContactMask, ExperimentError> {
         let gain = self.gain(frame)?;
-        let mask = if self.params.smooth_radius == 0 {
-            self.classify(frame, &gain, None)
+        let (w, h) = (frame.width(), frame.height());
+        let mut mask = if self.params.smooth_radius == 0 {
+            self.classify(frame.pixels(), w, h, &gain, None)
         } else {
-            let (w, h) = (frame.width(), frame.height());
-            let mut flat = frame.pixels().to_vec();
-            let mut row_gain = vec![1.0f32; w];
-            for (y, row) in flat.chunks_exact_mut(w).enumerate() {
-                gain.fill_row(y, &mut row_gain);
-                row.iter_mut().zip(&row_gain).for_each(|(v, g)| *v *= g);
-            }
-            box_mean(&mut flat, w, h, self.params.smooth_radius);
-            self.classify(&GrayImage::from_trusted(w, h, flat), &Gain::One, None)
+            FLOAT_WORK.with(|work| {
+                let (flat, scratch) = &mut *work.borrow_mut();
+                flat.clear();
+                flat.extend_from_slice(frame.pixels());
+                let mut row_gain = vec![1.0f32; w];
+                for (y, row) in flat.chunks_exact_mut(w).enumerate() {
+                    gain.fill_row(y, &mut row_gain);
+                    row.iter_mut().zip(&row_gain).for_each(|(v, g)| *v *= g);
+                }
+                box_mean(flat, scratch, w, h, self.params.smooth_radius);
+                self.classify(flat, w, h, &Gain::One, None)
+            })
         };
-        Ok(mask
-            .open(self.params.open_radius)
-            .close(self.params.close_radius)
-            .restricted(self.roi(frame)))
+        mask.open_in_place(self.params.open_radius);
+        mask.close_in_place(self.params.close_radius);
+        Ok(mask.restricted(self.roi(frame)))
     }
 
     fn roi(&self, frame: &GrayImage) -> Roi {
+        self.roi_of(frame.width(), frame.height())
+    }
+
+    fn roi_of(&self, width: usize, height: usize) -> Roi {
         match self.params.roi {
-            Some(r) => r.clipped(frame.width(), frame.height()).unwrap_or(Roi {
+            Some(r) => r.clipped(width, height).unwrap_or(Roi {
                 x0: 0,
                 y0: 0,
                 width: 0,
                 height: 0,
             }),
-            None => Roi::full(frame.width(), frame.height()),
+            None => Roi::full(width, height),
         }
     }
 
@@ -403,7 +430,13 @@ impl Segmenter {
                 // Two passes: the first provisional contact comes from the uncorrected frame.
                 for _ in 0..2 {
                     let mut contact = vec![false; blocks.nx * blocks.ny];
-                    self.classify(frame, &gain, Some((&mut contact, blocks.nx)));
+                    self.classify(
+                        frame.pixels(),
+                        frame.width(),
+                        frame.height(),
+                        &gain,
+                        Some((&mut contact, blocks.nx)),
+                    );
                     match blocks.fit(&contact) {
                         Some(surface) => gain = Gain::Surface(surface),
                         None => break,
@@ -415,15 +448,21 @@ impl Segmenter {
     }
 
     /// Thresholds raw × gain; optionally marks the BLOCK×BLOCK blocks holding contact.
-    fn classify(&self, frame: &GrayImage, gain: &Gain, mut blocks: Option<(&mut [bool], usize)>) -> ContactMask {
-        let (w, h) = (frame.width(), frame.height());
+    fn classify(
+        &self,
+        pixels: &[f32],
+        w: usize,
+        h: usize,
+        gain: &Gain,
+        mut blocks: Option<(&mut [bool], usize)>,
+    ) -> ContactMask {
         let t = self.threshold;
         let bright = self.params.polarity == Polarity::Bright;
         let mut cells = vec![0u8; w * h];
         let mut row_gain = vec![1.0f32; w];
         for y in 0..h {
             gain.fill_row(y, &mut row_gain);
-            let src = &frame.pixels()[y * w..(y + 1) * w];
+            let src = &pixels[y * w..(y + 1) * w];
             let dst = &mut cells[y * w..(y + 1) * w];
             for ((d, &v), &g) in dst.iter_mut().zip(src).zip(&row_gain) {
                 let f = v * g;
@@ -443,13 +482,14 @@ impl Segmenter {
             height: h,
             cells,
         }
-        .restricted(self.roi(frame))
+        .restricted(self.roi_of(w, h))
     }
 }
 
 /// In-place (2r+1)² box mean with windows clipped at the border; running sums, O(pixels).
-fn box_mean(field: &mut [f32], w: usize, h: usize, radius: usize) {
-    let mut rows = vec![0.0f32; w * h];
+fn box_mean(field: &mut [f32], rows: &mut Vec<f32>, w: usize, h: usize, radius: usize) {
+    rows.clear();
+    rows.resize(w * h, 0.0);
     for (src, dst) in field.chunks_exact(w).zip(rows.chunks_exact_mut(w)) {
         let mut sum: f32 = src[..radius.min(w)].iter().sum();
         for x in 0..w {
