@@ -37,7 +37,8 @@ pub use geometry::{
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
-    IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, StepRecord, StepView,
+    IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, StepRecord, StepView, Translation,
+    TranslationSummary,
 };
 pub use solver::{
     AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, SolveError,

@@ -104,6 +104,7 @@ impl IndentPulloff {
                 offset: 0.0,
                 force_normal: report.force,
                 force_tangential: 0.0,
+                force_tangential_before_change: 0.0,
                 area: contact_elements as f64 * grid.element_area(),
                 radius: state.contact_radius(&grid, (0.0, 0.0)),
                 half_width: half_width(&grid, &state.contact),

@@ -53,6 +53,9 @@ pub struct StepRecord {
     pub force_normal: f64,
     /// Tangential force (resistance to motion in +x); 0 for normal protocols.
     pub force_tangential: f64,
+    /// Tangential force on the previous contact set at this position, before the
+    /// configuration changed (the top of a stick phase).
+    pub force_tangential_before_change: f64,
     /// Real contact area Δ²|C|.
     pub area: f64,
     /// Distance from the indenter axis to the farthest element in contact.
@@ -156,11 +159,25 @@ impl NormalSolver {
         depth: f64,
         state: &mut ContactState,
     ) -> Result<StepReport, SolveError> {
+        self.step_probed(operator, heights, depth, state, &mut |_| {})
+    }
+
+    /// One step; `before_change` sees the state on the previous contact set at the new
+    /// depth or position, before the configuration changes.
+    pub fn step_probed<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        before_change: &mut dyn FnMut(&ContactState),
+    ) -> Result<StepReport, SolveError> {
         match self {
-            Self::Adhesive(solver) => solver.step(operator, heights, depth, state),
+            Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
             Self::NonAdhesive(solver) => {
                 let before = state.contact.clone();
                 let solve = solver.solve(operator, heights, Control::Displacement(depth), state)?;
+                before_change(state);
                 let area = operator.grid().element_area();
                 let energy = 0.5
                     * area

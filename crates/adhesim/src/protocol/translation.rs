@@ -36,9 +36,15 @@ pub struct Translation {
 pub struct TranslationSummary {
     /// Steps done (approach and travel).
     pub steps: usize,
-    /// Mean tangential force over the stationary part of the forward stroke.
+    /// Mean over the stationary part of the forward stroke of the tangential force
+    /// F_T = ∫p ∂z_moving/∂x dA at the end of each step (the paper's per-step force).
     pub mean_tangential_force: f64,
-    /// Standard deviation of the tangential force there.
+    /// Work of the driving force per distance over the same part, ∫F_T dX/ΔX, with F_T
+    /// on each fixed-set stretch running linearly from the previous step's value to the
+    /// value before the configuration change. Equals the dissipated energy per distance;
+    /// exceeds the per-step mean by the lattice stick–slip (see docs/validation.md).
+    pub mean_tangential_force_work: f64,
+    /// Standard deviation of the end-of-step tangential force there.
     pub tangential_force_fluctuation: f64,
     /// Mean normal force there.
     pub mean_normal_force: f64,
@@ -53,7 +59,7 @@ pub struct TranslationSummary {
     /// Energy released by configuration changes during the forward stroke.
     pub dissipated_energy: f64,
     /// Dissipated energy per travelled distance over the stationary part: must equal the
-    /// mean tangential force (energy balance).
+    /// work-based mean tangential force (energy balance).
     pub dissipation_per_distance: f64,
     /// Steps flagged as jumps.
     pub jumps: usize,
@@ -121,8 +127,14 @@ impl Translation {
         for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
             contact.fill_heights(&grid, offset, &mut heights);
             previous.copy_from_slice(&state.contact);
+            let mut tangential_before = 0.0;
+            let moving = stage != Phase::Approach;
             let report = solver
-                .step(operator, &heights, depth, &mut state)
+                .step_probed(operator, &heights, depth, &mut state, &mut |solved| {
+                    if moving {
+                        tangential_before = contact.tangential_force(&grid, &solved.pressure, offset);
+                    }
+                })
                 .map_err(|source| ProtocolError::Solve { step, depth, source })?;
             cumulative += report.dissipated_energy;
             let contact_elements = state.contact_elements();
@@ -132,11 +144,12 @@ impl Translation {
                 depth,
                 offset,
                 force_normal: report.force,
-                force_tangential: if stage == Phase::Approach {
-                    0.0
-                } else {
+                force_tangential: if moving {
                     contact.tangential_force(&grid, &state.pressure, offset)
+                } else {
+                    0.0
                 },
+                force_tangential_before_change: tangential_before,
                 area: contact_elements as f64 * grid.element_area(),
                 radius: state.contact_radius(&grid, (offset, 0.0)),
                 half_width: half_width(&grid, &state.contact),
@@ -186,6 +199,14 @@ impl Translation {
             });
             let travelled = stationary.last().map_or(0.0, |r| r.offset) - stationary[0].offset;
             if travelled > 0.0 {
+                let work: f64 = stationary
+                    .windows(2)
+                    .map(|w| {
+                        0.5 * (w[0].force_tangential + w[1].force_tangential_before_change)
+                            * (w[1].offset - w[0].offset)
+                    })
+                    .sum();
+                summary.mean_tangential_force_work = work / travelled;
                 let released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
                 summary.dissipation_per_distance = released / travelled;
             }

@@ -1,5 +1,6 @@
 use super::{ContactState, Control, SolveError, SolveReport};
 use crate::elastic::ElasticOperator;
+use crate::grid::Boundary;
 
 /// Parameters of [`Ccg`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,7 +52,131 @@ impl Ccg {
 
     /// Solves for p ≥ 0 with g ≥ 0 and p·g = 0, starting from `state` (warm start) and
     /// leaving the solution there. `heights` are the indenter heights z at element centres.
+    ///
+    /// On a periodic half-space the uniform pressure produces no displacement (K̂(0) = 0),
+    /// so displacement control there means mean-gap control; it is solved as load control
+    /// with a bracketed secant iteration on the load (d(F) is increasing).
     pub fn solve<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        control: Control,
+        state: &mut ContactState,
+    ) -> Result<SolveReport, SolveError> {
+        match control {
+            Control::Displacement(depth) if operator.grid().boundary() == Boundary::Periodic => {
+                self.solve_periodic_depth(operator, heights, depth, state)
+            }
+            _ => self.solve_constrained(operator, heights, control, state),
+        }
+    }
+
+    fn solve_periodic_depth<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<SolveReport, SolveError> {
+        let grid = *operator.grid();
+        let lowest = heights.iter().cloned().fold(f64::INFINITY, f64::min);
+        let highest = heights
+            .iter()
+            .cloned()
+            .filter(|z| z.is_finite())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let scale = (highest - lowest).max(depth.abs()).max(f64::MIN_POSITIVE);
+        if depth <= lowest {
+            state.pressure.iter_mut().for_each(|p| *p = 0.0);
+            state.displacement.iter_mut().for_each(|u| *u = 0.0);
+            state.contact.iter_mut().for_each(|c| *c = false);
+            return Ok(SolveReport {
+                depth,
+                ..SolveReport::default()
+            });
+        }
+        // Depth found by a load-controlled solve is increasing in the load: bracket, then
+        // Illinois regula falsi.
+        let current = state.force(grid.element_area());
+        let modulus = operator.contact_modulus();
+        let mut total = SolveReport::default();
+        let mut low = (0.0, lowest - depth);
+        // First guess: the stiffness of full contact is of order E*·L.
+        let mut load = if current > 0.0 {
+            current
+        } else {
+            grid.size() * modulus * (depth - lowest)
+        };
+        let mut report = {
+            let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
+            total.iterations += report.iterations;
+            total.operator_applications += report.operator_applications;
+            report
+        };
+        let mut high;
+        loop {
+            let value = report.depth - depth;
+            if value.abs() <= 1e-10 * scale {
+                return Ok(SolveReport {
+                    iterations: total.iterations,
+                    operator_applications: total.operator_applications,
+                    depth,
+                    ..report
+                });
+            }
+            if value > 0.0 {
+                high = (load, value);
+                break;
+            }
+            low = (load, value);
+            load *= 2.0;
+            report = {
+                let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
+                total.iterations += report.iterations;
+                total.operator_applications += report.operator_applications;
+                report
+            };
+        }
+        let mut side = 0i8;
+        for _ in 0..200 {
+            load = (low.0 * high.1 - high.0 * low.1) / (high.1 - low.1);
+            report = {
+                let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
+                total.iterations += report.iterations;
+                total.operator_applications += report.operator_applications;
+                report
+            };
+            let value = report.depth - depth;
+            if value.abs() <= 1e-10 * scale || (high.0 - low.0) <= 1e-14 * high.0 {
+                return Ok(SolveReport {
+                    iterations: total.iterations,
+                    operator_applications: total.operator_applications,
+                    depth,
+                    ..report
+                });
+            }
+            if value > 0.0 {
+                high = (load, value);
+                if side == 1 {
+                    low.1 *= 0.5;
+                }
+                side = 1;
+            } else {
+                low = (load, value);
+                if side == -1 {
+                    high.1 *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        Err(SolveError::NotConverged {
+            iterations: total.iterations,
+            residual: (report.depth - depth).abs() / scale,
+            tolerance: 1e-10,
+        })
+    }
+
+    fn solve_constrained<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
         heights: &[f64],
@@ -227,10 +352,17 @@ impl Ccg {
                 change += (pressure[k] - self.previous[k]).abs();
                 magnitude += pressure[k].abs();
             }
-            residual = if magnitude > 0.0 { change / magnitude } else { 0.0 };
-            if !residual.is_finite() {
+            if !(change.is_finite() && magnitude.is_finite()) {
                 return Err(SolveError::NonFinite { iteration });
             }
+            if magnitude == 0.0 {
+                // Everything was released: not a solution while anything penetrates. The
+                // next iteration closes the penetrating elements again from scratch.
+                residual = f64::INFINITY;
+                delta = 0.0;
+                continue;
+            }
+            residual = change / magnitude;
             if residual < self.params.tolerance && !overlap {
                 operator.apply(pressure, &mut state.displacement);
                 return Ok(self.finish(

@@ -227,6 +227,20 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
     ) -> Result<StepReport, SolveError> {
+        self.step_probed(operator, heights, depth, state, &mut |_| {})
+    }
+
+    /// As [`step`](Self::step), calling `before_change` with the state solved on the
+    /// previous contact set at the new depth/position, before any attachment or release
+    /// (e.g. to measure the tangential force at the end of a stick phase).
+    pub fn step_probed<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        before_change: &mut dyn FnMut(&ContactState),
+    ) -> Result<StepReport, SolveError> {
         let len = self.grid.len();
         if heights.len() != len {
             return Err(SolveError::SizeMismatch {
@@ -276,6 +290,7 @@ impl AdhesiveSolver {
             if first {
                 report.force_before_change = state.force(self.grid.element_area());
                 report.energy_before_change = self.energy(state);
+                before_change(state);
                 first = false;
             }
             self.find_violators(state);
