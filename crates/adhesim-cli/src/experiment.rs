@@ -267,6 +267,7 @@ fn build_segmenter(settings: &Settings, files: &[PathBuf]) -> Result<Segmenter> 
         polarity: settings.polarity,
         threshold: settings.threshold,
         background,
+        correction: settings.correction,
         smooth_radius: settings.smooth_radius,
         open_radius: settings.open_radius,
         close_radius: settings.close_radius,

@@ -1,6 +1,6 @@
 //! The experiment spec file (TOML) and its validation.
 
-use adhesim::experiment::{Motion, PhaseParams, Polarity, Roi, ThresholdRule};
+use adhesim::experiment::{Correction, Motion, PhaseParams, Polarity, Roi, ThresholdRule};
 use anyhow::{bail, Context, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -59,6 +59,9 @@ pub struct ContactSpec {
     /// "none", "fit" or a path to a frame of the free surface.
     #[serde(default = "default_background")]
     pub background: String,
+    /// "divide" (flat field) or "subtract".
+    #[serde(default = "default_correction")]
+    pub correction: String,
     #[serde(default = "one")]
     pub smooth_radius: usize,
     #[serde(default = "one")]
@@ -75,6 +78,7 @@ impl Default for ContactSpec {
             threshold: default_threshold(),
             contact_is: default_contact_is(),
             background: default_background(),
+            correction: default_correction(),
             smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
@@ -184,6 +188,9 @@ fn default_contact_is() -> String {
 fn default_background() -> String {
     "none".into()
 }
+fn default_correction() -> String {
+    "divide".into()
+}
 fn default_motion() -> String {
     "+x".into()
 }
@@ -242,6 +249,7 @@ pub struct Settings {
     pub polarity: Polarity,
     pub threshold: ThresholdRule,
     pub background: BackgroundChoice,
+    pub correction: Correction,
     pub smooth_radius: usize,
     pub open_radius: usize,
     pub close_radius: usize,
@@ -290,6 +298,11 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         "fit" => BackgroundChoice::Fit,
         "" => bail!("contact.background must be \"none\", \"fit\" or a file path, got \"\""),
         path => BackgroundChoice::File(resolve(Path::new(path))),
+    };
+    let correction = match spec.contact.correction.as_str() {
+        "divide" => Correction::Divide,
+        "subtract" => Correction::Subtract,
+        other => bail!("contact.correction must be \"divide\" or \"subtract\", got \"{other}\""),
     };
     for (name, r) in [
         ("contact.smooth_radius", spec.contact.smooth_radius),
@@ -379,6 +392,7 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         polarity,
         threshold,
         background,
+        correction,
         smooth_radius: spec.contact.smooth_radius,
         open_radius: spec.contact.open_radius,
         close_radius: spec.contact.close_radius,

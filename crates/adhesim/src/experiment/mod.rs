@@ -22,7 +22,7 @@ pub mod synthetic;
 
 pub use changes::{change_map, Change, ChangeMap};
 pub use image::{GrayImage, Roi};
-pub use mask::{BackgroundModel, ContactMask, Polarity, SegmentationParams, Segmenter, ThresholdRule};
+pub use mask::{BackgroundModel, ContactMask, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
 pub use measure::{measure, AreaMeasurement, IndenterTrack, Motion};
 pub use phases::{classify_phases, detect_jumps, Phase, PhaseParams};
 

@@ -387,7 +387,8 @@ fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) {
 mod tests {
     use super::*;
     use crate::experiment::{
-        change_map, measure, BackgroundModel, Motion, Polarity, SegmentationParams, Segmenter, ThresholdRule,
+        change_map, measure, BackgroundModel, Correction, Motion, Polarity, SegmentationParams, Segmenter,
+        ThresholdRule,
     };
 
     fn small_spec() -> SyntheticSpec {
@@ -413,6 +414,7 @@ mod tests {
             polarity: Polarity::Bright,
             threshold: ThresholdRule::Otsu,
             background,
+            correction: Correction::Divide,
             smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
