@@ -329,7 +329,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
             t
         }
         (None, Some(rate)) => (0..files.len()).map(|i| i as f64 / rate).collect(),
-        (None, None) => unreachable!("validated in spec::load"),
+        (None, None) => bail!("frames: give frames.rate or frames.timestamps"),
     };
     let log = settings.forces.as_ref().map(ForceLog::load).transpose()?;
     let segmenter = build_segmenter(&settings, &files)?;
@@ -375,8 +375,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     if rows.is_empty() {
         bail!("no readable frames in {}", settings.frames_dir.display());
     }
-    // Frames with another size than the calibration frames are analysed but flagged by area 0;
-    // sequence-level analysis follows.
+    // Sequence-level analysis: jumps and stick/slip phases over the readable frames.
     let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
     let jumps = detect_jumps(&areas, settings.phases.jump_threshold)?;
     let xs: Vec<f64> = rows.iter().map(|r| r.stage_x.unwrap_or(f64::NAN)).collect();
