@@ -1,5 +1,6 @@
 //! `adhesim`: command-line front end of the adhesim simulator (see `docs/cli.md`).
 
+mod experiment;
 mod friction_study;
 mod master_plots;
 mod output;
@@ -48,11 +49,9 @@ enum Command {
     Plot(master_plots::PlotArgs),
     /// Rolling / sliding friction study over the Johnson parameter (paper Figs. 7, 8, 10).
     Study(friction_study::StudyArgs),
-    // ── merge point ─────────────────────────────────────────────────────────────────
-    // `Experiment(experiment::ExperimentArgs)` (analysis of filmed contact experiments,
-    // `adhesim experiment SPEC.toml [--out DIR]`) is merged here from its own branch,
-    // together with `mod experiment;` above and its arm in `main()` below.
-    // ────────────────────────────────────────────────────────────────────────────────
+    /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
+    /// generate a synthetic one (`adhesim experiment synth`).
+    Experiment(experiment::ExperimentArgs),
 }
 
 #[derive(Args)]
@@ -99,6 +98,7 @@ fn main() -> ExitCode {
         Some(Command::Sweep(args)) => sweep::command(&args),
         Some(Command::Plot(args)) => master_plots::command(&args),
         Some(Command::Study(args)) => friction_study::run(&args),
+        Some(Command::Experiment(args)) => experiment::main(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

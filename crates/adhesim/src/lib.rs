@@ -22,6 +22,7 @@
 
 pub mod analysis;
 pub mod elastic;
+pub mod experiment;
 pub mod geometry;
 pub mod grid;
 pub mod material;

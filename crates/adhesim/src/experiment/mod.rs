@@ -1,0 +1,81 @@
+//! Analysis of filmed contact experiments (paper Sects. 4–6, design notes physics.md §7).
+//!
+//! Pure numerics on in-memory frames; reading image files, plotting and the command line
+//! live in `adhesim-cli`. The pipeline per frame is
+//! [`GrayImage`] → [`Segmenter::segment`] (background flattening, threshold, morphological
+//! cleaning, region of interest) → [`ContactMask`] → [`measure`] (area, centroid, width,
+//! front/rear split about the moving indenter centre line) and [`change_map`] (new and
+//! vanished contact against a reference). Sequence-level tools: [`detect_jumps`],
+//! [`classify_phases`] and the fits in [`fit`]. [`synthetic`] renders camera-like frames from
+//! a known contact sequence for testing.
+//!
+//! Pixel coordinates: column `x` (0 at the left), row `y` (0 at the top); a pixel's
+//! coordinates are those of its centre.
+
+mod changes;
+pub mod fit;
+mod image;
+mod mask;
+mod measure;
+mod phases;
+pub mod synthetic;
+
+pub use changes::{change_map, Change, ChangeMap};
+pub use image::{GrayImage, Roi};
+pub use mask::{BackgroundModel, ContactMask, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
+pub use measure::{measure, AreaMeasurement, IndenterTrack, Motion};
+pub use phases::{classify_phases, detect_jumps, Phase, PhaseParams};
+
+/// Errors of the experiment analysis.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExperimentError {
+    /// Image dimensions and buffer length disagree, or an image is empty.
+    #[error("image of {width}×{height} pixels needs {expected} values, got {actual}")]
+    BadImageSize {
+        /// Width in pixels.
+        width: usize,
+        /// Height in pixels.
+        height: usize,
+        /// Expected buffer length.
+        expected: usize,
+        /// Actual buffer length.
+        actual: usize,
+    },
+    /// Two images or masks that must have the same size do not.
+    #[error("size mismatch: {0}×{1} vs {2}×{3} pixels")]
+    SizeMismatch(usize, usize, usize, usize),
+    /// A parameter is out of range; names the parameter and the value.
+    #[error("{name} {requirement}, got {value}")]
+    InvalidParameter {
+        /// Parameter name.
+        name: &'static str,
+        /// What the value must satisfy, e.g. "must be > 0".
+        requirement: &'static str,
+        /// The offending value, formatted.
+        value: String,
+    },
+    /// Input series have different lengths.
+    #[error("series lengths differ: {0} vs {1}")]
+    LengthMismatch(usize, usize),
+    /// A fit has too few usable points.
+    #[error("{fit} fit needs at least {needed} usable points, got {got}")]
+    TooFewPoints {
+        /// Which fit.
+        fit: &'static str,
+        /// Minimum number of points.
+        needed: usize,
+        /// Usable points found.
+        got: usize,
+    },
+    /// The fit's design is degenerate (e.g. all abscissae equal).
+    #[error("{0} fit is degenerate: {1}")]
+    Degenerate(&'static str, &'static str),
+}
+
+pub(crate) fn invalid(name: &'static str, requirement: &'static str, value: impl ToString) -> ExperimentError {
+    ExperimentError::InvalidParameter {
+        name,
+        requirement,
+        value: value.to_string(),
+    }
+}
