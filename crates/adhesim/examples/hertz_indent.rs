@@ -1,0 +1,33 @@
+//! One non-adhesive Hertz solve from a cold start, compared with the closed form.
+//!
+//! `cargo run --release -p adhesim --example hertz_indent -- [N]`
+use adhesim::analysis::reference::Hertz;
+use adhesim::{Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator, Grid, Profile, Sphere};
+
+fn main() {
+    let n: usize = std::env::args().nth(1).map_or(512, |a| a.parse().expect("N as a number"));
+    let grid = Grid::new(n, 1.0, Boundary::Free).expect("grid");
+    let start = std::time::Instant::now();
+    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
+    let setup = start.elapsed().as_secs_f64();
+    let heights = Sphere::new(1.0).expect("radius").heights(&grid);
+    let depth = 0.25f64.powi(2); // contact radius L/4 = N/4 elements
+    let mut state = ContactState::new(&grid);
+    let start = std::time::Instant::now();
+    let report = Ccg::new(CcgParams::default())
+        .solve(&mut operator, &heights, Control::Displacement(depth), &mut state)
+        .expect("converged");
+    let solve = start.elapsed().as_secs_f64();
+    let hertz = Hertz {
+        radius: 1.0,
+        contact_modulus: 1.0,
+    };
+    println!(
+        "N = {n}: setup {setup:.3} s, solve {solve:.3} s, {} iterations, {} FFT pairs, force error {:.2e}, contact radius {:.1} elements (Hertz {:.1})",
+        report.iterations,
+        report.operator_applications,
+        report.force / hertz.force(depth) - 1.0,
+        state.contact_radius(&grid, (0.0, 0.0)) / grid.element_size(),
+        hertz.contact_radius(depth) / grid.element_size()
+    );
+}
