@@ -5,7 +5,9 @@ use adhesim::analysis::reference::Hertz;
 use adhesim::{Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator, Grid, Profile, Sphere};
 
 fn main() {
-    let n: usize = std::env::args().nth(1).map_or(512, |a| a.parse().expect("N as a number"));
+    let n: usize = std::env::args()
+        .nth(1)
+        .map_or(512, |a| a.parse().expect("N as a number"));
     let grid = Grid::new(n, 1.0, Boundary::Free).expect("grid");
     let start = std::time::Instant::now();
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
