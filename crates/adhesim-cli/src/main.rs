@@ -235,14 +235,14 @@ fn run(scenario: scenario::Scenario, out: &Path, options: &RunOptions) -> Result
             fits,
             ..summary::Results::from_protocol(&protocol_summary)
         },
-        performance: summary::Performance {
+        performance: summary::Performance::new(
             wall_seconds,
-            solver_iterations: protocol_summary.cg_iterations,
-            fft_pairs: protocol_summary.operator_applications,
-            solves: protocol_summary.solves,
-            steps: protocol_summary.steps,
-            threads: rayon::current_num_threads(),
-        },
+            protocol_summary.cg_iterations,
+            protocol_summary.operator_applications,
+            protocol_summary.solves,
+            protocol_summary.steps,
+            &observer,
+        ),
         warnings,
     };
     summary::write(&out.join("summary.json"), &summary)?;

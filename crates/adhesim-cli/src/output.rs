@@ -5,11 +5,12 @@ use adhesim::analysis::reference::Jkr;
 use adhesim::{Grid, Observer, StepRecord, StepView};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs::File;
 use std::io::{BufWriter, IsTerminal, Write};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// Colours of the contact maps (paper Fig. 16 style).
 const STAYING: [u8; 3] = [70, 70, 70];
@@ -55,6 +56,13 @@ pub struct RunObserver {
     capture_steps: BTreeSet<usize>,
     /// (step, contact, previous contact) of the captured steps, in step order.
     pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
+    /// Solver wall time per phase (time between steps, without this observer's output).
+    pub phase_seconds: BTreeMap<&'static str, f64>,
+    /// Steps per phase.
+    pub phase_steps: BTreeMap<&'static str, usize>,
+    /// Wall time spent writing curve.csv rows and snapshots.
+    pub output_seconds: f64,
+    last_tick: Instant,
 }
 
 impl RunObserver {
@@ -128,6 +136,10 @@ impl RunObserver {
             snapshot_files: Vec::new(),
             capture_steps: BTreeSet::new(),
             captured: Vec::new(),
+            phase_seconds: BTreeMap::new(),
+            phase_steps: BTreeMap::new(),
+            output_seconds: 0.0,
+            last_tick: Instant::now(),
         })
     }
 
@@ -273,7 +285,14 @@ impl RunObserver {
 
 impl Observer for RunObserver {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        match self.handle(&view) {
+        let phase = view.record.phase.map_or("unknown", |p| p.name());
+        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
+        *self.phase_steps.entry(phase).or_default() += 1;
+        let output_start = Instant::now();
+        let result = self.handle(&view);
+        self.output_seconds += output_start.elapsed().as_secs_f64();
+        self.last_tick = Instant::now();
+        match result {
             Ok(()) => ControlFlow::Continue(()),
             Err(error) => {
                 self.error = Some(error);

@@ -138,6 +138,43 @@ pub struct Performance {
     pub solves: usize,
     pub steps: usize,
     pub threads: usize,
+    /// Averages per quasi-static step.
+    pub fft_pairs_per_step: f64,
+    pub solves_per_step: f64,
+    pub cg_iterations_per_solve: f64,
+    /// Solver wall time and steps per phase (approach, retract, roll, slide).
+    pub phase_seconds: std::collections::BTreeMap<&'static str, f64>,
+    pub phase_steps: std::collections::BTreeMap<&'static str, usize>,
+    /// Wall time of writing curve.csv and snapshots during the run.
+    pub output_seconds: f64,
+}
+
+impl Performance {
+    /// Counters of a run, with the per-step averages and the observer's phase timings.
+    pub fn new(
+        wall_seconds: f64,
+        solver_iterations: usize,
+        fft_pairs: u64,
+        solves: usize,
+        steps: usize,
+        observer: &crate::output::RunObserver,
+    ) -> Self {
+        let per = |value: f64, count: usize| if count > 0 { value / count as f64 } else { 0.0 };
+        Self {
+            wall_seconds,
+            solver_iterations,
+            fft_pairs,
+            solves,
+            steps,
+            threads: rayon::current_num_threads(),
+            fft_pairs_per_step: per(fft_pairs as f64, steps),
+            solves_per_step: per(solves as f64, steps),
+            cg_iterations_per_solve: per(solver_iterations as f64, solves),
+            phase_seconds: observer.phase_seconds.clone(),
+            phase_steps: observer.phase_steps.clone(),
+            output_seconds: observer.output_seconds,
+        }
+    }
 }
 
 /// The whole `summary.json`; `R` is [`Results`] for indent_pulloff and

@@ -160,14 +160,14 @@ pub fn run(scenario: Scenario, out: &Path, options: &RunOptions) -> Result<()> {
         inputs: &scenario.file,
         derived: &scenario.derived,
         results: results.clone(),
-        performance: summary::Performance {
+        performance: summary::Performance::new(
             wall_seconds,
-            solver_iterations: library_summary.cg_iterations,
-            fft_pairs: library_summary.operator_applications,
-            solves: library_summary.solves,
-            steps: library_summary.steps,
-            threads: rayon::current_num_threads(),
-        },
+            library_summary.cg_iterations,
+            library_summary.operator_applications,
+            library_summary.solves,
+            library_summary.steps,
+            &observer,
+        ),
         warnings,
     };
     summary::write(&out.join("summary.json"), &summary)?;

@@ -40,6 +40,9 @@ struct BlockScratch {
     complex_scratch: Vec<Complex64>,
 }
 
+/// Rows or columns gathered together in a transpose (16 complex values = 4 cache lines).
+const TILE: usize = 16;
+
 fn block_len(total: usize, blocks: usize) -> usize {
     total.div_ceil(blocks).max(1)
 }
@@ -156,11 +159,20 @@ impl SpectralConvolution {
             .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(block, ((data, kernel), scratch))| {
-                for (local, (column, kernel)) in data.chunks_mut(padded).zip(kernel.chunks(padded)).enumerate() {
-                    let c = block * columns_per_block + local;
-                    for (i, value) in column[..n].iter_mut().enumerate() {
-                        *value = row_spectra[i * columns + c];
+                // Gather the block's columns in tiles of TILE so that each row is read
+                // contiguously (a plain strided gather is cache-bound at large N).
+                let first = block * columns_per_block;
+                let count = data.len() / padded;
+                for tile in (0..count).step_by(TILE) {
+                    let width = TILE.min(count - tile);
+                    for i in 0..n {
+                        let row = &row_spectra[i * columns + first + tile..][..width];
+                        for (offset, &value) in row.iter().enumerate() {
+                            data[(tile + offset) * padded + i] = value;
+                        }
                     }
+                }
+                for (column, kernel) in data.chunks_mut(padded).zip(kernel.chunks(padded)) {
                     column[n..].fill(Complex64::default());
                     forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
                     for (value, &k) in column.iter_mut().zip(kernel) {
@@ -179,11 +191,19 @@ impl SpectralConvolution {
             .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(block, ((spectra, out), scratch))| {
-                for (local, (spectrum, row_out)) in spectra.chunks_mut(columns).zip(out.chunks_mut(n)).enumerate() {
-                    let i = block * rows_per_block + local;
-                    for (c, value) in spectrum.iter_mut().enumerate() {
-                        *value = columns_data[c * padded + i];
+                // Gather the block's rows in tiles of TILE (contiguous reads per column).
+                let first = block * rows_per_block;
+                let count = spectra.len() / columns;
+                for tile in (0..count).step_by(TILE) {
+                    let height = TILE.min(count - tile);
+                    for c in 0..columns {
+                        let column = &columns_data[c * padded + first + tile..][..height];
+                        for (offset, &value) in column.iter().enumerate() {
+                            spectra[(tile + offset) * columns + c] = value;
+                        }
                     }
+                }
+                for (spectrum, row_out) in spectra.chunks_mut(columns).zip(out.chunks_mut(n)) {
                     // Exactly real in exact arithmetic; drop round-off so c2r accepts it.
                     spectrum[0].im = 0.0;
                     if padded % 2 == 0 {
