@@ -33,49 +33,53 @@ pub fn love_coefficient(xi: f64, eta: f64, element_size: f64, contact_modulus: f
 /// K(0,0)·E*/Δ = 4 ln(1+√2)/π: the dimensionless self-compliance of a square element.
 pub const SELF_COMPLIANCE_FACTOR: f64 = 1.1221997046783603;
 
+/// ∫∫ f over the square [−side/2, side/2]², composite 8-point Gauss–Legendre on
+/// divisions² sub-squares (test helper).
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// ∫∫ over the unit-pressure element of 1/(πE*|r − r′|), by tensor Gauss–Legendre on
-    /// sub-squares: an independent check of the closed form away from the element.
-    fn quadrature(xi: f64, eta: f64, element_size: f64) -> f64 {
-        // 20-point Gauss–Legendre nodes on [-1, 1] from the Golub–Welsch eigenproblem are
-        // overkill here; composite 8-point rule on 16×16 sub-squares is ample for r ≥ Δ.
-        const NODES: [f64; 4] = [
-            0.183_434_642_495_649_8,
-            0.525_532_409_916_329,
-            0.796_666_477_413_626_7,
-            0.960_289_856_497_536_3,
-        ];
-        const WEIGHTS: [f64; 4] = [
-            0.362_683_783_378_362,
-            0.313_706_645_877_887_3,
-            0.222_381_034_453_374_5,
-            0.101_228_536_290_376_3,
-        ];
-        let divisions = 16;
-        let h = element_size / divisions as f64;
-        let mut sum = 0.0;
-        for a in 0..divisions {
-            for b in 0..divisions {
-                let cx = -0.5 * element_size + (a as f64 + 0.5) * h;
-                let cy = -0.5 * element_size + (b as f64 + 0.5) * h;
-                for (i, &ni) in NODES.iter().enumerate() {
-                    for si in [-1.0, 1.0] {
-                        for (j, &nj) in NODES.iter().enumerate() {
-                            for sj in [-1.0, 1.0] {
-                                let x = cx + si * ni * 0.5 * h;
-                                let y = cy + sj * nj * 0.5 * h;
-                                let r = ((xi - x).powi(2) + (eta - y).powi(2)).sqrt();
-                                sum += WEIGHTS[i] * WEIGHTS[j] * 0.25 * h * h / r;
-                            }
+pub(crate) fn square_quadrature(side: f64, divisions: usize, f: impl Fn(f64, f64) -> f64) -> f64 {
+    const NODES: [f64; 4] = [
+        0.183_434_642_495_649_8,
+        0.525_532_409_916_329,
+        0.796_666_477_413_626_7,
+        0.960_289_856_497_536_3,
+    ];
+    const WEIGHTS: [f64; 4] = [
+        0.362_683_783_378_362,
+        0.313_706_645_877_887_3,
+        0.222_381_034_453_374_5,
+        0.101_228_536_290_376_3,
+    ];
+    let h = side / divisions as f64;
+    let mut sum = 0.0;
+    for a in 0..divisions {
+        for b in 0..divisions {
+            let cx = -0.5 * side + (a as f64 + 0.5) * h;
+            let cy = -0.5 * side + (b as f64 + 0.5) * h;
+            for (i, &ni) in NODES.iter().enumerate() {
+                for si in [-1.0, 1.0] {
+                    for (j, &nj) in NODES.iter().enumerate() {
+                        for sj in [-1.0, 1.0] {
+                            let (x, y) = (cx + 0.5 * si * ni * h, cy + 0.5 * sj * nj * h);
+                            sum += WEIGHTS[i] * WEIGHTS[j] * 0.25 * h * h * f(x, y);
                         }
                     }
                 }
             }
         }
-        sum / std::f64::consts::PI
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ∫∫ over the unit-pressure element of 1/(πE*|r − r′|): an independent check of the
+    /// closed form away from the element.
+    fn quadrature(xi: f64, eta: f64, element_size: f64) -> f64 {
+        square_quadrature(element_size, 16, |x, y| {
+            1.0 / ((xi - x).powi(2) + (eta - y).powi(2)).sqrt()
+        }) / std::f64::consts::PI
     }
 
     #[test]

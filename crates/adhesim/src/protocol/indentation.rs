@@ -1,18 +1,7 @@
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::ElasticOperator;
-use crate::grid::Boundary;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
-
-/// Largest |y| over the contact set.
-pub(crate) fn half_width(grid: &crate::grid::Grid, contact: &[bool]) -> f64 {
-    contact
-        .iter()
-        .enumerate()
-        .filter(|(_, &c)| c)
-        .map(|(k, _)| grid.centre(k).1.abs())
-        .fold(0.0, f64::max)
-}
 
 /// Displacement-controlled indentation to `max_depth` and retraction until contact is
 /// lost, in fixed steps of `depth_step` (paper Sect. 2.1, Fig. 1).
@@ -95,26 +84,19 @@ impl IndentPulloff {
             let report = solver
                 .step(operator, heights, depth, state)
                 .map_err(|source| ProtocolError::Solve { step, depth, source })?;
-            let contact_elements = state.contact_elements();
             summary.dissipated_energy += report.dissipated_energy;
-            let record = StepRecord {
+            let record = StepRecord::measure(
                 step,
-                phase: Some(phase),
+                phase,
                 depth,
-                offset: 0.0,
-                force_normal: report.force,
-                force_tangential: 0.0,
-                force_tangential_before_change: 0.0,
-                area: contact_elements as f64 * grid.element_area(),
-                radius: state.contact_radius(&grid, (0.0, 0.0)),
-                half_width: half_width(&grid, &state.contact),
-                contact_elements,
+                0.0,
                 report,
-                cumulative_dissipated_energy: summary.dissipated_energy,
-                jumped: (report.attached + report.detached) > 0
-                    && (report.force - report.force_before_change).abs() > self.jump_force_threshold,
-                touches_border: grid.boundary() == Boundary::Free && state.touches_border(&grid),
-            };
+                state,
+                &grid,
+                summary.dissipated_energy,
+                self.jump_force_threshold,
+            );
+            let contact_elements = record.contact_elements;
             summary.steps += 1;
             summary.solves += report.solves;
             summary.cg_iterations += report.cg_iterations;

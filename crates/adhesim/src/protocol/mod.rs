@@ -9,6 +9,7 @@ pub use indentation::{IndentPulloff, ProtocolSummary};
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
+use crate::grid::{Boundary, Grid};
 use crate::solver::{AdhesiveSolver, Ccg, ContactState, Control, SolveError, StepReport};
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -73,6 +74,43 @@ pub struct StepRecord {
     pub jumped: bool,
     /// An element on the border of a free grid is in contact (domain too small).
     pub touches_border: bool,
+}
+
+impl StepRecord {
+    /// The record of a finished step, with the contact measured about the indenter axis
+    /// at (`offset`, 0); tangential forces are left at zero for the caller to fill.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn measure(
+        step: usize,
+        phase: Phase,
+        depth: f64,
+        offset: f64,
+        report: StepReport,
+        state: &ContactState,
+        grid: &Grid,
+        cumulative_dissipated_energy: f64,
+        jump_force_threshold: f64,
+    ) -> Self {
+        let contact_elements = state.contact_elements();
+        Self {
+            step,
+            phase: Some(phase),
+            depth,
+            offset,
+            force_normal: report.force,
+            force_tangential: 0.0,
+            force_tangential_before_change: 0.0,
+            area: contact_elements as f64 * grid.element_area(),
+            radius: state.contact_radius(grid, (offset, 0.0)),
+            half_width: state.half_width(grid),
+            contact_elements,
+            report,
+            cumulative_dissipated_energy,
+            jumped: (report.attached + report.detached) > 0
+                && (report.force - report.force_before_change).abs() > jump_force_threshold,
+            touches_border: grid.boundary() == Boundary::Free && state.touches_border(grid),
+        }
+    }
 }
 
 /// What an observer sees of a step.
@@ -187,14 +225,7 @@ impl NormalSolver {
                         .zip(&state.displacement)
                         .map(|(p, u)| p * u)
                         .sum::<f64>();
-                let (mut attached, mut detached) = (0, 0);
-                for (&was, &is) in before.iter().zip(&state.contact) {
-                    match (was, is) {
-                        (false, true) => attached += 1,
-                        (true, false) => detached += 1,
-                        _ => {}
-                    }
-                }
+                let (attached, detached) = state.changes_from(&before);
                 Ok(StepReport {
                     solves: 1,
                     cg_iterations: solve.iterations,

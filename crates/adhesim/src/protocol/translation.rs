@@ -1,8 +1,6 @@
-use super::indentation::half_width;
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::ElasticOperator;
 use crate::geometry::{Kinematics, TranslatingContact};
-use crate::grid::Boundary;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
@@ -137,29 +135,21 @@ impl Translation {
                 })
                 .map_err(|source| ProtocolError::Solve { step, depth, source })?;
             cumulative += report.dissipated_energy;
-            let contact_elements = state.contact_elements();
-            let record = StepRecord {
+            let mut record = StepRecord::measure(
                 step,
-                phase: Some(stage),
+                stage,
                 depth,
                 offset,
-                force_normal: report.force,
-                force_tangential: if moving {
-                    contact.tangential_force(&grid, &state.pressure, offset)
-                } else {
-                    0.0
-                },
-                force_tangential_before_change: tangential_before,
-                area: contact_elements as f64 * grid.element_area(),
-                radius: state.contact_radius(&grid, (offset, 0.0)),
-                half_width: half_width(&grid, &state.contact),
-                contact_elements,
                 report,
-                cumulative_dissipated_energy: cumulative,
-                jumped: (report.attached + report.detached) > 0
-                    && (report.force - report.force_before_change).abs() > self.jump_force_threshold,
-                touches_border: grid.boundary() == Boundary::Free && state.touches_border(&grid),
-            };
+                &state,
+                &grid,
+                cumulative,
+                self.jump_force_threshold,
+            );
+            if moving {
+                record.force_tangential = contact.tangential_force(&grid, &state.pressure, offset);
+                record.force_tangential_before_change = tangential_before;
+            }
             summary.steps += 1;
             summary.solves += report.solves;
             summary.cg_iterations += report.cg_iterations;

@@ -45,6 +45,29 @@ impl ContactState {
             .fold(0.0, f64::max)
     }
 
+    /// Largest |y| over the contact set: the half-width perpendicular to motion in x.
+    pub fn half_width(&self, grid: &Grid) -> f64 {
+        self.contact
+            .iter()
+            .enumerate()
+            .filter(|(_, &c)| c)
+            .map(|(k, _)| grid.centre(k).1.abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// (attached, detached): elements in contact now but not in `before`, and the reverse.
+    pub fn changes_from(&self, before: &[bool]) -> (usize, usize) {
+        let (mut attached, mut detached) = (0, 0);
+        for (&was, &is) in before.iter().zip(&self.contact) {
+            match (was, is) {
+                (false, true) => attached += 1,
+                (true, false) => detached += 1,
+                _ => {}
+            }
+        }
+        (attached, detached)
+    }
+
     /// True when an element in contact lies on the border of the grid.
     pub fn touches_border(&self, grid: &Grid) -> bool {
         self.contact.iter().enumerate().any(|(k, &c)| c && grid.is_border(k))
