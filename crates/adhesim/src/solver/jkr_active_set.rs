@@ -305,10 +305,8 @@ impl AdhesiveSolver {
         loop {
             report.solves += 1;
             if report.solves > self.params.max_rounds {
-                return Err(SolveError::NotConverged {
-                    iterations: report.solves,
-                    residual: f64::NAN,
-                    tolerance: 0.0,
+                return Err(SolveError::TooManyRounds {
+                    rounds: self.params.max_rounds,
                 });
             }
             report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state)?;
@@ -337,13 +335,15 @@ impl AdhesiveSolver {
                 }
             }
             if !self.violators.is_empty() {
-                let failed_trials: Vec<usize> = self.violators.iter().cloned().filter(|&k| self.trial[k]).collect();
-                if !failed_trials.is_empty() {
-                    for &k in &failed_trials {
-                        self.release(k, state);
-                    }
-                    for &k in &self.violators {
-                        self.trial[k] = false;
+                let any_failed_trial = self.violators.iter().any(|&k| self.trial[k]);
+                if any_failed_trial {
+                    // Failed trial elements go first; ordinary violators wait for the
+                    // next solve (a badly placed trial element must not start a cascade).
+                    for index in 0..self.violators.len() {
+                        let k = self.violators[index];
+                        if self.trial[k] {
+                            self.release(k, state);
+                        }
                     }
                     if ring_restorable && !self.trial.iter().any(|&t| t) {
                         // The whole ring failed and nothing else changed: C is the saved

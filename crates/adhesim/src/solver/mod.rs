@@ -57,6 +57,12 @@ pub enum SolveError {
         /// Tolerance asked for.
         tolerance: f64,
     },
+    /// The attach/detach rounds of one adhesive step did not reach a stable contact set.
+    #[error("no stable contact set after {rounds} attach/detach rounds in one step")]
+    TooManyRounds {
+        /// The limit that was reached.
+        rounds: usize,
+    },
     /// A NaN or infinity appeared in the iteration (bad heights or operator).
     #[error("solver produced a non-finite value at iteration {iteration}")]
     NonFinite {
