@@ -82,6 +82,8 @@ fn zero_grid_names_key_and_value() {
     assert_fails_with(&output, &["grid.n must be >= 2, got 0"]);
     let (_dir, output) = run_text(HERTZ, &["--set", "grid.n=-5"]);
     assert_fails_with(&output, &["grid.n must be >= 2, got -5"]);
+    let (_dir, output) = run_text(HERTZ, &["--set", "grid.size=0"]);
+    assert_fails_with(&output, &["grid.size must be > 0, got 0"]);
 }
 
 #[test]
