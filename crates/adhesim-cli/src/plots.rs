@@ -188,14 +188,6 @@ fn range(figure: &Figure) -> ((f64, f64), (f64, f64)) {
     (pad(x0, x1), pad(y0, y1))
 }
 
-#[allow(dead_code)] // figures without overlays
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, figure: &Figure) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    draw_with_overlays(root, figure, &[])
-}
-
 /// Dashed curves drawn over a figure (fitted JKR curves), with their legend labels.
 pub type Overlays = [(String, Vec<(f64, f64)>)];
 
@@ -320,13 +312,8 @@ where
     Ok(())
 }
 
-/// Writes `NAME.svg` and `NAME.png` for every figure into `dir`; returns the file names.
-#[allow(dead_code)] // plots without overlays
-pub fn write_all(dir: &Path, figures: &[(&'static str, Figure)]) -> Result<Vec<String>> {
-    write_all_with_overlays(dir, figures, &[])
-}
-
-/// As [`write_all`], with dashed overlay curves on the figures named in `overlays`.
+/// Writes `NAME.svg` and `NAME.png` for every figure into `dir`, with dashed overlay
+/// curves on the figures named in `overlays`; returns the file names.
 pub fn write_all_with_overlays(
     dir: &Path,
     figures: &[(&'static str, Figure)],
