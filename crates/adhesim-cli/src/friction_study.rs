@@ -179,6 +179,55 @@ fn normal_gammas(scenario: &Scenario) -> Result<(Option<f64>, Option<f64>)> {
     Ok((fits.gamma_approach, fits.gamma_pulloff))
 }
 
+/// Finished runs of a study are kept under `<out>/cache/` so that a killed study resumes
+/// where it stopped: one JSON file per run, named by its kind, index and a hash of the
+/// exact scenario it ran (base after `set`, plus the case's overrides), written atomically.
+struct RunCache {
+    folder: PathBuf,
+}
+
+impl RunCache {
+    fn new(out: &Path) -> Result<Self> {
+        let folder = out.join("cache");
+        std::fs::create_dir_all(&folder).with_context(|| format!("cannot create {}", folder.display()))?;
+        Ok(Self { folder })
+    }
+
+    fn path(&self, name: &str, table: &toml::Table, changes: &[String]) -> PathBuf {
+        let text = format!("{table}\n{}", changes.join("\n"));
+        self.folder
+            .join(format!("{name}-{:016x}.json", crate::sweep::plan::fnv1a(&text)))
+    }
+
+    /// The stored result, if a readable one exists (a damaged file is simply redone).
+    fn load<T: for<'de> Deserialize<'de>>(path: &Path) -> Option<T> {
+        let text = std::fs::read_to_string(path).ok()?;
+        serde_json::from_str(&text).ok()
+    }
+
+    fn store<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+        let temp = path.with_extension("json.partial");
+        std::fs::write(&temp, serde_json::to_string_pretty(value)? + "\n")
+            .with_context(|| format!("cannot write {}", temp.display()))?;
+        std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+/// A cached normal run: γ1, γ2 and its wall time.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct NormalRecord {
+    gamma_approach: Option<f64>,
+    gamma_pulloff: Option<f64>,
+    wall_seconds: f64,
+}
+
+/// A cached translation run.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct CaseRecord {
+    results: TranslationResults,
+    wall_seconds: f64,
+}
+
 fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     let v: Vec<f64> = values.flatten().filter(|x| x.is_finite()).collect();
     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
@@ -262,10 +311,11 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         .iter()
         .map(|&a| amplitude_for(a, wavelength, gamma0, jkr.contact_modulus))
         .collect();
+    let cache = RunCache::new(&out)?;
     // Validate every case before running any.
     let mut cases = Vec::new();
     for (i, &h) in amplitudes.iter().enumerate() {
-        for &d in &depths {
+        for (j, &d) in depths.iter().enumerate() {
             let changes = [
                 format!("indenter.amplitude={h:e}"),
                 format!("protocol.depth={d:e}"),
@@ -273,15 +323,20 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             ];
             let scenario = build(&table, &base_dir, &changes)
                 .with_context(|| format!("case α = {}, d = {d}·|d_JKR|", study.alphas[i]))?;
-            cases.push((i, d, scenario));
+            let path = cache.path(&format!("case-{i}-{j}"), &table, &changes);
+            cases.push((i, d, scenario, path));
         }
     }
-    let normals: Vec<(usize, Scenario)> = if study.kind == StudyKind::Rolling {
+    let normals: Vec<(usize, Scenario, PathBuf)> = if study.kind == StudyKind::Rolling {
         let normal = normal_table(&table, &study.normal);
         amplitudes
             .iter()
             .enumerate()
-            .map(|(i, &h)| Ok((i, build(&normal, &base_dir, &[format!("indenter.amplitude={h:e}")])?)))
+            .map(|(i, &h)| {
+                let changes = [format!("indenter.amplitude={h:e}")];
+                let path = cache.path(&format!("normal-{i}"), &normal, &changes);
+                Ok((i, build(&normal, &base_dir, &changes)?, path))
+            })
             .collect::<Result<_>>()
             .context("the normal (indent_pulloff) run of the study")?
     } else {
@@ -304,29 +359,49 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             || {
                 normals
                     .par_iter()
-                    .map(|(i, s)| {
+                    .map(|(i, s, path)| {
+                        if let Some(record) = RunCache::load::<NormalRecord>(path) {
+                            report(format!("normal run α = {} (finished earlier)", study.alphas[*i]));
+                            return Ok(((record.gamma_approach, record.gamma_pulloff), record.wall_seconds));
+                        }
                         let t = Instant::now();
-                        let g = normal_gammas(s);
+                        let (g1, g2) = normal_gammas(s)?;
+                        let record = NormalRecord {
+                            gamma_approach: g1,
+                            gamma_pulloff: g2,
+                            wall_seconds: t.elapsed().as_secs_f64(),
+                        };
+                        RunCache::store(path, &record)?;
                         report(format!("normal run α = {}", study.alphas[*i]));
-                        g.map(|g| (g, t.elapsed().as_secs_f64()))
+                        Ok(((g1, g2), record.wall_seconds))
                     })
-                    .collect::<Vec<_>>()
+                    .collect::<Vec<Result<_>>>()
             },
             || {
                 cases
                     .par_iter()
-                    .map(|(i, d, s)| {
+                    .map(|(i, d, s, path)| {
+                        let what = format!("{} α = {}, d = {d}·|d_JKR|", wanted.name(), study.alphas[*i]);
+                        if let Some(record) = RunCache::load::<CaseRecord>(path) {
+                            report(format!("{what} (finished earlier)"));
+                            return Ok((record.results, record.wall_seconds));
+                        }
                         let t = Instant::now();
-                        let r = run_in_memory(s).map(|(_, _, r)| r);
-                        report(format!("{} α = {}, d = {d}·|d_JKR|", wanted.name(), study.alphas[*i]));
-                        r.map(|r| (r, t.elapsed().as_secs_f64()))
+                        let (_, _, results) = run_in_memory(s)?;
+                        let record = CaseRecord {
+                            results,
+                            wall_seconds: t.elapsed().as_secs_f64(),
+                        };
+                        RunCache::store(path, &record)?;
+                        report(what);
+                        Ok((record.results, record.wall_seconds))
                     })
-                    .collect::<Vec<_>>()
+                    .collect::<Vec<Result<_>>>()
             },
         )
     });
     let mut gammas: Vec<(Option<f64>, Option<f64>, Option<f64>)> = vec![(None, None, None); amplitudes.len()];
-    for ((i, _), result) in normals.iter().zip(normal_results) {
+    for ((i, _, _), result) in normals.iter().zip(normal_results) {
         let ((g1, g2), seconds) = result.with_context(|| format!("normal run α = {}", study.alphas[*i]))?;
         gammas[*i] = (g1, g2, Some(seconds));
     }
@@ -334,7 +409,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let a_jkr = jkr.critical_radius();
     let mut rows = Vec::new();
     let mut per_case: Vec<(usize, TranslationResults)> = Vec::new();
-    for ((i, d, _), result) in cases.iter().zip(case_results) {
+    for ((i, d, _, _), result) in cases.iter().zip(case_results) {
         let (r, seconds) = result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|", study.alphas[*i]))?;
         let (g1, g2, _) = gammas[*i];
         let prediction = match (g1, g2) {

@@ -4,7 +4,7 @@ use crate::scenario::{Derived, ProtocolKind, Scenario, ScenarioFile};
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysis, CurveAnalysisOptions};
 use adhesim::{Indenter, ProtocolSummary, StepRecord};
 use anyhow::{Context, Result};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// Results of an indentation / pull-off run. Entries that do not apply (fits not yet
@@ -199,10 +199,10 @@ pub fn write<R: Serialize>(path: &Path, summary: &Summary<'_, R>) -> Result<()> 
 /// stationary part of the forward stroke (x > stationary_from·distance); entries that do
 /// not apply (Eq. 12 without γ1, γ2; Eqs. 16–18 without τ0; normalised values without
 /// γ0 > 0) are null.
-#[derive(Debug, Clone, Default, Serialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct TranslationResults {
     /// roll, slide or translate.
-    pub kind: &'static str,
+    pub kind: String,
     /// Largest tensile normal force magnitude seen (0 if never tensile).
     pub max_adhesive_force: f64,
     pub pull_off_depth: Option<f64>,
@@ -350,7 +350,7 @@ impl TranslationResults {
             _ => None,
         };
         Self {
-            kind: inputs.kind.name(),
+            kind: inputs.kind.name().to_string(),
             max_adhesive_force,
             pull_off_depth: None,
             gamma_approach: None,

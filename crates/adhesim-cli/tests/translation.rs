@@ -349,6 +349,39 @@ fn tiny_studies_write_tables_and_figures() {
     for file in ["fig7.png", "fig7_work.svg", "fig8.png"] {
         assert!(out.join("plots").join(file).is_file(), "{file}");
     }
+    // Resuming: every finished run is cached (4 rolls + 2 normal runs); a re-run reuses
+    // them all (nothing is recomputed) and writes the same table. Removing one cached
+    // run (as if the study had been killed before it finished) recomputes only that one.
+    let cached: Vec<PathBuf> = std::fs::read_dir(out.join("cache"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    assert_eq!(cached.len(), 6, "{cached:?}");
+    let table = std::fs::read_to_string(out.join("table.csv")).unwrap();
+    let victim = cached
+        .iter()
+        .find(|p| p.to_string_lossy().contains("case-1-1"))
+        .unwrap();
+    std::fs::remove_file(victim).unwrap();
+    let output = adhesim(&[
+        "study",
+        "rolling",
+        rolling.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let log = stderr(&output);
+    assert_eq!(log.matches("(finished earlier)").count(), 5, "{log}");
+    let strip_wall = |text: &str| -> Vec<String> {
+        // wall_seconds (last column) differs for the recomputed case
+        text.lines()
+            .map(|l| l.rsplit_once(',').map_or(l, |(head, _)| head).to_string())
+            .collect()
+    };
+    let again = std::fs::read_to_string(out.join("table.csv")).unwrap();
+    assert_eq!(strip_wall(&table), strip_wall(&again));
 
     let sliding = write(
         dir.path(),
