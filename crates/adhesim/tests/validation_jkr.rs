@@ -85,9 +85,11 @@ fn check_branches(
 
 /// Over a full cycle the work done on the indenter, ∮F dd, equals the energy released by
 /// the configuration changes: exactly when each step's fixed-set path is integrated with
-/// the force before the change (F is linear in d on a fixed set; 1e-6 relative: each
-/// solve is converged to 1e-9 and the error accumulates over ~400 steps), and within 2 % for the recorded polyline at 100 steps per |d_JKR| (the
-/// polyline cuts the corners of the jumps).
+/// the force before the change (F is linear in d on a fixed set; 1e-6 relative: forces
+/// carry the CG error (relative residual 1e-6, front residual 1e-4·σ_c·K(0,0)) over ~400
+/// steps; the energies are evaluated in a form whose CG error is second order), and within
+/// 2 % for the recorded polyline at 100 steps per |d_JKR| (the polyline cuts the corners of
+/// the jumps).
 #[test]
 fn loop_area_equals_dissipated_energy() {
     let case = JkrCase::new(8.0, 2.0);
