@@ -15,6 +15,8 @@ pub struct FreeOperator {
     contact_modulus: f64,
     self_compliance: f64,
     engine: SpectralConvolution,
+    /// The same kernel in single precision, for [`ElasticOperator::apply_single`].
+    single: SpectralConvolution<f32>,
     applications: u64,
 }
 
@@ -40,6 +42,7 @@ impl FreeOperator {
             grid,
             contact_modulus: modulus,
             self_compliance: love_coefficient(0.0, 0.0, delta, modulus),
+            single: engine.to_single(),
             engine,
             applications: 0,
         }
@@ -55,6 +58,10 @@ impl ElasticOperator for FreeOperator {
     }
     fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]) {
         self.engine.convolve(pressure, displacement);
+        self.applications += 1;
+    }
+    fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        self.single.convolve(pressure, displacement);
         self.applications += 1;
     }
     fn self_compliance(&self) -> f64 {

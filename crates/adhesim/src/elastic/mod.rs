@@ -31,10 +31,19 @@ pub trait ElasticOperator: Send {
     /// If a slice length differs from the number of elements.
     fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]);
 
+    /// Writes u ≈ K p with the transforms done in single precision (error ≈ 1e-7 of
+    /// max|u|, about 40 % cheaper). For the search directions of iterative solvers, whose
+    /// rounding only perturbs the iteration: the solution is always checked against a
+    /// residual from [`apply`](Self::apply). The default is the exact `apply`.
+    fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        self.apply(pressure, displacement);
+    }
+
     /// Diagonal entry K(0,0): displacement of an element under its own unit pressure.
     fn self_compliance(&self) -> f64;
 
-    /// Number of applications so far (each is one forward+inverse FFT pair).
+    /// Number of applications so far (each is one forward+inverse FFT pair, in double or
+    /// single precision).
     fn applications(&self) -> u64;
 }
 
@@ -77,6 +86,12 @@ impl ElasticOperator for HalfSpace {
         match self {
             Self::Free(op) => op.apply(pressure, displacement),
             Self::Periodic(op) => op.apply(pressure, displacement),
+        }
+    }
+    fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        match self {
+            Self::Free(op) => op.apply_single(pressure, displacement),
+            Self::Periodic(op) => op.apply_single(pressure, displacement),
         }
     }
     fn self_compliance(&self) -> f64 {
