@@ -2,7 +2,10 @@
 //!
 //! `cargo run --release -p adhesim --example hertz_indent -- [N]`
 use adhesim::analysis::reference::Hertz;
-use adhesim::{Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator, Grid, Profile, Sphere};
+use adhesim::{
+    Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator, Grid, NestedActiveSet,
+    NestedParams, Profile, Sphere,
+};
 
 fn main() {
     let n: usize = std::env::args()
@@ -14,18 +17,40 @@ fn main() {
     let setup = start.elapsed().as_secs_f64();
     let heights = Sphere::new(1.0).expect("radius").heights(&grid);
     let depth = 0.25f64.powi(2); // contact radius L/4 = N/4 elements
+    let start = std::time::Instant::now();
+    let mut nested = NestedActiveSet::new(
+        grid,
+        ElasticMaterial::new(1.0).expect("modulus"),
+        NestedParams::default(),
+    );
+    let nested_setup = start.elapsed().as_secs_f64();
+    let hertz = Hertz {
+        radius: 1.0,
+        contact_modulus: 1.0,
+    };
+    let mut state = ContactState::new(&grid);
+    let start = std::time::Instant::now();
+    let report = nested
+        .solve(&mut operator, &heights, depth, &mut state)
+        .expect("converged");
+    let solve = start.elapsed().as_secs_f64();
+    println!(
+        "nested active set: setup {nested_setup:.3} s (+ operator {setup:.3} s), solve {solve:.3} s, {} CG iterations, {} FFT pairs (+ {} on {} coarse levels), force error {:.2e}, contact radius {:.1} elements",
+        report.iterations,
+        report.operator_applications,
+        nested.coarse_applications(),
+        nested.coarse_levels(),
+        report.force / hertz.force(depth) - 1.0,
+        state.contact_radius(&grid, (0.0, 0.0)) / grid.element_size(),
+    );
     let mut state = ContactState::new(&grid);
     let start = std::time::Instant::now();
     let report = Ccg::new(CcgParams::default())
         .solve(&mut operator, &heights, Control::Displacement(depth), &mut state)
         .expect("converged");
     let solve = start.elapsed().as_secs_f64();
-    let hertz = Hertz {
-        radius: 1.0,
-        contact_modulus: 1.0,
-    };
     println!(
-        "N = {n}: setup {setup:.3} s, solve {solve:.3} s, {} iterations, {} FFT pairs, force error {:.2e}, contact radius {:.1} elements (Hertz {:.1})",
+        "Polonsky–Keer CCG, N = {n}: setup {setup:.3} s, solve {solve:.3} s, {} iterations, {} FFT pairs, force error {:.2e}, contact radius {:.1} elements (Hertz {:.1})",
         report.iterations,
         report.operator_applications,
         report.force / hertz.force(depth) - 1.0,

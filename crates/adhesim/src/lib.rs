@@ -41,6 +41,6 @@ pub use protocol::{
     TranslationSummary,
 };
 pub use solver::{
-    AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, SolveError,
-    SolveReport, StepReport,
+    AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, NestedActiveSet,
+    NestedParams, SolveError, SolveReport, StepReport,
 };

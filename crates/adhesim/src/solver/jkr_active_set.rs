@@ -1,4 +1,4 @@
-use super::{ContactState, SolveError};
+use super::{dot, ContactState, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::Grid;
@@ -724,24 +724,6 @@ impl AdhesiveSolver {
             tolerance: self.params.relative_tolerance,
         })
     }
-}
-
-/// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut partial = [0.0; 4];
-    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a_chunks
-        .remainder()
-        .iter()
-        .zip(b_chunks.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in a_chunks.zip(b_chunks) {
-        for lane in 0..4 {
-            partial[lane] += x[lane] * y[lane];
-        }
-    }
-    (partial[0] + partial[1]) + (partial[2] + partial[3]) + tail
 }
 
 #[cfg(test)]

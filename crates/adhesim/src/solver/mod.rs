@@ -1,4 +1,5 @@
-//! Contact solvers: non-adhesive (Polonsky–Keer CCG) and adhesive (JKR-type active set).
+//! Contact solvers: non-adhesive (Polonsky–Keer CCG; nested-grid preconditioned active
+//! set) and adhesive (JKR-type active set).
 //!
 //! A solve takes the operator, the indenter heights on the grid and a control, and a
 //! [`ContactState`] that is both the warm start and the result. Gap g = z − d + u ≥ 0,
@@ -6,12 +7,14 @@
 
 mod ccg;
 mod jkr_active_set;
+mod nested;
 mod state;
 
 pub use ccg::{Ccg, CcgParams};
 pub use jkr_active_set::{
     critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
 };
+pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 
 use thiserror::Error;
@@ -80,4 +83,28 @@ pub enum SolveError {
         /// Values given.
         got: usize,
     },
+    /// The solver does not handle this boundary kind.
+    #[error("{solver} solves free (non-periodic) grids only: on a periodic half-space displacement control means mean-gap control (use Ccg)")]
+    PeriodicUnsupported {
+        /// The solver's name.
+        solver: &'static str,
+    },
+}
+
+/// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut partial = [0.0; 4];
+    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a_chunks
+        .remainder()
+        .iter()
+        .zip(b_chunks.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in a_chunks.zip(b_chunks) {
+        for lane in 0..4 {
+            partial[lane] += x[lane] * y[lane];
+        }
+    }
+    (partial[0] + partial[1]) + (partial[2] + partial[3]) + tail
 }
