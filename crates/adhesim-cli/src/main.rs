@@ -13,9 +13,7 @@ mod tangential;
 mod tangential_plots;
 
 use adhesim::analysis::reference::Hertz;
-use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, HalfSpace, IndentPulloff, NormalSolver, Profile, ProtocolError,
-};
+use adhesim::{AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Profile, ProtocolError};
 use anyhow::{anyhow, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -158,7 +156,7 @@ fn run(scenario: scenario::Scenario, out: &Path, options: &RunOptions) -> Result
             AdhesiveParams::default(),
         )))
     } else {
-        NormalSolver::NonAdhesive(Ccg::new(CcgParams::default()))
+        adhesim::protocol::non_adhesive_solver(grid, scenario.material)
     };
     let protocol = IndentPulloff {
         start_depth: scenario.start_depth,

@@ -7,8 +7,7 @@ use crate::scenario::{Scenario, TranslationSetup};
 use crate::summary::{self, TranslationInputs, TranslationResults};
 use crate::{output, tangential_plots, RunOptions};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, HalfSpace, NormalSolver, Profile, ProtocolError, StepRecord,
-    TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, HalfSpace, NormalSolver, Profile, ProtocolError, StepRecord, TranslationSummary,
 };
 use anyhow::{anyhow, Result};
 use std::path::Path;
@@ -27,7 +26,7 @@ pub fn normal_solver(scenario: &Scenario) -> NormalSolver {
             AdhesiveParams::default(),
         )))
     } else {
-        NormalSolver::NonAdhesive(Ccg::new(CcgParams::default()))
+        adhesim::protocol::non_adhesive_solver(scenario.grid, scenario.material)
     }
 }
 
