@@ -6,8 +6,8 @@
 //! (all rows and columns transformed, no kernel product), run with the same planner,
 //! threads and row/column split as the operator.
 use adhesim::{
-    Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, ElasticOperator, FreeOperator, Grid, Profile,
-    Sphere,
+    Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, ElasticOperator, FreeOperator, Grid,
+    NestedActiveSet, NestedParams, Profile, Sphere,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use num_complex::Complex64;
@@ -103,6 +103,9 @@ fn operator_against_floor(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::new("apply", n), &n, |b, _| {
             b.iter(|| operator.apply(&pressure, &mut displacement))
         });
+        group.bench_with_input(BenchmarkId::new("apply_single", n), &n, |b, _| {
+            b.iter(|| operator.apply_single(&pressure, &mut displacement))
+        });
         let mut floor = FftPairFloor::new(2 * n);
         group.bench_with_input(BenchmarkId::new("fft_pair_floor_2n", n), &n, |b, _| {
             b.iter(|| floor.run())
@@ -126,6 +129,13 @@ fn hertz_cold_solve(c: &mut Criterion) {
             Ccg::new(CcgParams::default())
                 .solve(&mut operator, &heights, Control::Displacement(depth), &mut state)
                 .unwrap()
+        })
+    });
+    let mut nested = NestedActiveSet::new(grid, ElasticMaterial::new(1.0).unwrap(), NestedParams::default());
+    group.bench_function(BenchmarkId::new("nested_active_set_1e-10", n), |b| {
+        b.iter(|| {
+            let mut state = ContactState::new(&grid);
+            nested.solve(&mut operator, &heights, depth, &mut state).unwrap()
         })
     });
     group.finish();
