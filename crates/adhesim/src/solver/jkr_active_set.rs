@@ -694,8 +694,9 @@ impl AdhesiveSolver {
         let mut rho = self.precondition(&state.contact);
         self.direction.copy_from_slice(&self.preconditioned_residual);
         for iteration in 1..=self.params.max_cg_iterations {
-            // Search directions in single precision: the next solve starts from an exact
-            // residual, and the front criterion is far above the rounding (1e-7 of u).
+            // Search directions in single precision: every step starts from an exact
+            // residual, and the front criterion is far above the rounding (1e-7 of the
+            // direction's response).
             operator.apply_single(&self.direction, &mut self.response);
             let curvature = dot(&self.direction, &self.response);
             if !(curvature.is_finite() && curvature > 0.0) {
