@@ -8,6 +8,9 @@
 //! - `--sizes 256,512,1024`: grids of the Hertz solve (a) and the operator timing (b);
 //! - `--repeats 3`: timed runs per entry (each one cold: new operator, new state);
 //! - `--tolerance 1e-10`: `CcgParams::tolerance`, Σ|p_new − p_old|/Σ|p| between iterations;
+//! - `--solver nested|ccg`: the Hertz solver (default `nested`: `NestedActiveSet`, the
+//!   default non-adhesive solver of `adhesim run`, to a relative residual of
+//!   `--nested-tolerance 1e-10`; its setup includes the coarse levels);
 //! - `--adhesive-n 128`, `--steps-per-unit 20`, `--max-depth 3`: the adhesive cycle (c)
 //!   on an N×N free grid of side 1 with a_JKR = N/4 elements, depth steps of
 //!   |d_JKR|/steps-per-unit up to max-depth·|d_JKR| and back until contact is lost;
@@ -20,7 +23,7 @@
 use adhesim::analysis::reference::{Hertz, Jkr};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, ElasticOperator,
-    FreeOperator, Grid, IndentPulloff, NormalSolver, Profile, Sphere,
+    FreeOperator, Grid, IndentPulloff, NestedActiveSet, NestedParams, NormalSolver, Profile, Sphere,
 };
 use std::time::Instant;
 
@@ -28,6 +31,8 @@ struct Options {
     sizes: Vec<usize>,
     repeats: usize,
     tolerance: f64,
+    nested: bool,
+    nested_tolerance: f64,
     adhesive_n: usize,
     steps_per_unit: f64,
     max_depth: f64,
@@ -41,6 +46,8 @@ fn parse() -> Options {
         sizes: vec![256, 512, 1024],
         repeats: 3,
         tolerance: CcgParams::default().tolerance,
+        nested: true,
+        nested_tolerance: NestedParams::default().relative_tolerance,
         adhesive_n: 128,
         steps_per_unit: 20.0,
         max_depth: 3.0,
@@ -60,6 +67,14 @@ fn parse() -> Options {
             }
             "--repeats" => options.repeats = value().parse().expect("repeats"),
             "--tolerance" => options.tolerance = value().parse().expect("tolerance"),
+            "--nested-tolerance" => options.nested_tolerance = value().parse().expect("nested tolerance"),
+            "--solver" => {
+                options.nested = match value().as_str() {
+                    "nested" => true,
+                    "ccg" => false,
+                    other => panic!("--solver must be nested or ccg, got {other}"),
+                }
+            }
             "--adhesive-n" => options.adhesive_n = value().parse().expect("adhesive N"),
             "--steps-per-unit" => options.steps_per_unit = value().parse().expect("steps per unit"),
             "--max-depth" => options.max_depth = value().parse().expect("max depth"),
@@ -93,16 +108,28 @@ fn hertz_entry(n: usize, options: &Options) -> String {
     for _ in 0..options.repeats {
         let start = Instant::now();
         let mut operator = FreeOperator::new(grid, material);
+        let mut nested = options.nested.then(|| {
+            NestedActiveSet::new(
+                grid,
+                material,
+                NestedParams {
+                    relative_tolerance: options.nested_tolerance,
+                    ..NestedParams::default()
+                },
+            )
+        });
         setup.push(start.elapsed().as_secs_f64());
         let mut state = ContactState::new(&grid);
-        let mut solver = Ccg::new(CcgParams {
-            tolerance: options.tolerance,
-            ..CcgParams::default()
-        });
         let start = Instant::now();
-        let report = solver
-            .solve(&mut operator, &heights, Control::Displacement(depth), &mut state)
-            .expect("Hertz solve converged");
+        let report = match nested.as_mut() {
+            Some(solver) => solver.solve(&mut operator, &heights, depth, &mut state),
+            None => Ccg::new(CcgParams {
+                tolerance: options.tolerance,
+                ..CcgParams::default()
+            })
+            .solve(&mut operator, &heights, Control::Displacement(depth), &mut state),
+        }
+        .expect("Hertz solve converged");
         solve.push(start.elapsed().as_secs_f64());
         last = Some(report);
     }
@@ -194,7 +221,7 @@ fn adhesive_entry(options: &Options) -> String {
         "{{\"n\": {n}, \"domain\": 1.0, \"a_jkr_over_delta\": {:e}, \"gamma\": {gamma:e}, \"d_jkr\": {d_jkr:e}, \
          \"max_depth\": {:e}, \"depth_step\": {:e}, \"setup_s\": {}, \"wall_s\": {}, \"steps\": {}, \
          \"solves\": {}, \"cg_iterations\": {}, \"operator_applications\": {}, \"pull_off_force\": {:e}, \
-         \"f_jkr\": {f_jkr:e}, \"pull_off_over_f_jkr\": {:e}, \"pull_off_depth\": {:e}, \
+         \"f_jkr\": {f_jkr:e}, \"pull_off_over_f_jkr\": {:e}, \"pull_off_depth\": {}, \
          \"relative_tolerance\": {:e}, \"front_tolerance\": {:e}, \"touches_border\": {}}}",
         a_jkr / delta,
         protocol.max_depth,
@@ -207,7 +234,7 @@ fn adhesive_entry(options: &Options) -> String {
         summary.operator_applications,
         -summary.max_adhesive_force,
         -summary.max_adhesive_force / f_jkr,
-        summary.pull_off_depth.unwrap_or(f64::NAN),
+        summary.pull_off_depth.map_or("null".to_string(), |d| format!("{d:e}")),
         params.relative_tolerance,
         params.front_tolerance,
         summary.touches_border
@@ -220,6 +247,11 @@ fn main() {
         "\"code\": \"adhesim\"".to_string(),
         format!("\"threads\": {}", rayon::current_num_threads()),
         format!("\"tolerance\": {:e}", options.tolerance),
+        format!(
+            "\"hertz_solver\": \"{}\"",
+            if options.nested { "nested" } else { "ccg" }
+        ),
+        format!("\"nested_tolerance\": {:e}", options.nested_tolerance),
     ];
     if options.hertz {
         let entries: Vec<String> = options.sizes.iter().map(|&n| hertz_entry(n, &options)).collect();
