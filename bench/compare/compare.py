@@ -180,10 +180,15 @@ def main():
     parser.add_argument("--budget", type=float, default=120.0,
                         help="seconds: a peer run over it is not repeated, and larger N of that peer are skipped")
     parser.add_argument("--adhesive-budget", type=float, default=300.0,
-                        help="seconds: an adhesive cycle still running after it stops, reporting its partial time")
-    parser.add_argument("--peers", default=",".join(PEERS), help="comma-separated subset of " + ",".join(PEERS))
+                        help="seconds (default 300): an adhesive cycle still running after it stops, reported as "
+                        "unfinished")
+    parser.add_argument("--peers", default=",".join(PEERS),
+                        help="comma-separated subset of " + ",".join(PEERS) + " (with --update also adhesim)")
     parser.add_argument("--sizes", help="comma-separated N list (overrides --quick; for smoke tests)")
     parser.add_argument("--skip-adhesive", action="store_true", help="leave out problem (c)")
+    parser.add_argument("--problems", default="hertz,operator,adhesive", help="subset of hertz,operator,adhesive")
+    parser.add_argument("--update", metavar="JSON",
+                        help="rerun --problems for --peers only and merge them into this results JSON")
     parser.add_argument("--render", metavar="JSON", help="only rewrite the markdown from a results JSON")
     parser.add_argument("--skip-build", action="store_true", help="use the existing release example binary")
     parser.add_argument("--output", default=str(HERE / "results"), help="path stem of the .md and .json results")
@@ -192,6 +197,8 @@ def main():
     if args.sizes:
         sizes = [int(n) for n in args.sizes.split(",")]
     peers = [p for p in args.peers.split(",") if p]
+    if args.skip_adhesive:
+        args.problems = ",".join(p for p in args.problems.split(",") if p != "adhesive")
     if args.render:
         results = json.loads(Path(args.render).read_text())
         args.repeats = results["machine"]["repeats"]
@@ -200,32 +207,53 @@ def main():
         print(report)
         return
 
-    info = machine_info()
-    info["load_before"] = load_average()
-    info["threads"] = args.threads
-    info["repeats"] = args.repeats
-    info["budget"] = args.budget
-    info["adhesive_budget"] = args.adhesive_budget
+    problems = [p for p in args.problems.split(",") if p]
+    if args.update:
+        results = json.loads(Path(args.update).read_text())
+        info = results["machine"]
+        info.setdefault("updates", []).append({"date": machine_info()["date"], "peers": peers,
+                                               "problems": problems, "load_before": load_average()})
+        sizes = results["sizes"]
+        args.threads, args.repeats = info["threads"], info["repeats"]
+    else:
+        info = machine_info()
+        info["load_before"] = load_average()
+        info["threads"] = args.threads
+        info["repeats"] = args.repeats
+        info["budget"] = args.budget
+        info["adhesive_budget"] = args.adhesive_budget
+        results = None
     log("machine:", info)
     install = setup_venv()
-    if not args.skip_build:
+    if not args.skip_build and not args.update:
         build_adhesim()
     env = thread_env(args.threads)
 
-    results = {"machine": info, "install": install, "sizes": sizes, "adhesim": None, "peers": {}}
-    log("running adhesim")
-    adhesim, _ = run_json([str(ADHESIM_EXAMPLE), "--sizes", ",".join(map(str, sizes)), "--repeats",
-                           str(args.repeats), "--tolerance", "1e-8"] + (["--skip-adhesive"] if args.skip_adhesive else []),
-                          env, timeout=3600)
-    results["adhesim"] = adhesim
+    if results is None:
+        results = {"machine": info, "install": install, "sizes": sizes, "adhesim": None, "peers": {}}
+        log("running adhesim")
+        skip = ["--skip-" + p for p in ("hertz", "operator", "adhesive") if p not in problems]
+        adhesim, _ = run_json([str(ADHESIM_EXAMPLE), "--sizes", ",".join(map(str, sizes)), "--repeats",
+                               str(args.repeats), "--tolerance", "1e-8"] + skip, env, timeout=3600)
+        results["adhesim"] = adhesim
 
-    for peer in peers:
-        entry = {"hertz": {}, "operator": {}, "adhesive": None}
-        results["peers"][peer] = entry
+    if args.update and "adhesim" in peers:
+        log("running adhesim")
+        skip = ["--skip-" + p for p in ("hertz", "operator", "adhesive") if p not in problems]
+        adhesim, _ = run_json([str(ADHESIM_EXAMPLE), "--sizes", ",".join(map(str, sizes)), "--repeats",
+                               str(args.repeats), "--tolerance", "1e-8"] + skip, env, timeout=3600)
+        if "error" in adhesim:
+            log("adhesim failed:", adhesim["error"])
+        else:
+            results["adhesim"].update({k: v for k, v in adhesim.items() if k in problems})
+    for peer in [p for p in peers if p != "adhesim"]:
+        entry = results["peers"].setdefault(peer, {"hertz": {}, "operator": {}, "adhesive": None})
         if install.get(peer):
             entry["error"] = install[peer]
             continue
         for problem in ("hertz", "operator"):
+            if problem not in problems:
+                continue
             too_slow = None
             for n in sizes:
                 if too_slow:
@@ -240,13 +268,23 @@ def main():
                 if "error" in out or (times and max(times) > args.budget):
                     too_slow = (f"skipped: N={n} took over {args.budget:.0f} s per run" if "error" not in out
                                 else f"skipped after the error at N={n}")
-        if args.skip_adhesive:
+        if "adhesive" not in problems:
             continue
         log(f"running {peer} adhesive")
         command = [str(PYTHON), str(HERE / "peers.py"), peer, "adhesive", "--n", "128", "--repeats",
-                   str(args.repeats), "--threads", str(args.threads), "--budget", str(args.adhesive_budget)]
-        out, _ = run_json(command, env, timeout=args.adhesive_budget * (args.repeats + 1) + 600)
+                   str(args.repeats), "--threads", str(args.threads), "--budget", str(args.budget), "--cap",
+                   str(args.adhesive_budget)]
+        out, _ = run_json(command, env, timeout=args.adhesive_budget + args.budget * args.repeats + 600)
         entry["adhesive"] = out
+
+    if args.update:
+        info["updates"][-1]["load_after"] = load_average()
+        stem = Path(args.update).with_suffix("")
+        stem.with_suffix(".json").write_text(json.dumps(results, indent=1) + "\n")
+        report = render(results, sizes, args)
+        stem.with_suffix(".md").write_text(report)
+        print(report)
+        return
 
     info["load_after"] = load_average()
     stem = Path(args.output)
@@ -265,18 +303,22 @@ def render(results, sizes, args):
         f"- date: {info['date']}; machine: {info['nproc']} cores, {info['cpu_model']}; {info['platform']}",
         f"- load average (1/5/15 min): before {info['load_before']}, after {info['load_after']}",
         f"- threads per code: {info['threads']}; timed runs per entry: {info['repeats']} (median shown; fewer when "
-        f"a run exceeded the budget of {info.get('budget', args.budget):.0f} s, adhesive "
+        f"a run exceeded the budget of {info.get('budget', args.budget):.0f} s; an adhesive cycle is cut at "
         f"{info.get('adhesive_budget', args.adhesive_budget):.0f} s)",
         "- ratio = adhesim time / peer time (below 1: adhesim faster). Timings are wall-clock on a shared "
         "machine: read them with the load average above.",
-        "",
     ]
+    for update in info.get("updates", []):
+        lines.append(f"- rerun of {', '.join(update['problems'])} for {', '.join(update['peers'])} at "
+                     f"{update['date']}: load average before {update['load_before']}, after "
+                     f"{update.get('load_after')}")
+    lines.append("")
     if "error" in ours:
         lines += [f"**adhesim failed**: {ours['error']}", ""]
     versions = {peer: (entry.get("hertz", {}).get(str(sizes[0]), {}) or {}).get("versions")
                 for peer, entry in results["peers"].items()}
     lines.append("Peers: " + "; ".join(
-        f"{peer} " + (", ".join(f"{k} {v}" for k, v in versions[peer].items()) if versions[peer] else "(not run)") + (f" — **{entry['error']}**" if entry.get("error") else "")
+        (", ".join(f"{k} {v}" for k, v in versions[peer].items()) if versions[peer] else f"{peer} (not run)") + (f" — **{entry['error']}**" if entry.get("error") else "")
         for peer, entry in results["peers"].items()))
     lines.append("")
 
@@ -350,8 +392,12 @@ def render(results, sizes, args):
         else:
             wall = median(out.get("wall_s", []))
             note = out.get("note")
-            ratio = fmt_ratio(my_wall, wall) if not note else "–"
-            pull = f"{out['pull_off_over_f_jkr']:.4f}" if not note else "n/a (cycle not finished)"
+            finished = not note
+            ratio = fmt_ratio(my_wall, wall) if finished else "–"
+            pull = f"{out['pull_off_over_f_jkr']:.4f}" if finished else "n/a (cycle not finished)"
+            unconverged = out.get("unconverged_steps")
+            if unconverged:
+                note = (note + "; " if note else "") + f"{unconverged} step(s) not converged"
             lines.append(f"| {peer} | {out.get('model')}; Maugis λ ≈ {out.get('maugis_parameter', 0):.1f} | "
                          f"{out.get('grid')} | {out.get('steps')} | {fmt_time(wall)}"
                          f"{runs_note(out, 'wall_s', args.repeats)}{' — ' + note if note else ''} | {pull} | {ratio} |")
