@@ -330,7 +330,9 @@ def render(results, sizes, args):
     for n in sizes:
         mine = our_hertz.get(str(n), {})
         my_solve = median(mine.get("solve_s", []))
-        lines.append(f"| {n} | adhesim (Ccg, tol 1e-8) | {fmt_time(median(mine.get('setup_s', [])))} | "
+        solver = ("nested active set, residual 1e-10" if ours.get("hertz_solver") == "nested"
+                  else f"Ccg, tol {ours.get('tolerance', 1e-8):g}")
+        lines.append(f"| {n} | adhesim ({solver}) | {fmt_time(median(mine.get('setup_s', [])))} | "
                      f"{fmt_time(my_solve)} | {mine.get('iterations', '–')} | {fmt_err(mine.get('rel_force_error'))} "
                      f"| 1 |")
         for peer, entry in results["peers"].items():
@@ -345,7 +347,8 @@ def render(results, sizes, args):
                 continue
             solve = median(out.get("solve_s", []))
             iterations = out.get("iterations")
-            lines.append(f"| {n} | {peer} | {fmt_time(median(out.get('setup_s', [])))} | {fmt_time(solve)}"
+            label = f"{peer} ({out['mode']})" if out.get("mode") else peer
+            lines.append(f"| {n} | {label} | {fmt_time(median(out.get('setup_s', [])))} | {fmt_time(solve)}"
                          f"{runs_note(out, 'solve_s', args.repeats)} | {iterations if iterations is not None else '–'}"
                          f" | {fmt_err(out.get('rel_force_error'))} | {fmt_ratio(my_solve, solve)} |")
     lines.append("")

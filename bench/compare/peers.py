@@ -117,17 +117,45 @@ def aspher_hertz(n, args):
 
     runs = timed_runs(once, args.repeats, args.budget)
     last = runs[-1]
-    return {
+    entry = {
         "setup_s": setups,
         "solve_s": [r["time"] for r in runs],
         "iterations": last["iterations"],
         "operator_applications": last["matvecs"],
         "rel_force_error": last["rel_force_error"],
         "status": last["status"],
+        "mode": "ContactSolver.solve(precond='fourier')",
         "control": "load (p_nominal = F_Hertz(d)/L^2); error = F/F_Hertz(approach) - 1",
         "tolerance": f"tol={TOL_ASPHER:g} (certified fw_error and penetration_error), precond='fourier'",
         "operator": "backend='fft' (zero-padded Love-kernel convolution, free half-space)",
     }
+
+    # ASPHER's nested-grid (cascadic) solve, same operator and tolerance: it needs
+    # N = coarsest·2^k (default coarsest 64). Setup is inside the call (levels, operators).
+    if n % 64 == 0 and (n // 64) & (n // 64 - 1) == 0:
+        def nested_once():
+            start = time.perf_counter()
+            result = aspher.solve_nested(n, z, force / L**2, domain_size=L, E_star=E_STAR, tol=TOL_ASPHER,
+                                         backend="fft")
+            elapsed = time.perf_counter() - start
+            return {"time": elapsed, "status": result.status, "iterations": result.iterations,
+                    "rel_force_error": force / hertz_force(result.approach) - 1.0}
+
+        nested = timed_runs(nested_once, args.repeats, args.budget)
+        entry["nested"] = {
+            "solve_s": [r["time"] for r in nested],
+            "iterations": nested[-1]["iterations"],
+            "rel_force_error": nested[-1]["rel_force_error"],
+            "status": nested[-1]["status"],
+            "mode": "solve_nested(backend='fft', coarsest=64), setup included",
+        }
+        # The table shows ASPHER's faster mode.
+        if sorted(entry["nested"]["solve_s"])[len(nested) // 2] < sorted(entry["solve_s"])[len(runs) // 2]:
+            entry.update({k: entry["nested"][k] for k in ("solve_s", "iterations", "rel_force_error", "status",
+                                                           "mode")})
+            entry["setup_s"] = [0.0]
+            entry["operator_applications"] = None  # not reported by solve_nested
+    return entry
 
 
 def aspher_operator(n, args):
