@@ -3,7 +3,6 @@ use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
 use crate::grid::Grid;
 use crate::material::ElasticMaterial;
-use rayon::prelude::*;
 
 /// Non-periodic half-space by discrete convolution and FFT (DC-FFT).
 ///
@@ -28,22 +27,15 @@ impl FreeOperator {
         let padded = 2 * n;
         let delta = grid.element_size();
         let modulus = material.contact_modulus();
-        // Offsets of the wrapped 2N×2N array: 0..N−1, none at N, then −(N−1)..−1.
-        let wrap = |i: usize| -> Option<usize> {
+        let wrap = |i: usize| -> Option<f64> {
             match i {
-                i if i < n => Some(i),
+                i if i < n => Some(i as f64),
                 i if i == n => None,
-                i => Some(padded - i),
+                i => Some(i as f64 - padded as f64),
             }
         };
-        // Love's coefficient is even in both offsets: evaluate one quadrant (N² values,
-        // a quarter of the array) and mirror it.
-        let quadrant: Vec<f64> = (0..n * n)
-            .into_par_iter()
-            .map(|k| love_coefficient((k % n) as f64 * delta, (k / n) as f64 * delta, delta, modulus))
-            .collect();
         let engine = SpectralConvolution::new(n, padded, |i, j| match (wrap(i), wrap(j)) {
-            (Some(m), Some(l)) => quadrant[m * n + l],
+            (Some(m), Some(l)) => love_coefficient(l * delta, m * delta, delta, modulus),
             _ => 0.0,
         });
         Self {
