@@ -245,7 +245,10 @@ def main():
         if "error" in adhesim:
             log("adhesim failed:", adhesim["error"])
         else:
-            results["adhesim"].update({k: v for k, v in adhesim.items() if k in problems})
+            # the problems rerun, and the settings they ran with
+            results["adhesim"].update({k: v for k, v in adhesim.items()
+                                       if k in problems or k in ("hertz_solver", "tolerance", "nested_tolerance",
+                                                                 "threads")})
     for peer in [p for p in peers if p != "adhesim"]:
         entry = results["peers"].setdefault(peer, {"hertz": {}, "operator": {}, "adhesive": None})
         if install.get(peer):
