@@ -12,7 +12,8 @@ use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use crate::solver::{
-    AdhesiveSolver, Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, StepReport,
+    AdhesiveSolver, Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, SolveReport,
+    StepReport,
 };
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -229,39 +230,46 @@ impl NormalSolver {
     ) -> Result<StepReport, SolveError> {
         match self {
             Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
-            Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) => {
-                let before = state.contact.clone();
-                let solve = match self {
-                    Self::NonAdhesive(solver) => {
-                        solver.solve(operator, heights, Control::Displacement(depth), state)?
-                    }
-                    Self::NonAdhesiveNested(solver) => solver.solve(operator, heights, depth, state)?,
-                    Self::Adhesive(_) => unreachable!("matched above"),
-                };
-                before_change(state);
-                let area = operator.grid().element_area();
-                let energy = 0.5
-                    * area
-                    * state
-                        .pressure
-                        .iter()
-                        .zip(&state.displacement)
-                        .map(|(p, u)| p * u)
-                        .sum::<f64>();
-                let (attached, detached) = state.changes_from(&before);
-                Ok(StepReport {
-                    solves: 1,
-                    cg_iterations: solve.iterations,
-                    operator_applications: solve.operator_applications,
-                    attached,
-                    detached,
-                    force_before_change: solve.force,
-                    force: solve.force,
-                    energy_before_change: energy,
-                    energy,
-                    dissipated_energy: 0.0,
-                })
-            }
+            Self::NonAdhesive(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
+                solver.solve(operator, heights, Control::Displacement(depth), state)
+            }),
+            Self::NonAdhesiveNested(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
+                solver.solve(operator, heights, depth, state)
+            }),
         }
     }
+}
+
+/// One non-adhesive step: the solve, then the step record (nothing is dissipated).
+fn non_adhesive_step<O: ElasticOperator + ?Sized>(
+    operator: &mut O,
+    state: &mut ContactState,
+    before_change: &mut dyn FnMut(&ContactState),
+    solve: impl FnOnce(&mut O, &mut ContactState) -> Result<SolveReport, SolveError>,
+) -> Result<StepReport, SolveError> {
+    let before = state.contact.clone();
+    let solve = solve(operator, state)?;
+    before_change(state);
+    let area = operator.grid().element_area();
+    let energy = 0.5
+        * area
+        * state
+            .pressure
+            .iter()
+            .zip(&state.displacement)
+            .map(|(p, u)| p * u)
+            .sum::<f64>();
+    let (attached, detached) = state.changes_from(&before);
+    Ok(StepReport {
+        solves: 1,
+        cg_iterations: solve.iterations,
+        operator_applications: solve.operator_applications,
+        attached,
+        detached,
+        force_before_change: solve.force,
+        force: solve.force,
+        energy_before_change: energy,
+        energy,
+        dissipated_energy: 0.0,
+    })
 }
