@@ -34,19 +34,25 @@ fn single_element_reproduces_love_near_and_far() {
     }
 }
 
+/// Uniform numbers in [0, 1) from a xorshift64 generator (reproducible test fields).
+fn uniform_random(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The discrete operator is symmetric: x·Ky = y·Kx for random fields (tolerance 1e-12
 /// relative: only FFT round-off separates the two sides).
 #[test]
 fn operators_are_reciprocal() {
     let n = 48;
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut uniform = uniform_random(0x9E37_79B9_7F4A_7C15);
+    let mut random = move || uniform() - 0.5;
     for boundary in [Boundary::Free, Boundary::Periodic] {
         let grid = Grid::new(n, 1.0, boundary).unwrap();
         let mut operator: Box<dyn ElasticOperator> = match boundary {
@@ -152,13 +158,7 @@ fn periodic_near_field_matches_love() {
 fn single_precision_application_matches_double() {
     let n = 128;
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut random = uniform_random(0x2545_F491_4F6C_DD1D);
     for boundary in [Boundary::Free, Boundary::Periodic] {
         let grid = Grid::new(n, 1.0, boundary).unwrap();
         let mut operator: Box<dyn ElasticOperator> = match boundary {
