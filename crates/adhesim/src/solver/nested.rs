@@ -219,11 +219,12 @@ impl NestedActiveSet {
             self.params.relative_tolerance,
         )?;
         let area = self.grid.element_area();
+        let contact_elements = state.contact.iter().filter(|&&c| c).count();
         Ok(SolveReport {
             iterations,
             residual,
-            contact_elements: state.contact.iter().filter(|&&c| c).count(),
-            contact_area: area * state.contact.iter().filter(|&&c| c).count() as f64,
+            contact_elements,
+            contact_area: area * contact_elements as f64,
             force: state.force(area),
             depth,
             operator_applications: operator.applications() - before,
