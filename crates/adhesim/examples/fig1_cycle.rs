@@ -66,12 +66,24 @@ fn main() {
     );
     if let Some(path) = curve_path {
         let mut file = std::io::BufWriter::new(std::fs::File::create(&path).expect("curve file"));
-        writeln!(file, "step,depth,force_normal,contact_elements").expect("write");
+        writeln!(
+            file,
+            "step,depth,force_normal,contact_elements,solves,cg_iterations,fft_pairs,attached,detached"
+        )
+        .expect("write");
         for r in &records {
             writeln!(
                 file,
-                "{},{:e},{:e},{}",
-                r.step, r.depth, r.force_normal, r.contact_elements
+                "{},{:e},{:e},{},{},{},{},{},{}",
+                r.step,
+                r.depth,
+                r.force_normal,
+                r.contact_elements,
+                r.report.solves,
+                r.report.cg_iterations,
+                r.report.operator_applications,
+                r.report.attached,
+                r.report.detached
             )
             .expect("write");
         }
