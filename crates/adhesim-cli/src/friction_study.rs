@@ -181,7 +181,8 @@ fn normal_gammas(scenario: &Scenario) -> Result<(Option<f64>, Option<f64>)> {
 
 /// Finished runs of a study are kept under `<out>/cache/` so that a killed study resumes
 /// where it stopped: one JSON file per run, named by its kind, index and a hash of the
-/// exact scenario it ran (base after `set`, plus the case's overrides), written atomically.
+/// exact scenario it ran (base after `set`, plus the case's overrides) and of the library's
+/// results revision, written atomically.
 struct RunCache {
     folder: PathBuf,
 }
@@ -196,7 +197,7 @@ impl RunCache {
     fn path(&self, name: &str, table: &toml::Table, changes: &[String]) -> PathBuf {
         let text = format!("{table}\n{}", changes.join("\n"));
         self.folder
-            .join(format!("{name}-{:016x}.json", crate::sweep::plan::fnv1a(&text)))
+            .join(format!("{name}-{:016x}.json", crate::sweep::plan::results_hash(&text)))
     }
 
     /// The stored result, if a readable one exists (a damaged file is simply redone).

@@ -316,3 +316,50 @@ fn smooth_sphere_fits_recover_the_work_of_adhesion() {
     }
     assert!(out.join("plots/force_radius.svg").exists());
 }
+
+/// A folder finished by an older results revision (simulated by rewriting the case hashes
+/// that revision would have produced) is not refused as "a different sweep": its cases
+/// are redone under the current revision, and the table is rebuilt from them.
+#[test]
+fn cases_of_an_older_results_revision_are_redone() {
+    let temp = tempfile::tempdir().unwrap();
+    let out = temp.path().join("tiny");
+    let out_s = out.to_str().unwrap();
+    let sweep = sweeps_dir().join("tiny.toml");
+    let args = [
+        "sweep",
+        sweep.to_str().unwrap(),
+        "--out",
+        out_s,
+        "--jobs",
+        "2",
+        "--threads",
+        "1",
+        "--quiet",
+    ];
+    assert_ok(&adhesim(&args));
+    let cases = finished_cases(&out);
+    assert!(!cases.is_empty());
+    let marker = out.join("cases").join(&cases[0]).join("done");
+    let current = std::fs::read_to_string(&marker).unwrap();
+    let hash = current
+        .lines()
+        .find_map(|l| l.strip_prefix("hash = "))
+        .unwrap()
+        .trim()
+        .to_string();
+    let old_hash = "0123456789abcdef";
+    std::fs::write(&marker, current.replace(&hash, old_hash)).unwrap();
+    let plan = std::fs::read_to_string(out.join("sweep.json")).unwrap();
+    std::fs::write(out.join("sweep.json"), plan.replace(&hash, old_hash)).unwrap();
+    let summary = out.join("cases").join(&cases[0]).join("summary.json");
+    std::fs::write(&summary, "stale").unwrap();
+
+    assert_ok(&adhesim(&args));
+    assert_eq!(std::fs::read_to_string(&marker).unwrap(), current);
+    assert_ne!(
+        std::fs::read_to_string(&summary).unwrap(),
+        "stale",
+        "the old case was not redone"
+    );
+}

@@ -46,6 +46,15 @@ pub struct Plan {
     pub base_dir: PathBuf,
 }
 
+/// Hash of the results a scenario gives: its text and the library's
+/// [`adhesim::RESULTS_REVISION`] (a cached case from an older algorithm is redone).
+pub fn results_hash(scenario_text: &str) -> u64 {
+    fnv1a(&format!(
+        "{scenario_text}\nresults revision {}",
+        adhesim::RESULTS_REVISION
+    ))
+}
+
 /// 64-bit FNV-1a (stable across platforms and Rust versions, unlike `DefaultHasher`).
 pub fn fnv1a(text: &str) -> u64 {
     let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
@@ -458,7 +467,7 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
                 cases.push(Case {
                     index,
                     id: format!("{index:04}-{:08x}", fnv1a(&canonical) >> 32),
-                    hash: format!("{:016x}", fnv1a(&scenario_text)),
+                    hash: format!("{:016x}", results_hash(&scenario_text)),
                     values,
                     scenario: scenario_text,
                 });
