@@ -59,7 +59,8 @@ fn run_with(
 /// own small hysteresis (γ2 − γ1 ≈ 0.003γ0 at this resolution). Both per-step mean
 /// tangential forces are below 2 % of the boundary-friction scale 2a·γ0 — the F_T that a
 /// hysteresis γ2 − γ1 = γ0 would give (Eq. 12) — while rough rolling at α ≈ 0.6 is above
-/// 5 % of it (measured: translate 0.7 %, smooth roll 0.3 %, rough roll 8 %).
+/// 5 % of it (measured: translate 0.4 %, smooth roll 0.3 %, rough roll 13 %; results
+/// revision 1: 0.7 %, 0.3 %, 8 %).
 #[test]
 fn frictionless_controls() {
     let (translate, _) = run(AMPLITUDE, Kinematics::Translate, 100);
