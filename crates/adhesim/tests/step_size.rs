@@ -9,7 +9,7 @@ use adhesim::{
 };
 
 /// Contact-element counts and normal forces at every `stride`-th depth of `steps` equal
-/// steps from first touch to `max_depth` (wavy sphere of Fig. 1's kind, α ≈ 1).
+/// steps from first touch to `max_depth` (wavy sphere of Fig. 1's kind, α ≈ 1.2).
 fn approach(steps: usize, stride: usize, params: AdhesiveParams) -> Vec<(usize, f64)> {
     let grid = Grid::new(64, 0.4, Boundary::Free).unwrap();
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
@@ -40,7 +40,7 @@ fn largest_size_difference(coarse: &[(usize, f64)], fine: &[(usize, f64)]) -> f6
 
 /// Tolerance: the same contact set sizes exactly (on a monotone approach with every failed
 /// element retried after growth, the state reached does not depend on the path's cut; here
-/// the coarse step crosses up to 70 elements of growth at once), forces to 1e-6 of the
+/// the coarse step crosses up to 72 elements of growth at once), forces to 1e-6 of the
 /// largest (CG tolerance). Without retries the coarse contact lags by up to 19 %.
 #[test]
 fn approach_does_not_depend_on_the_step_size() {
