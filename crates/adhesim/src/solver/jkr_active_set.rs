@@ -1,4 +1,4 @@
-use super::{dot, ContactState, SolveError};
+use super::{masked_pcg, ContactState, PcgBuffers, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::Grid;
@@ -594,23 +594,6 @@ impl AdhesiveSolver {
         }
     }
 
-    /// z = M⁻¹r restricted to C (or z = r without preconditioner); returns r·z.
-    fn precondition(&mut self, contact: &[bool]) -> f64 {
-        match &mut self.preconditioner {
-            Some(preconditioner) => {
-                preconditioner.apply(&self.residual, &mut self.preconditioned_residual);
-                self.preconditioner_applications += 1;
-            }
-            None => self.preconditioned_residual.copy_from_slice(&self.residual),
-        }
-        for (z, &c) in self.preconditioned_residual.iter_mut().zip(contact) {
-            if !c {
-                *z = 0.0;
-            }
-        }
-        dot(&self.residual, &self.preconditioned_residual)
-    }
-
     /// Applications of the preconditioner so far (each an N×N FFT pair).
     pub fn preconditioner_applications(&self) -> u64 {
         self.preconditioner_applications
@@ -710,37 +693,34 @@ impl AdhesiveSolver {
         for (m, &c) in self.mask.iter_mut().zip(&state.contact) {
             *m = if c { 1.0 } else { 0.0 };
         }
-        let mut rho = self.precondition(&state.contact);
-        self.direction.copy_from_slice(&self.preconditioned_residual);
-        for iteration in 1..=self.params.max_cg_iterations {
-            // Search directions in single precision: every step starts from an exact
-            // residual, and the front criterion is far above the rounding (1e-7 of the
-            // direction's response).
-            operator.apply_single(&self.direction, &mut self.response);
-            let curvature = dot(&self.direction, &self.response);
-            if !(curvature.is_finite() && curvature > 0.0) {
-                return Err(SolveError::NonFinite { iteration });
-            }
-            let step = rho / curvature;
-            for k in 0..len {
-                state.displacement[k] += step * self.response[k];
-                state.pressure[k] += step * self.direction[k];
-                self.residual[k] -= step * self.response[k] * self.mask[k];
-            }
-            residual_norm = dot(&self.residual, &self.residual);
-            if converged(residual_norm, &self.residual, &state.contact) {
-                return Ok(iteration);
-            }
-            let new_rho = self.precondition(&state.contact);
-            let ratio = new_rho / rho;
-            rho = new_rho;
-            for k in 0..len {
-                self.direction[k] = (self.preconditioned_residual[k] + ratio * self.direction[k]) * self.mask[k];
-            }
-        }
-        Err(SolveError::NotConverged {
+        let contact = &state.contact;
+        let mut preconditioner = self.preconditioner.as_mut();
+        let applications = &mut self.preconditioner_applications;
+        let buffers = PcgBuffers {
+            residual: &mut self.residual,
+            preconditioned: &mut self.preconditioned_residual,
+            direction: &mut self.direction,
+            response: &mut self.response,
+            mask: &self.mask,
+        };
+        let outcome = masked_pcg(
+            operator,
+            &mut state.pressure,
+            &mut state.displacement,
+            buffers,
+            |residual, preconditioned| match preconditioner.as_mut() {
+                Some(preconditioner) => {
+                    preconditioner.apply(residual, preconditioned);
+                    *applications += 1;
+                }
+                None => preconditioned.copy_from_slice(residual),
+            },
+            |norm2, residual| Some(converged(norm2, residual, contact)),
+            self.params.max_cg_iterations,
+        );
+        outcome?.map_err(|norm2| SolveError::NotConverged {
             iterations: self.params.max_cg_iterations,
-            residual: residual_norm.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
+            residual: norm2.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
             tolerance: self.params.relative_tolerance,
         })
     }

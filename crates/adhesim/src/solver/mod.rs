@@ -17,6 +17,7 @@ pub use jkr_active_set::{
 pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 
+use crate::elastic::ElasticOperator;
 use thiserror::Error;
 
 /// What is prescribed in a normal contact solve.
@@ -89,6 +90,77 @@ pub enum SolveError {
         /// The solver's name.
         solver: &'static str,
     },
+}
+
+/// Scratch vectors of [`masked_pcg`], one value per grid element.
+struct PcgBuffers<'a> {
+    residual: &'a mut [f64],
+    preconditioned: &'a mut [f64],
+    direction: &'a mut [f64],
+    response: &'a mut [f64],
+    /// 1 on the fixed set, 0 elsewhere.
+    mask: &'a [f64],
+}
+
+/// Preconditioned CG for K_CC p_C = r_C on the fixed set given by `buffers.mask`, starting
+/// from the residual in `buffers.residual` (zero outside the set); updates `pressure` p and
+/// `displacement` u = K p. Search directions are applied in single precision (`apply_single`): each
+/// caller restarts from an exact residual, so the rounding stays far below its goals.
+/// `precondition` writes M⁻¹r; `converged` sees ‖r‖² and r after each iteration and
+/// answers `None` for a residual it rejects as non-finite.
+/// Returns the iterations, or `None` with ‖r‖² if `max_iterations` did not suffice.
+/// Shared by the adhesive solver and the nested active set (their stopping rules differ).
+fn masked_pcg<O: ElasticOperator + ?Sized>(
+    operator: &mut O,
+    pressure: &mut [f64],
+    displacement: &mut [f64],
+    buffers: PcgBuffers<'_>,
+    mut precondition: impl FnMut(&[f64], &mut [f64]),
+    mut converged: impl FnMut(f64, &[f64]) -> Option<bool>,
+    max_iterations: usize,
+) -> Result<Result<usize, f64>, SolveError> {
+    let PcgBuffers {
+        residual,
+        preconditioned,
+        direction,
+        response,
+        mask,
+    } = buffers;
+    let len = pressure.len();
+    let mut apply_preconditioner = |residual: &[f64], preconditioned: &mut [f64]| -> f64 {
+        precondition(residual, preconditioned);
+        for k in 0..len {
+            preconditioned[k] *= mask[k];
+        }
+        dot(residual, preconditioned)
+    };
+    let mut rho = apply_preconditioner(residual, preconditioned);
+    direction.copy_from_slice(preconditioned);
+    let mut norm2 = f64::INFINITY;
+    for iteration in 1..=max_iterations {
+        operator.apply_single(direction, response);
+        let curvature = dot(direction, response);
+        if !(curvature.is_finite() && curvature > 0.0) {
+            return Err(SolveError::NonFinite { iteration });
+        }
+        let step = rho / curvature;
+        for k in 0..len {
+            displacement[k] += step * response[k];
+            pressure[k] += step * direction[k];
+            residual[k] -= step * response[k] * mask[k];
+        }
+        norm2 = dot(residual, residual);
+        if converged(norm2, residual).ok_or(SolveError::NonFinite { iteration })? {
+            return Ok(Ok(iteration));
+        }
+        let new_rho = apply_preconditioner(residual, preconditioned);
+        let ratio = new_rho / rho;
+        rho = new_rho;
+        for k in 0..len {
+            direction[k] = (preconditioned[k] + ratio * direction[k]) * mask[k];
+        }
+    }
+    Ok(Err(norm2))
 }
 
 /// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).

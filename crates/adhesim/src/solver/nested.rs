@@ -1,4 +1,4 @@
-use super::{dot, ContactState, SolveError, SolveReport};
+use super::{dot, masked_pcg, ContactState, PcgBuffers, SolveError, SolveReport};
 use crate::elastic::{ElasticOperator, FreeOperator, SpectralPreconditioner};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
@@ -341,46 +341,29 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
     goal: f64,
     max_iterations: usize,
 ) -> Result<usize, SolveError> {
-    let len = state.pressure.len();
-    let precondition = |work: &mut Workspace| -> f64 {
-        work.preconditioner.apply(&work.residual, &mut work.preconditioned);
-        for k in 0..len {
-            work.preconditioned[k] *= work.mask[k];
-        }
-        dot(&work.residual, &work.preconditioned)
+    let preconditioner = &mut work.preconditioner;
+    let buffers = PcgBuffers {
+        residual: &mut work.residual,
+        preconditioned: &mut work.preconditioned,
+        direction: &mut work.direction,
+        response: &mut work.response,
+        mask: &work.mask,
     };
-    let mut rho = precondition(work);
-    work.direction.copy_from_slice(&work.preconditioned);
-    let mut norm = f64::INFINITY;
-    for iteration in 1..=max_iterations {
-        operator.apply_single(&work.direction, &mut work.response);
-        let curvature = dot(&work.direction, &work.response);
-        if !(curvature.is_finite() && curvature > 0.0) {
-            return Err(SolveError::NonFinite { iteration });
-        }
-        let step = rho / curvature;
-        for k in 0..len {
-            state.displacement[k] += step * work.response[k];
-            state.pressure[k] += step * work.direction[k];
-            work.residual[k] -= step * work.response[k] * work.mask[k];
-        }
-        norm = dot(&work.residual, &work.residual).sqrt();
-        if !norm.is_finite() {
-            return Err(SolveError::NonFinite { iteration });
-        }
-        if norm <= goal {
-            return Ok(iteration);
-        }
-        let new_rho = precondition(work);
-        let ratio = new_rho / rho;
-        rho = new_rho;
-        for k in 0..len {
-            work.direction[k] = (work.preconditioned[k] + ratio * work.direction[k]) * work.mask[k];
-        }
-    }
-    Err(SolveError::NotConverged {
+    let outcome = masked_pcg(
+        operator,
+        &mut state.pressure,
+        &mut state.displacement,
+        buffers,
+        |residual, preconditioned| preconditioner.apply(residual, preconditioned),
+        |norm2, _| {
+            let norm = norm2.sqrt();
+            norm.is_finite().then_some(norm <= goal)
+        },
+        max_iterations,
+    )?;
+    outcome.map_err(|norm2| SolveError::NotConverged {
         iterations: max_iterations,
-        residual: norm,
+        residual: norm2.sqrt(),
         tolerance: goal,
     })
 }
