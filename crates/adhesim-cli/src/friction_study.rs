@@ -62,6 +62,11 @@ pub struct StudyFile {
     /// Depths d/|d_JKR| of the translation runs [default: the base scenario's depth].
     #[serde(default)]
     pub depths: Vec<f64>,
+    /// sliding: substrate orientations θ (degrees) to run every case at; the per-α means
+    /// average over them and their spread gives the standard error of Fig. 10a (each θ is
+    /// an independent incommensurate substrate) [default: the base scenario's θ].
+    #[serde(default)]
+    pub substrate_angles: Vec<f64>,
     /// Overrides `KEY=VALUE` applied to every case (as `--set`).
     #[serde(default)]
     pub set: Vec<String>,
@@ -94,6 +99,8 @@ struct Row {
     alpha: f64,
     amplitude: f64,
     depth_norm: f64,
+    /// Sliding: substrate orientation θ in degrees (empty for rolling).
+    substrate_angle: Option<f64>,
     gamma_approach_norm: Option<f64>,
     gamma_pulloff_norm: Option<f64>,
     mean_tangential_force_norm: Option<f64>,
@@ -108,6 +115,7 @@ struct Row {
     compactness: f64,
     boundary_force_per_width_norm: Option<f64>,
     gamma3_norm: Option<f64>,
+    gamma3_half_width_norm: Option<f64>,
     energy_balance_ratio: Option<f64>,
     jumps: usize,
     border_contact: bool,
@@ -122,16 +130,23 @@ struct AlphaRow {
     gamma_approach_norm: Option<f64>,
     gamma_pulloff_norm: Option<f64>,
     normal_wall_seconds: Option<f64>,
-    /// γ3/γ0: JKR fit of F_N vs half-width over all depths (Fig. 8).
+    /// γ3/γ0: JKR fit of F_N vs the contact radius (farthest element, as for γ1 and γ2)
+    /// over all depths (Fig. 8).
     gamma3_norm: Option<f64>,
+    /// The same fit against the half-width perpendicular to the motion.
+    gamma3_half_width_norm: Option<f64>,
     /// Mean over depths of the per-step F_T / 2a(γ2 − γ1).
     mean_eq12_ratio: Option<f64>,
     mean_eq12_ratio_work: Option<f64>,
     /// Mean over depths of F_T/|F_JKR| (Fig. 10a).
     mean_tangential_force_norm: Option<f64>,
     mean_tangential_force_work_norm: Option<f64>,
-    /// Mean over depths of F_T/(2a γ0).
+    /// Mean over depths (and substrate angles) of F_T/(2a γ0).
     boundary_force_per_width_norm: Option<f64>,
+    /// Standard error of that mean over the cases (spread/√n, n ≥ 2 cases).
+    boundary_force_per_width_sem: Option<f64>,
+    /// Standard error of mean_tangential_force_norm over the cases.
+    mean_tangential_force_sem: Option<f64>,
     /// Mean over depths of A_real/(πa²) (Fig. 10b).
     compactness: f64,
 }
@@ -214,6 +229,10 @@ impl RunCache {
     }
 }
 
+/// Part of a rolling case's cache key: cached rolls from before γ3 was fitted against the
+/// contact radius (they hold the half-width fit under `gamma3`) are redone, not misread.
+const ROLLING_ANALYSIS: &str = "gamma3 against the contact radius, gamma3_half_width";
+
 /// A cached normal run: γ1, γ2 and its wall time.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct NormalRecord {
@@ -232,6 +251,17 @@ struct CaseRecord {
 fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     let v: Vec<f64> = values.flatten().filter(|x| x.is_finite()).collect();
     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// Standard error of the mean of the finite values (sample standard deviation / √n), for
+/// n ≥ 2.
+fn standard_error(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    let v: Vec<f64> = values.flatten().filter(|x| x.is_finite()).collect();
+    let n = v.len() as f64;
+    (v.len() >= 2).then(|| {
+        let m = v.iter().sum::<f64>() / n;
+        (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0) / n).sqrt()
+    })
 }
 
 fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
@@ -268,6 +298,15 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     }
     if study.depths.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
         bail!("{origin}: depths must be numbers > 0, got {:?}", study.depths);
+    }
+    if !study.substrate_angles.is_empty() && study.kind != StudyKind::Sliding {
+        bail!("{origin}: substrate_angles is a key of sliding studies only");
+    }
+    if study.substrate_angles.iter().any(|a| !a.is_finite()) {
+        bail!(
+            "{origin}: substrate_angles must be finite numbers (degrees), got {:?}",
+            study.substrate_angles
+        );
     }
     let study_dir = args.study.parent().unwrap_or(Path::new("."));
     let base_path = study_dir.join(&study.base);
@@ -312,20 +351,43 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         .iter()
         .map(|&a| amplitude_for(a, wavelength, gamma0, jkr.contact_modulus))
         .collect();
+    // Sliding cases carry their substrate angle; the base's angle is not written as an
+    // override, so its cache entries are those of a study without `substrate_angles`.
+    let base_angle = (study.kind == StudyKind::Sliding).then(|| {
+        base.file
+            .protocol
+            .substrate_angle
+            .unwrap_or(scenario::DEFAULT_SUBSTRATE_ANGLE)
+    });
+    let angles: Vec<Option<f64>> = match base_angle {
+        Some(_) if !study.substrate_angles.is_empty() => study.substrate_angles.iter().map(|&a| Some(a)).collect(),
+        other => vec![other],
+    };
     let cache = RunCache::new(&out)?;
     // Validate every case before running any.
     let mut cases = Vec::new();
     for (i, &h) in amplitudes.iter().enumerate() {
         for (j, &d) in depths.iter().enumerate() {
-            let changes = [
-                format!("indenter.amplitude={h:e}"),
-                format!("protocol.depth={d:e}"),
-                "protocol.depth_unit=\"jkr\"".to_string(),
-            ];
-            let scenario = build(&table, &base_dir, &changes)
-                .with_context(|| format!("case α = {}, d = {d}·|d_JKR|", study.alphas[i]))?;
-            let path = cache.path(&format!("case-{i}-{j}"), &table, &changes);
-            cases.push((i, d, scenario, path));
+            for &angle in &angles {
+                let mut changes = vec![
+                    format!("indenter.amplitude={h:e}"),
+                    format!("protocol.depth={d:e}"),
+                    "protocol.depth_unit=\"jkr\"".to_string(),
+                ];
+                let mut name = format!("case-{i}-{j}");
+                if let Some(theta) = angle.filter(|&a| Some(a) != base_angle) {
+                    changes.push(format!("protocol.substrate_angle={theta:e}"));
+                    name.push_str(&format!("-theta{theta}"));
+                }
+                let scenario = build(&table, &base_dir, &changes)
+                    .with_context(|| format!("case α = {}, d = {d}·|d_JKR|, θ = {angle:?}", study.alphas[i]))?;
+                let mut key = changes.clone();
+                if study.kind == StudyKind::Rolling {
+                    key.push(ROLLING_ANALYSIS.to_string());
+                }
+                let path = cache.path(&name, &table, &key);
+                cases.push((i, d, angle, scenario, path));
+            }
         }
     }
     let normals: Vec<(usize, Scenario, PathBuf)> = if study.kind == StudyKind::Rolling {
@@ -381,8 +443,11 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             || {
                 cases
                     .par_iter()
-                    .map(|(i, d, s, path)| {
-                        let what = format!("{} α = {}, d = {d}·|d_JKR|", wanted.name(), study.alphas[*i]);
+                    .map(|(i, d, angle, s, path)| {
+                        let mut what = format!("{} α = {}, d = {d}·|d_JKR|", wanted.name(), study.alphas[*i]);
+                        if let Some(theta) = angle.filter(|_| angles.len() > 1) {
+                            what.push_str(&format!(", θ = {theta}°"));
+                        }
                         if let Some(record) = RunCache::load::<CaseRecord>(path) {
                             report(format!("{what} (finished earlier)"));
                             return Ok((record.results, record.wall_seconds));
@@ -410,7 +475,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let a_jkr = jkr.critical_radius();
     let mut rows = Vec::new();
     let mut per_case: Vec<(usize, TranslationResults)> = Vec::new();
-    for ((i, d, _, _), result) in cases.iter().zip(case_results) {
+    for ((i, d, angle, _, _), result) in cases.iter().zip(case_results) {
         let (r, seconds) = result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|", study.alphas[*i]))?;
         let (g1, g2, _) = gammas[*i];
         let prediction = match (g1, g2) {
@@ -425,6 +490,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             alpha: study.alphas[*i],
             amplitude: amplitudes[*i],
             depth_norm: *d,
+            substrate_angle: *angle,
             gamma_approach_norm: g1.map(|g| g / gamma0),
             gamma_pulloff_norm: g2.map(|g| g / gamma0),
             mean_tangential_force_norm: r.mean_tangential_force.map(|f| f / f_jkr),
@@ -442,6 +508,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                 .filter(|_| r.contact_half_width > 0.0)
                 .map(|f| f / (2.0 * r.contact_half_width * gamma0)),
             gamma3_norm: r.gamma3.map(|g| g / gamma0),
+            gamma3_half_width_norm: r.gamma3_half_width.map(|g| g / gamma0),
             energy_balance_ratio: r.energy_balance_ratio,
             jumps: r.jumps,
             border_contact: r.border_contact,
@@ -455,13 +522,17 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             .iter()
             .filter(|r| r.alpha == alpha && r.amplitude == amplitudes[i])
             .collect();
-        let points: Vec<(f64, f64)> = per_case
-            .iter()
-            .filter(|(j, _)| *j == i)
-            .map(|(_, r)| (r.contact_half_width, r.mean_normal_force))
-            .collect();
-        let gamma3 =
-            fit_jkr_work_of_adhesion(&points, jkr.radius, jkr.contact_modulus).map(|f| f.work_of_adhesion / gamma0);
+        let fit_gamma3 = |radius_of: fn(&TranslationResults) -> f64| {
+            let points: Vec<(f64, f64)> = per_case
+                .iter()
+                .filter(|(j, _)| *j == i)
+                .map(|(_, r)| (radius_of(r), r.mean_normal_force))
+                .collect();
+            fit_jkr_work_of_adhesion(&points, jkr.radius, jkr.contact_modulus).map(|f| f.work_of_adhesion / gamma0)
+        };
+        let rolling = study.kind == StudyKind::Rolling;
+        let gamma3 = fit_gamma3(|r| r.contact_radius).filter(|_| rolling);
+        let gamma3_half_width = fit_gamma3(|r| r.contact_half_width).filter(|_| rolling);
         let (g1, g2, normal_seconds) = gammas[i];
         alpha_rows.push(AlphaRow {
             alpha,
@@ -469,12 +540,15 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             gamma_approach_norm: g1.map(|g| g / gamma0),
             gamma_pulloff_norm: g2.map(|g| g / gamma0),
             normal_wall_seconds: normal_seconds,
-            gamma3_norm: (study.kind == StudyKind::Rolling).then_some(gamma3).flatten(),
+            gamma3_norm: gamma3,
+            gamma3_half_width_norm: gamma3_half_width,
             mean_eq12_ratio: mean(mine.iter().map(|r| r.eq12_ratio)),
             mean_eq12_ratio_work: mean(mine.iter().map(|r| r.eq12_ratio_work)),
             mean_tangential_force_norm: mean(mine.iter().map(|r| r.mean_tangential_force_norm)),
             mean_tangential_force_work_norm: mean(mine.iter().map(|r| r.mean_tangential_force_work_norm)),
             boundary_force_per_width_norm: mean(mine.iter().map(|r| r.boundary_force_per_width_norm)),
+            boundary_force_per_width_sem: standard_error(mine.iter().map(|r| r.boundary_force_per_width_norm)),
+            mean_tangential_force_sem: standard_error(mine.iter().map(|r| r.mean_tangential_force_norm)),
             compactness: mean(mine.iter().map(|r| Some(r.compactness))).unwrap_or(f64::NAN),
         });
     }
@@ -516,11 +590,14 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                     show(a.gamma3_norm)
                 ),
                 StudyKind::Sliding => println!(
-                    "  α = {:.3}: F_B/|F_JKR| = {} (per step), {} (work), F_B/(2aγ0) = {}, A/(πa²) = {:.3}",
+                    "  α = {:.3}: F_B/|F_JKR| = {} (per step), {} (work), F_B/(2aγ0) = {}{}, A/(πa²) = {:.3}",
                     a.alpha,
                     show(a.mean_tangential_force_norm),
                     show(a.mean_tangential_force_work_norm),
                     show(a.boundary_force_per_width_norm),
+                    a.boundary_force_per_width_sem
+                        .map(|e| format!(" ± {e:.3} (standard error over cases)"))
+                        .unwrap_or_default(),
                     a.compactness
                 ),
             }
@@ -601,10 +678,16 @@ fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Vec<St
             y_label: "γ / γ0".into(),
             series: vec![
                 Series::new(
-                    "γ3 (rolling, F_N vs a)",
+                    "γ3 (rolling, F_N vs contact radius)",
                     PALETTE[0],
                     Style::LinePoints,
                     by_alpha(alphas, |a| a.gamma3_norm),
+                ),
+                Series::new(
+                    "γ3 (F_N vs half-width)",
+                    PALETTE[3],
+                    Style::Dashed,
+                    by_alpha(alphas, |a| a.gamma3_half_width_norm),
                 ),
                 Series::new(
                     "γ1 (approach)",
@@ -624,6 +707,27 @@ fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Vec<St
         }],
     )?);
     Ok(files)
+}
+
+/// Per-step mean ± one standard error over the cases (substrate angles, depths) where a
+/// study has more than one case per α.
+fn error_band(alphas: &[AlphaRow]) -> Vec<Series> {
+    if alphas.iter().all(|a| a.mean_tangential_force_sem.is_none()) {
+        return Vec::new();
+    }
+    [1.0, -1.0]
+        .iter()
+        .map(|&sign| {
+            Series::new(
+                if sign > 0.0 { "± standard error" } else { "" },
+                PALETTE[0],
+                Style::Dashed,
+                by_alpha(alphas, |a| {
+                    Some(a.mean_tangential_force_norm? + sign * a.mean_tangential_force_sem?)
+                }),
+            )
+        })
+        .collect()
 }
 
 const BLACKISH: plotters::style::RGBColor = plotters::style::RGBColor(60, 60, 60);
@@ -654,7 +758,10 @@ fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
                     Style::LinePoints,
                     by_alpha(alphas, |a| a.mean_tangential_force_work_norm),
                 ),
-            ],
+            ]
+            .into_iter()
+            .chain(error_band(alphas))
+            .collect(),
             include_zero: true,
         }],
     )?;

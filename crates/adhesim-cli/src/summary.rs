@@ -246,8 +246,14 @@ pub struct TranslationResults {
     pub eq12_prediction: Option<f64>,
     /// mean_tangential_force / eq12_prediction.
     pub eq12_ratio: Option<f64>,
-    /// γ3 (Fig. 8): JKR fit of F_N vs half-width over the stationary steps.
+    /// γ3 (Fig. 8): JKR fit of F_N vs the contact radius over the stationary steps. The
+    /// radius is the paper's (Sec. 2.3): distance from the moving axis to the farthest
+    /// contact element, the one the γ1, γ2 fits of the normal runs use ("similar to normal
+    /// contact", Sec. 2.6).
     pub gamma3: Option<f64>,
+    /// The same fit against the half-width perpendicular to the motion (Eq. 12's a).
+    #[serde(default)]
+    pub gamma3_half_width: Option<f64>,
     /// γ3 from Eq. 13, d = a²/R − √(2πγ3a/E*), with a = half-width.
     pub gamma3_depth: Option<f64>,
     /// Boundary friction per unit width measured in this run: F_B/D with D = 2a.
@@ -322,16 +328,20 @@ impl TranslationResults {
         let fit_points = |f: &dyn Fn(&adhesim::StepRecord) -> (f64, f64)| -> Vec<(f64, f64)> {
             stationary.iter().map(|r| f(r)).collect()
         };
-        let gamma3 = rolling
-            .then(|| {
-                fit_jkr_work_of_adhesion(
-                    &fit_points(&|r| (r.half_width, r.force_normal)),
-                    inputs.radius,
-                    inputs.contact_modulus,
-                )
-            })
-            .flatten()
-            .map(|f| f.work_of_adhesion);
+        let fit_force = |radius_of: &dyn Fn(&adhesim::StepRecord) -> f64| {
+            rolling
+                .then(|| {
+                    fit_jkr_work_of_adhesion(
+                        &fit_points(&|r| (radius_of(r), r.force_normal)),
+                        inputs.radius,
+                        inputs.contact_modulus,
+                    )
+                })
+                .flatten()
+                .map(|f| f.work_of_adhesion)
+        };
+        let gamma3 = fit_force(&|r| r.radius);
+        let gamma3_half_width = fit_force(&|r| r.half_width);
         let gamma3_depth = rolling
             .then(|| {
                 fit_jkr_depth_work_of_adhesion(
@@ -377,6 +387,7 @@ impl TranslationResults {
             eq12_prediction,
             eq12_ratio: eq12_prediction.filter(|p| *p != 0.0).map(|p| f_t / p),
             gamma3,
+            gamma3_half_width,
             gamma3_depth,
             measured_q,
             eq16_boundary_term: match inputs.gammas {

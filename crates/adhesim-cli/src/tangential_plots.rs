@@ -132,15 +132,20 @@ where
                 }
             }
             Style::Dashed => {
-                c.draw_series(DashedLineSeries::new(
-                    s.points.iter().copied(),
-                    6,
-                    4,
-                    colour.stroke_width(2),
-                ))
-                .map_err(e)?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
+                let drawn = c
+                    .draw_series(DashedLineSeries::new(
+                        s.points.iter().copied(),
+                        6,
+                        4,
+                        colour.stroke_width(2),
+                    ))
+                    .map_err(e)?;
+                // An unlabelled series (e.g. the second line of a band) gets no legend row.
+                if !label.is_empty() {
+                    drawn
+                        .label(label)
+                        .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
+                }
             }
             Style::Points => {}
         }

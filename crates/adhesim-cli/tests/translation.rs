@@ -115,10 +115,16 @@ fn roll_run_writes_curve_summary_and_plots() {
         "eq12_prediction",
         "eq12_ratio",
         "gamma3",
+        "gamma3_half_width",
         "boundary_scale",
     ] {
         assert!(results[key].is_number(), "results.{key} = {}", results[key]);
     }
+    // γ3 is fitted against the contact radius (farthest element, as γ1 and γ2 are), which is
+    // never below the half-width; at a given normal force a larger radius means a larger γ
+    // in the JKR relation, so the two fits are ordered.
+    assert!(results["contact_radius"].as_f64().unwrap() >= results["contact_half_width"].as_f64().unwrap());
+    assert!(results["gamma3"].as_f64().unwrap() >= results["gamma3_half_width"].as_f64().unwrap());
     // Eq. 12 with the given γ1, γ2: 2a(γ2 − γ1).
     let a = results["contact_half_width"].as_f64().unwrap();
     let expected = 2.0 * a * (2.4e-5 - 1.6e-5);
@@ -341,6 +347,7 @@ fn tiny_studies_write_tables_and_figures() {
         "mean_tangential_force_norm",
         "eq12_prediction_norm",
         "gamma3_norm",
+        "gamma3_half_width_norm",
     ] {
         assert!(header.iter().any(|h| h == name), "{name}");
     }
@@ -407,6 +414,63 @@ fn tiny_studies_write_tables_and_figures() {
     for file in ["fig10a.png", "fig10b.svg"] {
         assert!(out.join("plots").join(file).is_file(), "{file}");
     }
+    // Several substrate orientations: every case runs at each; the base's θ = 30° cases are
+    // the ones above (reused from the cache), and the per-α standard error is the spread of
+    // the cases' F_B/(2aγ0) over √n.
+    let angled = write(
+        dir.path(),
+        "sliding_angles.toml",
+        &format!(
+            "kind = \"sliding\"\nbase = \"{}\"\nalphas = [0.5, 1.0]\nsubstrate_angles = [30, 45]\n\
+             set = [\"grid.n=32\", \"protocol.approach_steps=10\", \"protocol.steps=8\"]\n",
+            scenarios.join("fig9.toml").display()
+        ),
+    );
+    let output = adhesim(&[
+        "study",
+        "sliding",
+        angled.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(
+        stderr(&output).matches("(finished earlier)").count(),
+        2,
+        "{}",
+        stderr(&output)
+    );
+    let (header, rows) = read_csv(&out.join("table.csv"));
+    assert_eq!(rows.len(), 4);
+    let thetas = column(&header, &rows, "substrate_angle");
+    assert_eq!(thetas, ["30.0", "45.0", "30.0", "45.0"]);
+    let per_case: Vec<f64> = column(&header, &rows, "boundary_force_per_width_norm")
+        .iter()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let (alpha_header, alphas) = read_csv(&out.join("alphas.csv"));
+    let sem: Vec<f64> = column(&alpha_header, &alphas, "boundary_force_per_width_sem")
+        .iter()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    for (k, pair) in per_case.chunks(2).enumerate() {
+        // two values: sample std / √2 = |difference| / 2
+        let expected = (pair[0] - pair[1]).abs() / 2.0;
+        assert!(
+            (sem[k] - expected).abs() <= 1e-12 * expected + 1e-15,
+            "{sem:?} vs {per_case:?}"
+        );
+    }
+    let bad = write(
+        dir.path(),
+        "rolling_angles.toml",
+        &format!(
+            "kind = \"rolling\"\nbase = \"{}\"\nalphas = [0.8]\nsubstrate_angles = [30]\n",
+            scenarios.join("fig6.toml").display()
+        ),
+    );
+    let output = adhesim(&["study", "rolling", bad.to_str().unwrap(), "--quiet"]);
+    assert_fails_with(&output, &["substrate_angles", "sliding"]);
     // The study kind must match the command.
     let output = adhesim(&["study", "rolling", sliding.to_str().unwrap(), "--quiet"]);
     assert_fails_with(&output, &["kind"]);
