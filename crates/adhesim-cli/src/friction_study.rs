@@ -379,8 +379,10 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                     changes.push(format!("protocol.substrate_angle={theta:e}"));
                     name.push_str(&format!("-theta{theta}"));
                 }
-                let scenario = build(&table, &base_dir, &changes)
-                    .with_context(|| format!("case α = {}, d = {d}·|d_JKR|, θ = {angle:?}", study.alphas[i]))?;
+                let scenario = build(&table, &base_dir, &changes).with_context(|| {
+                    let theta = angle.map(|t| format!(", θ = {t}°")).unwrap_or_default();
+                    format!("case α = {}, d = {d}·|d_JKR|{theta}", study.alphas[i])
+                })?;
                 let mut key = changes.clone();
                 if study.kind == StudyKind::Rolling {
                     key.push(ROLLING_ANALYSIS.to_string());
@@ -738,32 +740,43 @@ fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
         x.iter().copied().fold(f64::INFINITY, f64::min),
         x.iter().copied().fold(0.0, f64::max),
     );
+    // Two panels: the per-step mean on its own scale (with the standard error over the
+    // cases where there are several), then both means, whose scales differ by 10–50×.
+    let per_step = || {
+        Series::new(
+            "per-step mean",
+            PALETTE[0],
+            Style::LinePoints,
+            by_alpha(alphas, |a| a.mean_tangential_force_norm),
+        )
+    };
     let mut files = write_panels(
         dir,
         "fig10a",
-        &[Chart {
-            title: "Sliding: boundary contribution to friction".into(),
-            x_label: "Johnson parameter α".into(),
-            y_label: "F_B / |F_JKR|".into(),
-            series: vec![
-                Series::new(
-                    "per-step mean",
-                    PALETTE[0],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| a.mean_tangential_force_norm),
-                ),
-                Series::new(
-                    "work-based mean",
-                    PALETTE[4],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| a.mean_tangential_force_work_norm),
-                ),
-            ]
-            .into_iter()
-            .chain(error_band(alphas))
-            .collect(),
-            include_zero: true,
-        }],
+        &[
+            Chart {
+                title: "Sliding: boundary contribution to friction (per-step mean)".into(),
+                x_label: "Johnson parameter α".into(),
+                y_label: "F_B / |F_JKR|".into(),
+                series: std::iter::once(per_step()).chain(error_band(alphas)).collect(),
+                include_zero: true,
+            },
+            Chart {
+                title: "Per-step and work-based means".into(),
+                x_label: "Johnson parameter α".into(),
+                y_label: "F_B / |F_JKR|".into(),
+                series: vec![
+                    per_step(),
+                    Series::new(
+                        "work-based mean",
+                        PALETTE[4],
+                        Style::LinePoints,
+                        by_alpha(alphas, |a| a.mean_tangential_force_work_norm),
+                    ),
+                ],
+                include_zero: true,
+            },
+        ],
     )?;
     files.extend(write_panels(
         dir,
