@@ -253,6 +253,11 @@ fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
 }
 
+/// ", θ = 20°" for a sliding case's substrate angle, "" without one.
+fn theta_label(angle: Option<f64>) -> String {
+    angle.map(|t| format!(", θ = {t}°")).unwrap_or_default()
+}
+
 /// Standard error of the mean of the finite values (sample standard deviation / √n), for
 /// n ≥ 2.
 fn standard_error(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
@@ -379,10 +384,8 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                     changes.push(format!("protocol.substrate_angle={theta:e}"));
                     name.push_str(&format!("-theta{theta}"));
                 }
-                let scenario = build(&table, &base_dir, &changes).with_context(|| {
-                    let theta = angle.map(|t| format!(", θ = {t}°")).unwrap_or_default();
-                    format!("case α = {}, d = {d}·|d_JKR|{theta}", study.alphas[i])
-                })?;
+                let scenario = build(&table, &base_dir, &changes)
+                    .with_context(|| format!("case α = {}, d = {d}·|d_JKR|{}", study.alphas[i], theta_label(angle)))?;
                 let mut key = changes.clone();
                 if study.kind == StudyKind::Rolling {
                     key.push(ROLLING_ANALYSIS.to_string());
@@ -446,10 +449,12 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                 cases
                     .par_iter()
                     .map(|(i, d, angle, s, path)| {
-                        let mut what = format!("{} α = {}, d = {d}·|d_JKR|", wanted.name(), study.alphas[*i]);
-                        if let Some(theta) = angle.filter(|_| angles.len() > 1) {
-                            what.push_str(&format!(", θ = {theta}°"));
-                        }
+                        let what = format!(
+                            "{} α = {}, d = {d}·|d_JKR|{}",
+                            wanted.name(),
+                            study.alphas[*i],
+                            theta_label(angle.filter(|_| angles.len() > 1))
+                        );
                         if let Some(record) = RunCache::load::<CaseRecord>(path) {
                             report(format!("{what} (finished earlier)"));
                             return Ok((record.results, record.wall_seconds));
@@ -478,7 +483,8 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let mut rows = Vec::new();
     let mut per_case: Vec<(usize, TranslationResults)> = Vec::new();
     for ((i, d, angle, _, _), result) in cases.iter().zip(case_results) {
-        let (r, seconds) = result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|", study.alphas[*i]))?;
+        let (r, seconds) =
+            result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|{}", study.alphas[*i], theta_label(*angle)))?;
         let (g1, g2, _) = gammas[*i];
         let prediction = match (g1, g2) {
             (Some(g1), Some(g2)) => Some(2.0 * r.contact_half_width * (g2 - g1)),
