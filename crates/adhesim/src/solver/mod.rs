@@ -108,7 +108,7 @@ struct PcgBuffers<'a> {
 /// caller restarts from an exact residual, so the rounding stays far below its goals.
 /// `precondition` writes M⁻¹r; `converged` sees ‖r‖² and r after each iteration and
 /// answers `None` for a residual it rejects as non-finite.
-/// Returns the iterations, or `None` with ‖r‖² if `max_iterations` did not suffice.
+/// Returns `Ok(iterations)`, or `Err(‖r‖²)` if `max_iterations` did not suffice.
 /// Shared by the adhesive solver and the nested active set (their stopping rules differ).
 fn masked_pcg<O: ElasticOperator + ?Sized>(
     operator: &mut O,
