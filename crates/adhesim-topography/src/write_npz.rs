@@ -1,0 +1,173 @@
+//! Contact fields as a numpy `.npz` archive (one DEFLATE-compressed `.npy` member per array),
+//! loadable with `numpy.load`.
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::TopographyError;
+
+/// The values of a [`NamedArray`].
+#[derive(Clone, Copy, Debug)]
+pub enum ArrayData<'a> {
+    /// Stored as little-endian float64 (`<f8`).
+    F64(&'a [f64]),
+    /// Stored as numpy bool (`|b1`).
+    Bool(&'a [bool]),
+}
+
+impl ArrayData<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Self::F64(v) => v.len(),
+            Self::Bool(v) => v.len(),
+        }
+    }
+}
+
+/// An array to write: its name, its shape (`[ny, nx]` for a field, row-major values), its
+/// values and, for NetCDF, its unit.
+#[derive(Clone, Copy, Debug)]
+pub struct NamedArray<'a> {
+    pub name: &'a str,
+    pub shape: &'a [usize],
+    pub data: ArrayData<'a>,
+    /// Written as the `units` attribute of a NetCDF variable; npz stores no units.
+    pub unit: Option<&'a str>,
+}
+
+impl<'a> NamedArray<'a> {
+    /// A float64 array.
+    pub fn f64(name: &'a str, shape: &'a [usize], values: &'a [f64]) -> Self {
+        Self {
+            name,
+            shape,
+            data: ArrayData::F64(values),
+            unit: None,
+        }
+    }
+
+    /// A boolean array (a contact mask).
+    pub fn bool(name: &'a str, shape: &'a [usize], values: &'a [bool]) -> Self {
+        Self {
+            name,
+            shape,
+            data: ArrayData::Bool(values),
+            unit: None,
+        }
+    }
+
+    /// The same array with a unit.
+    pub fn with_unit(self, unit: &'a str) -> Self {
+        Self {
+            unit: Some(unit),
+            ..self
+        }
+    }
+
+    /// Checks the name, that the shape matches the values, and that floats are finite.
+    pub(crate) fn validate(&self, path: &Path) -> Result<(), TopographyError> {
+        let invalid = |why: String| TopographyError::InvalidArgument {
+            name: "array",
+            value: format!("{:?} for {}", self.name, path.display()),
+            why,
+        };
+        let name_ok = !self.name.is_empty()
+            && self
+                .name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        if !name_ok {
+            return Err(invalid(
+                "names are non-empty ASCII letters, digits, '_' or '-'".into(),
+            ));
+        }
+        let count = self
+            .shape
+            .iter()
+            .try_fold(1usize, |acc, &n| acc.checked_mul(n));
+        if count != Some(self.data.len()) {
+            return Err(invalid(format!(
+                "shape {:?} does not hold {} values",
+                self.shape,
+                self.data.len()
+            )));
+        }
+        if let ArrayData::F64(values) = self.data {
+            if let Some(index) = values.iter().position(|v| !v.is_finite()) {
+                return Err(invalid(format!(
+                    "value {index} is {}, not finite",
+                    values[index]
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The `.npy` (format version 1.0) bytes of one array, C order, header padded so the data
+/// start at a multiple of 64 bytes as numpy writes it.
+pub(crate) fn npy_bytes(array: &NamedArray<'_>) -> Vec<u8> {
+    let descr = match array.data {
+        ArrayData::F64(_) => "<f8",
+        ArrayData::Bool(_) => "|b1",
+    };
+    let shape = match array.shape {
+        [] => "()".to_string(),
+        [n] => format!("({n},)"),
+        dims => format!(
+            "({})",
+            dims.iter().map(|d| d.to_string()).collect::<Vec<_>>().join(", ")
+        ),
+    };
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    let unpadded = crate::npy::MAGIC.len() + 2 + 2 + header.len() + 1;
+    header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
+    header.push('\n');
+    let mut out = Vec::with_capacity(unpadded + 64 + array.data.len() * 8);
+    out.extend_from_slice(crate::npy::MAGIC);
+    out.extend_from_slice(&[1, 0]);
+    // The header of a few fields is far below u16::MAX.
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    match array.data {
+        ArrayData::F64(values) => values
+            .iter()
+            .for_each(|v| out.extend_from_slice(&v.to_le_bytes())),
+        ArrayData::Bool(values) => out.extend(values.iter().map(|&b| u8::from(b))),
+    }
+    out
+}
+
+/// Writes `arrays` to `path` as an `.npz` archive, as `numpy.savez_compressed` does: member
+/// `NAME.npy` per array, DEFLATE-compressed. Names must be distinct; float values finite.
+pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<(), TopographyError> {
+    let path = path.as_ref();
+    for (index, array) in arrays.iter().enumerate() {
+        array.validate(path)?;
+        if arrays[..index].iter().any(|a| a.name == array.name) {
+            return Err(TopographyError::InvalidArgument {
+                name: "array",
+                value: array.name.to_string(),
+                why: format!("named twice for {}", path.display()),
+            });
+        }
+    }
+    let io_error = |source: std::io::Error| TopographyError::Io {
+        path: path.to_path_buf(),
+        action: "writing",
+        source,
+    };
+    let zip_error = |e: zip::result::ZipError| io_error(std::io::Error::other(e));
+    let file = std::fs::File::create(path).map_err(io_error)?;
+    let mut zip = zip::ZipWriter::new(std::io::BufWriter::new(file));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .large_file(arrays.iter().any(|a| a.data.len() * 8 > u32::MAX as usize / 2));
+    for array in arrays {
+        zip.start_file(format!("{}.npy", array.name), options)
+            .map_err(zip_error)?;
+        zip.write_all(&npy_bytes(array)).map_err(io_error)?;
+    }
+    let mut writer = zip.finish().map_err(zip_error)?;
+    writer.flush().map_err(io_error)
+}
