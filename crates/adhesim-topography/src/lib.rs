@@ -97,12 +97,34 @@ pub fn read_topography(
     options: &ReadOptions,
 ) -> Result<Topography, TopographyError> {
     let path = path.as_ref();
+    let format = format_of(path)?;
+    let bytes = std::fs::read(path).map_err(|source| TopographyError::Io {
+        path: path.to_path_buf(),
+        action: "reading",
+        source,
+    })?;
+    read_topography_bytes(&bytes, format, options).map_err(|e| e.with_path(path, format))
+}
+
+/// Reads a topography held in memory; `file_name`'s extension chooses the format as in
+/// [`read_topography`], and errors name it.
+pub fn read_topography_from_bytes(
+    bytes: &[u8],
+    file_name: impl AsRef<Path>,
+    options: &ReadOptions,
+) -> Result<Topography, TopographyError> {
+    let path = file_name.as_ref();
+    let format = format_of(path)?;
+    read_topography_bytes(bytes, format, options).map_err(|e| e.with_path(path, format))
+}
+
+fn format_of(path: &Path) -> Result<&'static str, TopographyError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let format: &'static str = match extension.as_str() {
+    Ok(match extension.as_str() {
         "x3p" => "x3p",
         "gwy" => "gwy",
         "sur" => "sur",
@@ -116,13 +138,7 @@ pub fn read_topography(
                 extension,
             })
         }
-    };
-    let bytes = std::fs::read(path).map_err(|source| TopographyError::Io {
-        path: path.to_path_buf(),
-        action: "reading",
-        source,
-    })?;
-    read_topography_bytes(&bytes, format, options).map_err(|e| e.with_path(path, format))
+    })
 }
 
 /// Parses `bytes` as `format` (one of the names in [`Topography::format`]).
