@@ -43,19 +43,14 @@ fn parse_text(bytes: &[u8]) -> ParseResult<TextFile> {
         }
         let mut row = Vec::new();
         for token in line.split([' ', '\t', ',', ';']).filter(|t| !t.is_empty()) {
-            let value = token.parse::<f64>().map_err(|_| {
-                ParseError::malformed(format!(
-                    "line {}: {token:?} is not a number",
-                    line_index + 1
-                ))
-            })?;
+            let value = token
+                .parse::<f64>()
+                .map_err(|_| ParseError::malformed(format!("line {}: {token:?} is not a number", line_index + 1)))?;
             row.push(value);
         }
         total += row.len();
         if total > MAX_POINTS {
-            return Err(ParseError::malformed(format!(
-                "more than {MAX_POINTS} values"
-            )));
+            return Err(ParseError::malformed(format!("more than {MAX_POINTS} values")));
         }
         rows.push(row);
     }
@@ -69,9 +64,10 @@ impl TextFile {
     fn number(&self, key: &str) -> ParseResult<Option<f64>> {
         match self.header.get(key) {
             None => Ok(None),
-            Some(text) => text.parse::<f64>().map(Some).map_err(|_| {
-                ParseError::malformed(format!("header {key} = {text:?} is not a number"))
-            }),
+            Some(text) => text
+                .parse::<f64>()
+                .map(Some)
+                .map_err(|_| ParseError::malformed(format!("header {key} = {text:?} is not a number"))),
         }
     }
 
@@ -137,12 +133,7 @@ pub(crate) fn read_matrix(bytes: &[u8], options: &ReadOptions) -> ParseResult<Ra
 }
 
 /// `(dx, dy, unit)` from a Gwyddion or SPIP header, else from the caller.
-fn lateral(
-    file: &TextFile,
-    nx: usize,
-    ny: usize,
-    options: &ReadOptions,
-) -> ParseResult<(f64, f64, String)> {
+fn lateral(file: &TextFile, nx: usize, ny: usize, options: &ReadOptions) -> ParseResult<(f64, f64, String)> {
     if let (Some(width), Some(height)) = (file.header.get("width"), file.header.get("height")) {
         let unit = width.split_whitespace().nth(1).unwrap_or("").to_string();
         return Ok((

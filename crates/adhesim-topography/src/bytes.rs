@@ -44,9 +44,7 @@ impl Scalar {
 /// `nx × ny` as a checked point count within [`MAX_POINTS`], both sides at least 1.
 pub(crate) fn point_count(nx: i64, ny: i64) -> ParseResult<usize> {
     if nx < 1 || ny < 1 {
-        return Err(ParseError::malformed(format!(
-            "grid size {nx} × {ny} is not positive"
-        )));
+        return Err(ParseError::malformed(format!("grid size {nx} × {ny} is not positive")));
     }
     let count = nx
         .checked_mul(ny)
@@ -60,12 +58,7 @@ pub(crate) fn point_count(nx: i64, ny: i64) -> ParseResult<usize> {
 }
 
 /// Checks that `available` bytes hold `count` elements of `scalar` (no more is read than that).
-pub(crate) fn check_data_length(
-    count: usize,
-    scalar: Scalar,
-    available: usize,
-    what: &str,
-) -> ParseResult<usize> {
+pub(crate) fn check_data_length(count: usize, scalar: Scalar, available: usize, what: &str) -> ParseResult<usize> {
     let needed = count
         .checked_mul(scalar.size())
         .ok_or_else(|| ParseError::malformed(format!("{what}: size overflows")))?;
@@ -78,12 +71,7 @@ pub(crate) fn check_data_length(
 }
 
 /// Decodes `count` values of `scalar` from the start of `bytes` into `f64`.
-pub(crate) fn decode_values(
-    bytes: &[u8],
-    count: usize,
-    scalar: Scalar,
-    endian: Endian,
-) -> ParseResult<Vec<f64>> {
+pub(crate) fn decode_values(bytes: &[u8], count: usize, scalar: Scalar, endian: Endian) -> ParseResult<Vec<f64>> {
     let size = scalar.size();
     check_data_length(count, scalar, bytes.len(), "data")?;
     let mut out = Vec::with_capacity(count);
@@ -130,7 +118,6 @@ impl<'a> Reader<'a> {
         Self { data, pos: 0 }
     }
 
-
     pub(crate) fn remaining(&self) -> usize {
         self.data.len() - self.pos
     }
@@ -158,7 +145,6 @@ impl<'a> Reader<'a> {
         Ok(self.array::<1>(what)?[0])
     }
 
-
     pub(crate) fn u16_le(&mut self, what: &str) -> ParseResult<u16> {
         Ok(u16::from_le_bytes(self.array(what)?))
     }
@@ -175,7 +161,6 @@ impl<'a> Reader<'a> {
         Ok(i64::from_le_bytes(self.array(what)?))
     }
 
-
     pub(crate) fn f64_le(&mut self, what: &str) -> ParseResult<f64> {
         Ok(f64::from_le_bytes(self.array(what)?))
     }
@@ -184,14 +169,10 @@ impl<'a> Reader<'a> {
     pub(crate) fn c_string(&mut self, what: &str) -> ParseResult<&'a str> {
         let rest = &self.data[self.pos..];
         let end = rest.iter().position(|&b| b == 0).ok_or_else(|| {
-            ParseError::malformed(format!(
-                "{what} at byte {}: no terminating NUL (truncated?)",
-                self.pos
-            ))
+            ParseError::malformed(format!("{what} at byte {}: no terminating NUL (truncated?)", self.pos))
         })?;
-        let text = std::str::from_utf8(&rest[..end]).map_err(|_| {
-            ParseError::malformed(format!("{what} at byte {}: not UTF-8", self.pos))
-        })?;
+        let text = std::str::from_utf8(&rest[..end])
+            .map_err(|_| ParseError::malformed(format!("{what} at byte {}: not UTF-8", self.pos)))?;
         self.pos += end + 1;
         Ok(text)
     }

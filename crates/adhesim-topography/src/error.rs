@@ -63,14 +63,8 @@ pub enum TopographyError {
 pub(crate) enum ParseError {
     Malformed(String),
     Unsupported(String),
-    MissingOption {
-        what: &'static str,
-        option: &'static str,
-    },
-    ChannelNotFound {
-        requested: String,
-        available: Vec<String>,
-    },
+    MissingOption { what: &'static str, option: &'static str },
+    ChannelNotFound { requested: String, available: Vec<String> },
     UnknownUnit(String),
 }
 
@@ -94,10 +88,7 @@ impl ParseError {
                 what,
                 option,
             },
-            Self::ChannelNotFound {
-                requested,
-                available,
-            } => TopographyError::ChannelNotFound {
+            Self::ChannelNotFound { requested, available } => TopographyError::ChannelNotFound {
                 path,
                 requested,
                 available: available.join(", "),

@@ -74,9 +74,7 @@ impl Object {
 
 fn parse_object(reader: &mut Reader<'_>, depth: usize) -> ParseResult<Object> {
     if depth > MAX_DEPTH {
-        return Err(ParseError::malformed(format!(
-            "objects nest deeper than {MAX_DEPTH}"
-        )));
+        return Err(ParseError::malformed(format!("objects nest deeper than {MAX_DEPTH}")));
     }
     let type_name = reader.c_string("object type name")?.to_string();
     let size = reader.u32_le("object size")? as usize;
@@ -89,10 +87,7 @@ fn parse_object(reader: &mut Reader<'_>, depth: usize) -> ParseResult<Object> {
         let value = parse_value(&mut inner, kind, &name, depth)?;
         components.push((name, value));
     }
-    Ok(Object {
-        type_name,
-        components,
-    })
+    Ok(Object { type_name, components })
 }
 
 fn parse_value(reader: &mut Reader<'_>, kind: u8, name: &str, depth: usize) -> ParseResult<Value> {
@@ -244,9 +239,7 @@ fn field_values(field: &Object) -> ParseResult<(usize, usize, &[f64])> {
     let (nx, ny) = (field.int("xres")?, field.int("yres")?);
     let count = point_count(nx, ny)?;
     match field.get("data") {
-        Some(Value::Doubles(values)) if values.len() == count => {
-            Ok((nx as usize, ny as usize, values))
-        }
+        Some(Value::Doubles(values)) if values.len() == count => Ok((nx as usize, ny as usize, values)),
         Some(Value::Doubles(values)) => Err(ParseError::malformed(format!(
             "GwyDataField data has {} values for {nx} × {ny}",
             values.len()

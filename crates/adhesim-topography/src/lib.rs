@@ -30,7 +30,7 @@ use std::path::Path;
 pub use bytes::MAX_POINTS;
 pub use error::TopographyError;
 pub use netcdf::{write_netcdf, NetcdfGrid};
-pub use process::{Resampled, ResampleMethod, Undersampling};
+pub use process::{ResampleMethod, Resampled, Undersampling};
 pub use units::length_unit_to_metres;
 pub use write_npz::{write_npz, ArrayData, NamedArray};
 
@@ -92,10 +92,7 @@ pub struct ReadOptions {
 /// (case-insensitive): `x3p`; `gwy`; `sur`; `txt`, `asc`, `dat`, `csv` (ASCII matrix); `xyz`;
 /// `npy`; `npz`. Spacing and units come from the file where the format records them, from
 /// `options` otherwise (an error names what is missing).
-pub fn read_topography(
-    path: impl AsRef<Path>,
-    options: &ReadOptions,
-) -> Result<Topography, TopographyError> {
+pub fn read_topography(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Topography, TopographyError> {
     let path = path.as_ref();
     let format = format_of(path)?;
     let bytes = std::fs::read(path).map_err(|source| TopographyError::Io {
@@ -142,11 +139,7 @@ fn format_of(path: &Path) -> Result<&'static str, TopographyError> {
 }
 
 /// Parses `bytes` as `format` (one of the names in [`Topography::format`]).
-fn read_topography_bytes(
-    bytes: &[u8],
-    format: &'static str,
-    options: &ReadOptions,
-) -> ParseResult<Topography> {
+fn read_topography_bytes(bytes: &[u8], format: &'static str, options: &ReadOptions) -> ParseResult<Topography> {
     let raw = match format {
         "x3p" => x3p::read(bytes)?,
         "gwy" => gwy::read(bytes, options)?,
@@ -266,12 +259,9 @@ pub(crate) fn spacing_option(options: &ReadOptions) -> ParseResult<(f64, f64)> {
 
 /// The caller's height unit (as factor to metres and name) for a format that records none.
 pub(crate) fn height_unit_option(options: &ReadOptions) -> ParseResult<(f64, String)> {
-    let unit = options
-        .height_unit
-        .as_deref()
-        .ok_or(ParseError::MissingOption {
-            what: "unit of the heights",
-            option: "height_unit",
-        })?;
+    let unit = options.height_unit.as_deref().ok_or(ParseError::MissingOption {
+        what: "unit of the heights",
+        option: "height_unit",
+    })?;
     Ok((units::parse_length_unit(unit)?, unit.to_string()))
 }

@@ -49,7 +49,8 @@ pub fn write_netcdf(
     global_attributes: &[(&str, &str)],
 ) -> Result<(), TopographyError> {
     let path = path.as_ref();
-    if grid.nx == 0 || grid.ny == 0 || !(grid.dx > 0.0 && grid.dy > 0.0) || !grid.dx.is_finite() || !grid.dy.is_finite() {
+    if grid.nx == 0 || grid.ny == 0 || !(grid.dx > 0.0 && grid.dy > 0.0) || !grid.dx.is_finite() || !grid.dy.is_finite()
+    {
         return Err(TopographyError::InvalidArgument {
             name: "NetCDF grid",
             value: format!("{grid:?}"),
@@ -61,8 +62,18 @@ pub fn write_netcdf(
     let mut dimensions: Vec<(String, usize)> = vec![("y".into(), grid.ny), ("x".into(), grid.nx)];
     let metres = vec![("units".to_string(), "m".to_string())];
     let mut variables = vec![
-        Variable { name: "x".into(), dims: vec![1], data: ArrayData::F64(&x), attributes: metres.clone() },
-        Variable { name: "y".into(), dims: vec![0], data: ArrayData::F64(&y), attributes: metres },
+        Variable {
+            name: "x".into(),
+            dims: vec![1],
+            data: ArrayData::F64(&x),
+            attributes: metres.clone(),
+        },
+        Variable {
+            name: "y".into(),
+            dims: vec![0],
+            data: ArrayData::F64(&y),
+            attributes: metres,
+        },
     ];
     for (index, array) in arrays.iter().enumerate() {
         array.validate(path)?;
@@ -90,10 +101,19 @@ pub fn write_netcdf(
         if let Some(unit) = array.unit {
             attributes.push(("units".to_string(), unit.to_string()));
         }
-        variables.push(Variable { name: array.name.to_string(), dims, data: array.data, attributes });
+        variables.push(Variable {
+            name: array.name.to_string(),
+            dims,
+            data: array.data,
+            attributes,
+        });
     }
     let bytes = encode(&dimensions, &variables, global_attributes);
-    let io_error = |source| TopographyError::Io { path: path.to_path_buf(), action: "writing", source };
+    let io_error = |source| TopographyError::Io {
+        path: path.to_path_buf(),
+        action: "writing",
+        source,
+    };
     let mut file = std::io::BufWriter::new(std::fs::File::create(path).map_err(io_error)?);
     file.write_all(&bytes).map_err(io_error)?;
     file.flush().map_err(io_error)
@@ -160,8 +180,18 @@ fn encode(dimensions: &[(String, usize)], variables: &[Variable<'_>], globals: &
             for &dim in &variable.dims {
                 put_u32(&mut out, dim as u32);
             }
-            put_attributes(&mut out, variable.attributes.iter().map(|(k, v)| (k.as_str(), v.as_str())));
-            put_u32(&mut out, if matches!(variable.data, ArrayData::F64(_)) { NC_DOUBLE } else { NC_BYTE });
+            put_attributes(
+                &mut out,
+                variable.attributes.iter().map(|(k, v)| (k.as_str(), v.as_str())),
+            );
+            put_u32(
+                &mut out,
+                if matches!(variable.data, ArrayData::F64(_)) {
+                    NC_DOUBLE
+                } else {
+                    NC_BYTE
+                },
+            );
             let vsize = padded_len(data_bytes(&variable.data));
             put_u32(&mut out, u32::try_from(vsize).unwrap_or(u32::MAX));
             if wide {

@@ -36,37 +36,26 @@ pub(crate) fn parse_npy(bytes: &[u8]) -> ParseResult<NpyArray> {
         v => return Err(ParseError::unsupported(format!("npy version {v}"))),
     };
     let header = reader.take(header_len, "header")?;
-    let header = std::str::from_utf8(header)
-        .map_err(|_| ParseError::malformed("header is not text"))?;
+    let header = std::str::from_utf8(header).map_err(|_| ParseError::malformed("header is not text"))?;
     let descr = dict_value(header, "descr")?;
     let descr = descr.trim_matches(|c| c == '\'' || c == '"').to_string();
     let fortran = match dict_value(header, "fortran_order")?.as_str() {
         "True" => true,
         "False" => false,
-        other => {
-            return Err(ParseError::malformed(format!(
-                "fortran_order is {other:?}"
-            )))
-        }
+        other => return Err(ParseError::malformed(format!("fortran_order is {other:?}"))),
     };
     let shape = parse_shape(&dict_value(header, "shape")?)?;
     let (scalar, endian) = parse_descr(&descr)?;
-    let count = shape.iter().try_fold(1usize, |acc, &n| {
-        acc.checked_mul(n).filter(|&c| c <= MAX_POINTS)
-    });
-    let count = count.ok_or_else(|| {
-        ParseError::malformed(format!("shape {shape:?} exceeds {MAX_POINTS} points"))
-    })?;
+    let count = shape
+        .iter()
+        .try_fold(1usize, |acc, &n| acc.checked_mul(n).filter(|&c| c <= MAX_POINTS));
+    let count = count.ok_or_else(|| ParseError::malformed(format!("shape {shape:?} exceeds {MAX_POINTS} points")))?;
     let data = reader.take(reader.remaining(), "data")?;
     let mut values = decode_values(data, count, scalar, endian)?;
     if fortran && shape.len() > 1 {
         values = fortran_to_c(&values, &shape);
     }
-    Ok(NpyArray {
-        shape,
-        values,
-        descr,
-    })
+    Ok(NpyArray { shape, values, descr })
 }
 
 /// Reorders a column-major array into row-major order.
@@ -247,23 +236,23 @@ pub(crate) fn read_npz_map(bytes: &[u8], options: &ReadOptions) -> ParseResult<R
     let members = npz_members(bytes)?;
     let names: Vec<String> = members.iter().map(|(n, _)| n.clone()).collect();
     let chosen = match &options.channel {
-        Some(requested) => members.iter().find(|(n, _)| n == requested).ok_or_else(|| {
-            ParseError::ChannelNotFound {
+        Some(requested) => members
+            .iter()
+            .find(|(n, _)| n == requested)
+            .ok_or_else(|| ParseError::ChannelNotFound {
                 requested: requested.clone(),
                 available: names.clone(),
-            }
-        })?,
+            })?,
         None => members
             .iter()
             .find(|(n, _)| n == "heights")
             .or(members.first())
             .ok_or_else(|| ParseError::malformed("the archive has no member"))?,
     };
-    read_npy_map(&chosen.1, &chosen.0, options)
-        .map_err(|e| match e {
-            ParseError::Malformed(what) => ParseError::Malformed(format!("member {}: {what}", chosen.0)),
-            other => other,
-        })
+    read_npy_map(&chosen.1, &chosen.0, options).map_err(|e| match e {
+        ParseError::Malformed(what) => ParseError::Malformed(format!("member {}: {what}", chosen.0)),
+        other => other,
+    })
 }
 
 #[cfg(test)]

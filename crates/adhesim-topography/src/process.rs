@@ -100,8 +100,7 @@ impl Topography {
             for ix in 0..self.nx {
                 let i = iy * self.nx + ix;
                 self.heights[i] = if valid(i) {
-                    self.heights[i]
-                        - (mean + slope_ix * (ix as f64 - cx) + slope_iy * (iy as f64 - cy))
+                    self.heights[i] - (mean + slope_ix * (ix as f64 - cx) + slope_iy * (iy as f64 - cy))
                 } else {
                     0.0
                 };
@@ -115,13 +114,7 @@ impl Topography {
 
     /// Resamples onto `nx × ny` points of spacing `dx × dy` (metres) starting at the first
     /// measured point, with [`ResampleMethod::Auto`].
-    pub fn resample_to(
-        &self,
-        nx: usize,
-        ny: usize,
-        dx: f64,
-        dy: f64,
-    ) -> Result<Resampled, TopographyError> {
+    pub fn resample_to(&self, nx: usize, ny: usize, dx: f64, dy: f64) -> Result<Resampled, TopographyError> {
         self.resample_with(nx, ny, dx, dy, ResampleMethod::Auto)
     }
 
@@ -164,16 +157,18 @@ impl Topography {
                 ),
             });
         }
-        let undersampling = (dx > self.dx * (1.0 + GRID_TOLERANCE)
-            || dy > self.dy * (1.0 + GRID_TOLERANCE))
-            .then_some(Undersampling {
+        let undersampling =
+            (dx > self.dx * (1.0 + GRID_TOLERANCE) || dy > self.dy * (1.0 + GRID_TOLERANCE)).then_some(Undersampling {
                 measured_dx: self.dx,
                 measured_dy: self.dy,
                 target_dx: dx,
                 target_dy: dy,
             });
         let heights = if periodic {
-            let (rx, ry) = (refined_count(self.nx, self.dx, dx)?, refined_count(self.ny, self.dy, dy)?);
+            let (rx, ry) = (
+                refined_count(self.nx, self.dx, dx)?,
+                refined_count(self.ny, self.dy, dy)?,
+            );
             let refined = spectral_upsample(&self.heights, self.nx, self.ny, rx, ry);
             let (sx, sy) = (extent_x / rx as f64, extent_y / ry as f64);
             sample_grid(&refined, rx, ry, sx, sy, true, nx, ny, dx, dy)
@@ -314,13 +309,7 @@ fn spectral_upsample(values: &[f64], nx: usize, ny: usize, rx: usize, ry: usize)
 }
 
 /// Upsamples each of `lines` contiguous lines of length `n` to length `m ≥ n`.
-fn upsample_lines(
-    values: &[f64],
-    n: usize,
-    lines: usize,
-    m: usize,
-    planner: &mut FftPlanner<f64>,
-) -> Vec<f64> {
+fn upsample_lines(values: &[f64], n: usize, lines: usize, m: usize, planner: &mut FftPlanner<f64>) -> Vec<f64> {
     let forward = planner.plan_fft_forward(n);
     let inverse = planner.plan_fft_inverse(m);
     let mut spectrum = vec![Complex::new(0.0, 0.0); n];
@@ -341,7 +330,7 @@ fn upsample_lines(
                 padded[m - k] = spectrum[n - k];
             }
         }
-        if n % 2 == 0 && n > 0 {
+        if n.is_multiple_of(2) && n > 0 {
             if m == n {
                 padded[half] = spectrum[half];
             } else {
@@ -372,8 +361,9 @@ fn solve3(mut m: [[f64; 3]; 3], mut rhs: [f64; 3]) -> [f64; 3] {
         for row in 0..3 {
             if row != col {
                 let factor = m[row][col] / m[col][col];
-                for c in 0..3 {
-                    m[row][c] -= factor * m[col][c];
+                let pivot_row = m[col];
+                for (value, p) in m[row].iter_mut().zip(pivot_row) {
+                    *value -= factor * p;
                 }
                 rhs[row] -= factor * rhs[col];
             }

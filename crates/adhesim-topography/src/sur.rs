@@ -21,7 +21,7 @@ use crate::RawMap;
 
 const HEADER_SIZE: usize = 512;
 
-fn field<'a>(header: &'a [u8], offset: usize, len: usize) -> &'a [u8] {
+fn field(header: &[u8], offset: usize, len: usize) -> &[u8] {
     &header[offset..offset + len]
 }
 
@@ -68,10 +68,10 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
     };
     let (nx, ny) = (i32_at(header, 108), i32_at(header, 112));
     let count = point_count(nx.into(), ny.into())?;
-    let comment_len = usize::try_from(i16_at(header, 334))
-        .map_err(|_| ParseError::malformed("negative comment size"))?;
-    let private_len = usize::try_from(i16_at(header, 336))
-        .map_err(|_| ParseError::malformed("negative private zone size"))?;
+    let comment_len =
+        usize::try_from(i16_at(header, 334)).map_err(|_| ParseError::malformed("negative comment size"))?;
+    let private_len =
+        usize::try_from(i16_at(header, 336)).map_err(|_| ParseError::malformed("negative private zone size"))?;
     let comment = decode_padded_text(reader.take(comment_len, "comment zone")?);
     reader.take(private_len, "private zone")?;
     let rest = reader.take(reader.remaining(), "data")?;
@@ -93,10 +93,7 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
     let (spacing_z, offset_z) = (f32_at(header, 128), f32_at(header, 474));
     let non_measured = (i16_at(header, 86) == 1).then(|| i64::from(i32_at(header, 100)) - 2);
     let valid = non_measured.map(|marker| raw.iter().map(|&r| r != marker as f64).collect());
-    let heights = raw
-        .iter()
-        .map(|&r| (r * spacing_z + offset_z) * z_factor)
-        .collect();
+    let heights = raw.iter().map(|&r| (r * spacing_z + offset_z) * z_factor).collect();
     let mut metadata = BTreeMap::new();
     metadata.insert("object name".to_string(), decode_padded_text(field(header, 20, 30)));
     metadata.insert("operator".to_string(), decode_padded_text(field(header, 50, 30)));

@@ -54,9 +54,7 @@ pub(crate) fn parse_length_unit(unit: &str) -> ParseResult<f64> {
 /// A value with its unit, such as `"5.000 µm"` or `"1.5e-6 m"`, in metres.
 pub(crate) fn parse_length_with_unit(text: &str) -> ParseResult<f64> {
     let text = text.trim();
-    let split = text
-        .find(|c: char| c.is_whitespace())
-        .unwrap_or_else(|| text.len());
+    let split = text.find(|c: char| c.is_whitespace()).unwrap_or(text.len());
     let (number, unit) = text.split_at(split);
     let value: f64 = number
         .parse()

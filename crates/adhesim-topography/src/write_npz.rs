@@ -77,14 +77,9 @@ impl<'a> NamedArray<'a> {
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
         if !name_ok {
-            return Err(invalid(
-                "names are non-empty ASCII letters, digits, '_' or '-'".into(),
-            ));
+            return Err(invalid("names are non-empty ASCII letters, digits, '_' or '-'".into()));
         }
-        let count = self
-            .shape
-            .iter()
-            .try_fold(1usize, |acc, &n| acc.checked_mul(n));
+        let count = self.shape.iter().try_fold(1usize, |acc, &n| acc.checked_mul(n));
         if count != Some(self.data.len()) {
             return Err(invalid(format!(
                 "shape {:?} does not hold {} values",
@@ -94,10 +89,7 @@ impl<'a> NamedArray<'a> {
         }
         if let ArrayData::F64(values) = self.data {
             if let Some(index) = values.iter().position(|v| !v.is_finite()) {
-                return Err(invalid(format!(
-                    "value {index} is {}, not finite",
-                    values[index]
-                )));
+                return Err(invalid(format!("value {index} is {}, not finite", values[index])));
             }
         }
         Ok(())
@@ -130,9 +122,7 @@ pub(crate) fn npy_bytes(array: &NamedArray<'_>) -> Vec<u8> {
     out.extend_from_slice(&(header.len() as u16).to_le_bytes());
     out.extend_from_slice(header.as_bytes());
     match array.data {
-        ArrayData::F64(values) => values
-            .iter()
-            .for_each(|v| out.extend_from_slice(&v.to_le_bytes())),
+        ArrayData::F64(values) => values.iter().for_each(|v| out.extend_from_slice(&v.to_le_bytes())),
         ArrayData::Bool(values) => out.extend(values.iter().map(|&b| u8::from(b))),
     }
     out

@@ -34,12 +34,9 @@ fn parse_main_xml(text: &str) -> ParseResult<MainXml> {
     let mut data_list = Vec::new();
     let mut current_text = String::new();
     loop {
-        let event = reader.read_event().map_err(|e| {
-            ParseError::malformed(format!(
-                "main.xml at byte {}: {e}",
-                reader.buffer_position()
-            ))
-        })?;
+        let event = reader
+            .read_event()
+            .map_err(|e| ParseError::malformed(format!("main.xml at byte {}: {e}", reader.buffer_position())))?;
         match event {
             Event::Start(start) => {
                 if stack.len() > 64 {
@@ -154,8 +151,7 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
         read_zip_member(&mut file, name)
     };
     let main = member("main.xml")?;
-    let main = std::str::from_utf8(&main)
-        .map_err(|_| ParseError::malformed("main.xml is not UTF-8"))?;
+    let main = std::str::from_utf8(&main).map_err(|_| ParseError::malformed("main.xml is not UTF-8"))?;
     let xml = parse_main_xml(main)?;
     let feature = xml.text("Record1/FeatureType")?;
     if feature != "SUR" {
@@ -198,7 +194,13 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
     let is_integer = matches!(cz.scalar, Some(Scalar::I16 | Scalar::I32));
     let heights = raw
         .iter()
-        .map(|&r| if is_integer { cz.offset + cz.increment * r } else { cz.offset + r })
+        .map(|&r| {
+            if is_integer {
+                cz.offset + cz.increment * r
+            } else {
+                cz.offset + r
+            }
+        })
         .collect();
     let mut metadata = BTreeMap::new();
     for (key, value) in &xml.leaves {
@@ -241,9 +243,9 @@ fn inline_data(xml: &MainXml, count: usize) -> ParseResult<(Vec<f64>, Option<Vec
                 valid.push(false);
             }
             Some(z) => {
-                let value = z.parse::<f64>().map_err(|_| {
-                    ParseError::malformed(format!("Datum {index} = {datum:?} is not a number"))
-                })?;
+                let value = z
+                    .parse::<f64>()
+                    .map_err(|_| ParseError::malformed(format!("Datum {index} = {datum:?} is not a number")))?;
                 raw.push(value);
                 valid.push(true);
             }

@@ -30,7 +30,8 @@ fn map(nx: usize, ny: usize, dx: f64, dy: f64, f: impl Fn(f64, f64) -> f64) -> T
 fn band_limited(x: f64, y: f64) -> f64 {
     let (lx, ly) = (16e-6, 6e-6);
     let tau = std::f64::consts::TAU;
-    1e-9 * ((tau * 2.0 * x / lx).cos() + 0.5 * (tau * 3.0 * y / ly).sin()
+    1e-9 * ((tau * 2.0 * x / lx).cos()
+        + 0.5 * (tau * 3.0 * y / ly).sin()
         + 0.3 * (tau * (5.0 * x / lx + 2.0 * y / ly)).cos()
         + 0.2 * (tau * 7.0 * x / lx).sin())
 }
@@ -41,12 +42,17 @@ fn detrend_removes_a_plane_exactly() {
     let (a, b, c) = plane.detrend_mean_plane();
     // Round-off of sums of ~60 terms of size 1e-7 m.
     assert!(plane.heights.iter().all(|h| h.abs() < 1e-20), "{:?}", plane.heights);
-    assert!((a - 3e-9).abs() < 1e-20 && (b - 0.01).abs() < 1e-14 && (c + 0.02).abs() < 1e-14, "{a} {b} {c}");
+    assert!(
+        (a - 3e-9).abs() < 1e-20 && (b - 0.01).abs() < 1e-14 && (c + 0.02).abs() < 1e-14,
+        "{a} {b} {c}"
+    );
 }
 
 #[test]
 fn detrended_residual_is_orthogonal_to_the_plane_and_ignores_invalid_points() {
-    let mut topo = map(11, 8, 1e-6, 1e-6, |x, y| 5e-9 + 0.003 * x + band_limited(x * 1.3, y * 0.7) + (x * y * 1e12).sin() * 1e-9);
+    let mut topo = map(11, 8, 1e-6, 1e-6, |x, y| {
+        5e-9 + 0.003 * x + band_limited(x * 1.3, y * 0.7) + (x * y * 1e12).sin() * 1e-9
+    });
     let mut mask = vec![true; 88];
     mask[17] = false;
     topo.heights[17] = 1.0; // an outlier of a metre at an invalid point
@@ -63,7 +69,10 @@ fn detrended_residual_is_orthogonal_to_the_plane_and_ignores_invalid_points() {
         scale += h.abs() * 10.0;
     }
     let tolerance = 1e-12 * scale;
-    assert!(s.abs() < tolerance && sx.abs() < tolerance && sy.abs() < tolerance, "{s} {sx} {sy} vs {tolerance}");
+    assert!(
+        s.abs() < tolerance && sx.abs() < tolerance && sy.abs() < tolerance,
+        "{s} {sx} {sy} vs {tolerance}"
+    );
     assert_eq!(topo.heights[17], 0.0);
 }
 
@@ -89,7 +98,13 @@ fn spectral_refinement_to_a_non_dividing_spacing_is_close() {
     let exact = map(30, 20, 0.37e-6, 0.23e-6, band_limited);
     // Bilinear between refined points of spacing ≤ the target: the error is below
     // h''·s²/8 ≈ (2π·7/16 µm)²·1e-9 m·(0.37 µm)²/8 ≈ 1.3e-10 m for the shortest component.
-    let worst = out.topography.heights.iter().zip(&exact.heights).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let worst = out
+        .topography
+        .heights
+        .iter()
+        .zip(&exact.heights)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
     assert!(worst < 1.3e-10, "worst {worst:e}");
 }
 
@@ -107,7 +122,9 @@ fn bilinear_reproduces_a_plane_and_reports_undersampling() {
         assert!((got - want).abs() < 1e-21, "{got:e} vs {want:e}");
     }
     // Forced bilinear onto a finer grid is exact for a plane too, off the measured points.
-    let out = fine.resample_with(23, 19, 0.43e-6, 0.41e-6, ResampleMethod::Bilinear).unwrap();
+    let out = fine
+        .resample_with(23, 19, 0.43e-6, 0.41e-6, ResampleMethod::Bilinear)
+        .unwrap();
     let exact = map(23, 19, 0.43e-6, 0.41e-6, plane);
     for (got, want) in out.topography.heights.iter().zip(&exact.heights) {
         assert!((got - want).abs() < 1e-21, "{got:e} vs {want:e}");

@@ -18,7 +18,12 @@ fn expected() -> Vec<f64> {
 
 fn check(map: &adhesim_topography::Topography, tolerance: f64, skip: &[usize]) {
     assert_eq!((map.nx, map.ny), (5, 4));
-    assert!((map.dx - 0.5e-6).abs() < 1e-18 && (map.dy - 0.25e-6).abs() < 1e-18, "{} {}", map.dx, map.dy);
+    assert!(
+        (map.dx - 0.5e-6).abs() < 1e-18 && (map.dy - 0.25e-6).abs() < 1e-18,
+        "{} {}",
+        map.dx,
+        map.dy
+    );
     for (i, (got, want)) in map.heights.iter().zip(expected()).enumerate() {
         if !skip.contains(&i) {
             assert!((got - want).abs() <= tolerance, "point {i}: {got:e} vs {want:e}");
@@ -31,7 +36,10 @@ fn x3pio_float64() {
     let map = read_topography(data("reference_float64.x3p"), &ReadOptions::default()).unwrap();
     check(&map, 1e-24, &[]);
     assert!(map.mask.is_none());
-    assert_eq!(map.metadata.get("Instrument/Manufacturer").map(String::as_str), Some("x3pio"));
+    assert_eq!(
+        map.metadata.get("Instrument/Manufacturer").map(String::as_str),
+        Some("x3pio")
+    );
 }
 
 #[test]
@@ -41,7 +49,10 @@ fn x3pio_int16_with_an_invalid_point() {
     // reading is exact to half an increment.
     check(&map, 0.5 * 8.24e-13, &[13]);
     let mask = map.mask.as_ref().unwrap();
-    assert!(!mask[13] && mask.iter().filter(|&&v| !v).count() == 1, "row 2, column 3 invalid");
+    assert!(
+        !mask[13] && mask.iter().filter(|&&v| !v).count() == 1,
+        "row 2, column 3 invalid"
+    );
 }
 
 #[test]
@@ -50,8 +61,14 @@ fn gwyfile_container_channels_and_mask() {
     assert_eq!(map.channel, "Topography");
     check(&map, 1e-24, &[7]);
     let mask = map.mask.as_ref().unwrap();
-    assert!(!mask[7] && mask.iter().filter(|&&v| !v).count() == 1, "row 1, column 2 masked");
-    let phase = ReadOptions { channel: Some("Phase".into()), ..Default::default() };
+    assert!(
+        !mask[7] && mask.iter().filter(|&&v| !v).count() == 1,
+        "row 1, column 2 masked"
+    );
+    let phase = ReadOptions {
+        channel: Some("Phase".into()),
+        ..Default::default()
+    };
     let err = read_topography(data("reference.gwy"), &phase).unwrap_err().to_string();
     assert!(err.contains("reference.gwy") && err.contains("\"deg\""), "{err}");
 }

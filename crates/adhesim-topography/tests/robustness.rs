@@ -18,7 +18,12 @@ fn options() -> ReadOptions {
 }
 
 fn reference(name: &str) -> Vec<u8> {
-    std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
+    std::fs::read(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data")
+            .join(name),
+    )
+    .unwrap()
 }
 
 /// One valid file of each format: `(file name, bytes, binary)`; a prefix of a binary file is
@@ -44,7 +49,12 @@ fn fixtures() -> Vec<(&'static str, Vec<u8>, bool)> {
         comment: b"c",
     };
     let sur_raw: Vec<i32> = (0..12).collect();
-    let npy = npy_raw("<f8", false, "(3, 4)", &heights.iter().flat_map(|h| h.to_le_bytes()).collect::<Vec<_>>());
+    let npy = npy_raw(
+        "<f8",
+        false,
+        "(3, 4)",
+        &heights.iter().flat_map(|h| h.to_le_bytes()).collect::<Vec<_>>(),
+    );
     vec![
         ("ref.x3p", reference("reference_int16_invalid.x3p"), true),
         ("ref.gwy", reference("reference.gwy"), true),
@@ -95,44 +105,76 @@ fn headers_claiming_huge_maps_are_errors_not_allocations() {
         ],
     );
     let gwy = gwy_file(&[("/0/data", GwyValue::Object(field))]);
-    let err = read_topography_from_bytes(&gwy, "huge.gwy", &options()).unwrap_err().to_string();
+    let err = read_topography_from_bytes(&gwy, "huge.gwy", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("huge.gwy") && err.contains("1000000 × 1000000"), "{err}");
 
     // A double array whose count claims 2^32 − 1 items.
-    let mut lying = gwy_file(&[("/0/data", GwyValue::Object(gwy_field(2, 2, 1.0, 1.0, "m", "m", &[0.0; 4])))]);
+    let mut lying = gwy_file(&[(
+        "/0/data",
+        GwyValue::Object(gwy_field(2, 2, 1.0, 1.0, "m", "m", &[0.0; 4])),
+    )]);
     let count_at = lying.windows(6).position(|w| w == b"data\0D").unwrap() + 6;
     lying[count_at..count_at + 4].copy_from_slice(&u32::MAX.to_le_bytes());
     let err = read_topography_from_bytes(&lying, "lying.gwy", &options()).unwrap_err();
     assert!(matches!(err, TopographyError::Malformed { .. }), "{err}");
 
     let mut sur = sur_bytes(
-        &SurHeader { nx: 2, ny: 2, bits: 32, dx: 1.0, dy: 1.0, spacing_z: 1.0, offset_z: 0.0, lateral_unit: b"m",
-            z_unit: b"m", zmin: 0, non_measured: false, compressed: false, comment: b"" },
+        &SurHeader {
+            nx: 2,
+            ny: 2,
+            bits: 32,
+            dx: 1.0,
+            dy: 1.0,
+            spacing_z: 1.0,
+            offset_z: 0.0,
+            lateral_unit: b"m",
+            z_unit: b"m",
+            zmin: 0,
+            non_measured: false,
+            compressed: false,
+            comment: b"",
+        },
         &[1, 2, 3, 4],
     );
     sur[108..112].copy_from_slice(&1_000_000i32.to_le_bytes());
     sur[112..116].copy_from_slice(&1_000_000i32.to_le_bytes());
-    let err = read_topography_from_bytes(&sur, "huge.sur", &options()).unwrap_err().to_string();
+    let err = read_topography_from_bytes(&sur, "huge.sur", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("huge.sur") && err.contains("exceeds"), "{err}");
 
     let npy = npy_raw("<f8", false, "(1000000, 1000000)", &[0; 32]);
-    let err = read_topography_from_bytes(&npy, "huge.npy", &options()).unwrap_err().to_string();
+    let err = read_topography_from_bytes(&npy, "huge.npy", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("huge.npy") && err.contains("exceeds"), "{err}");
 
     let x3p = x3p_bytes(2, 2, 1e-6, 1e-6, 'D', &[0.0; 4], 1.0, 0.0, None);
-    let patched = patch_zip_member(&x3p, "main.xml", |xml| xml.replace("<SizeX>2</SizeX>", "<SizeX>1000000000</SizeX>"));
-    let err = read_topography_from_bytes(&patched, "huge.x3p", &options()).unwrap_err().to_string();
+    let patched = patch_zip_member(&x3p, "main.xml", |xml| {
+        xml.replace("<SizeX>2</SizeX>", "<SizeX>1000000000</SizeX>")
+    });
+    let err = read_topography_from_bytes(&patched, "huge.x3p", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("huge.x3p") && err.contains("exceeds"), "{err}");
 }
 
 #[test]
 fn x3p_data_of_the_wrong_length_is_named() {
     let x3p = x3p_bytes(2, 2, 1e-6, 1e-6, 'D', &[0.0; 4], 1.0, 0.0, None);
-    let patched = patch_zip_member(&x3p, "main.xml", |xml| xml.replace("<SizeY>2</SizeY>", "<SizeY>3</SizeY>"));
-    let err = read_topography_from_bytes(&patched, "short.x3p", &options()).unwrap_err().to_string();
+    let patched = patch_zip_member(&x3p, "main.xml", |xml| {
+        xml.replace("<SizeY>2</SizeY>", "<SizeY>3</SizeY>")
+    });
+    let err = read_topography_from_bytes(&patched, "short.x3p", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("short.x3p") && err.contains("bindata/data.bin"), "{err}");
     let unclosed = patch_zip_member(&x3p, "main.xml", |xml| xml.replace("</p:ISO5436_2>", ""));
-    let err = read_topography_from_bytes(&unclosed, "cut.x3p", &options()).unwrap_err().to_string();
+    let err = read_topography_from_bytes(&unclosed, "cut.x3p", &options())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("cut.x3p") && err.contains("main.xml"), "{err}");
 }
 

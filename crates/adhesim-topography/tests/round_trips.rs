@@ -29,7 +29,11 @@ fn x3p_every_data_type_with_validity_mask() {
     let mut valid = vec![true; nx * ny];
     valid[12] = false;
     for data_type in ['I', 'L', 'F', 'D'] {
-        let (increment, offset) = if matches!(data_type, 'I' | 'L') { (1e-11, 2e-9) } else { (1.0, 0.0) };
+        let (increment, offset) = if matches!(data_type, 'I' | 'L') {
+            (1e-11, 2e-9)
+        } else {
+            (1.0, 0.0)
+        };
         let raw: Vec<f64> = heights
             .iter()
             .map(|h| match data_type {
@@ -50,7 +54,10 @@ fn x3p_every_data_type_with_validity_mask() {
             _ => 0.0,
         };
         for i in (0..nx * ny).filter(|&i| valid[i]) {
-            assert!((map.heights[i] - heights[i]).abs() <= tolerance, "{data_type} point {i}");
+            assert!(
+                (map.heights[i] - heights[i]).abs() <= tolerance,
+                "{data_type} point {i}"
+            );
         }
         assert_eq!(map.metadata.get("Creator").map(String::as_str), Some("adhesim tests"));
     }
@@ -70,9 +77,23 @@ fn x3p_float_nan_marks_invalid_points() {
 
 fn two_channel_gwy(nx: usize, ny: usize, heights_nm: &[f64], mask: Option<&[f64]>) -> Vec<u8> {
     let mut components = vec![
-        ("/0/data", GwyValue::Object(gwy_field(nx, ny, 1.0, 1.0, "V", "V", &vec![1.0; nx * ny]))),
+        (
+            "/0/data",
+            GwyValue::Object(gwy_field(nx, ny, 1.0, 1.0, "V", "V", &vec![1.0; nx * ny])),
+        ),
         ("/0/data/title", GwyValue::Text("Amplitude".into())),
-        ("/3/data", GwyValue::Object(gwy_field(nx, ny, nx as f64 * 0.2, ny as f64 * 0.1, "µm", "nm", heights_nm))),
+        (
+            "/3/data",
+            GwyValue::Object(gwy_field(
+                nx,
+                ny,
+                nx as f64 * 0.2,
+                ny as f64 * 0.1,
+                "µm",
+                "nm",
+                heights_nm,
+            )),
+        ),
         ("/3/data/title", GwyValue::Text("Height".into())),
     ];
     if let Some(mask) = mask {
@@ -89,7 +110,10 @@ fn gwy_channel_by_title_with_units_and_mask() {
     let mut mask = vec![0.0; nx * ny];
     mask[7] = 1.0;
     let bytes = two_channel_gwy(nx, ny, &heights_nm, Some(&mask));
-    let options = ReadOptions { channel: Some("Height".into()), ..Default::default() };
+    let options = ReadOptions {
+        channel: Some("Height".into()),
+        ..Default::default()
+    };
     let map = write_and_read("scan.gwy", &bytes, &options).unwrap();
     assert_eq!((map.nx, map.ny, map.channel.as_str()), (nx, ny, "Height"));
     assert!((map.dx - 0.2e-6).abs() < 1e-20 && (map.dy - 0.1e-6).abs() < 1e-20);
@@ -101,10 +125,19 @@ fn gwy_channel_by_title_with_units_and_mask() {
     }
     // The first channel is a voltage: reading it as a topography names the unit.
     let err = write_and_read("scan.gwy", &bytes, &ReadOptions::default()).unwrap_err();
-    assert!(matches!(err, TopographyError::UnknownUnit { ref unit, .. } if unit == "V"), "{err}");
-    let missing = ReadOptions { channel: Some("Phase".into()), ..Default::default() };
+    assert!(
+        matches!(err, TopographyError::UnknownUnit { ref unit, .. } if unit == "V"),
+        "{err}"
+    );
+    let missing = ReadOptions {
+        channel: Some("Phase".into()),
+        ..Default::default()
+    };
     let err = write_and_read("scan.gwy", &bytes, &missing).unwrap_err().to_string();
-    assert!(err.contains("scan.gwy") && err.contains("\"Phase\"") && err.contains("Amplitude, Height"), "{err}");
+    assert!(
+        err.contains("scan.gwy") && err.contains("\"Phase\"") && err.contains("Amplitude, Height"),
+        "{err}"
+    );
 }
 
 fn sur_header<'a>(bits: i16, compressed: bool, non_measured: bool) -> SurHeader<'a> {
@@ -136,7 +169,14 @@ fn sur_16_and_32_bit_plain_and_compressed_with_non_measured_points() {
         assert_eq!((map.nx, map.ny), (5, 3));
         // Spacings are float32 in the file: 0.5 and 0.25 are exact.
         assert_eq!((map.dx, map.dy), (0.5e-6, 0.25e-6));
-        assert_eq!((map.lateral_unit.as_str(), map.height_unit.as_str(), map.channel.as_str()), ("µm", "nm", "Height"));
+        assert_eq!(
+            (
+                map.lateral_unit.as_str(),
+                map.height_unit.as_str(),
+                map.channel.as_str()
+            ),
+            ("µm", "nm", "Height")
+        );
         assert_eq!(map.metadata.get("comment").map(String::as_str), Some("a comment"));
         let mask = map.mask.as_ref().unwrap();
         for (i, &r) in raw.iter().enumerate().filter(|&(i, _)| i != 4) {
@@ -176,13 +216,27 @@ fn ascii_matrix_with_spip_header() {
 fn bare_matrix_needs_spacing_and_unit_from_the_caller() {
     let text = "0.1, 0.2, 0.3\n0.4, 0.5, 0.6\n";
     let err = write_and_read("bare.csv", text.as_bytes(), &ReadOptions::default()).unwrap_err();
-    assert!(matches!(err, TopographyError::MissingOption { option: "spacing", .. }), "{err}");
-    let spacing_only = ReadOptions { spacing: Some((1e-6, 2e-6)), ..Default::default() };
+    assert!(
+        matches!(err, TopographyError::MissingOption { option: "spacing", .. }),
+        "{err}"
+    );
+    let spacing_only = ReadOptions {
+        spacing: Some((1e-6, 2e-6)),
+        ..Default::default()
+    };
     let err = write_and_read("bare.csv", text.as_bytes(), &spacing_only).unwrap_err();
-    assert!(err.to_string().contains("bare.csv") && err.to_string().contains("height_unit"), "{err}");
+    assert!(
+        err.to_string().contains("bare.csv") && err.to_string().contains("height_unit"),
+        "{err}"
+    );
     let map = write_and_read("bare.csv", text.as_bytes(), &with_units((1e-6, 2e-6), "um")).unwrap();
     assert_eq!((map.nx, map.ny, map.dx, map.dy), (3, 2, 1e-6, 2e-6));
-    assert_close(&map.heights, &[0.1e-6, 0.2e-6, 0.3e-6, 0.4e-6, 0.5e-6, 0.6e-6], 1e-20, "heights");
+    assert_close(
+        &map.heights,
+        &[0.1e-6, 0.2e-6, 0.3e-6, 0.4e-6, 0.5e-6, 0.6e-6],
+        1e-20,
+        "heights",
+    );
 }
 
 #[test]
@@ -193,7 +247,12 @@ fn xyz_points_in_any_order_on_a_regular_grid() {
     // Written y-major backwards, so the reader must place points by their coordinates.
     for i in (0..nx * ny).rev() {
         let (ix, iy) = (i % nx, i / nx);
-        lines.push(format!("{} {} {:e}", 3.0 + 0.5 * ix as f64, 0.25 * iy as f64, heights[i]));
+        lines.push(format!(
+            "{} {} {:e}",
+            3.0 + 0.5 * ix as f64,
+            0.25 * iy as f64,
+            heights[i]
+        ));
     }
     let map = write_and_read("pts.xyz", lines.join("\n").as_bytes(), &ReadOptions::default()).unwrap();
     assert_eq!((map.nx, map.ny), (nx, ny));
@@ -201,7 +260,16 @@ fn xyz_points_in_any_order_on_a_regular_grid() {
     assert_close(&map.heights, &heights, 1e-24, "heights");
     let bare = lines[2..].join("\n");
     let err = write_and_read("pts.xyz", bare.as_bytes(), &ReadOptions::default()).unwrap_err();
-    assert!(matches!(err, TopographyError::MissingOption { option: "lateral_unit", .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            TopographyError::MissingOption {
+                option: "lateral_unit",
+                ..
+            }
+        ),
+        "{err}"
+    );
 }
 
 #[test]
@@ -234,28 +302,50 @@ fn npy_dtypes_orders_and_byte_orders() {
             assert_close(&map.heights, &want, 1e-24, descr);
         }
     }
-    let err = write_and_read("h.npy", &npy_raw("<c16", false, "(1, 1)", &[0; 16]), &with_units((1.0, 1.0), "m"))
-        .unwrap_err();
+    let err = write_and_read(
+        "h.npy",
+        &npy_raw("<c16", false, "(1, 1)", &[0; 16]),
+        &with_units((1.0, 1.0), "m"),
+    )
+    .unwrap_err();
     assert!(err.to_string().contains("<c16"), "{err}");
 }
 
 #[test]
 fn npz_member_by_name() {
-    let a = npy_raw("<f8", false, "(1, 2)", &[1.0f64.to_le_bytes(), 2.0f64.to_le_bytes()].concat());
-    let b = npy_raw("<f8", false, "(2, 1)", &[3.0f64.to_le_bytes(), 4.0f64.to_le_bytes()].concat());
+    let a = npy_raw(
+        "<f8",
+        false,
+        "(1, 2)",
+        &[1.0f64.to_le_bytes(), 2.0f64.to_le_bytes()].concat(),
+    );
+    let b = npy_raw(
+        "<f8",
+        false,
+        "(2, 1)",
+        &[3.0f64.to_le_bytes(), 4.0f64.to_le_bytes()].concat(),
+    );
     let bytes = zip_archive(&[("first.npy", &a), ("second.npy", &b)]);
     let map = write_and_read("f.npz", &bytes, &with_units((1.0, 1.0), "m")).unwrap();
     assert_eq!((map.channel.as_str(), map.heights.clone()), ("first", vec![1.0, 2.0]));
-    let options = ReadOptions { channel: Some("second".into()), ..with_units((1.0, 1.0), "mm") };
+    let options = ReadOptions {
+        channel: Some("second".into()),
+        ..with_units((1.0, 1.0), "mm")
+    };
     let map = write_and_read("f.npz", &bytes, &options).unwrap();
     assert_eq!((map.nx, map.ny, map.heights.clone()), (1, 2, vec![3e-3, 4e-3]));
-    let options = ReadOptions { channel: Some("third".into()), ..with_units((1.0, 1.0), "m") };
+    let options = ReadOptions {
+        channel: Some("third".into()),
+        ..with_units((1.0, 1.0), "m")
+    };
     let err = write_and_read("f.npz", &bytes, &options).unwrap_err().to_string();
     assert!(err.contains("first, second"), "{err}");
 }
 
 #[test]
 fn unknown_extension_is_named() {
-    let err = write_and_read("map.bmp", b"", &ReadOptions::default()).unwrap_err().to_string();
+    let err = write_and_read("map.bmp", b"", &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("map.bmp") && err.contains("\"bmp\""), "{err}");
 }

@@ -4,7 +4,9 @@
 use std::path::Path;
 use std::process::Command;
 
-use adhesim_topography::{read_topography, write_netcdf, write_npz, NamedArray, NetcdfGrid, ReadOptions, TopographyError};
+use adhesim_topography::{
+    read_topography, write_netcdf, write_npz, NamedArray, NetcdfGrid, ReadOptions, TopographyError,
+};
 
 const NX: usize = 5;
 const NY: usize = 3;
@@ -38,19 +40,30 @@ fn npz_round_trip_through_the_reader() {
     write_fields_npz(&path);
     let (pressure, gap, contact) = fields();
     let read = |name: &str| {
-        let options = ReadOptions { channel: Some(name.into()), spacing: Some((1.0, 1.0)), height_unit: Some("m".into()), ..Default::default() };
+        let options = ReadOptions {
+            channel: Some(name.into()),
+            spacing: Some((1.0, 1.0)),
+            height_unit: Some("m".into()),
+            ..Default::default()
+        };
         read_topography(&path, &options).unwrap()
     };
     let p = read("pressure");
     assert_eq!((p.nx, p.ny, &p.heights), (NX, NY, &pressure));
     assert_eq!(read("gap").heights, gap);
     let c = read("contact");
-    assert_eq!(c.heights, contact.iter().map(|&b| f64::from(u8::from(b))).collect::<Vec<_>>());
+    assert_eq!(
+        c.heights,
+        contact.iter().map(|&b| f64::from(u8::from(b))).collect::<Vec<_>>()
+    );
     assert_eq!(c.metadata.get("dtype").map(String::as_str), Some("|b1"));
     // Every member is DEFLATE-compressed, as numpy.savez_compressed writes them.
     let mut archive = zip::ZipArchive::new(std::fs::File::open(&path).unwrap()).unwrap();
     for i in 0..archive.len() {
-        assert_eq!(archive.by_index(i).unwrap().compression(), zip::CompressionMethod::Deflated);
+        assert_eq!(
+            archive.by_index(i).unwrap().compression(),
+            zip::CompressionMethod::Deflated
+        );
     }
 }
 
@@ -58,22 +71,46 @@ fn npz_round_trip_through_the_reader() {
 fn writers_reject_bad_arrays_by_name() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.npz");
-    let err = write_npz(&path, &[NamedArray::f64("pressure", &[2, 2], &[0.0, f64::NAN, 0.0, 0.0])]).unwrap_err();
-    assert!(err.to_string().contains("pressure") && err.to_string().contains("NaN"), "{err}");
+    let err = write_npz(
+        &path,
+        &[NamedArray::f64("pressure", &[2, 2], &[0.0, f64::NAN, 0.0, 0.0])],
+    )
+    .unwrap_err();
+    assert!(
+        err.to_string().contains("pressure") && err.to_string().contains("NaN"),
+        "{err}"
+    );
     let err = write_npz(&path, &[NamedArray::f64("gap", &[2, 3], &[0.0; 4])]).unwrap_err();
-    assert!(matches!(err, TopographyError::InvalidArgument { .. }) && err.to_string().contains("gap"), "{err}");
+    assert!(
+        matches!(err, TopographyError::InvalidArgument { .. }) && err.to_string().contains("gap"),
+        "{err}"
+    );
     let twice = [NamedArray::f64("a", &[1], &[0.0]), NamedArray::f64("a", &[1], &[1.0])];
     assert!(write_npz(&path, &twice).is_err());
-    let grid = NetcdfGrid { nx: 1, ny: 1, dx: 1.0, dy: 1.0 };
-    assert!(write_netcdf(dir.path().join("x.nc"), &grid, &[NamedArray::f64("x", &[1, 1], &[0.0])], &[]).is_err());
+    let grid = NetcdfGrid {
+        nx: 1,
+        ny: 1,
+        dx: 1.0,
+        dy: 1.0,
+    };
+    assert!(write_netcdf(
+        dir.path().join("x.nc"),
+        &grid,
+        &[NamedArray::f64("x", &[1, 1], &[0.0])],
+        &[]
+    )
+    .is_err());
 }
 
 /// A NetCDF classic reader for the test: dimensions, variables (name, dimension ids,
 /// attributes, type, begin) per the specification's header grammar.
+/// A variable: name, dimension ids, attributes, type, begin offset.
+type NcVariable = (String, Vec<usize>, Vec<(String, String)>, u32, usize);
+
 struct Nc {
     dims: Vec<(String, usize)>,
     globals: Vec<(String, String)>,
-    vars: Vec<(String, Vec<usize>, Vec<(String, String)>, u32, usize)>,
+    vars: Vec<NcVariable>,
 }
 
 fn be_u32(b: &[u8], at: &mut usize) -> usize {
@@ -107,7 +144,9 @@ fn parse_nc(b: &[u8]) -> Nc {
     let mut at = 4;
     assert_eq!(be_u32(b, &mut at), 0, "numrecs");
     assert_eq!(be_u32(b, &mut at), 10);
-    let dims = (0..be_u32(b, &mut at)).map(|_| (name(b, &mut at), be_u32(b, &mut at))).collect();
+    let dims = (0..be_u32(b, &mut at))
+        .map(|_| (name(b, &mut at), be_u32(b, &mut at)))
+        .collect();
     let globals = attributes(b, &mut at);
     assert_eq!(be_u32(b, &mut at), 11);
     let vars = (0..be_u32(b, &mut at))
@@ -125,7 +164,9 @@ fn parse_nc(b: &[u8]) -> Nc {
 }
 
 fn doubles(b: &[u8], begin: usize, count: usize) -> Vec<f64> {
-    (0..count).map(|i| f64::from_be_bytes(b[begin + 8 * i..begin + 8 * i + 8].try_into().unwrap())).collect()
+    (0..count)
+        .map(|i| f64::from_be_bytes(b[begin + 8 * i..begin + 8 * i + 8].try_into().unwrap()))
+        .collect()
 }
 
 #[test]
@@ -134,7 +175,12 @@ fn netcdf_classic_layout_round_trip() {
     let path = dir.path().join("fields.nc");
     let (pressure, gap, contact) = fields();
     let shape = [NY, NX];
-    let grid = NetcdfGrid { nx: NX, ny: NY, dx: 2e-7, dy: 1e-7 };
+    let grid = NetcdfGrid {
+        nx: NX,
+        ny: NY,
+        dx: 2e-7,
+        dy: 1e-7,
+    };
     write_netcdf(
         &path,
         &grid,
@@ -149,13 +195,22 @@ fn netcdf_classic_layout_round_trip() {
     let bytes = std::fs::read(&path).unwrap();
     let nc = parse_nc(&bytes);
     assert_eq!(nc.dims, vec![("y".to_string(), NY), ("x".to_string(), NX)]);
-    assert_eq!(nc.globals, vec![("title".to_string(), "adhesim contact fields".to_string())]);
+    assert_eq!(
+        nc.globals,
+        vec![("title".to_string(), "adhesim contact fields".to_string())]
+    );
     let names: Vec<&str> = nc.vars.iter().map(|v| v.0.as_str()).collect();
     assert_eq!(names, ["x", "y", "pressure", "gap", "contact"]);
     let var = |n: &str| nc.vars.iter().find(|v| v.0 == n).unwrap();
-    assert_eq!(doubles(&bytes, var("x").4, NX), (0..NX).map(|i| i as f64 * 2e-7).collect::<Vec<_>>());
+    assert_eq!(
+        doubles(&bytes, var("x").4, NX),
+        (0..NX).map(|i| i as f64 * 2e-7).collect::<Vec<_>>()
+    );
     let p = var("pressure");
-    assert_eq!((p.1.clone(), p.3, p.2.clone()), (vec![0, 1], 6, vec![("units".to_string(), "Pa".to_string())]));
+    assert_eq!(
+        (p.1.clone(), p.3, p.2.clone()),
+        (vec![0, 1], 6, vec![("units".to_string(), "Pa".to_string())])
+    );
     assert_eq!(doubles(&bytes, p.4, NX * NY), pressure);
     assert_eq!(doubles(&bytes, var("gap").4, NX * NY), gap);
     let c = var("contact");
@@ -172,7 +227,10 @@ fn netcdf_classic_layout_round_trip() {
 #[test]
 fn numpy_loads_the_npz() {
     let python = std::env::var("ADHESIM_PYTHON").unwrap_or_else(|_| "python3".into());
-    let has_numpy = Command::new(&python).args(["-c", "import numpy"]).output().map(|o| o.status.success());
+    let has_numpy = Command::new(&python)
+        .args(["-c", "import numpy"])
+        .output()
+        .map(|o| o.status.success());
     if has_numpy.ok() != Some(true) {
         println!("skipped: {python} with numpy not found (set ADHESIM_PYTHON to a Python that has numpy)");
         return;
@@ -182,8 +240,18 @@ fn numpy_loads_the_npz() {
     write_fields_npz(&npz);
     let nc = dir.path().join("fields.nc");
     let (pressure, gap, contact) = fields();
-    write_netcdf(&nc, &NetcdfGrid { nx: NX, ny: NY, dx: 1e-7, dy: 1e-7 },
-        &[NamedArray::f64("gap", &[NY, NX], &gap).with_unit("m")], &[]).unwrap();
+    write_netcdf(
+        &nc,
+        &NetcdfGrid {
+            nx: NX,
+            ny: NY,
+            dx: 1e-7,
+            dy: 1e-7,
+        },
+        &[NamedArray::f64("gap", &[NY, NX], &gap).with_unit("m")],
+        &[],
+    )
+    .unwrap();
     let script = format!(
         r#"
 import sys, numpy as np
@@ -207,7 +275,13 @@ print("numpy loaded fields.npz")
 "#,
         contact = format!("{contact:?}").replace("true", "True").replace("false", "False"),
     );
-    let output = Command::new(&python).arg("-c").arg(script).arg(&npz).arg(&nc).output().unwrap();
+    let output = Command::new(&python)
+        .arg("-c")
+        .arg(script)
+        .arg(&npz)
+        .arg(&nc)
+        .output()
+        .unwrap();
     println!("{}", String::from_utf8_lossy(&output.stdout));
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
 }

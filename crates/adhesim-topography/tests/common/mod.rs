@@ -18,8 +18,7 @@ pub fn sample_heights(nx: usize, ny: usize) -> Vec<f64> {
 
 pub fn zip_archive(members: &[(&str, &[u8])]) -> Vec<u8> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    let options = zip::write::SimpleFileOptions::default()
-        .compression_method(zip::CompressionMethod::Deflated);
+    let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     for (name, bytes) in members {
         zip.start_file(*name, options).unwrap();
         zip.write_all(bytes).unwrap();
@@ -196,10 +195,13 @@ pub fn sur_bytes(h: &SurHeader<'_>, raw: &[i32]) -> Vec<u8> {
         }
     }
     let mut header = vec![0u8; 512];
-    let put = |header: &mut Vec<u8>, offset: usize, bytes: &[u8]| {
-        header[offset..offset + bytes.len()].copy_from_slice(bytes)
-    };
-    put(&mut header, 0, if h.compressed { b"DSCOMPRESSED" } else { b"DIGITAL SURF" });
+    let put =
+        |header: &mut Vec<u8>, offset: usize, bytes: &[u8]| header[offset..offset + bytes.len()].copy_from_slice(bytes);
+    put(
+        &mut header,
+        0,
+        if h.compressed { b"DSCOMPRESSED" } else { b"DIGITAL SURF" },
+    );
     put(&mut header, 14, &1i16.to_le_bytes());
     put(&mut header, 16, &1i16.to_le_bytes());
     put(&mut header, 18, &2i16.to_le_bytes());
@@ -260,6 +262,9 @@ pub fn npy_raw(descr: &str, fortran: bool, shape: &str, data: &[u8]) -> Vec<u8> 
 pub fn assert_close(got: &[f64], want: &[f64], tolerance: f64, what: &str) {
     assert_eq!(got.len(), want.len(), "{what}: lengths");
     for (i, (g, w)) in got.iter().zip(want).enumerate() {
-        assert!((g - w).abs() <= tolerance, "{what}[{i}]: got {g:e}, want {w:e} (tolerance {tolerance:e})");
+        assert!(
+            (g - w).abs() <= tolerance,
+            "{what}[{i}]: got {g:e}, want {w:e} (tolerance {tolerance:e})"
+        );
     }
 }
