@@ -6,7 +6,7 @@
 //! The axes `CX`, `CY`, `CZ` of `Record1/Axes` give `AxisType` (`I` incremental, `A` absolute),
 //! `DataType` (`I` int16, `L` int32, `F` float32, `D` float64), `Increment` and `Offset`; lengths
 //! are in metres. Points are stored x fastest, then y, little-endian;
-//! `z = Offset + Increment·raw` for integer types. The validity file holds one bit per point,
+//! `z = Offset + Increment·raw` for every type. The validity file holds one bit per point,
 //! least significant bit first, 1 = valid; float data may also mark invalid points with NaN.
 //! Data given inline as `Record3/DataList/Datum` text are read too. The MD5 checksums are not
 //! verified: the zip CRC-32 of each member already detects corrupted members.
@@ -191,17 +191,8 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
     } else {
         inline_data(&xml, count)?
     };
-    let is_integer = matches!(cz.scalar, Some(Scalar::I16 | Scalar::I32));
-    let heights = raw
-        .iter()
-        .map(|&r| {
-            if is_integer {
-                cz.offset + cz.increment * r
-            } else {
-                cz.offset + r
-            }
-        })
-        .collect();
+    // Every data type is scaled (x3pio does the same; float data usually carry increment 1).
+    let heights = raw.iter().map(|&r| cz.offset + cz.increment * r).collect();
     let mut metadata = BTreeMap::new();
     for (key, value) in &xml.leaves {
         if key.starts_with("Record2/") && !value.is_empty() {

@@ -29,16 +29,18 @@ fn x3p_every_data_type_with_validity_mask() {
     let mut valid = vec![true; nx * ny];
     valid[12] = false;
     for data_type in ['I', 'L', 'F', 'D'] {
-        let (increment, offset) = if matches!(data_type, 'I' | 'L') {
-            (1e-11, 2e-9)
-        } else {
-            (1.0, 0.0)
+        // Integers with an increment of 0.01 nm and an offset; float32 in nanometres (an
+        // increment of 1e-9 applies to floats too); float64 in metres.
+        let (increment, offset) = match data_type {
+            'I' | 'L' => (1e-11, 2e-9),
+            'F' => (1e-9, 0.0),
+            _ => (1.0, 0.0),
         };
         let raw: Vec<f64> = heights
             .iter()
             .map(|h| match data_type {
                 'I' | 'L' => ((h - offset) / increment).round(),
-                _ => *h,
+                _ => (h - offset) / increment,
             })
             .collect();
         let bytes = x3p_bytes(nx, ny, dx, dy, data_type, &raw, increment, offset, Some(&valid));

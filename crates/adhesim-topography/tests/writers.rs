@@ -221,7 +221,7 @@ fn netcdf_classic_layout_round_trip() {
     assert_eq!(bytes.len(), c.4 + 16);
 }
 
-/// numpy (and scipy's NetCDF reader, when present) load what we write. Skipped with a
+/// numpy (and scipy's NetCDF reader and xarray, when present) load what we write. Skipped with a
 /// printed reason when no Python with numpy is found (ADHESIM_PYTHON names the interpreter,
 /// `python3` otherwise).
 #[test]
@@ -271,6 +271,15 @@ else:
     assert np.array_equal(f.variables["gap"].data.ravel(), np.array({gap:?}))
     assert f.variables["gap"].units == b"m"
     print("scipy read the NetCDF file")
+try:
+    import xarray
+except ImportError:
+    print("xarray absent: not checked")
+else:
+    ds = xarray.open_dataset(sys.argv[2], engine="scipy")
+    assert ds["gap"].dims == ("y", "x") and ds["gap"].attrs["units"] == "m"
+    assert np.allclose(ds["x"].values, np.arange({NX}) * 1e-7, rtol=0, atol=0)
+    print("xarray opened the NetCDF file")
 print("numpy loaded fields.npz")
 "#,
         contact = format!("{contact:?}").replace("true", "True").replace("false", "False"),
