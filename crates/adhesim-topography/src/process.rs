@@ -63,8 +63,10 @@ const GRID_TOLERANCE: f64 = 1e-9;
 impl Topography {
     /// Subtracts the least-squares plane `a + b·x + c·y` fitted to the valid points and
     /// returns `(a, b, c)` (metres, and slopes). Invalid points are set to 0, the mean of the
-    /// detrended valid heights.
-    pub fn detrend_mean_plane(&mut self) -> (f64, f64, f64) {
+    /// detrended valid heights. A map inconsistent with its sizes (a hand-built
+    /// [`Topography`]) or without a finite valid point is an error.
+    pub fn detrend_mean_plane(&mut self) -> Result<(f64, f64, f64), TopographyError> {
+        self.check_consistent()?;
         let valid = |i: usize| self.mask.as_ref().is_none_or(|m| m[i]);
         // Centred coordinates keep the normal equations well conditioned.
         let (mut n, mut sx, mut sy) = (0.0, 0.0, 0.0);
@@ -109,7 +111,39 @@ impl Topography {
         let (b, c) = (slope_ix / self.dx, slope_iy / self.dy);
         // The plane in the map's own coordinates x = x_offset + ix·dx.
         let a = mean - slope_ix * cx - slope_iy * cy - b * self.x_offset - c * self.y_offset;
-        (a, b, c)
+        Ok((a, b, c))
+    }
+
+    /// Checks what the readers guarantee, for maps built by hand: sizes match the data,
+    /// positive spacings, finite heights, at least one valid point.
+    pub fn check_consistent(&self) -> Result<(), TopographyError> {
+        let count = self.nx.checked_mul(self.ny).filter(|&n| n > 0 && n <= MAX_POINTS);
+        let why = if count != Some(self.heights.len()) {
+            Some(format!(
+                "{} heights for {} × {} points",
+                self.heights.len(),
+                self.nx,
+                self.ny
+            ))
+        } else if self.mask.as_ref().is_some_and(|m| m.len() != self.heights.len()) {
+            Some("the mask and the heights differ in length".to_string())
+        } else if !(self.dx > 0.0 && self.dy > 0.0 && self.dx.is_finite() && self.dy.is_finite()) {
+            Some(format!("spacing {} × {} m is not positive", self.dx, self.dy))
+        } else if self.heights.iter().any(|h| !h.is_finite()) {
+            Some("a height is not finite".to_string())
+        } else if self.mask.as_ref().is_some_and(|m| !m.iter().any(|&v| v)) {
+            Some("no point is valid".to_string())
+        } else {
+            None
+        };
+        match why {
+            Some(why) => Err(TopographyError::InvalidArgument {
+                name: "topography",
+                value: format!("channel {:?}", self.channel),
+                why,
+            }),
+            None => Ok(()),
+        }
     }
 
     /// Resamples onto `nx × ny` points of spacing `dx × dy` (metres) starting at the first
@@ -129,6 +163,7 @@ impl Topography {
         dy: f64,
         method: ResampleMethod,
     ) -> Result<Resampled, TopographyError> {
+        self.check_consistent()?;
         check_target(nx, ny, dx, dy)?;
         let finer = dx < self.dx && dy < self.dy;
         let method = match method {

@@ -39,7 +39,7 @@ fn band_limited(x: f64, y: f64) -> f64 {
 #[test]
 fn detrend_removes_a_plane_exactly() {
     let mut plane = map(9, 7, 1e-6, 2e-6, |x, y| 3e-9 + 0.01 * x - 0.02 * y);
-    let (a, b, c) = plane.detrend_mean_plane();
+    let (a, b, c) = plane.detrend_mean_plane().unwrap();
     // Round-off of sums of ~60 terms of size 1e-7 m.
     assert!(plane.heights.iter().all(|h| h.abs() < 1e-20), "{:?}", plane.heights);
     assert!(
@@ -57,7 +57,7 @@ fn detrended_residual_is_orthogonal_to_the_plane_and_ignores_invalid_points() {
     mask[17] = false;
     topo.heights[17] = 1.0; // an outlier of a metre at an invalid point
     topo.mask = Some(mask.clone());
-    topo.detrend_mean_plane();
+    topo.detrend_mean_plane().unwrap();
     // Least squares: the residual of the valid points has zero sum and zero first moments
     // in x and y (the normal equations), to round-off relative to the sums of magnitudes
     // (1e-12 allows for the 3e-8 m plane subtracted from each point).
@@ -139,4 +139,16 @@ fn a_target_larger_than_the_measurement_is_an_error() {
     assert!(err.to_string().contains("more than the measurement"), "{err}");
     assert!(m.resample_to(10, 10, f64::NAN, 1e-6).is_err());
     assert!(m.resample_to(0, 10, 1e-6, 1e-6).is_err());
+    let mut broken = m.clone();
+    broken.heights.pop();
+    assert!(broken.resample_to(5, 5, 1e-6, 1e-6).is_err());
+    broken.heights.push(f64::NAN);
+    assert!(broken
+        .detrend_mean_plane()
+        .unwrap_err()
+        .to_string()
+        .contains("not finite"));
+    let mut all_masked = m.clone();
+    all_masked.mask = Some(vec![false; 100]);
+    assert!(all_masked.detrend_mean_plane().is_err());
 }
