@@ -133,8 +133,15 @@ fn axis(xml: &MainXml, name: &str) -> ParseResult<Axis> {
             "{name} axis type {axis_type:?}: only incremental (I) lateral axes are read"
         )));
     }
+    // A lateral axis without its increment has no spacing; a z axis without one stores
+    // metres (increment 1), as ISO 25178-72 readers take it.
+    let increment = if name == "CZ" {
+        xml.number_or(&format!("{base}/Increment"), 1.0)?
+    } else {
+        xml.number(&format!("{base}/Increment"))?
+    };
     Ok(Axis {
-        increment: xml.number_or(&format!("{base}/Increment"), 1.0)?,
+        increment,
         offset: xml.number_or(&format!("{base}/Offset"), 0.0)?,
         scalar,
     })

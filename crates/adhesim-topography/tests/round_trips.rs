@@ -351,3 +351,32 @@ fn unknown_extension_is_named() {
         .to_string();
     assert!(err.contains("map.bmp") && err.contains("\"bmp\""), "{err}");
 }
+
+#[test]
+fn x3p_inline_data_list_with_an_empty_datum() {
+    // ISO 25178-72 allows the points as Record3/DataList/Datum text instead of a binary file;
+    // an empty datum is an invalid point.
+    let xml = r#"<?xml version="1.0" encoding="UTF-8"?>
+<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2"><Record1><Revision>ISO5436 - 2000</Revision>
+<FeatureType>SUR</FeatureType><Axes>
+<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>2e-6</Increment><Offset>0</Offset></CX>
+<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>3e-6</Increment><Offset>0</Offset></CY>
+<CZ><AxisType>A</AxisType><DataType>D</DataType><Increment>1e-9</Increment><Offset>0</Offset></CZ>
+</Axes></Record1><Record3><MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>
+<DataList><Datum>1.5</Datum><Datum>2.5</Datum><Datum/><Datum>-4</Datum></DataList></Record3></p:ISO5436_2>"#;
+    let bytes = zip_archive(&[("main.xml", xml.as_bytes())]);
+    let map = write_and_read("inline.x3p", &bytes, &ReadOptions::default()).unwrap();
+    assert_eq!((map.nx, map.ny, map.dx, map.dy), (2, 2, 2e-6, 3e-6));
+    assert_eq!(map.mask, Some(vec![true, true, false, true]));
+    assert_close(
+        &[map.heights[0], map.heights[1], map.heights[3]],
+        &[1.5e-9, 2.5e-9, -4e-9],
+        1e-24,
+        "heights",
+    );
+    // Without the lateral increment the spacing is unknown: an error, not a default.
+    let no_increment = xml.replace("<Increment>2e-6</Increment>", "");
+    let bytes = zip_archive(&[("main.xml", no_increment.as_bytes())]);
+    let err = write_and_read("inline.x3p", &bytes, &ReadOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("Record1/Axes/CX/Increment"), "{err}");
+}
