@@ -201,20 +201,26 @@ pub(crate) fn npz_members(bytes: &[u8]) -> ParseResult<Vec<(String, Vec<u8>)>> {
             .name()
             .map_err(|e| ParseError::malformed(format!("zip member {index} name: {e}")))?
             .to_string();
-        let data = read_zip_member(&mut file, &name)?;
+        let data = read_zip_member(&mut file, &name, MAX_MEMBER_BYTES)?;
         members.push((name.trim_end_matches(".npy").to_string(), data));
     }
     Ok(members)
 }
 
-/// Reads one zip member, refusing more than its declared size or [`MAX_POINTS`] doubles
-/// (a zip bomb stops there).
-pub(crate) fn read_zip_member(file: &mut zip::read::ZipFile<'_, impl Read>, name: &str) -> ParseResult<Vec<u8>> {
-    let limit = (MAX_POINTS as u64) * 8 + 4096;
+/// The most bytes an npz member may hold: [`MAX_POINTS`] doubles and a header.
+pub(crate) const MAX_MEMBER_BYTES: u64 = (MAX_POINTS as u64) * 8 + 65536;
+
+/// Reads one zip member whose declared size is at most `limit`, and no more than that size
+/// (a zip bomb stops there, before inflating).
+pub(crate) fn read_zip_member(
+    file: &mut zip::read::ZipFile<'_, impl Read>,
+    name: &str,
+    limit: u64,
+) -> ParseResult<Vec<u8>> {
     let declared = file.size();
     if declared > limit {
         return Err(ParseError::malformed(format!(
-            "member {name} declares {declared} bytes, over the limit of {limit}"
+            "member {name} declares {declared} bytes, more than the {limit} it may hold"
         )));
     }
     let mut data = Vec::new();

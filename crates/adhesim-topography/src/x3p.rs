@@ -20,6 +20,10 @@ use crate::error::{ParseError, ParseResult};
 use crate::npy::read_zip_member;
 use crate::RawMap;
 
+/// Largest `main.xml` read (inline `DataList` data make it large; 256 MiB is millions of
+/// points).
+const MAX_XML_BYTES: u64 = 256 << 20;
+
 /// The text of the leaf elements of `main.xml`, keyed by their path of local names
 /// (`Record1/Axes/CX/Increment`), plus the `Datum` values of an inline data list.
 struct MainXml {
@@ -151,13 +155,14 @@ fn axis(xml: &MainXml, name: &str) -> ParseResult<Axis> {
 pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
     let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes))
         .map_err(|e| ParseError::malformed(format!("not a zip archive: {e}")))?;
-    let mut member = |name: &str| -> ParseResult<Vec<u8>> {
+    // Each member is read only up to the size the header implies.
+    let mut member = |name: &str, limit: u64| -> ParseResult<Vec<u8>> {
         let mut file = archive
             .by_name(name)
             .map_err(|e| ParseError::malformed(format!("member {name}: {e}")))?;
-        read_zip_member(&mut file, name)
+        read_zip_member(&mut file, name, limit)
     };
-    let main = member("main.xml")?;
+    let main = member("main.xml", MAX_XML_BYTES)?;
     let main = std::str::from_utf8(&main).map_err(|_| ParseError::malformed("main.xml is not UTF-8"))?;
     let xml = parse_main_xml(main)?;
     let feature = xml.text("Record1/FeatureType")?;
@@ -181,7 +186,8 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
         let scalar = cz
             .scalar
             .ok_or_else(|| ParseError::malformed("Record1/Axes/CZ has no DataType"))?;
-        let data = member(link)?;
+        let expected = count as u64 * scalar.size() as u64;
+        let data = member(link, expected)?;
         let needed = check_data_length(count, scalar, data.len(), link)?;
         if needed != data.len() {
             return Err(ParseError::malformed(format!(
@@ -191,7 +197,10 @@ pub(crate) fn read(bytes: &[u8]) -> ParseResult<RawMap> {
         }
         let raw = decode_values(&data, count, scalar, Endian::Little)?;
         let valid = match xml.leaves.get("Record3/DataLink/ValidPointsLink") {
-            Some(valid_link) => Some(unpack_valid_bits(&member(valid_link)?, count, valid_link)?),
+            Some(valid_link) => {
+                let bits = member(valid_link, count.div_ceil(8) as u64 + 4096)?;
+                Some(unpack_valid_bits(&bits, count, valid_link)?)
+            }
             None => None,
         };
         (raw, valid)

@@ -171,6 +171,16 @@ fn x3p_data_of_the_wrong_length_is_named() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("short.x3p") && err.contains("bindata/data.bin"), "{err}");
+    let long = patch_zip_member(&x3p, "main.xml", |xml| {
+        xml.replace("<SizeY>2</SizeY>", "<SizeY>1</SizeY>")
+    });
+    let err = read_topography_from_bytes(&long, "long.x3p", &options())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("long.x3p") && err.contains("bindata/data.bin declares 32 bytes"),
+        "{err}"
+    );
     let unclosed = patch_zip_member(&x3p, "main.xml", |xml| xml.replace("</p:ISO5436_2>", ""));
     let err = read_topography_from_bytes(&unclosed, "cut.x3p", &options())
         .unwrap_err()
