@@ -28,11 +28,11 @@ pub const RESULTS_REVISION: u32 = 2;
 
 pub mod analysis;
 pub mod elastic;
-pub mod experiment;
 pub mod geometry;
 pub mod grid;
 pub mod material;
 pub mod protocol;
+pub mod rng;
 pub mod solver;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};

@@ -1,7 +1,7 @@
 //! Contact masks: background flattening, thresholding and morphological cleaning.
 
-use super::image::check_size;
-use super::{invalid, ExperimentError, GrayImage, Roi};
+use crate::image::check_size;
+use crate::{invalid, ExperimentError, GrayImage, Roi};
 
 /// Binary contact mask, row-major, one byte per pixel (1 = contact).
 #[derive(Debug, Clone, PartialEq, Eq)]
