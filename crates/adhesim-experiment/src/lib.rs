@@ -91,6 +91,11 @@ pub enum ExperimentError {
     Degenerate(&'static str, &'static str),
 }
 
+/// The Rust examples of `docs/experiments.md` (the crate's page) run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/experiments.md")]
+struct ExperimentsPage;
+
 pub(crate) fn invalid(name: &'static str, requirement: &'static str, value: impl ToString) -> ExperimentError {
     ExperimentError::InvalidParameter {
         name,
