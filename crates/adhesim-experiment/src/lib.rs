@@ -31,19 +31,22 @@
 //! ```
 #![warn(missing_docs)]
 
+mod background;
 mod changes;
 pub mod fit;
 mod image;
 mod mask;
 mod measure;
 mod phases;
+mod segment;
 pub mod synthetic;
 
 pub use changes::{change_map, Change, ChangeMap};
 pub use image::{GrayImage, Roi};
-pub use mask::{BackgroundModel, ContactMask, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
+pub use mask::ContactMask;
 pub use measure::{measure, AreaMeasurement, IndenterTrack, Motion};
 pub use phases::{classify_phases, detect_jumps, Phase, PhaseParams};
+pub use segment::{BackgroundModel, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
 
 /// Errors of the experiment analysis.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
