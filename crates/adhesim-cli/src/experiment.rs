@@ -1,13 +1,13 @@
 //! `adhesim experiment`: analysis of filmed contact experiments, and `adhesim experiment synth`
-//! to generate a synthetic one. Numerics live in `adhesim::experiment`; this module reads
+//! to generate a synthetic one. Numerics live in `adhesim_experiment`; this module reads
 //! frames and logs, writes `frames.csv`, `changes/`, `plots/` and `summary.json`.
 
 mod plots;
 mod spec;
 
-use adhesim::experiment::fit::{friction_law_fit, jkr_work_of_adhesion, pinned_phase, power_law_fit};
-use adhesim::experiment::synthetic::SyntheticSpec;
-use adhesim::experiment::{
+use adhesim_experiment::fit::{fit_jkr_work_of_adhesion, friction_law_fit, pinned_phase, power_law_fit};
+use adhesim_experiment::synthetic::SyntheticSpec;
+use adhesim_experiment::{
     change_map, classify_phases, detect_jumps, measure, AreaMeasurement, BackgroundModel, Change, GrayImage,
     IndenterTrack, Phase, SegmentationParams, Segmenter,
 };
@@ -586,8 +586,8 @@ const CHANGE_MAP_MARGIN_PX: usize = 20;
 
 /// Bounding box [x0, x1) × [y0, y1) of the union of two masks, widened by `margin`.
 fn crop_box(
-    a: &adhesim::experiment::ContactMask,
-    b: &adhesim::experiment::ContactMask,
+    a: &adhesim_experiment::ContactMask,
+    b: &adhesim_experiment::ContactMask,
     margin: usize,
 ) -> (usize, usize, usize, usize) {
     let (w, h) = (a.width(), a.height());
@@ -692,12 +692,11 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
         .filter(|p| p.last > p.reversal && depth.iter().any(|d| d.is_finite() && *d != depth[p.reversal]));
     let (mut gamma_approach, mut gamma_pulloff) = (None, None);
     if let (Some(e), Some(r), Some(p)) = (settings.fits.contact_modulus, settings.fits.indenter_radius, pinned) {
-        gamma_approach = jkr_work_of_adhesion(&force[..=p.reversal], &radius[..=p.reversal], e, r)
-            .ok()
-            .map(|f| f.gamma);
-        gamma_pulloff = jkr_work_of_adhesion(&force[p.last + 1..], &radius[p.last + 1..], e, r)
-            .ok()
-            .map(|f| f.gamma);
+        // (contact radius, force) pairs of each branch; the spec has checked e, r > 0.
+        let branch =
+            |range: std::ops::Range<usize>| -> Vec<(f64, f64)> { range.map(|i| (radius[i], force[i])).collect() };
+        gamma_approach = fit_jkr_work_of_adhesion(&branch(0..p.reversal + 1), r, e).map(|f| f.work_of_adhesion);
+        gamma_pulloff = fit_jkr_work_of_adhesion(&branch(p.last + 1..force.len()), r, e).map(|f| f.work_of_adhesion);
     }
     let power_law = match &settings.fits.power_law {
         Some(pl) => {

@@ -1,5 +1,5 @@
 //! End-to-end tests of the `adhesim` binary: bad inputs fail cleanly with the key and value
-//! named, runs write the contract's files (shared/design/interface.md), every scenario in
+//! named, runs write the contract's files (docs/output.md), every scenario in
 //! `scenarios/` runs on a coarse grid, and `reference jkr` reproduces F_JKR.
 
 use std::path::{Path, PathBuf};

@@ -1,6 +1,12 @@
 //! One non-adhesive Hertz solve from a cold start, compared with the closed form.
 //!
 //! `cargo run --release -p adhesim --example hertz_indent -- [N]`
+//!
+//! R = E* = 1 on a free grid of side 1, depth (1/4)², so the contact radius is N/4 elements.
+//! Both non-adhesive solvers must give the Hertz force within 0.5 % (the bound of
+//! tests/validation_hertz.rs at 32 elements; measured 1.3e-4 at N = 64) and the contact
+//! radius within one element. `cargo test --release -p adhesim --example hertz_indent` runs
+//! it at N = 64 (a fraction of a second).
 use adhesim::analysis::reference::Hertz;
 use adhesim::{
     Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator, Grid, NestedActiveSet,
@@ -11,6 +17,11 @@ fn main() {
     let n: usize = std::env::args()
         .nth(1)
         .map_or(512, |a| a.parse().expect("N as a number"));
+    run(n);
+}
+
+/// Solves at N×N, prints and checks both solvers against Hertz.
+fn run(n: usize) {
     let grid = Grid::new(n, 1.0, Boundary::Free).expect("grid");
     let start = std::time::Instant::now();
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
@@ -34,6 +45,8 @@ fn main() {
         .solve(&mut operator, &heights, depth, &mut state)
         .expect("converged");
     let solve = start.elapsed().as_secs_f64();
+    let nested_force = report.force;
+    check("nested active set", &grid, &state, nested_force, &hertz, depth);
     println!(
         "nested active set: setup {nested_setup:.3} s (+ operator {setup:.3} s), solve {solve:.3} s, {} CG iterations, {} FFT pairs (+ {} on {} coarse levels), force error {:.2e}, contact radius {:.1} elements",
         report.iterations,
@@ -57,4 +70,30 @@ fn main() {
         state.contact_radius(&grid, (0.0, 0.0)) / grid.element_size(),
         hertz.contact_radius(depth) / grid.element_size()
     );
+    check("CCG", &grid, &state, report.force, &hertz, depth);
+    // Both are converged far below the discretisation error (CCG to a pressure change of
+    // 1e-10, the active set to a residual of 1e-10): the same force to 1e-7.
+    assert!((report.force / nested_force - 1.0).abs() < 1e-7, "CCG vs nested");
+}
+
+fn check(solver: &str, grid: &Grid, state: &ContactState, force: f64, hertz: &Hertz, depth: f64) {
+    let force_error = force / hertz.force(depth) - 1.0;
+    assert!(
+        force_error.abs() < 5e-3,
+        "{solver}: force error {force_error:.2e} > 0.5 %"
+    );
+    let radius_error = state.contact_radius(grid, (0.0, 0.0)) - hertz.contact_radius(depth);
+    assert!(
+        radius_error.abs() <= grid.element_size(),
+        "{solver}: contact radius off by {:.2} elements",
+        radius_error / grid.element_size()
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn hertz_at_n64() {
+        super::run(64);
+    }
 }

@@ -1,7 +1,7 @@
 //! Speed-ups of the adhesive step must not change results: carried bans during
 //! retraction, the preconditioner and the looser relative CG tolerance (1e-6 instead of
 //! 1e-9; the front criterion decides) give the same curves as the plain algorithm of the
-//! physics notes §2.4 (same contact sets; forces equal to the CG tolerance).
+//! docs/physics.md §2.4 (same contact sets; forces equal to the CG tolerance).
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,

@@ -2,7 +2,7 @@
 //! Roberts 1971), and the energy balance of the quasi-static cycle.
 //!
 //! The lattice detachment criterion converges to JKR at first order in Δ/a_JKR, from
-//! above: |F_min|/|F_JKR| ≈ 1 + 1.4Δ/a_JKR (physics notes §4). The default tests run at
+//! above: |F_min|/|F_JKR| ≈ 1 + 1.4Δ/a_JKR (docs/physics.md §4). The default tests run at
 //! a_JKR/Δ = 8 and 16 (seconds); the 3 % accuracy at a_JKR/Δ ≥ 60 is checked by the
 //! ignored tests (`cargo test --release -- --ignored`), which take minutes.
 

@@ -12,7 +12,7 @@ use std::ops::ControlFlow;
 
 /// Circular punch a = 16Δ: pull-off force within 5 % of Kendall's −√(8πa³E*γ0) (the
 /// prototype found 1.02 at this resolution; the staircase rim makes convergence
-/// non-monotone, physics notes §4).
+/// non-monotone, docs/physics.md §4).
 #[test]
 fn circular_punch_pull_off_is_kendall() {
     let n = 40;
@@ -109,7 +109,7 @@ fn elliptic_detachment(ratio: Option<f64>) -> DetachmentWatch {
 }
 
 /// Homogeneous adhesion: the stress intensity factor on the rim is largest at the ends
-/// of the major axis (physics notes §4), so the first released elements lie there
+/// of the major axis (docs/physics.md §4), so the first released elements lie there
 /// (|x| > 0.75a, |y| < 0.5b) and the contact stays one patch.
 #[test]
 fn elliptic_punch_detaches_at_major_axis_ends() {

@@ -1,6 +1,6 @@
 //! The experiment spec file (TOML) and its validation.
 
-use adhesim::experiment::{Correction, Motion, PhaseParams, Polarity, Roi, ThresholdRule};
+use adhesim_experiment::{Correction, Motion, PhaseParams, Polarity, Roi, ThresholdRule};
 use anyhow::{bail, Context, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};

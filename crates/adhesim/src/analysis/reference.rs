@@ -126,7 +126,7 @@ impl FlatPunchReference {
 }
 
 /// Tensile force magnitude at which detachment starts at the major-axis ends of a flat
-/// elliptic punch (semi-axes a ≥ b): 2√(2πE*γ)·b·√a (physics notes §4).
+/// elliptic punch (semi-axes a ≥ b): 2√(2πE*γ)·b·√a (docs/physics.md §4).
 pub fn elliptic_punch_onset_force(semi_axes: (f64, f64), contact_modulus: f64, work_of_adhesion: f64) -> f64 {
     let (a, b) = if semi_axes.0 >= semi_axes.1 {
         semi_axes
@@ -147,7 +147,7 @@ mod tests {
 
     #[test]
     fn jkr_normalised_values() {
-        // Normalised JKR (physics notes §4): F/|F_JKR| = Â³ − 2Â^{3/2}, d/|d_JKR| = 3Â² − 4Â^{1/2}.
+        // Normalised JKR (docs/physics.md §4): F/|F_JKR| = Â³ − 2Â^{3/2}, d/|d_JKR| = 3Â² − 4Â^{1/2}.
         let jkr = Jkr {
             radius: 1.3,
             contact_modulus: 2.1,

@@ -5,7 +5,7 @@ use crate::material::ElasticMaterial;
 use std::f64::consts::TAU;
 
 /// Number of aliases |m|, |n| ≤ this kept in the element-consistent kernel: reproduces
-/// Love's near-field coefficient differences to 1e-5 (physics notes §1b).
+/// Love's near-field coefficient differences to 1e-5 (docs/physics.md §1b).
 const ALIASES: i32 = 40;
 
 /// Fourier multiplier used by the periodic operator.
@@ -23,7 +23,7 @@ pub enum PeriodicKernel {
 ///
 /// Stanley & Kato (1997), "An FFT-based method for rough surface contact",
 /// *J. Tribol.* 119, 481–485, doi:10.1115/1.2833523; element-consistent aliasing as in
-/// the physics notes §1b. K̂(0) = 0: the mean displacement of a periodic half-space is
+/// docs/physics.md §1b. K̂(0) = 0: the mean displacement of a periodic half-space is
 /// undefined, so displacement control here controls the mean gap.
 pub struct PeriodicOperator {
     grid: Grid,

@@ -1,7 +1,7 @@
 use super::{Profile, Waviness, WavySphere};
 use crate::grid::Grid;
 
-/// How a rough rigid indenter moves over the half-space (physics notes §5; paper Sect. 3).
+/// How a rough rigid indenter moves over the half-space (docs/physics.md §5; paper Sect. 3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Kinematics {
     /// The whole profile translates over a smooth half-space. Translation invariance
@@ -86,7 +86,7 @@ impl TranslatingContact {
     }
 
     /// F_T = Δ²Σ_C p·∂z_moving/∂x: the force needed to keep moving in +x at fixed contact
-    /// set, equal to dΠ/dX (physics notes §5); positive resists the motion.
+    /// set, equal to dΠ/dX (docs/physics.md §5); positive resists the motion.
     pub fn tangential_force(&self, grid: &Grid, pressure: &[f64], offset: f64) -> f64 {
         let mut force = 0.0;
         for (k, &p) in pressure.iter().enumerate() {

@@ -1,6 +1,6 @@
 //! Change maps between two contact masks (paper Figs. 16, 18, 24).
 
-use super::{ContactMask, ExperimentError};
+use crate::{ContactMask, ExperimentError};
 
 /// State of one pixel in a change map.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,4 +1,11 @@
-//! Analysis of filmed contact experiments (paper Sects. 4–6, design notes physics.md §7).
+//! # adhesim-experiment
+//!
+//! Analysis of filmed contact experiments (Popov, Li, Lyashenko & Pohrt 2021, *Friction* 9,
+//! Sects. 4–6): a camera films the contact of a steel sphere through a transparent rubber
+//! layer while a log records forces and stage position. The user guide, the spec file and the
+//! outputs of `adhesim experiment` are in `docs/experiments.md` and
+//! `docs/interface-experiment.md` of the repository; the quantities are those of
+//! `docs/physics.md` §7.
 //!
 //! Pure numerics on in-memory frames; reading image files, plotting and the command line
 //! live in `adhesim-cli`. The pipeline per frame is
@@ -6,25 +13,40 @@
 //! cleaning, region of interest) → [`ContactMask`] → [`measure`] (area, centroid, width,
 //! front/rear split about the moving indenter centre line) and [`change_map`] (new and
 //! vanished contact against a reference). Sequence-level tools: [`detect_jumps`],
-//! [`classify_phases`] and the fits in [`fit`]. [`synthetic`] renders camera-like frames from
-//! a known contact sequence for testing.
+//! [`classify_phases`] and the fits in [`fit`] (the JKR fit is the library's
+//! [`adhesim::analysis::fit::fit_jkr_work_of_adhesion`]). [`synthetic`] renders camera-like
+//! frames from a known contact sequence for testing, with the library's seeded generator
+//! [`adhesim::rng::SplitMix64`].
 //!
 //! Pixel coordinates: column `x` (0 at the left), row `y` (0 at the top); a pixel's
 //! coordinates are those of its centre.
+//!
+//! ```
+//! use adhesim_experiment::{measure, ContactMask, Motion};
+//! // A 3×2-pixel contact in a 10×10 frame of 0.5 µm pixels, moving along +x with the
+//! // indenter centre line at column 4: area 6 · 0.25 µm², one column of two pixels ahead.
+//! let mask = ContactMask::from_fn(10, 10, |x, y| (3..6).contains(&x) && (4..6).contains(&y)).unwrap();
+//! let area = measure(&mask, 0.5, Some(([4.0, 5.0], Motion::PosX))).unwrap();
+//! assert_eq!((area.pixels, area.area, area.area_front), (6, 1.5, 0.5));
+//! ```
+#![warn(missing_docs)]
 
+mod background;
 mod changes;
 pub mod fit;
 mod image;
 mod mask;
 mod measure;
 mod phases;
+mod segment;
 pub mod synthetic;
 
 pub use changes::{change_map, Change, ChangeMap};
 pub use image::{GrayImage, Roi};
-pub use mask::{BackgroundModel, ContactMask, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
+pub use mask::ContactMask;
 pub use measure::{measure, AreaMeasurement, IndenterTrack, Motion};
 pub use phases::{classify_phases, detect_jumps, Phase, PhaseParams};
+pub use segment::{BackgroundModel, Correction, Polarity, SegmentationParams, Segmenter, ThresholdRule};
 
 /// Errors of the experiment analysis.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -71,6 +93,11 @@ pub enum ExperimentError {
     #[error("{0} fit is degenerate: {1}")]
     Degenerate(&'static str, &'static str),
 }
+
+/// The Rust examples of `docs/experiments.md` (the crate's page) run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/experiments.md")]
+struct ExperimentsPage;
 
 pub(crate) fn invalid(name: &'static str, requirement: &'static str, value: impl ToString) -> ExperimentError {
     ExperimentError::InvalidParameter {

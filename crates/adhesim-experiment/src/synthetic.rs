@@ -3,43 +3,9 @@
 //! independently (its noise stream is derived from the seed and the frame index), so frames
 //! can be produced in parallel.
 
-use super::{invalid, ContactMask, ExperimentError, GrayImage};
+use crate::{invalid, ContactMask, ExperimentError, GrayImage};
+use adhesim::rng::SplitMix64;
 use std::f64::consts::PI;
-
-/// SplitMix64 pseudo-random generator (Steele, Lea & Flood 2014): tiny, fast, good enough
-/// for test noise; not cryptographic.
-#[derive(Debug, Clone)]
-pub struct SplitMix64 {
-    state: u64,
-}
-
-impl SplitMix64 {
-    /// Generator seeded with `seed`.
-    pub fn new(seed: u64) -> Self {
-        Self { state: seed }
-    }
-
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Standard normal (Box–Muller, one value per call).
-    pub fn gaussian(&mut self) -> f64 {
-        let u1 = 1.0 - self.uniform(); // (0, 1]: keeps ln finite
-        let u2 = self.uniform();
-        (-2.0 * u1.ln()).sqrt() * (2.0 * PI * u2).cos()
-    }
-}
 
 /// A synthetic sliding experiment. The indenter centre moves at constant speed along +x;
 /// the contact (an egg shape: half-ellipses of semi-axes `front_radius_px` and
@@ -253,8 +219,8 @@ impl SyntheticSpec {
         let mut rng = SplitMix64::new(self.seed ^ 0x5EED_5B07);
         (0..self.spots)
             .map(|_| {
-                let angle = 2.0 * PI * rng.uniform();
-                let reach = 1.08 + 0.1 * rng.uniform();
+                let angle = 2.0 * PI * rng.next_f64();
+                let reach = 1.08 + 0.1 * rng.next_f64();
                 let (c, s) = (angle.cos(), angle.sin());
                 let semi = if c >= 0.0 {
                     self.front_radius_px
@@ -264,7 +230,7 @@ impl SyntheticSpec {
                 Spot {
                     dx: reach * semi * c,
                     dy: reach * self.half_width_px * s,
-                    radius: 3.0 + 5.0 * rng.uniform(),
+                    radius: 3.0 + 5.0 * rng.next_f64(),
                 }
             })
             .collect()
@@ -386,7 +352,7 @@ fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::{
+    use crate::{
         change_map, measure, BackgroundModel, Correction, Motion, Polarity, SegmentationParams, Segmenter,
         ThresholdRule,
     };

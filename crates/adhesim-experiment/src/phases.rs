@@ -1,7 +1,7 @@
 //! Jumps of the contact area and stick/slip phases (paper Figs. 9, 19, 25).
 
-use super::fit::linear_fit;
-use super::{invalid, ExperimentError};
+use crate::fit::linear_fit;
+use crate::{invalid, ExperimentError};
 
 /// Phase of a frame in a sliding experiment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,6 +1,6 @@
 //! Grey-level frames in memory.
 
-use super::{invalid, ExperimentError};
+use crate::{invalid, ExperimentError};
 
 /// A grey-level frame, row-major, values as fractions of the sensor's full scale (0..1 for
 /// frames converted from integer samples).

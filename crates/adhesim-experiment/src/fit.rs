@@ -1,7 +1,11 @@
 //! Fits of experiment series: straight lines, the power law of Eq. 15, the friction law of
-//! Eq. 18, the JKR work of adhesion on a branch of F(a), and the pinned phase after reversal.
+//! Eq. 18 and the pinned phase after reversal. The JKR work of adhesion on a branch of F(a)
+//! is the library's one fit, [`adhesim::analysis::fit::fit_jkr_work_of_adhesion`]
+//! (docs/physics.md §5), re-exported here so that all fits of an experiment are found in one
+//! place.
 
-use super::{invalid, ExperimentError};
+use crate::{invalid, ExperimentError};
+pub use adhesim::analysis::fit::{fit_jkr_work_of_adhesion, JkrFit};
 use std::f64::consts::PI;
 
 /// Least-squares straight line y = slope·x + intercept.
@@ -127,68 +131,6 @@ pub fn friction_law_fit(area: &[f64], mean_stress: &[f64]) -> Result<FrictionLaw
     })
 }
 
-/// Effective work of adhesion of one branch of F(a) under the JKR relation
-/// F = 4E*a³/(3R) − √(8πγE*a³).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JkrFit {
-    /// γ = s².
-    pub gamma: f64,
-    /// s = √γ as fitted; negative means the data lie above the Hertz curve (no adhesion).
-    pub sqrt_gamma: f64,
-    /// Root-mean-square force residual.
-    pub rms_residual: f64,
-    /// Points used (a > 0).
-    pub points: usize,
-}
-
-/// Least squares in s = √γ: with A_i = 4E*a_i³/(3R), B_i = √(8πE*a_i³),
-/// s = Σ B_i(A_i − F_i)/Σ B_i², γ = s² (physics.md §5). `force` > 0 is compressive.
-pub fn jkr_work_of_adhesion(
-    force: &[f64],
-    radius: &[f64],
-    contact_modulus: f64,
-    indenter_radius: f64,
-) -> Result<JkrFit, ExperimentError> {
-    if force.len() != radius.len() {
-        return Err(ExperimentError::LengthMismatch(force.len(), radius.len()));
-    }
-    if !(contact_modulus.is_finite() && contact_modulus > 0.0) {
-        return Err(invalid("fits.contact_modulus", "must be > 0", contact_modulus));
-    }
-    if !(indenter_radius.is_finite() && indenter_radius > 0.0) {
-        return Err(invalid("fits.indenter_radius", "must be > 0", indenter_radius));
-    }
-    let terms: Vec<(f64, f64, f64)> = force
-        .iter()
-        .zip(radius)
-        .filter(|(f, a)| f.is_finite() && a.is_finite() && **a > 0.0)
-        .map(|(&f, &a)| {
-            (
-                4.0 * contact_modulus * a.powi(3) / (3.0 * indenter_radius),
-                (8.0 * PI * contact_modulus * a.powi(3)).sqrt(),
-                f,
-            )
-        })
-        .collect();
-    if terms.is_empty() {
-        return Err(ExperimentError::TooFewPoints {
-            fit: "JKR",
-            needed: 1,
-            got: 0,
-        });
-    }
-    let num: f64 = terms.iter().map(|(a, b, f)| b * (a - f)).sum();
-    let den: f64 = terms.iter().map(|(_, b, _)| b * b).sum();
-    let s = num / den;
-    let rms = (terms.iter().map(|(a, b, f)| (a - s * b - f).powi(2)).sum::<f64>() / terms.len() as f64).sqrt();
-    Ok(JkrFit {
-        gamma: s * s,
-        sqrt_gamma: s,
-        rms_residual: rms,
-        points: terms.len(),
-    })
-}
-
 /// The pinned phase after the reversal of an indentation (paper Fig. 14a, phase II): the
 /// contact radius stays at its value at maximum depth while the force falls linearly.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -249,7 +191,7 @@ fn rename(e: ExperimentError, fit: &'static str) -> ExperimentError {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::synthetic::SplitMix64;
+    use adhesim::rng::SplitMix64;
 
     /// Eq. 15 with the paper's constants (c = 0.07292, n = 0.0883), t = 1…100 min, 1 %
     /// multiplicative Gaussian noise (seed 7): c and n recovered within 1 %. 40 points of 1 %
@@ -282,23 +224,6 @@ mod tests {
         let fit = friction_law_fit(&area, &tau).unwrap();
         assert!((fit.tau0 / tau0 - 1.0).abs() < 0.01, "{fit:?}");
         assert!((fit.q / q - 1.0).abs() < 0.01, "{fit:?}");
-    }
-
-    /// Exact JKR data on a branch give back γ to rounding (1e-9 relative).
-    #[test]
-    fn jkr_fit_exact_data() {
-        let (e, r, gamma) = (1.0e5, 0.022, 0.05);
-        let a: Vec<f64> = (1..30).map(|i| 1e-4 * i as f64).collect();
-        let f: Vec<f64> = a
-            .iter()
-            .map(|a| 4.0 * e * a.powi(3) / (3.0 * r) - (8.0 * PI * gamma * e * a.powi(3)).sqrt())
-            .collect();
-        let fit = jkr_work_of_adhesion(&f, &a, e, r).unwrap();
-        assert!((fit.gamma / gamma - 1.0).abs() < 1e-9, "{fit:?}");
-        assert!(jkr_work_of_adhesion(&f, &a, -1.0, r)
-            .unwrap_err()
-            .to_string()
-            .contains("fits.contact_modulus must be > 0, got -1"));
     }
 
     /// Radius constant for 5 samples after the reversal, then shrinking: the pinned phase

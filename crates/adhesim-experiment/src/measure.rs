@@ -1,6 +1,6 @@
 //! Per-frame measurements of a contact mask.
 
-use super::{invalid, ContactMask, ExperimentError};
+use crate::{invalid, ContactMask, ExperimentError};
 
 /// Direction of the indenter's motion in the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
