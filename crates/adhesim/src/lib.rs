@@ -34,6 +34,7 @@ pub mod grid;
 pub mod material;
 pub mod protocol;
 pub mod solver;
+pub mod surface;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
 pub use geometry::{
@@ -50,3 +51,4 @@ pub use solver::{
     AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, NestedActiveSet,
     NestedParams, SolveError, SolveReport, StepReport,
 };
+pub use surface::{Amplitudes, PsdBin, RmsTarget, RoughSurface, SelfAffine, SurfaceError, SurfaceStatistics};
