@@ -16,10 +16,12 @@
 //! C(q) = A/M⁴ · |H(q)|²,   h_rms² = (1/A)·Σ_q C(q),   h'_rms² = (1/A)·Σ_q |q|²·C(q),
 //!
 //! sums over every lattice wavevector. The prefactor C₀ is fixed by the requested rms
-//! through these discrete sums (not through the continuum integral
-//! h_rms² = (1/2π)∫q·C(q)dq, which SurfaceTopography uses and which ignores the plateau),
-//! so in [`Amplitudes::RandomPhase`] mode the periodic map has the requested rms height or
-//! rms slope to rounding.
+//! through these discrete sums, plateau included (not by the continuum integral
+//! h_rms² = (1/2π)∫q·C(q)dq), so in [`Amplitudes::RandomPhase`] mode the periodic map has
+//! the requested rms height or rms slope to rounding. SurfaceTopography 1.27 does the
+//! same, except that its self-conjugate modes ((N/2, 0), (0, N/2)) get half the power
+//! (the real part of a random phase) where adhesim keeps the modulus with a random sign;
+//! `bench/compare/surface_results.md` compares the two.
 //!
 //! ## Statistics
 //! [`rms_height`], [`rms_slope`], [`rms_curvature`] and [`isotropic_psd`] take any height
