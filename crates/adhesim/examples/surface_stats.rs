@@ -86,10 +86,18 @@ fn run() -> Result<(), String> {
         let psd = isotropic_psd(&grid, heights, bins).map_err(|e| e.to_string())?;
         psd_sum.resize(psd.len(), (0.0, 0.0, 0.0, 0));
         for (sum, bin) in psd_sum.iter_mut().zip(&psd) {
-            *sum = (bin.wavevector, sum.1 + bin.psd / seeds as f64, surface.target_psd(bin.wavevector), bin.modes);
+            *sum = (
+                bin.wavevector,
+                sum.1 + bin.psd / seeds as f64,
+                surface.target_psd(bin.wavevector),
+                bin.modes,
+            );
         }
         if seed == 0 {
-            first_psd = psd.iter().map(|b| format!("[{:e}, {:e}, {}]", b.wavevector, b.psd, b.modes)).collect();
+            first_psd = psd
+                .iter()
+                .map(|b| format!("[{:e}, {:e}, {}]", b.wavevector, b.psd, b.modes))
+                .collect();
             if let Some(path) = &npy {
                 write_npy(path, heights, n).map_err(|e| format!("{path}: {e}"))?;
             }

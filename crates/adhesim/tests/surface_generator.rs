@@ -52,7 +52,10 @@ fn random_phase_plateau_and_cutoff_are_exact() {
     let mut checked = (0, 0);
     for bin in &bins {
         if bin.edges.1 < surface.rolloff_wavevector {
-            assert!((bin.psd / plateau - 1.0).abs() < 1e-10, "plateau bin {bin:?} vs {plateau}");
+            assert!(
+                (bin.psd / plateau - 1.0).abs() < 1e-10,
+                "plateau bin {bin:?} vs {plateau}"
+            );
             checked.0 += 1;
         }
         if bin.edges.0 > surface.cutoff_wavevector * 1.001 {
@@ -113,7 +116,10 @@ fn filtered_psd_matches_the_target_per_decade() {
         let ratio = weighted / modes as f64;
         eprintln!("{name}: <C/C_target> = {ratio:.4} over {modes} modes");
         assert!(modes > 50, "{name}: only {modes} modes");
-        assert!((ratio - 1.0).abs() < tolerance, "{name}: <C/C_target> = {ratio:.4} over {modes} modes");
+        assert!(
+            (ratio - 1.0).abs() < tolerance,
+            "{name}: <C/C_target> = {ratio:.4} over {modes} modes"
+        );
     }
 }
 
@@ -156,7 +162,10 @@ fn free_grid_is_cut_from_a_periodic_patch() {
     let whole = spectrum.generate(&patch, 5).unwrap();
     assert_eq!(cut.patch_size, 2.0);
     for row in 0..50 {
-        assert_eq!(cut.heights[row * 50..(row + 1) * 50], whole.heights[row * 100..row * 100 + 50]);
+        assert_eq!(
+            cut.heights[row * 50..(row + 1) * 50],
+            whole.heights[row * 100..row * 100 + 50]
+        );
     }
     assert!((rms_height(&patch, &whole.heights).unwrap() / 2.0 - 1.0).abs() < 1e-10);
     let window_rms = rms_height(&free, &cut.heights).unwrap();
@@ -184,13 +193,37 @@ fn invalid_parameters_are_named_errors() {
         let e = error(SelfAffine::new(0.8, RmsTarget::Slope(bad)), &grid);
         assert!(matches!(e, SurfaceError::NotPositive { name: "rms_slope", .. }), "{e}");
         let e = error(base.with_rolloff_wavelength(bad), &grid);
-        assert!(matches!(e, SurfaceError::NotPositive { name: "rolloff_wavelength", .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                SurfaceError::NotPositive {
+                    name: "rolloff_wavelength",
+                    ..
+                }
+            ),
+            "{e}"
+        );
         let e = error(base.with_cutoff_wavelength(bad), &grid);
-        assert!(matches!(e, SurfaceError::NotPositive { name: "cutoff_wavelength", .. }), "{e}");
+        assert!(
+            matches!(
+                e,
+                SurfaceError::NotPositive {
+                    name: "cutoff_wavelength",
+                    ..
+                }
+            ),
+            "{e}"
+        );
     }
     // q_r ≥ q_s: roll-off wavelength not longer than the cutoff wavelength
     let e = error(base.with_rolloff_wavelength(0.1).with_cutoff_wavelength(0.1), &grid);
-    assert_eq!(e, SurfaceError::RolloffNotBelowCutoff { rolloff: 0.1, cutoff: 0.1 });
+    assert_eq!(
+        e,
+        SurfaceError::RolloffNotBelowCutoff {
+            rolloff: 0.1,
+            cutoff: 0.1
+        }
+    );
     assert!(e.to_string().contains("rolloff_wavelength (0.1)"), "{e}");
     // default cutoff (Nyquist, 2Δ = 1/16) against a roll-off inside the band edge
     assert!(matches!(

@@ -21,7 +21,9 @@
 //! differences 8 → 16 → 32 elements per λ_s halve, as first order requires).
 
 use adhesim::surface::rms_slope;
-use adhesim::{Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, Grid, HalfSpace, RmsTarget, SelfAffine};
+use adhesim::{
+    Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, Grid, HalfSpace, RmsTarget, SelfAffine,
+};
 
 const LOADS: [f64; 3] = [0.005, 0.01, 0.02];
 

@@ -81,7 +81,7 @@ impl RoughSurface {
     /// The target spectrum C(q) the surface was drawn from.
     pub fn target_psd(&self, wavevector: f64) -> f64 {
         let exponent = -2.0 - 2.0 * self.hurst;
-        if !(wavevector > 0.0) || wavevector > self.cutoff_wavevector * (1.0 + 1e-12) {
+        if wavevector.is_nan() || wavevector <= 0.0 || wavevector > self.cutoff_wavevector * (1.0 + 1e-12) {
             0.0
         } else {
             self.prefactor * wavevector.max(self.rolloff_wavevector).powf(exponent)
@@ -213,7 +213,11 @@ impl SelfAffine {
         let exponent = -2.0 - 2.0 * self.hurst;
         // Shape s(k) = C(q)/C₀ in patch index units (the 2π/L factors go into C₀ below).
         let shape = |row: usize, column: usize| -> f64 {
-            let ky = if row <= m / 2 { row as f64 } else { row as f64 - m as f64 };
+            let ky = if row <= m / 2 {
+                row as f64
+            } else {
+                row as f64 - m as f64
+            };
             let k = (ky * ky + (column * column) as f64).sqrt();
             if k == 0.0 || k > plan.cutoff * (1.0 + 1e-12) {
                 0.0
@@ -226,7 +230,11 @@ impl SelfAffine {
         let weight = |column: usize| if column == 0 || 2 * column == m { 1.0 } else { 2.0 };
         let (mut sum, mut sum_k2) = (0.0, 0.0);
         for row in 0..m {
-            let ky = if row <= m / 2 { row as f64 } else { row as f64 - m as f64 };
+            let ky = if row <= m / 2 {
+                row as f64
+            } else {
+                row as f64 - m as f64
+            };
             for column in 0..columns {
                 let value = weight(column) * shape(row, column);
                 sum += value;
@@ -303,7 +311,7 @@ struct Plan {
 fn enforce_hermitian(spectrum: &mut [Complex<f64>], m: usize, amplitudes: Amplitudes) {
     let columns = m / 2 + 1;
     let mut self_conjugate_columns = vec![0];
-    if m % 2 == 0 {
+    if m.is_multiple_of(2) {
         self_conjugate_columns.push(m / 2);
     }
     for &column in &self_conjugate_columns {
@@ -311,7 +319,7 @@ fn enforce_hermitian(spectrum: &mut [Complex<f64>], m: usize, amplitudes: Amplit
             spectrum[(m - row) * columns + column] = spectrum[row * columns + column].conj();
         }
         let mut rows = vec![0];
-        if m % 2 == 0 {
+        if m.is_multiple_of(2) {
             rows.push(m / 2);
         }
         for row in rows {
@@ -348,7 +356,7 @@ fn inverse_transform(spectrum: &mut [Complex<f64>], m: usize) -> Vec<f64> {
         let input = &mut spectrum[row * columns..(row + 1) * columns];
         // After the column pass these modes are real up to rounding; c2r needs them real.
         input[0].im = 0.0;
-        if m % 2 == 0 {
+        if m.is_multiple_of(2) {
             input[columns - 1].im = 0.0;
         }
         row_fft

@@ -112,7 +112,23 @@ mod tests {
 
     #[test]
     fn logarithm_matches_std_to_rounding() {
-        for &x in &[1e-300, 1e-10, 0.1, 0.5, 0.7071, 1.0, 1.4142, 2.0, 3.5, 1e10, 5e-324] {
+        use std::f64::consts::{FRAC_1_SQRT_2, SQRT_2};
+        // both sides of the √2 fold of the mantissa, subnormals, extremes
+        let samples = [
+            1e-300,
+            1e-10,
+            0.1,
+            0.5,
+            FRAC_1_SQRT_2,
+            1.0,
+            SQRT_2,
+            SQRT_2 * (1.0 + 1e-15),
+            2.0,
+            3.5,
+            1e10,
+            5e-324,
+        ];
+        for &x in &samples {
             let (mine, reference) = (ln(x), x.ln());
             assert!(
                 (mine - reference).abs() <= 4.0 * f64::EPSILON * reference.abs().max(1.0),

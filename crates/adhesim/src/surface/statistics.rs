@@ -164,7 +164,11 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
     let log_span = (highest / lowest).ln().max(f64::MIN_POSITIVE);
     let mut sums = vec![(0.0, 0.0, 0usize); bins];
     for row in 0..n {
-        let ky = if row <= n / 2 { row as f64 } else { row as f64 - n as f64 };
+        let ky = if row <= n / 2 {
+            row as f64
+        } else {
+            row as f64 - n as f64
+        };
         for column in 0..columns {
             let k = (ky * ky + (column * column) as f64).sqrt();
             if k < lowest * (1.0 - 1e-12) || k > highest * (1.0 + 1e-12) {
@@ -204,7 +208,11 @@ fn spectral_moment(grid: &Grid, heights: &[f64], order: i32) -> f64 {
     let wavenumber = TAU / grid.size();
     let mut sum = 0.0;
     for row in 0..n {
-        let ky = if row <= n / 2 { row as f64 } else { row as f64 - n as f64 };
+        let ky = if row <= n / 2 {
+            row as f64
+        } else {
+            row as f64 - n as f64
+        };
         for column in 0..columns {
             let multiplicity = if column == 0 || 2 * column == n { 1.0 } else { 2.0 };
             let q2 = wavenumber * wavenumber * (ky * ky + (column * column) as f64);
@@ -224,7 +232,11 @@ fn forward_transform(heights: &[f64], n: usize) -> Vec<Complex<f64>> {
     for row in 0..n {
         input.copy_from_slice(&heights[row * n..(row + 1) * n]);
         row_fft
-            .process_with_scratch(&mut input, &mut spectrum[row * columns..(row + 1) * columns], &mut scratch)
+            .process_with_scratch(
+                &mut input,
+                &mut spectrum[row * columns..(row + 1) * columns],
+                &mut scratch,
+            )
             .expect("buffer lengths match the plan");
     }
     let column_fft = FftPlanner::<f64>::new().plan_fft_forward(n);
@@ -268,13 +280,20 @@ mod tests {
             };
             expect(stats.rms_height, amplitude / 2f64.sqrt(), "height");
             expect(stats.rms_slope, amplitude * q / 2f64.sqrt(), "slope");
-            expect(stats.rms_curvature, amplitude * q * q / (2.0 * 2f64.sqrt()), "curvature");
+            expect(
+                stats.rms_curvature,
+                amplitude * q * q / (2.0 * 2f64.sqrt()),
+                "curvature",
+            );
             // forward differences: 2 sin(qΔ/2)/Δ exactly on the periodic grid
             let delta = grid.element_size();
             let difference = rms_slope_finite_differences(&grid, &heights).unwrap();
             let exact = amplitude * 2.0 * (q * delta / 2.0).sin() / delta / 2f64.sqrt();
             let tolerance = if boundary == Boundary::Periodic { 1e-12 } else { 0.02 };
-            assert!((difference / exact - 1.0).abs() < tolerance, "{boundary:?}: {difference} vs {exact}");
+            assert!(
+                (difference / exact - 1.0).abs() < tolerance,
+                "{boundary:?}: {difference} vs {exact}"
+            );
         }
     }
 
