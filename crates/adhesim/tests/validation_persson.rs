@@ -147,9 +147,9 @@ fn area_grows_linearly_with_load_persson() {
 }
 
 /// The full study, `cargo test --release -p adhesim --test validation_persson -- --ignored
-/// --nocapture` (3.4 min wall on the shared 2-core machine, load ≈ 10): a broader band (q_s = 64·2π/L, N = 512/256) and the
-/// band of the default test resolved twice as finely (N = 512/256, 16 elements per λ_s),
-/// 8 seeds each.
+/// --nocapture` (3.4 min wall on the shared 2-core machine, load ≈ 10): a broader band
+/// (q_s = 64·2π/L, N = 512/256) and the band of the default test resolved twice as finely
+/// (N = 512/256, 16 elements per λ_s), 8 seeds each.
 #[test]
 #[ignore]
 fn area_grows_linearly_with_load_persson_full() {
