@@ -224,7 +224,7 @@ def main():
         "SurfaceTopography as a periodic and as a non-periodic topography. Non-periodic rms",
         "slope: adhesim averages (∂h/∂x)² over its N(N−1) x-pairs and (∂h/∂y)² over its",
         "N(N−1) y-pairs, SurfaceTopography both over the common (N−1)² block: the last",
-        "row/column differs (1e-4). Periodic rms curvature: adhesim's is spectral",
+        "row/column differs (up to 3e-4). Periodic rms curvature: adhesim's is spectral",
         "(|q|²/2 per mode), SurfaceTopography's the 5-point Laplacian, which sees",
         "4 sin²(qΔ/2)/Δ² instead of q²: equal for the 8Δ cutoff to 2 %, not for spectra",
         "reaching the Nyquist wavevector.",

@@ -314,6 +314,27 @@ mod tests {
         assert!((holder.psd * holder.modes as f64 / total - 1.0).abs() < 1e-12);
     }
 
+    /// On a free grid the Hann window keeps the total power (⟨w²⟩ = 1: Σ_q C = A·h_rms²
+    /// to the window's edge effects, here 1 %) and keeps the peak within one bin of the
+    /// mode (the Hann main lobe spans ±2 modes; a 4.5-period wave is not periodic on the
+    /// window, its power lands on k = 4 and 5).
+    #[test]
+    fn free_grid_psd_is_windowed() {
+        let (n, size, amplitude) = (64, 1.0, 0.5);
+        let grid = Grid::new(n, size, Boundary::Free).unwrap();
+        let q = TAU * 4.5 / size;
+        let heights: Vec<f64> = (0..grid.len())
+            .map(|i| amplitude * (q * grid.centre(i).0).sin())
+            .collect();
+        let bins = isotropic_psd(&grid, &heights, 12).unwrap();
+        let total: f64 = bins.iter().map(|b| b.psd * b.modes as f64).sum::<f64>() / (size * size);
+        let variance = rms_height(&grid, &heights).unwrap().powi(2);
+        assert!((total / variance - 1.0).abs() < 0.01, "{total} vs {variance}");
+        let peak = bins.iter().max_by(|a, b| a.psd.total_cmp(&b.psd)).unwrap();
+        let width = peak.edges.1 / peak.edges.0;
+        assert!(peak.edges.0 <= q * width && q < peak.edges.1 * width, "{peak:?}");
+    }
+
     #[test]
     fn bad_maps_are_named_errors() {
         let grid = Grid::new(4, 1.0, Boundary::Free).unwrap();
