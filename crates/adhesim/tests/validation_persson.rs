@@ -2,11 +2,11 @@
 //! surface at small loads: A/A0 = κ·p̄/(E*·h'_rms).
 //!
 //! Persson (2001), "Theory of rubber friction and contact mechanics", *J. Chem. Phys.* 115,
-//! 3840, doi:10.1063/1.1388626, gives κ = √(8/π) ≈ 1.6; boundary-element and molecular
-//! studies find κ ≈ 1.8–2.3, larger for narrow spectra (Hyun, Pei, Molinari & Robbins
-//! (2004), *Phys. Rev. E* 70, 026117; Campañá & Müser (2007), *EPL* 77, 38005; Yastrebov,
-//! Anciaux & Molinari (2017), *J. Mech. Phys. Solids* 107, 469). docs/validation.md §9
-//! reports the numbers.
+//! 3840, doi:10.1063/1.1388626, gives κ = √(8/π) ≈ 1.6; finite-element, boundary-element
+//! and molecular studies find larger values, up to ≈ 2.2–2.3 (Hyun, Pei, Molinari & Robbins
+//! (2004), *Phys. Rev. E* 70, 026117; Campañá & Müser (2007), *EPL* 77, 38005), depending
+//! on the breadth of the spectrum (Yastrebov, Anciaux & Molinari (2017), *J. Mech. Phys.
+//! Solids* 107, 469). docs/validation.md §9 reports the numbers.
 //!
 //! Setting: H = 0.8, random-phase amplitudes (the requested h'_rms exactly), roll-off at
 //! q_r = 4·2π/L (a plateau of ~50 modes: enough independent long-wavelength hills for the
