@@ -89,7 +89,9 @@ impl RoughSurface {
     }
 
     /// The heights as an indenter profile of the grid's spacing (shifted so that the
-    /// lowest height is zero, as [`Topography::new`] does).
+    /// lowest height is zero, as [`Topography::new`] does). An indenter touches first where
+    /// its height is lowest, i.e. at the valleys of h: negate the heights to press the
+    /// peaks (for a Gaussian surface both are statistically the same).
     pub fn to_topography(&self) -> Result<Topography, GeometryError> {
         let n = self.grid.n();
         Topography::new(self.heights.clone(), n, n, self.grid.element_size())
