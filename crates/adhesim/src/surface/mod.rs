@@ -25,7 +25,7 @@
 //!
 //! ## Statistics
 //! [`rms_height`], [`rms_slope`], [`rms_curvature`] and [`isotropic_psd`] take any height
-//! map on a [`Grid`]: spectral derivatives (Parseval sums over the map's spectrum) on a
+//! map on a [`Grid`](crate::Grid): spectral derivatives (Parseval sums over the map's spectrum) on a
 //! periodic grid, finite differences on a free one (see each function).
 
 mod generator;
