@@ -38,8 +38,8 @@ pub mod surface;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
 pub use geometry::{
-    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, Sphere, Topography, TranslatingContact, Waviness,
-    WavySphere,
+    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,
+    TranslatingContact, Waviness, WavySphere,
 };
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};

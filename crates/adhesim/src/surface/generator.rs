@@ -1,6 +1,6 @@
 use super::random::Xoshiro256;
 use super::{positive, SurfaceError};
-use crate::geometry::{GeometryError, Topography};
+use crate::geometry::{GeometryError, RoughBase, RoughProfile, Topography};
 use crate::grid::{Boundary, Grid};
 use num_complex::Complex;
 use realfft::RealFftPlanner;
@@ -91,10 +91,20 @@ impl RoughSurface {
     /// The heights as an indenter profile of the grid's spacing (shifted so that the
     /// lowest height is zero, as [`Topography::new`] does). An indenter touches first where
     /// its height is lowest, i.e. at the valleys of h: negate the heights to press the
-    /// peaks (for a Gaussian surface both are statistically the same).
+    /// peaks (for a Gaussian surface both are statistically the same). A `Topography` is
+    /// centred on the middle of its samples, half an element off the grid's element
+    /// centres on an even grid, so on the grid it was drawn on it interpolates between
+    /// samples: to press the surface onto that grid use [`Self::to_rough_profile`].
     pub fn to_topography(&self) -> Result<Topography, GeometryError> {
         let n = self.grid.n();
         Topography::new(self.heights.clone(), n, n, self.grid.element_size())
+    }
+
+    /// The surface on a base shape, peaks towards the half-space (`rough_flat` with
+    /// [`RoughBase::Flat`], `rough_sphere` with [`RoughBase::Sphere`]), sampled exactly at
+    /// the element centres of the grid it was drawn on: see [`RoughProfile`].
+    pub fn to_rough_profile(&self, base: RoughBase) -> Result<RoughProfile, GeometryError> {
+        RoughProfile::new(base, self.heights.clone(), &self.grid)
     }
 }
 
