@@ -52,6 +52,16 @@ fn heights_are_base_minus_roughness_shifted_to_first_contact() {
             // the analytic height at an element centre is the same sample
             let (x, y) = grid.centre(777);
             assert!((profile.height(x, y) - heights[777]).abs() <= 1e-15 * scale);
+            // a sideways offset (sub-element and beyond the map's edge): the indexed
+            // lattice lookup agrees with the analytic height (rounding of offset/Δ only)
+            let offset = (0.3 * grid.element_size(), -1.7 * grid.element_size());
+            let mut moved = vec![0.0; grid.len()];
+            profile.fill_heights(&grid, offset, &mut moved);
+            for (k, &z) in moved.iter().enumerate() {
+                let (x, y) = grid.centre(k);
+                let analytic = profile.height(x - offset.0, y - offset.1);
+                assert!((z - analytic).abs() <= 1e-12 * scale, "element {k}: {z} vs {analytic}");
+            }
             if base == RoughBase::Flat {
                 // rough_flat: first contact at the highest asperity
                 let highest = roughness.iter().copied().fold(f64::NEG_INFINITY, f64::max);

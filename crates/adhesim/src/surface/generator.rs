@@ -94,7 +94,8 @@ impl RoughSurface {
     /// peaks (for a Gaussian surface both are statistically the same). A `Topography` is
     /// centred on the middle of its samples, half an element off the grid's element
     /// centres on an even grid, so on the grid it was drawn on it interpolates between
-    /// samples: to press the surface onto that grid use [`Self::to_rough_profile`].
+    /// samples and leaves the first row and column off the map (height +∞): to press the
+    /// surface onto that grid use [`Self::to_rough_profile`].
     pub fn to_topography(&self) -> Result<Topography, GeometryError> {
         let n = self.grid.n();
         Topography::new(self.heights.clone(), n, n, self.grid.element_size())
