@@ -65,11 +65,12 @@ pub mod material;
 pub mod protocol;
 pub mod rng;
 pub mod solver;
+pub mod surface;
 
 pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
 pub use geometry::{
-    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, Sphere, Topography, TranslatingContact, Waviness,
-    WavySphere,
+    EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,
+    TranslatingContact, Waviness, WavySphere,
 };
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
@@ -81,3 +82,4 @@ pub use solver::{
     AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, ContactState, Control, Detachment, NestedActiveSet,
     NestedParams, SolveError, SolveReport, StepReport,
 };
+pub use surface::{Amplitudes, PsdBin, RmsTarget, RoughSurface, SelfAffine, SurfaceError, SurfaceStatistics};

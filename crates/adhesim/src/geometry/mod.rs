@@ -9,6 +9,7 @@
 
 mod elliptic_punch;
 mod flat_punch;
+mod rough;
 mod sphere;
 mod topography;
 mod translating;
@@ -17,6 +18,7 @@ mod wavy_sphere;
 
 pub use elliptic_punch::EllipticPunch;
 pub use flat_punch::FlatPunch;
+pub use rough::{RoughBase, RoughProfile};
 pub use sphere::Sphere;
 pub use topography::Topography;
 pub use translating::{Kinematics, TranslatingContact};
@@ -125,6 +127,8 @@ pub enum Indenter {
     EllipticPunch(EllipticPunch),
     /// Measured or generated height map.
     Topography(Topography),
+    /// A plane or paraboloid carrying a roughness map (`rough_flat`, `rough_sphere`).
+    Rough(RoughProfile),
 }
 
 impl Indenter {
@@ -135,6 +139,7 @@ impl Indenter {
             Self::FlatPunch(p) => p,
             Self::EllipticPunch(p) => p,
             Self::Topography(p) => p,
+            Self::Rough(p) => p,
         }
     }
 }
