@@ -1,6 +1,6 @@
 //! The adhesive solver and its quasi-static step API.
 
-use crate::convert::{finite, read_field, read_vector, solve_error, value_error};
+use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
 use crate::objects::{ContactState, HalfSpace};
 use crate::solvers::{adhesive_params, step_columns, step_report, StepReport};
 use adhesim::WorkOfAdhesion;
@@ -95,10 +95,18 @@ impl AdhesiveSolver {
             (op.grid, op.material)
         };
         let gamma = if let Ok(value) = work_of_adhesion.extract::<f64>() {
-            WorkOfAdhesion::Uniform(value)
+            WorkOfAdhesion::Uniform(non_negative("work_of_adhesion", value)?)
         } else {
             let mut map = Vec::new();
             read_field(work_of_adhesion, "work_of_adhesion", grid.n(), false, &mut map)?;
+            if let Some(k) = map.iter().position(|&gamma| gamma < 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "work_of_adhesion[{}, {}] must be >= 0, got {}",
+                    k / grid.n(),
+                    k % grid.n(),
+                    map[k]
+                )));
+            }
             WorkOfAdhesion::Map(map)
         };
         let per_element = gamma.on_grid(&grid).map_err(value_error)?;
