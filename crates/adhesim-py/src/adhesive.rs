@@ -47,9 +47,7 @@ impl AdhesiveSolver {
         let mut guard = state.try_borrow_mut()?;
         let (solver, heights) = (&mut self.inner, &self.heights);
         let (op, st) = (&mut operator.inner, &mut guard.inner);
-        let report = py
-            .detach(|| solver.step(op, heights, depth, st))
-            .map_err(solve_error)?;
+        let report = py.detach(|| solver.step(op, heights, depth, st)).map_err(solve_error)?;
         guard.record(&self.heights, depth);
         Ok(step_report(depth, &report, &guard.inner))
     }

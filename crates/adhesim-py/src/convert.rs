@@ -1,9 +1,7 @@
 //! Checked conversions between Python values and the library's types, and the mapping of
 //! library errors to Python exceptions. Every message names the argument and its value.
 
-use numpy::{
-    dtype, PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
-};
+use numpy::{dtype, PyArray1, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -22,7 +20,9 @@ pub fn solve_error(error: adhesim::SolveError) -> PyErr {
         E::SizeMismatch { .. } | E::InvalidLoad(_) | E::PeriodicUnsupported { .. } => {
             PyValueError::new_err(error.to_string())
         }
-        E::NotConverged { .. } | E::TooManyRounds { .. } | E::NonFinite { .. } => SolveError::new_err(error.to_string()),
+        E::NotConverged { .. } | E::TooManyRounds { .. } | E::NonFinite { .. } => {
+            SolveError::new_err(error.to_string())
+        }
     }
 }
 
@@ -36,7 +36,9 @@ pub fn positive(name: &str, value: f64) -> PyResult<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(PyValueError::new_err(format!("{name} must be finite and > 0, got {value}")))
+        Err(PyValueError::new_err(format!(
+            "{name} must be finite and > 0, got {value}"
+        )))
     }
 }
 
@@ -45,7 +47,9 @@ pub fn non_negative(name: &str, value: f64) -> PyResult<f64> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(PyValueError::new_err(format!("{name} must be finite and >= 0, got {value}")))
+        Err(PyValueError::new_err(format!(
+            "{name} must be finite and >= 0, got {value}"
+        )))
     }
 }
 
@@ -63,7 +67,9 @@ pub fn finite(name: &str, value: f64) -> PyResult<f64> {
 pub fn count(name: &str, value: i64, minimum: usize) -> PyResult<usize> {
     match usize::try_from(value) {
         Ok(v) if v >= minimum => Ok(v),
-        _ => Err(PyValueError::new_err(format!("{name} must be an integer >= {minimum}, got {value}"))),
+        _ => Err(PyValueError::new_err(format!(
+            "{name} must be an integer >= {minimum}, got {value}"
+        ))),
     }
 }
 
@@ -99,7 +105,9 @@ pub fn read_field(
         )));
     }
     let array = value.cast::<PyArray2<f64>>()?;
-    let readonly = array.try_readonly().map_err(|e| PyValueError::new_err(format!("{name}: {e}")))?;
+    let readonly = array
+        .try_readonly()
+        .map_err(|e| PyValueError::new_err(format!("{name}: {e}")))?;
     buffer.clear();
     buffer.extend(readonly.as_array().iter().copied());
     if let Some(k) = buffer
@@ -122,7 +130,11 @@ pub fn read_field(
 }
 
 /// A row-major field as a new `(n, n)` numpy array.
-pub fn field<'py, T: numpy::Element + Copy>(py: Python<'py>, values: &[T], n: usize) -> PyResult<Bound<'py, PyArray2<T>>> {
+pub fn field<'py, T: numpy::Element + Copy>(
+    py: Python<'py>,
+    values: &[T],
+    n: usize,
+) -> PyResult<Bound<'py, PyArray2<T>>> {
     PyArray1::from_slice(py, values).reshape([n, n])
 }
 
@@ -142,6 +154,8 @@ pub fn read_vector(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
         )));
     }
     let array = value.cast::<PyArray1<f64>>()?;
-    let readonly = array.try_readonly().map_err(|e| PyValueError::new_err(format!("{name}: {e}")))?;
+    let readonly = array
+        .try_readonly()
+        .map_err(|e| PyValueError::new_err(format!("{name}: {e}")))?;
     Ok(readonly.as_array().iter().copied().collect())
 }

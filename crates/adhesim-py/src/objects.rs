@@ -125,8 +125,7 @@ impl Material {
     #[staticmethod]
     fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> PyResult<Self> {
         Ok(Self {
-            inner: adhesim::ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio)
-                .map_err(value_error)?,
+            inner: adhesim::ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(value_error)?,
         })
     }
 

@@ -29,7 +29,10 @@ fn jkr(radius: f64, contact_modulus: f64, work_of_adhesion: f64) -> PyResult<Jkr
 
 fn finite_all(name: &str, values: &[f64]) -> PyResult<()> {
     match values.iter().position(|v| !v.is_finite()) {
-        Some(k) => Err(PyValueError::new_err(format!("{name}[{k}] must be finite, got {}", values[k]))),
+        Some(k) => Err(PyValueError::new_err(format!(
+            "{name}[{k}] must be finite, got {}",
+            values[k]
+        ))),
         None => Ok(()),
     }
 }
@@ -128,7 +131,11 @@ pub fn _flat_punch(radius: f64, contact_modulus: f64, work_of_adhesion: f64) -> 
         contact_modulus: positive("contact_modulus", contact_modulus)?,
     };
     let gamma = non_negative("work_of_adhesion", work_of_adhesion)?;
-    Ok((model.stiffness(), model.kendall_force(gamma), model.kendall_depth(gamma)))
+    Ok((
+        model.stiffness(),
+        model.kendall_force(gamma),
+        model.kendall_depth(gamma),
+    ))
 }
 
 /// Johnson parameter α = √(2λγ/(π²h²E*)) of a wavy surface (Johnson 1995; Popov et al.
@@ -136,7 +143,12 @@ pub fn _flat_punch(radius: f64, contact_modulus: f64, work_of_adhesion: f64) -> 
 /// modulus E* > 0. Dimensionless; α > 1 (about) means the waviness is flattened by
 /// adhesion.
 #[pyfunction]
-pub fn johnson_parameter(wavelength: f64, amplitude: f64, work_of_adhesion: f64, contact_modulus: f64) -> PyResult<f64> {
+pub fn johnson_parameter(
+    wavelength: f64,
+    amplitude: f64,
+    work_of_adhesion: f64,
+    contact_modulus: f64,
+) -> PyResult<f64> {
     Ok(adhesim::analysis::reference::johnson_parameter(
         positive("wavelength", wavelength)?,
         positive("amplitude", amplitude)?,
