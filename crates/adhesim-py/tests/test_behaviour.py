@@ -2,7 +2,6 @@
 during solves, no memory growth over repeated solves."""
 
 import _thread
-import os
 import signal
 import sys
 import threading
@@ -27,7 +26,28 @@ def long_sequence():
     return grid, solver, heights, np.tile(cycle, 200_000 // cycle.size)
 
 
-def test_interrupt_main_stops_steps():
+@pytest.fixture
+def sigint_raises_keyboard_interrupt():
+    """Python turns SIGINT into KeyboardInterrupt only if its parent did not ignore the
+    signal (a CI runner may start it with SIGINT ignored): install the default handler,
+    as an interactive session has it, for the test's duration."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def give_up_after(seconds):
+    """A progress callback that ends a sequence the interrupt failed to stop."""
+    start = time.monotonic()
+
+    def check(index, report):
+        if time.monotonic() - start > seconds:
+            raise RuntimeError(f"not interrupted after {seconds} s ({index} steps)")
+
+    return check
+
+
+def test_interrupt_main_stops_steps(sigint_raises_keyboard_interrupt):
     """_thread.interrupt_main() from another thread (what Ctrl-C does) raises
     KeyboardInterrupt from `steps` after the running step, leaving a consistent state."""
     grid, solver, heights, depths = long_sequence()
@@ -37,7 +57,7 @@ def test_interrupt_main_stops_steps():
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            solver.steps(heights, depths, state)
+            solver.steps(heights, depths, state, progress=give_up_after(20.0))
     finally:
         timer.cancel()
     assert time.monotonic() - start < 10.0
@@ -46,7 +66,7 @@ def test_interrupt_main_stops_steps():
 
 
 @pytest.mark.skipif(not hasattr(signal, "pthread_kill"), reason="needs signal.pthread_kill")
-def test_sigint_stops_a_python_loop_of_steps():
+def test_sigint_stops_a_python_loop_of_steps(sigint_raises_keyboard_interrupt):
     """A real SIGINT sent to the main thread while it loops over `step` calls (the GIL is
     released inside each step, so the sending thread runs) raises KeyboardInterrupt."""
     grid, solver, heights, depths = long_sequence()
@@ -61,6 +81,7 @@ def test_sigint_stops_a_python_loop_of_steps():
             for depth in depths:
                 solver.step(heights, depth, state)
                 done += 1
+                assert time.monotonic() - start < 20.0, f"not interrupted after 20 s ({done} steps)"
     finally:
         timer.cancel()
     assert 0 < done < depths.size
