@@ -116,7 +116,8 @@ impl Ccg {
     ///
     /// Raises:
     ///     ValueError: bad heights, both or neither of depth/load, a non-positive load.
-    ///     SolveError: no convergence within max_iterations.
+    ///     SolveError: no convergence within max_iterations (the state then holds the
+    ///         last iterate: start the next solve from a fresh ContactState).
     #[pyo3(signature = (heights, depth = None, load = None, state = None))]
     fn solve(
         &mut self,
@@ -219,7 +220,8 @@ impl NestedActiveSet {
     ///     SolveReport, with `.state` the solved state.
     ///
     /// Raises:
-    ///     ValueError: bad heights or depth.  SolveError: no convergence.
+    ///     ValueError: bad heights or depth.
+    ///     SolveError: no convergence (the state then holds the last iterate).
     #[pyo3(signature = (heights, depth, state = None))]
     fn solve(
         &mut self,
