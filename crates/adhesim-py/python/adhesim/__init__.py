@@ -1,0 +1,51 @@
+"""adhesim: adhesive contacts of rough elastic bodies from Python.
+
+FFT-accelerated boundary elements after Popov, Li, Lyashenko & Pohrt (2021), "Adhesion and
+friction in hard and soft contacts: theory and experiment", Friction 9, 1688-1706.
+
+Units and signs: any consistent unit system. A rigid indenter touches an elastic
+half-space of contact modulus E* = E/(1 - nu^2).
+
+- pressure p > 0 is compressive, p < 0 tensile (adhesion); normal force F = dx^2 * sum(p);
+- indentation depth d > 0 pushes the indenter into the half-space;
+- surface displacement u > 0 points into the body; gap g = z - d + u >= 0;
+- the work of adhesion gamma is an energy per unit area.
+
+Fields are float64 numpy arrays of shape (n, n) indexed [row = y, column = x].
+
+Objects: Grid, Material, HalfSpace (u = K p), ContactState, the non-adhesive solvers
+Ccg and NestedActiveSet, the AdhesiveSolver with its step API; closed forms in
+adhesim.reference, fits in adhesim.fit, indenter heights in adhesim.geometry.
+"""
+
+from . import fit, geometry, reference
+from ._adhesim import (
+    RESULTS_REVISION,
+    AdhesiveSolver,
+    Ccg,
+    ContactState,
+    Grid,
+    HalfSpace,
+    Material,
+    NestedActiveSet,
+    SolveError,
+    SolveReport,
+    StepReport,
+)
+
+__all__ = [
+    "RESULTS_REVISION",
+    "AdhesiveSolver",
+    "Ccg",
+    "ContactState",
+    "Grid",
+    "HalfSpace",
+    "Material",
+    "NestedActiveSet",
+    "SolveError",
+    "SolveReport",
+    "StepReport",
+    "fit",
+    "geometry",
+    "reference",
+]

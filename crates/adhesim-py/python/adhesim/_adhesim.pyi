@@ -1,0 +1,171 @@
+"""Type stubs of the compiled extension (see the docstrings of the objects for units and
+signs: pressure > 0 compressive, depth > 0 into the body, displacement > 0 into the body,
+fields float64 of shape (n, n) indexed [row = y, column = x])."""
+
+from typing import Callable, Dict, Literal, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+FloatField = npt.NDArray[np.float64]
+BoolField = npt.NDArray[np.bool_]
+
+RESULTS_REVISION: int
+
+class SolveError(RuntimeError):
+    """A solver did not converge (iteration or round limit, or a non-finite value)."""
+
+class Grid:
+    def __init__(self, n: int, size: float, boundary: Literal["free", "periodic"] = "free") -> None: ...
+    @property
+    def n(self) -> int: ...
+    @property
+    def size(self) -> float: ...
+    @property
+    def boundary(self) -> Literal["free", "periodic"]: ...
+    @property
+    def element_size(self) -> float: ...
+    @property
+    def element_area(self) -> float: ...
+    def coordinates(self) -> FloatField: ...
+
+class Material:
+    def __init__(self, contact_modulus: float) -> None: ...
+    @staticmethod
+    def from_youngs_modulus(youngs_modulus: float, poisson_ratio: float) -> "Material": ...
+    @staticmethod
+    def from_two_bodies(first: Tuple[float, float], second: Tuple[float, float]) -> "Material": ...
+    @property
+    def contact_modulus(self) -> float: ...
+
+class HalfSpace:
+    def __init__(self, grid: Grid, material: Material) -> None: ...
+    def apply(self, pressure: FloatField) -> FloatField: ...
+    @property
+    def grid(self) -> Grid: ...
+    @property
+    def material(self) -> Material: ...
+    @property
+    def self_compliance(self) -> float: ...
+    @property
+    def applications(self) -> int: ...
+
+class ContactState:
+    def __init__(self, grid: Grid) -> None: ...
+    @property
+    def pressure(self) -> FloatField: ...
+    @property
+    def displacement(self) -> FloatField: ...
+    @property
+    def contact(self) -> BoolField: ...
+    @property
+    def gap(self) -> FloatField: ...
+    @property
+    def depth(self) -> Optional[float]: ...
+    @property
+    def force(self) -> float: ...
+    @property
+    def contact_elements(self) -> int: ...
+    @property
+    def contact_area(self) -> float: ...
+    def contact_radius(self, centre: Tuple[float, float] = (0.0, 0.0)) -> float: ...
+    @property
+    def grid(self) -> Grid: ...
+    def copy(self) -> "ContactState": ...
+
+class SolveReport:
+    iterations: int
+    residual: float
+    contact_elements: int
+    contact_area: float
+    force: float
+    depth: float
+    operator_applications: int
+    state: ContactState
+
+class StepReport:
+    depth: float
+    force: float
+    force_before_change: float
+    contact_elements: int
+    attached: int
+    detached: int
+    energy: float
+    energy_before_change: float
+    dissipated_energy: float
+    solves: int
+    cg_iterations: int
+    operator_applications: int
+
+class Ccg:
+    def __init__(self, operator: HalfSpace, tolerance: float = 1e-10, max_iterations: int = 20000) -> None: ...
+    def solve(
+        self,
+        heights: FloatField,
+        depth: Optional[float] = None,
+        load: Optional[float] = None,
+        state: Optional[ContactState] = None,
+    ) -> SolveReport: ...
+
+class NestedActiveSet:
+    def __init__(
+        self,
+        operator: HalfSpace,
+        relative_tolerance: float = 1e-10,
+        max_cg_iterations: int = 2000,
+        max_rounds: int = 200,
+        coarsest: int = 32,
+    ) -> None: ...
+    def solve(self, heights: FloatField, depth: float, state: Optional[ContactState] = None) -> SolveReport: ...
+    @property
+    def coarse_levels(self) -> int: ...
+
+class AdhesiveSolver:
+    def __init__(
+        self,
+        operator: HalfSpace,
+        work_of_adhesion: Union[float, FloatField],
+        relative_tolerance: float = 1e-6,
+        front_tolerance: float = 1e-4,
+        max_cg_iterations: int = 5000,
+        max_rounds: int = 100000,
+        attachment: Literal["trial", "penetration_only"] = "trial",
+        worst_first_fraction: Optional[float] = None,
+        preconditioned: bool = True,
+        carry_bans_when_retracting: bool = True,
+        retry_after_growth: bool = True,
+    ) -> None: ...
+    def step(self, heights: FloatField, depth: float, state: ContactState) -> StepReport: ...
+    def steps(
+        self,
+        heights: FloatField,
+        depths: npt.NDArray[np.float64],
+        state: ContactState,
+        progress: Optional[Callable[[int, StepReport], object]] = None,
+    ) -> Dict[str, np.ndarray]: ...
+    def reset(self) -> None: ...
+    def energy(self, state: ContactState) -> float: ...
+    @property
+    def critical_stress(self) -> FloatField: ...
+
+def sphere_heights(grid: Grid, radius: float) -> FloatField: ...
+def flat_punch_heights(grid: Grid, radius: float) -> FloatField: ...
+def jkr_scales(radius: float, contact_modulus: float, work_of_adhesion: float) -> Dict[str, float]: ...
+def johnson_parameter(wavelength: float, amplitude: float, work_of_adhesion: float, contact_modulus: float) -> float: ...
+def _hertz(
+    radius: float, contact_modulus: float, depth: npt.NDArray[np.float64]
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def _jkr_curve(
+    radius: float, contact_modulus: float, work_of_adhesion: float, contact_radius: npt.NDArray[np.float64]
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def _jkr_at_depth(
+    radius: float, contact_modulus: float, work_of_adhesion: float, depth: npt.NDArray[np.float64]
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.bool_]]: ...
+def _flat_punch(radius: float, contact_modulus: float, work_of_adhesion: float) -> Tuple[float, float, float]: ...
+def _fit_jkr_force(
+    contact_radius: npt.NDArray[np.float64], force: npt.NDArray[np.float64], radius: float, contact_modulus: float
+) -> Dict[str, float]: ...
+def _fit_jkr_depth(
+    contact_radius: npt.NDArray[np.float64], depth: npt.NDArray[np.float64], radius: float, contact_modulus: float
+) -> Dict[str, float]: ...
+def _fit_power_law(t: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> Tuple[float, float]: ...

@@ -1,0 +1,60 @@
+"""Effective works of adhesion and power laws fitted to simulated or measured curves
+(Popov et al. 2021, Sect. 2.3), by the library's least-squares fits.
+
+Raise ValueError naming the argument for arrays of different lengths, a radius or
+modulus that is not finite and > 0, or no usable point.
+"""
+
+from __future__ import annotations
+
+from typing import Dict, Tuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _adhesim
+from ._adhesim import johnson_parameter
+
+__all__ = ["jkr_work_of_adhesion", "jkr_depth_work_of_adhesion", "power_law", "johnson_parameter"]
+
+
+def _vector(values: ArrayLike) -> np.ndarray:
+    return np.ascontiguousarray(np.asarray(values, dtype=np.float64).ravel())
+
+
+def jkr_work_of_adhesion(
+    contact_radius: ArrayLike, force: ArrayLike, radius: float, contact_modulus: float
+) -> Dict[str, float]:
+    """Effective gamma of one branch from force-contact-radius pairs: least squares of
+    F = 4E*a^3/(3R) - (8 pi gamma E* a^3)^(1/2), linear in gamma^(1/2).
+
+    Args:
+        contact_radius: a per point (length); points with a <= 0 are skipped.
+        force: F per point (> 0 compressive).
+        radius: R of the indenter (length, > 0).
+        contact_modulus: E* (pressure, > 0).
+
+    Returns:
+        dict: ``work_of_adhesion`` gamma (>= 0, energy per area), ``residual_rms`` (force),
+        ``points`` used.
+    """
+    return _adhesim._fit_jkr_force(_vector(contact_radius), _vector(force), float(radius), float(contact_modulus))
+
+
+def jkr_depth_work_of_adhesion(
+    contact_radius: ArrayLike, depth: ArrayLike, radius: float, contact_modulus: float
+) -> Dict[str, float]:
+    """Effective gamma from depth-contact-radius pairs, d = a^2/R - (2 pi gamma a/E*)^(1/2)
+    (paper Eq. 13, used for gamma_3 of rolling contacts). Same arguments and result as
+    :func:`jkr_work_of_adhesion` with depths (length, > 0 into the body) for forces.
+    """
+    return _adhesim._fit_jkr_depth(_vector(contact_radius), _vector(depth), float(radius), float(contact_modulus))
+
+
+def power_law(t: ArrayLike, y: ArrayLike) -> Tuple[float, float]:
+    """y = c t^n by least squares in log-log (paper Eq. 15), over points with t, y > 0.
+
+    Returns:
+        (c, n).
+    """
+    return _adhesim._fit_power_law(_vector(t), _vector(y))

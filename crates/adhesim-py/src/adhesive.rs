@@ -1,0 +1,213 @@
+//! The adhesive solver and its quasi-static step API.
+
+use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
+use crate::objects::{ContactState, HalfSpace};
+use crate::solvers::{adhesive_params, step_columns, step_report, StepReport};
+use adhesim::WorkOfAdhesion;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Quasi-static JKR-type adhesive contact with the local mesh-dependent detachment
+/// criterion (Pohrt & Popov 2015; Popov et al. 2021, Friction 9, Sect. 2.2–2.3): an
+/// element is released once its tension exceeds σ_c = √(E*γ/(c_U·Δ)).
+///
+/// Each `step` brings the state to a stable configuration at one indentation depth
+/// (displacement control); the solver remembers the last steps (warm-start extrapolation,
+/// carried bans), so drive one load path per solver, or call `reset()` between paths.
+///
+/// Args:
+///     operator: the HalfSpace of the grid (free or periodic).
+///     work_of_adhesion: γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
+///     relative_tolerance: CG stops at ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6) ...
+///     front_tolerance: ... and max|r_i| ≤ this·K(0,0)·σ_c,min (default 1e-4).
+///     max_cg_iterations: CG iterations per solve (default 5000).
+///     max_rounds: attach/detach rounds per step (default 100 000).
+///     attachment: "trial" (default: discrete Griffith closure test) or
+///         "penetration_only" (non-adhesive approach, for comparison).
+///     worst_first_fraction: None (release all over-stressed elements at once, default)
+///         or a fraction: release only those within it of the worst over-stress ratio.
+///     preconditioned, carry_bans_when_retracting, retry_after_growth: as in the Rust
+///         library's AdhesiveParams (all default True).
+///
+/// Raises:
+///     ValueError: a negative or non-finite γ, a map of the wrong shape, a bad parameter.
+#[pyclass(module = "adhesim._adhesim")]
+pub struct AdhesiveSolver {
+    inner: adhesim::AdhesiveSolver,
+    operator: Py<HalfSpace>,
+    grid: adhesim::Grid,
+    heights: Vec<f64>,
+}
+
+impl AdhesiveSolver {
+    /// One step on the heights already in `self.heights`, GIL released.
+    fn step_inner(&mut self, py: Python<'_>, depth: f64, state: &Bound<'_, ContactState>) -> PyResult<StepReport> {
+        let mut operator = self.operator.bind(py).try_borrow_mut()?;
+        let mut guard = state.try_borrow_mut()?;
+        let (solver, heights) = (&mut self.inner, &self.heights);
+        let (op, st) = (&mut operator.inner, &mut guard.inner);
+        let report = py.detach(|| solver.step(op, heights, depth, st)).map_err(solve_error)?;
+        guard.record(&self.heights, depth);
+        Ok(step_report(depth, &report, &guard.inner))
+    }
+}
+
+#[pymethods]
+impl AdhesiveSolver {
+    #[new]
+    #[pyo3(signature = (
+        operator, work_of_adhesion, relative_tolerance = 1e-6, front_tolerance = 1e-4,
+        max_cg_iterations = 5000, max_rounds = 100_000, attachment = "trial",
+        worst_first_fraction = None, preconditioned = true, carry_bans_when_retracting = true,
+        retry_after_growth = true
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        operator: Py<HalfSpace>,
+        work_of_adhesion: &Bound<'_, PyAny>,
+        relative_tolerance: f64,
+        front_tolerance: f64,
+        max_cg_iterations: i64,
+        max_rounds: i64,
+        attachment: &str,
+        worst_first_fraction: Option<f64>,
+        preconditioned: bool,
+        carry_bans_when_retracting: bool,
+        retry_after_growth: bool,
+    ) -> PyResult<Self> {
+        let params = adhesive_params(
+            relative_tolerance,
+            front_tolerance,
+            max_cg_iterations,
+            max_rounds,
+            attachment,
+            worst_first_fraction,
+            preconditioned,
+            carry_bans_when_retracting,
+            retry_after_growth,
+        )?;
+        let (grid, material) = {
+            let op = operator.borrow(py);
+            (op.grid, op.material)
+        };
+        let gamma = if let Ok(value) = work_of_adhesion.extract::<f64>() {
+            WorkOfAdhesion::Uniform(non_negative("work_of_adhesion", value)?)
+        } else {
+            let mut map = Vec::new();
+            read_field(work_of_adhesion, "work_of_adhesion", grid.n(), false, &mut map)?;
+            if let Some(k) = map.iter().position(|&gamma| gamma < 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "work_of_adhesion[{}, {}] must be >= 0, got {}",
+                    k / grid.n(),
+                    k % grid.n(),
+                    map[k]
+                )));
+            }
+            WorkOfAdhesion::Map(map)
+        };
+        let per_element = gamma.on_grid(&grid).map_err(value_error)?;
+        let modulus = material.contact_modulus();
+        Ok(Self {
+            inner: adhesim::AdhesiveSolver::new(grid, modulus, per_element, params),
+            operator,
+            grid,
+            heights: Vec::with_capacity(grid.len()),
+        })
+    }
+
+    /// One quasi-static step: brings `state` to a stable configuration at `depth`.
+    ///
+    /// Args:
+    ///     heights: float64 (n, n) indenter heights z; +inf where there is no surface.
+    ///     depth: indentation depth d (> 0 into the body, < 0 pulled out).
+    ///     state: ContactState, the configuration of the previous step (updated in place).
+    ///
+    /// Returns:
+    ///     StepReport (force > 0 compressive, < 0 tensile).
+    ///
+    /// Raises:
+    ///     ValueError: bad heights or depth, a state of another grid.
+    ///     SolveError: the step did not converge (the state is then partly updated).
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        depth: f64,
+        state: &Bound<'_, ContactState>,
+    ) -> PyResult<StepReport> {
+        let depth = finite("depth", depth)?;
+        state.borrow().check_grid(&self.grid)?;
+        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        self.step_inner(py, depth, state)
+    }
+
+    /// A sequence of steps at the given depths on fixed heights, in one call.
+    ///
+    /// Between steps the Python signal handlers run (Ctrl-C raises KeyboardInterrupt,
+    /// leaving `state` at the last completed step) and `progress(index, report)` is
+    /// called when given (return value ignored; an exception it raises stops the
+    /// sequence). A single step is not interruptible: the library has no hook inside it.
+    ///
+    /// Args:
+    ///     heights: float64 (n, n) indenter heights z.
+    ///     depths: float64 1-D array of depths d, in order.
+    ///     state: ContactState, updated in place.
+    ///     progress: optional callable(index: int, report: StepReport).
+    ///
+    /// Returns:
+    ///     dict of 1-D numpy arrays, one entry per step: depth, force, force_before_change,
+    ///     contact_radius (largest distance of a contact element centre from the origin,
+    ///     0 without contact), contact_elements, attached, detached, energy,
+    ///     dissipated_energy, cg_iterations.
+    #[pyo3(signature = (heights, depths, state, progress = None))]
+    fn steps<'py>(
+        &mut self,
+        py: Python<'py>,
+        heights: &Bound<'py, PyAny>,
+        depths: &Bound<'py, PyAny>,
+        state: &Bound<'py, ContactState>,
+        progress: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let depths = read_vector(depths, "depths")?;
+        if let Some(k) = depths.iter().position(|d| !d.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "depths[{k}] must be finite, got {}",
+                depths[k]
+            )));
+        }
+        state.borrow().check_grid(&self.grid)?;
+        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        let mut rows = Vec::with_capacity(depths.len());
+        for (index, &depth) in depths.iter().enumerate() {
+            let report = self.step_inner(py, depth, state)?;
+            let radius = state.borrow().inner.contact_radius(&self.grid, (0.0, 0.0));
+            rows.push((report, radius));
+            py.check_signals()?;
+            if let Some(callback) = progress {
+                callback.call1((index, report))?;
+            }
+        }
+        step_columns(py, &rows)
+    }
+
+    /// Forgets the history of previous steps (warm-start extrapolation, carried bans):
+    /// call before driving a new, unrelated load path with the same solver.
+    fn reset(&mut self) {
+        self.inner.reset();
+    }
+
+    /// Π = ½Δ²Σp·u − Δ²Σ_C γ of a state: elastic energy minus adhesion energy.
+    fn energy(&self, state: &Bound<'_, ContactState>) -> PyResult<f64> {
+        let state = state.borrow();
+        state.check_grid(&self.grid)?;
+        Ok(self.inner.energy(&state.inner))
+    }
+
+    /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (n, n).
+    #[getter]
+    fn critical_stress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
+        crate::convert::field(py, self.inner.critical_stresses(), self.grid.n())
+    }
+}

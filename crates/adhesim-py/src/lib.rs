@@ -1,0 +1,42 @@
+//! Python bindings of adhesim (the extension module `adhesim._adhesim`; the Python package
+//! `adhesim` in `python/` re-exports it with docstrings, type stubs and numpy helpers).
+//!
+//! Numbers cross the boundary as float64 numpy arrays of shape (n, n), row-major like the
+//! library's fields; every input is checked (shape, dtype, finiteness, ranges) and refused
+//! with a `TypeError`/`ValueError` naming the argument and value, never a panic. Solves
+//! release the GIL. The one-call runs (`run`, `load`, `sweep`) come with the scenario layer.
+
+mod adhesive;
+mod convert;
+mod objects;
+mod reference;
+mod solvers;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("RESULTS_REVISION", adhesim::RESULTS_REVISION)?;
+    m.add("SolveError", m.py().get_type::<convert::SolveError>())?;
+    m.add_class::<objects::Grid>()?;
+    m.add_class::<objects::Material>()?;
+    m.add_class::<objects::HalfSpace>()?;
+    m.add_class::<objects::ContactState>()?;
+    m.add_class::<solvers::SolveReport>()?;
+    m.add_class::<solvers::StepReport>()?;
+    m.add_class::<solvers::Ccg>()?;
+    m.add_class::<solvers::NestedActiveSet>()?;
+    m.add_class::<adhesive::AdhesiveSolver>()?;
+    m.add_function(wrap_pyfunction!(objects::sphere_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(objects::flat_punch_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_hertz, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_jkr_curve, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_jkr_at_depth, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::jkr_scales, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_flat_punch, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::johnson_parameter, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_fit_jkr_force, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_fit_jkr_depth, m)?)?;
+    m.add_function(wrap_pyfunction!(reference::_fit_power_law, m)?)?;
+    Ok(())
+}

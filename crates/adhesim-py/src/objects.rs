@@ -1,0 +1,401 @@
+//! Grid, material, the elastic half-space operator and the contact state.
+
+use crate::convert::{count, field, positive, read_field, value_error};
+use adhesim::{Boundary, ElasticOperator, Profile};
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+/// An N×N grid of square boundary elements covering a square of side `size`.
+///
+/// Element side Δ = size/n. Fields are (n, n) arrays indexed [row, column]: row i is the
+/// coordinate y, column j the coordinate x; element centres sit at (j − n//2)·Δ, so the
+/// origin is the centre of element (n//2, n//2).
+///
+/// Args:
+///     n: elements per side (integer ≥ 2).
+///     size: side length L (> 0, any length unit).
+///     boundary: "free" (one contact on an infinite half-space) or "periodic" (the square
+///         is one period of an infinite surface).
+///
+/// Raises:
+///     ValueError: n < 2, size not finite and > 0, or an unknown boundary.
+#[pyclass(module = "adhesim._adhesim", frozen, eq, from_py_object)]
+#[derive(Clone, Copy, PartialEq)]
+pub struct Grid {
+    pub inner: adhesim::Grid,
+}
+
+#[pymethods]
+impl Grid {
+    #[new]
+    #[pyo3(signature = (n, size, boundary = "free"))]
+    fn new(n: i64, size: f64, boundary: &str) -> PyResult<Self> {
+        let n = count("n", n, 2)?;
+        let size = positive("size", size)?;
+        let boundary = match boundary {
+            "free" => Boundary::Free,
+            "periodic" => Boundary::Periodic,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "boundary must be 'free' or 'periodic', got {other:?}"
+                )))
+            }
+        };
+        Ok(Self {
+            inner: adhesim::Grid::new(n, size, boundary).map_err(value_error)?,
+        })
+    }
+
+    /// Elements per side, n.
+    #[getter]
+    fn n(&self) -> usize {
+        self.inner.n()
+    }
+
+    /// Side length L of the square.
+    #[getter]
+    fn size(&self) -> f64 {
+        self.inner.size()
+    }
+
+    /// "free" or "periodic".
+    #[getter]
+    fn boundary(&self) -> &'static str {
+        boundary_name(self.inner.boundary())
+    }
+
+    /// Element side Δ = L/n.
+    #[getter]
+    fn element_size(&self) -> f64 {
+        self.inner.element_size()
+    }
+
+    /// Element area Δ² (force = Δ²·Σp).
+    #[getter]
+    fn element_area(&self) -> f64 {
+        self.inner.element_area()
+    }
+
+    /// Centre coordinates of the columns (x) or rows (y): a 1-D array (j − n//2)·Δ.
+    fn coordinates<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let values: Vec<f64> = (0..self.inner.n()).map(|j| self.inner.coordinate(j)).collect();
+        PyArray1::from_vec(py, values)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Grid(n={}, size={}, boundary={:?})",
+            self.inner.n(),
+            self.inner.size(),
+            boundary_name(self.inner.boundary())
+        )
+    }
+}
+
+fn boundary_name(boundary: Boundary) -> &'static str {
+    match boundary {
+        Boundary::Free => "free",
+        Boundary::Periodic => "periodic",
+    }
+}
+
+/// Linear elastic half-space, characterised by its contact modulus E* = E/(1 − ν²)
+/// (against a rigid indenter; units of pressure).
+///
+/// Raises:
+///     ValueError: contact_modulus not finite and > 0.
+#[pyclass(module = "adhesim._adhesim", frozen, from_py_object)]
+#[derive(Clone, Copy)]
+pub struct Material {
+    pub inner: adhesim::ElasticMaterial,
+}
+
+#[pymethods]
+impl Material {
+    #[new]
+    fn new(contact_modulus: f64) -> PyResult<Self> {
+        positive("contact_modulus", contact_modulus)?;
+        Ok(Self {
+            inner: adhesim::ElasticMaterial::new(contact_modulus).map_err(value_error)?,
+        })
+    }
+
+    /// E* = E/(1 − ν²) from Young's modulus E (> 0) and Poisson's ratio ν in (−1, 0.5].
+    #[staticmethod]
+    fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> PyResult<Self> {
+        Ok(Self {
+            inner: adhesim::ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(value_error)?,
+        })
+    }
+
+    /// Two elastic bodies, each (E, ν): 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2.
+    #[staticmethod]
+    fn from_two_bodies(first: (f64, f64), second: (f64, f64)) -> PyResult<Self> {
+        Ok(Self {
+            inner: adhesim::ElasticMaterial::from_two_bodies(first, second).map_err(value_error)?,
+        })
+    }
+
+    /// The contact modulus E*.
+    #[getter]
+    fn contact_modulus(&self) -> f64 {
+        self.inner.contact_modulus()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Material(contact_modulus={})", self.inner.contact_modulus())
+    }
+}
+
+/// The elastic half-space operator u = K p of a grid: free (DC-FFT with Love's
+/// coefficients) or periodic (element-consistent Fourier kernel), chosen by
+/// `grid.boundary`. FFTs are planned once, here.
+///
+/// Signs: pressure p > 0 is compressive, displacement u > 0 points into the body. On a
+/// periodic grid the mean displacement is undefined (K̂(0) = 0): a uniform pressure gives
+/// u = 0.
+#[pyclass(module = "adhesim._adhesim")]
+pub struct HalfSpace {
+    pub inner: adhesim::HalfSpace,
+    pub grid: adhesim::Grid,
+    pub material: adhesim::ElasticMaterial,
+    scratch: Vec<f64>,
+    output: Vec<f64>,
+}
+
+#[pymethods]
+impl HalfSpace {
+    #[new]
+    fn new(py: Python<'_>, grid: Grid, material: Material) -> Self {
+        let inner = py.detach(|| adhesim::HalfSpace::new(grid.inner, material.inner));
+        Self {
+            inner,
+            grid: grid.inner,
+            material: material.inner,
+            scratch: Vec::with_capacity(grid.inner.len()),
+            output: vec![0.0; grid.inner.len()],
+        }
+    }
+
+    /// Surface displacement u = K p (length units) of a pressure field.
+    ///
+    /// Args:
+    ///     pressure: float64 array of shape (n, n), > 0 compressive (units of pressure).
+    ///
+    /// Returns:
+    ///     displacement: float64 array of shape (n, n), > 0 into the body.
+    ///
+    /// Raises:
+    ///     TypeError: not a float64 numpy array.  ValueError: wrong shape or non-finite.
+    fn apply<'py>(&mut self, py: Python<'py>, pressure: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let n = self.grid.n();
+        read_field(pressure, "pressure", n, false, &mut self.scratch)?;
+        let Self {
+            inner, scratch, output, ..
+        } = self;
+        py.detach(|| inner.apply(scratch, output));
+        field(py, &self.output, n)
+    }
+
+    /// The grid the operator acts on.
+    #[getter]
+    fn grid(&self) -> Grid {
+        Grid { inner: self.grid }
+    }
+
+    /// The material (contact modulus E*).
+    #[getter]
+    fn material(&self) -> Material {
+        Material { inner: self.material }
+    }
+
+    /// K(0,0): displacement of an element under its own unit pressure.
+    #[getter]
+    fn self_compliance(&self) -> f64 {
+        self.inner.self_compliance()
+    }
+
+    /// Operator applications (FFT pairs) so far, by `apply` and by the solvers.
+    #[getter]
+    fn applications(&self) -> u64 {
+        self.inner.applications()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "HalfSpace(grid=Grid(n={}, size={}, boundary={:?}), contact_modulus={})",
+            self.grid.n(),
+            self.grid.size(),
+            boundary_name(self.grid.boundary()),
+            self.material.contact_modulus()
+        )
+    }
+}
+
+/// Fields of a contact configuration on a grid; also the warm start of the next solve or
+/// step (pass the same object again). Starts with no contact and no load.
+///
+/// The arrays returned are copies, shape (n, n), [row = y, column = x].
+#[pyclass(module = "adhesim._adhesim")]
+pub struct ContactState {
+    pub inner: adhesim::ContactState,
+    pub grid: adhesim::Grid,
+    /// Heights and depth of the last solve or step (for the gap).
+    pub last_heights: Vec<f64>,
+    pub last_depth: Option<f64>,
+}
+
+impl ContactState {
+    pub fn fresh(grid: adhesim::Grid) -> Self {
+        Self {
+            inner: adhesim::ContactState::new(&grid),
+            grid,
+            last_heights: Vec::new(),
+            last_depth: None,
+        }
+    }
+
+    /// `ValueError` unless the state lives on `grid`.
+    pub fn check_grid(&self, grid: &adhesim::Grid) -> PyResult<()> {
+        if &self.grid == grid {
+            Ok(())
+        } else {
+            Err(PyValueError::new_err(format!(
+                "state is for a grid of n={}, size={}, {:?}; the solver's grid has n={}, size={}, {:?}",
+                self.grid.n(),
+                self.grid.size(),
+                self.grid.boundary(),
+                grid.n(),
+                grid.size(),
+                grid.boundary()
+            )))
+        }
+    }
+
+    /// Remembers the heights and depth the state was solved for.
+    pub fn record(&mut self, heights: &[f64], depth: f64) {
+        self.last_heights.clear();
+        self.last_heights.extend_from_slice(heights);
+        self.last_depth = Some(depth);
+    }
+}
+
+#[pymethods]
+impl ContactState {
+    #[new]
+    fn new(grid: Grid) -> Self {
+        Self::fresh(grid.inner)
+    }
+
+    /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n).
+    #[getter]
+    fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        field(py, &self.inner.pressure, self.grid.n())
+    }
+
+    /// Normal surface displacement u = K p (> 0 into the body), shape (n, n).
+    #[getter]
+    fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        field(py, &self.inner.displacement, self.grid.n())
+    }
+
+    /// Contact mask (True in contact), shape (n, n).
+    #[getter]
+    fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        field(py, &self.inner.contact, self.grid.n())
+    }
+
+    /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
+    /// solve or step; +inf where the indenter has no surface.
+    ///
+    /// Raises:
+    ///     ValueError: the state has not been solved yet.
+    #[getter]
+    fn gap<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let Some(depth) = self.last_depth else {
+            return Err(PyValueError::new_err(
+                "gap: the state has not been solved yet (no heights and depth)",
+            ));
+        };
+        let gap: Vec<f64> = self
+            .last_heights
+            .iter()
+            .zip(&self.inner.displacement)
+            .map(|(z, u)| z - depth + u)
+            .collect();
+        field(py, &gap, self.grid.n())
+    }
+
+    /// Depth d of the last solve or step (prescribed, or found under load control), or None.
+    #[getter]
+    fn depth(&self) -> Option<f64> {
+        self.last_depth
+    }
+
+    /// Normal force F = Δ²·Σp (> 0 compressive).
+    #[getter]
+    fn force(&self) -> f64 {
+        self.inner.force(self.grid.element_area())
+    }
+
+    /// Number of elements in contact.
+    #[getter]
+    fn contact_elements(&self) -> usize {
+        self.inner.contact_elements()
+    }
+
+    /// Real contact area Δ²·|C|.
+    #[getter]
+    fn contact_area(&self) -> f64 {
+        self.grid.element_area() * self.inner.contact_elements() as f64
+    }
+
+    /// Largest distance from `centre` = (x, y) to the centre of an element in contact
+    /// (the paper's contact radius, Sect. 2.3); 0 without contact.
+    #[pyo3(signature = (centre = (0.0, 0.0)))]
+    fn contact_radius(&self, centre: (f64, f64)) -> f64 {
+        self.inner.contact_radius(&self.grid, centre)
+    }
+
+    /// The grid of the state.
+    #[getter]
+    fn grid(&self) -> Grid {
+        Grid { inner: self.grid }
+    }
+
+    /// An independent copy (e.g. to branch a load path from a saved state).
+    fn copy(&self) -> Self {
+        Self {
+            inner: self.inner.clone(),
+            grid: self.grid,
+            last_heights: self.last_heights.clone(),
+            last_depth: self.last_depth,
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "ContactState(n={}, contact_elements={}, force={:e})",
+            self.grid.n(),
+            self.inner.contact_elements(),
+            self.inner.force(self.grid.element_area())
+        )
+    }
+}
+
+/// Heights z = (x² + y²)/(2R) of a sphere (paraboloid) of radius R at the element centres,
+/// axis at the origin; shape (n, n).
+#[pyfunction]
+pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let sphere = adhesim::Sphere::new(radius).map_err(value_error)?;
+    field(py, &sphere.heights(&grid.inner), grid.inner.n())
+}
+
+/// Heights of a flat circular punch of radius a: 0 on the face, +inf outside (no surface
+/// there: those elements never touch); shape (n, n).
+#[pyfunction]
+pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let punch = adhesim::FlatPunch::new(radius).map_err(value_error)?;
+    field(py, &punch.heights(&grid.inner), grid.inner.n())
+}
