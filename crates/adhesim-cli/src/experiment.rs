@@ -156,12 +156,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     let log = settings.forces.as_ref().map(ForceLog::load).transpose()?;
     if let Some(log) = &log {
         warnings.extend(log.check_overlap(&times[..files.len()])?);
-        if log.empty_cells > 0 {
-            warnings.push(format!(
-                "forces: {} empty cells (missing samples) in the log; frames next to one have no value in that column",
-                log.empty_cells
-            ));
-        }
+        warnings.extend(log.empty_cells_warning());
     }
     let size = FrameSize::of_first(&files)
         .with_context(|| format!("no readable frames in {}", settings.frames_dir.display()))?;

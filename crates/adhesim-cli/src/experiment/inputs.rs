@@ -205,7 +205,7 @@ pub struct ForceLog {
     /// normal, tangential, stage_x, stage_z; `None` where the column is not mapped.
     channels: [Option<Vec<Option<f64>>>; 4],
     /// Empty cells (missing samples) of the mapped columns.
-    pub empty_cells: usize,
+    empty_cells: usize,
 }
 
 impl ForceLog {
@@ -259,6 +259,17 @@ impl ForceLog {
                 span(&self.time)
             )
         }))
+    }
+
+    /// Empty data cells are missing samples: a warning with their count.
+    pub fn empty_cells_warning(&self) -> Option<String> {
+        (self.empty_cells > 0).then(|| {
+            format!(
+                "forces: {} has {} empty cells (missing samples); frames next to one have no value in that column",
+                self.path.display(),
+                self.empty_cells
+            )
+        })
     }
 
     /// Value of channel `c` at time t; `None` outside the log or next to a missing sample.
