@@ -2,17 +2,19 @@
 //! to generate a synthetic one. Numerics live in `adhesim_experiment`; this module reads
 //! frames and logs, writes `frames.csv`, `changes/`, `plots/` and `summary.json`.
 
+mod inputs;
 mod plots;
 mod spec;
+mod synth;
 
 use adhesim_experiment::fit::{fit_jkr_work_of_adhesion, friction_law_fit, pinned_phase, power_law_fit};
-use adhesim_experiment::synthetic::SyntheticSpec;
 use adhesim_experiment::{
     change_map, classify_phases, detect_jumps, measure, AreaMeasurement, BackgroundModel, Change, GrayImage,
     IndenterTrack, Phase, SegmentationParams, Segmenter,
 };
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
 use plots::{Panel, Series};
 use plotters::style::RGBColor;
 use rayon::prelude::*;
@@ -21,6 +23,7 @@ use spec::{BackgroundChoice, Reference, Settings};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+pub use synth::{run_synth, SynthArgs};
 
 /// Arguments of `adhesim experiment`.
 #[derive(Debug, clap::Args)]
@@ -45,50 +48,6 @@ pub enum ExperimentCommand {
     Synth(SynthArgs),
 }
 
-/// Arguments of `adhesim experiment synth`.
-#[derive(Debug, clap::Args)]
-pub struct SynthArgs {
-    /// Output folder (default: out/synth/).
-    #[arg(long)]
-    pub out: Option<PathBuf>,
-    /// Number of frames.
-    #[arg(long, default_value_t = 100)]
-    pub frames: usize,
-    /// Frame width in pixels.
-    #[arg(long, default_value_t = 1600)]
-    pub width: usize,
-    /// Frame height in pixels.
-    #[arg(long, default_value_t = 1200)]
-    pub height: usize,
-    /// Contrast-to-noise ratio (inf = no noise).
-    #[arg(long, default_value_t = 10.0)]
-    pub snr: f64,
-    /// Seed of the noise and the contact spots.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Optical blur σ in pixels.
-    #[arg(long, default_value_t = 1.5)]
-    pub blur: f64,
-    /// Strength of the uneven illumination (0 = even).
-    #[arg(long, default_value_t = 0.2)]
-    pub illumination: f64,
-    /// Contact size relative to the default (semi-axes 260/300/280 px at 1600×1200).
-    #[arg(long, default_value_t = 1.0)]
-    pub scale: f64,
-    /// Frames per stick phase.
-    #[arg(long, default_value_t = 12)]
-    pub stick_frames: usize,
-    /// Image format: png or tiff.
-    #[arg(long, default_value = "png")]
-    pub format: String,
-    /// Bits per sample: 8 or 16.
-    #[arg(long, default_value_t = 8)]
-    pub bits: u8,
-    /// No progress bar.
-    #[arg(long)]
-    pub quiet: bool,
-}
-
 /// Entry point of the `experiment` subcommand.
 pub fn main(args: ExperimentArgs) -> Result<()> {
     match (args.command, args.spec) {
@@ -111,130 +70,6 @@ fn progress(len: usize, quiet: bool, what: &str) -> ProgressBar {
     bar
 }
 
-// ---------------------------------------------------------------- frames and logs
-
-const FRAME_EXTENSIONS: [&str; 5] = ["png", "tif", "tiff", "jpg", "jpeg"];
-
-/// Image files of a folder in file-name order.
-fn list_frames(dir: &Path) -> Result<Vec<PathBuf>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .with_context(|| format!("frames.path: cannot read folder {}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.is_file()
-                && p.extension()
-                    .and_then(|e| e.to_str())
-                    .is_some_and(|e| FRAME_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
-        })
-        .collect();
-    files.sort_by(|a, b| a.file_name().cmp(&b.file_name()));
-    if files.is_empty() {
-        bail!("frames.path: no PNG/TIFF/JPEG frames in {}", dir.display());
-    }
-    Ok(files)
-}
-
-/// Decodes a frame as grey levels (colour frames are converted to luma).
-fn read_frame(path: &Path) -> Result<GrayImage> {
-    let img = image::ImageReader::open(path)?.with_guessed_format()?.decode()?;
-    let (w, h) = (img.width() as usize, img.height() as usize);
-    Ok(match img {
-        image::DynamicImage::ImageLuma8(buf) => GrayImage::from_u8(w, h, buf.as_raw())?,
-        image::DynamicImage::ImageLuma16(buf) => GrayImage::from_u16(w, h, buf.as_raw())?,
-        other => GrayImage::from_u16(w, h, other.to_luma16().as_raw())?,
-    })
-}
-
-fn name_of(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
-}
-
-/// A column of a CSV file by header name, as numbers (unparsable cells are `None`).
-fn read_columns(path: &Path, names: &[&str], key: &str) -> Result<Vec<Vec<Option<f64>>>> {
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .with_context(|| format!("{key}: cannot read {}", path.display()))?;
-    let headers = reader.headers()?.clone();
-    let index: Vec<usize> = names
-        .iter()
-        .map(|n| {
-            headers.iter().position(|h| h == *n).with_context(|| {
-                format!(
-                    "{key}: column \"{n}\" not in {} (columns: {})",
-                    path.display(),
-                    headers.iter().collect::<Vec<_>>().join(", ")
-                )
-            })
-        })
-        .collect::<Result<_>>()?;
-    let mut columns = vec![Vec::new(); names.len()];
-    for record in reader.records() {
-        let record = record.with_context(|| format!("{key}: malformed CSV in {}", path.display()))?;
-        for (col, &i) in columns.iter_mut().zip(&index) {
-            col.push(
-                record
-                    .get(i)
-                    .and_then(|s| s.parse::<f64>().ok())
-                    .filter(|v| v.is_finite()),
-            );
-        }
-    }
-    Ok(columns)
-}
-
-/// Force/stage log sampled at its own times; linearly interpolated at frame times.
-struct ForceLog {
-    time: Vec<f64>,
-    /// normal, tangential, stage_x, stage_z; `None` where the column is not mapped.
-    channels: [Option<Vec<Option<f64>>>; 4],
-}
-
-impl ForceLog {
-    fn load(f: &spec::ForcesSpec) -> Result<Self> {
-        let mapped: Vec<(usize, &str)> = [&f.normal, &f.tangential, &f.stage_x, &f.stage_z]
-            .iter()
-            .enumerate()
-            .filter_map(|(i, n)| n.as_deref().map(|n| (i, n)))
-            .collect();
-        let mut names = vec![f.time.as_str()];
-        names.extend(mapped.iter().map(|(_, n)| *n));
-        let mut columns = read_columns(&f.path, &names, "forces")?;
-        let time_col = columns.remove(0);
-        // Keep rows with a time, in time order.
-        let mut order: Vec<usize> = (0..time_col.len()).filter(|&i| time_col[i].is_some()).collect();
-        order.sort_by(|&a, &b| time_col[a].unwrap_or(0.0).total_cmp(&time_col[b].unwrap_or(0.0)));
-        let time = order.iter().filter_map(|&i| time_col[i]).collect();
-        let mut channels: [Option<Vec<Option<f64>>>; 4] = Default::default();
-        for ((slot, _), col) in mapped.iter().zip(columns) {
-            channels[*slot] = Some(order.iter().map(|&i| col[i]).collect());
-        }
-        Ok(Self { time, channels })
-    }
-
-    /// Value of channel `c` at time t; `None` outside the log or next to a missing sample.
-    fn at(&self, c: usize, t: f64) -> Option<f64> {
-        let values = self.channels[c].as_ref()?;
-        let n = self.time.len();
-        if n == 0 || !(t >= self.time[0] && t <= self.time[n - 1]) {
-            return None;
-        }
-        let hi = self.time.partition_point(|&x| x < t).min(n - 1);
-        if self.time[hi] == t || hi == 0 {
-            return values[hi];
-        }
-        let (t0, t1) = (self.time[hi - 1], self.time[hi]);
-        let (v0, v1) = (values[hi - 1]?, values[hi]?);
-        let v = if t1 > t0 {
-            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
-        } else {
-            v1
-        };
-        v.is_finite().then_some(v)
-    }
-}
-
 // ---------------------------------------------------------------- analysis
 
 /// Everything known about one readable frame.
@@ -255,14 +90,21 @@ fn ratio(num: Option<f64>, den: f64) -> Option<f64> {
     (den > 0.0 && v.is_finite()).then_some(v)
 }
 
-fn build_segmenter(settings: &Settings, files: &[PathBuf]) -> Result<Segmenter> {
+/// The segmenter, calibrated on up to 5 evenly spaced readable frames; the background frame,
+/// the calibration frames and the region of interest are checked against `size`.
+fn build_segmenter(settings: &Settings, files: &[PathBuf], size: &FrameSize) -> Result<Segmenter> {
     let background = match &settings.background {
         BackgroundChoice::None => BackgroundModel::None,
         BackgroundChoice::Fit => BackgroundModel::Fitted,
-        BackgroundChoice::File(p) => BackgroundModel::Reference(
-            read_frame(p).with_context(|| format!("contact.background: cannot read {}", p.display()))?,
-        ),
+        BackgroundChoice::File(p) => {
+            let frame = read_frame(p).with_context(|| format!("contact.background: cannot read {}", p.display()))?;
+            size.check(&frame, &format!("contact.background {}", p.display()))?;
+            BackgroundModel::Reference(frame)
+        }
     };
+    if let Some(roi) = settings.roi {
+        roi.check_inside(size.width, size.height)?;
+    }
     let params = SegmentationParams {
         polarity: settings.polarity,
         threshold: settings.threshold,
@@ -273,20 +115,19 @@ fn build_segmenter(settings: &Settings, files: &[PathBuf]) -> Result<Segmenter> 
         close_radius: settings.close_radius,
         roi: settings.roi,
     };
-    // Calibration frames: up to 5, evenly spaced, readable ones only.
     let picks: Vec<usize> = if files.len() <= 5 {
         (0..files.len()).collect()
     } else {
         (0..5).map(|i| i * (files.len() - 1) / 4).collect()
     };
-    let samples: Vec<GrayImage> = picks.par_iter().filter_map(|&i| read_frame(&files[i]).ok()).collect();
-    if let Some(first) = samples.first() {
-        if samples
-            .iter()
-            .any(|s| (s.width(), s.height()) != (first.width(), first.height()))
-        {
-            bail!("frames differ in size; all frames must have the same size");
-        }
+    let decoded: Vec<(usize, GrayImage)> = picks
+        .par_iter()
+        .filter_map(|&i| read_frame(&files[i]).ok().map(|s| (i, s)))
+        .collect();
+    let mut samples = Vec::with_capacity(decoded.len());
+    for (i, sample) in decoded {
+        size.check(&sample, &format!("frames.path: {}", name_of(&files[i])))?;
+        samples.push(sample);
     }
     Segmenter::new(params, &samples).context("contact threshold calibration")
 }
@@ -300,70 +141,64 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         None => Path::new("out").join(spec_path.file_stem().unwrap_or_default()),
     };
     let files = list_frames(&settings.frames_dir)?;
-    let times: Vec<f64> = match (&settings.timestamps, settings.rate) {
-        (Some(path), _) => {
-            let mut reader = csv::ReaderBuilder::new()
-                .has_headers(true)
-                .trim(csv::Trim::All)
-                .from_path(path)
-                .with_context(|| format!("frames.timestamps: cannot read {}", path.display()))?;
-            let mut t = Vec::new();
-            for (row, record) in reader.records().enumerate() {
-                let record = record?;
-                let v: f64 = record
-                    .get(0)
-                    .and_then(|s| s.parse().ok())
-                    .filter(|v: &f64| v.is_finite())
-                    .with_context(|| {
-                        format!(
-                            "frames.timestamps: row {} of {} is not a number",
-                            row + 1,
-                            path.display()
-                        )
-                    })?;
-                t.push(v);
-            }
-            if t.len() < files.len() {
-                bail!("frames.timestamps: {} times for {} frames", t.len(), files.len());
-            }
-            t
+    if let Reference::Frame(f) = settings.reference {
+        if f >= files.len() {
+            bail!(
+                "changes.reference = {f} is beyond the last frame: frames are numbered 0 … {} in file-name order (the last is {})",
+                files.len() - 1,
+                name_of(&files[files.len() - 1])
+            );
         }
-        (None, Some(rate)) => (0..files.len()).map(|i| i as f64 / rate).collect(),
-        (None, None) => bail!("frames: give frames.rate or frames.timestamps"),
-    };
+    }
+    let mut warnings = Vec::new();
+    let (times, times_warning) = inputs::frame_times(settings.timestamps.as_deref(), settings.rate, files.len())?;
+    warnings.extend(times_warning);
     let log = settings.forces.as_ref().map(ForceLog::load).transpose()?;
-    let segmenter = build_segmenter(&settings, &files)?;
+    if let Some(log) = &log {
+        warnings.extend(log.check_overlap(&times[..files.len()])?);
+        warnings.extend(log.empty_cells_warning());
+    }
+    let size = FrameSize::of_first(&files)
+        .with_context(|| format!("no readable frames in {}", settings.frames_dir.display()))?;
+    let segmenter = build_segmenter(&settings, &files, &size)?;
     let track = settings
         .indenter
         .map(|(cx, cy, x0, motion)| IndenterTrack::new([cx, cy], x0, motion, settings.pixel_size))
         .transpose()?;
+    if let Some(track) = &track {
+        track.check_inside(size.width, size.height)?;
+    }
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
 
     let bar = progress(files.len(), quiet, "frames");
     let decoded_at = Instant::now();
-    let results: Vec<Option<FrameRow>> = files
+    let context = FrameContext {
+        size: &size,
+        segmenter: &segmenter,
+        log: log.as_ref(),
+        track: track.as_ref(),
+        pixel_size: settings.pixel_size,
+    };
+    // Outer error: a frame of another size stops the run; inner: an unreadable frame is skipped.
+    let results: Vec<Result<Option<FrameRow>>> = files
         .par_iter()
         .enumerate()
         .map(|(i, path)| {
-            let row = analyse_frame(
-                i,
-                path,
-                times[i],
-                &segmenter,
-                log.as_ref(),
-                track.as_ref(),
-                settings.pixel_size,
-            );
+            let row = context.analyse_frame(i, path, times[i]);
             bar.inc(1);
-            match row {
+            Ok(match row? {
                 Ok(r) => Some(r),
                 Err(e) => {
                     bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
                     None
                 }
-            }
+            })
         })
         .collect();
     bar.finish_and_clear();
+    let results: Vec<Option<FrameRow>> = results.into_iter().collect::<Result<_>>()?;
     let analysis_seconds = decoded_at.elapsed().as_secs_f64();
     let skipped: Vec<String> = files
         .iter()
@@ -374,6 +209,14 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     let mut rows: Vec<FrameRow> = results.into_iter().flatten().collect();
     if rows.is_empty() {
         bail!("no readable frames in {}", settings.frames_dir.display());
+    }
+    if let Reference::Frame(f) = settings.reference {
+        if !rows.iter().any(|r| r.frame == f) {
+            bail!(
+                "changes.reference = {f} names {}, which could not be read",
+                name_of(&files[f])
+            );
+        }
     }
     // Sequence-level analysis: jumps and stick/slip phases over the readable frames.
     let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
@@ -401,6 +244,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
             "threshold": finite(f64::from(segmenter.threshold())),
         },
         "frames": { "listed": files.len(), "analysed": rows.len(), "skipped": skipped, "change_maps": changes_written },
+        "warnings": warnings,
         "results": results,
         "performance": {
             "wall_seconds": started.elapsed().as_secs_f64(),
@@ -420,32 +264,47 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     Ok(())
 }
 
-fn analyse_frame(
-    index: usize,
-    path: &Path,
-    time: f64,
-    segmenter: &Segmenter,
-    log: Option<&ForceLog>,
-    track: Option<&IndenterTrack>,
+/// What every frame's analysis shares.
+struct FrameContext<'a> {
+    size: &'a FrameSize,
+    segmenter: &'a Segmenter,
+    log: Option<&'a ForceLog>,
+    track: Option<&'a IndenterTrack>,
     pixel_size: f64,
-) -> Result<FrameRow> {
-    let image = read_frame(path)?;
-    let mask = segmenter.segment(&image)?;
-    let channel = |c: usize| log.and_then(|l| l.at(c, time));
-    let stage_x = channel(2);
-    let split = track.map(|t| (t.centre_at(stage_x.unwrap_or(t.stage_x0)), t.motion));
-    let m = measure(&mask, pixel_size, split)?;
-    Ok(FrameRow {
-        frame: index,
-        time,
-        m,
-        force_normal: channel(0),
-        force_tangential: channel(1),
-        stage_x,
-        stage_z: channel(3),
-        jump: false,
-        phase: Phase::Undetermined,
-    })
+}
+
+impl FrameContext<'_> {
+    /// One frame: `Err` for a frame of another size (the run stops), `Ok(Err)` for a frame
+    /// that cannot be decoded or segmented (it is skipped and reported).
+    fn analyse_frame(&self, index: usize, path: &Path, time: f64) -> Result<Result<FrameRow>> {
+        let image = match read_frame(path) {
+            Ok(image) => image,
+            Err(e) => return Ok(Err(e)),
+        };
+        self.size.check(&image, &format!("frames.path: {}", name_of(path)))?;
+        Ok(self.measure_frame(index, &image, time))
+    }
+
+    fn measure_frame(&self, index: usize, image: &GrayImage, time: f64) -> Result<FrameRow> {
+        let mask = self.segmenter.segment(image)?;
+        let channel = |c: usize| self.log.and_then(|l| l.at(c, time));
+        let stage_x = channel(2);
+        let split = self
+            .track
+            .map(|t| (t.centre_at(stage_x.unwrap_or(t.stage_x0)), t.motion));
+        let m = measure(&mask, self.pixel_size, split)?;
+        Ok(FrameRow {
+            frame: index,
+            time,
+            m,
+            force_normal: channel(0),
+            force_tangential: channel(1),
+            stage_x,
+            stage_z: channel(3),
+            jump: false,
+            phase: Phase::Undetermined,
+        })
+    }
 }
 
 /// JSON number, or null for anything non-finite (never NaN in outputs).
@@ -700,7 +559,7 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
     }
     let power_law = match &settings.fits.power_law {
         Some(pl) => {
-            let cols = read_columns(&pl.path, &[pl.time.as_str(), pl.force.as_str()], "fits.power_law")?;
+            let cols = read_table(&pl.path, &[pl.time.as_str(), pl.force.as_str()], "fits.power_law")?.columns;
             let t: Vec<f64> = cols[0].iter().map(|v| v.unwrap_or(f64::NAN)).collect();
             let f: Vec<f64> = cols[1].iter().map(|v| v.unwrap_or(f64::NAN)).collect();
             power_law_fit(&t, &f).ok().map(|p| json!({"coefficient": finite(p.coefficient), "exponent": finite(p.exponent), "r2": finite(p.r2), "points": p.points}))
@@ -724,101 +583,4 @@ fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Val
         "boundary_friction": gamma_approach.zip(gamma_pulloff).map(|(g1, g2)| finite((g2 - g1) / 2.0)),
         "power_law": power_law,
     }))
-}
-
-// ---------------------------------------------------------------- synth
-
-/// Runs `adhesim experiment synth`: frames under `frames/`, `log.csv`, `truth.csv` and a ready
-/// `experiment.toml` in the output folder.
-pub fn run_synth(args: &SynthArgs) -> Result<()> {
-    let out_dir = args.out.clone().unwrap_or_else(|| PathBuf::from("out/synth"));
-    let defaults = SyntheticSpec::default();
-    if !(args.scale.is_finite() && args.scale > 0.0) {
-        bail!("--scale must be > 0, got {}", args.scale);
-    }
-    if !matches!(args.bits, 8 | 16) {
-        bail!("--bits must be 8 or 16, got {}", args.bits);
-    }
-    let ext = match args.format.as_str() {
-        "png" => "png",
-        "tiff" | "tif" => "tif",
-        other => bail!("--format must be png or tiff, got \"{other}\""),
-    };
-    if args.frames == 0 {
-        bail!("--frames must be >= 1, got 0");
-    }
-    // Geometry scales with the frame so that small test frames keep the same layout.
-    let fit = (args.width as f64 / 1600.0).min(args.height as f64 / 1200.0) * args.scale;
-    let spec = SyntheticSpec {
-        width: args.width,
-        height: args.height,
-        frames: args.frames,
-        seed: args.seed,
-        snr: args.snr,
-        blur_sigma_px: args.blur,
-        illumination: args.illumination,
-        start_centre_px: [args.width as f64 * 0.4375, args.height as f64 * 0.5],
-        front_radius_px: defaults.front_radius_px * fit,
-        rear_radius_px: defaults.rear_radius_px * fit,
-        half_width_px: defaults.half_width_px * fit,
-        speed_px_per_frame: (defaults.speed_px_per_frame * fit).max(0.25),
-        stick_frames: args.stick_frames,
-        ..defaults
-    };
-    spec.validate()?;
-    let frames_dir = out_dir.join("frames");
-    std::fs::create_dir_all(&frames_dir).with_context(|| format!("cannot create {}", frames_dir.display()))?;
-    let bar = progress(args.frames, args.quiet, "synth");
-    let logs: Vec<_> = (0..args.frames)
-        .into_par_iter()
-        .map(|k| -> Result<_> {
-            let frame = spec.render(k)?;
-            let (w, h) = (spec.width as u32, spec.height as u32);
-            let path = frames_dir.join(format!("frame_{k:05}.{ext}"));
-            let result = if args.bits == 8 {
-                image::GrayImage::from_raw(w, h, frame.image.to_u8()).map(|b| b.save(&path))
-            } else {
-                image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, frame.image.to_u16()).map(|b| b.save(&path))
-            };
-            result
-                .context("image buffer size")?
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            bar.inc(1);
-            Ok(frame.log)
-        })
-        .collect::<Result<_>>()?;
-    bar.finish_and_clear();
-    let mut log = csv::Writer::from_path(out_dir.join("log.csv"))?;
-    log.write_record(["t", "Fn", "Fx", "x", "z"])?;
-    let mut truth = csv::Writer::from_path(out_dir.join("truth.csv"))?;
-    truth.write_record(["frame", "time", "true_area"])?;
-    for (k, e) in logs.iter().enumerate() {
-        log.write_record([e.time, e.force_normal, e.force_tangential, e.stage_x, e.stage_z].map(|v| v.to_string()))?;
-        truth.write_record([k.to_string(), e.time.to_string(), e.true_area.to_string()])?;
-    }
-    log.flush()?;
-    truth.flush()?;
-    let toml = format!(
-        "# Generated by `adhesim experiment synth` (seed {seed}, SNR {snr}).\n\
-         [frames]\npath = \"frames/\"\npixel_size = {px}\nrate = {rate}\n\n\
-         [forces]\npath = \"log.csv\"\ntime = \"t\"\nnormal = \"Fn\"\ntangential = \"Fx\"\nstage_x = \"x\"\nstage_z = \"z\"\n\n\
-         [contact]\nthreshold = \"otsu\"\ncontact_is = \"bright\"\nbackground = \"fit\"\n\n\
-         [indenter]\ncentre_px = [{cx}, {cy}]\nstage_x0 = 0.0\nmotion = \"+x\"\n\n\
-         [changes]\nreference = \"previous\"\nevery = 0\nat_jumps = true\nmax = 20\n",
-        seed = spec.seed,
-        snr = spec.snr,
-        px = spec.pixel_size,
-        rate = spec.frame_rate,
-        cx = spec.start_centre_px[0],
-        cy = spec.start_centre_px[1],
-    );
-    std::fs::write(out_dir.join("experiment.toml"), toml)?;
-    if !args.quiet {
-        eprintln!(
-            "wrote {} frames, log.csv, truth.csv and experiment.toml to {}",
-            args.frames,
-            out_dir.display()
-        );
-    }
-    Ok(())
 }

@@ -117,6 +117,22 @@ impl Roi {
         })
     }
 
+    /// Checks that the region lies wholly inside a `width`×`height` frame (`contact.roi`): a
+    /// region reaching beyond it would be clipped silently and measure less than asked for.
+    pub fn check_inside(&self, width: usize, height: usize) -> Result<(), ExperimentError> {
+        let fits =
+            |start: usize, len: usize, size: usize| len > 0 && start.checked_add(len).is_some_and(|end| end <= size);
+        if fits(self.x0, self.width, width) && fits(self.y0, self.height, height) {
+            return Ok(());
+        }
+        Err(ExperimentError::OutsideImage {
+            name: "contact.roi",
+            value: format!("[{}, {}, {}, {}]", self.x0, self.y0, self.width, self.height),
+            width,
+            height,
+        })
+    }
+
     /// The whole image.
     pub fn full(width: usize, height: usize) -> Roi {
         Roi {

@@ -66,6 +66,18 @@ pub enum ExperimentError {
     /// Two images or masks that must have the same size do not.
     #[error("size mismatch: {0}×{1} vs {2}×{3} pixels")]
     SizeMismatch(usize, usize, usize, usize),
+    /// A position or region (a spec key) does not lie inside the frames.
+    #[error("{name} = {value} is not inside the {width}×{height} pixel frames")]
+    OutsideImage {
+        /// Parameter name.
+        name: &'static str,
+        /// The offending value, formatted.
+        value: String,
+        /// Frame width in pixels.
+        width: usize,
+        /// Frame height in pixels.
+        height: usize,
+    },
     /// A parameter is out of range; names the parameter and the value.
     #[error("{name} {requirement}, got {value}")]
     InvalidParameter {

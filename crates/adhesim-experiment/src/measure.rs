@@ -77,6 +77,23 @@ impl IndenterTrack {
         })
     }
 
+    /// Checks that the centre at `stage_x0` lies on a pixel of a `width`×`height` frame
+    /// (`indenter.centre_px`; pixel centres are at integer coordinates 0 … width − 1): a centre
+    /// outside puts the whole contact on one side of the front/rear line.
+    pub fn check_inside(&self, width: usize, height: usize) -> Result<(), ExperimentError> {
+        let [cx, cy] = self.centre_px;
+        let on = |c: f64, size: usize| c >= 0.0 && c <= size as f64 - 1.0;
+        if on(cx, width) && on(cy, height) {
+            return Ok(());
+        }
+        Err(ExperimentError::OutsideImage {
+            name: "indenter.centre_px",
+            value: format!("[{cx}, {cy}]"),
+            width,
+            height,
+        })
+    }
+
     /// Centre (column, row) in pixels at stage position `stage_x`.
     pub fn centre_at(&self, stage_x: f64) -> [f64; 2] {
         let shift = (stage_x - self.stage_x0) / self.pixel_size;

@@ -98,17 +98,30 @@ pub struct Segmenter {
     threshold: f32,
     /// Mean level of the [`BackgroundModel::Reference`] frame.
     reference_mean: Option<f32>,
+    /// Size of the calibration frames; every frame segmented later must have it.
+    frame_size: Option<(usize, usize)>,
 }
 
 const OTSU_BINS: usize = 1024;
 
 impl Segmenter {
     /// Calibrates the threshold on sample frames (e.g. a few evenly spaced frames of the
-    /// sequence). With [`ThresholdRule::Fraction`] the samples may be empty.
+    /// sequence). With [`ThresholdRule::Fraction`] the samples may be empty. The samples fix
+    /// the frame size: samples of different sizes, a region of interest not inside them, and
+    /// later frames of another size are errors.
     pub fn new(params: SegmentationParams, samples: &[GrayImage]) -> Result<Self, ExperimentError> {
         if let ThresholdRule::Fraction(f) = params.threshold {
             if !(0.0..=1.0).contains(&f) {
                 return Err(invalid("contact.threshold", "must be in 0..1", f));
+            }
+        }
+        let frame_size = samples.first().map(|s| (s.width(), s.height()));
+        if let Some((w, h)) = frame_size {
+            for s in samples {
+                same_size(w, h, s.width(), s.height())?;
+            }
+            if let Some(roi) = params.roi {
+                roi.check_inside(w, h)?;
             }
         }
         let reference_mean = match &params.background {
@@ -139,6 +152,7 @@ impl Segmenter {
                         params: params.clone(),
                         threshold: raw,
                         reference_mean,
+                        frame_size,
                     };
                     let flat: Vec<GrayImage> = samples
                         .iter()
@@ -152,6 +166,7 @@ impl Segmenter {
             params,
             threshold,
             reference_mean,
+            frame_size,
         })
     }
 
@@ -224,8 +239,11 @@ impl Segmenter {
         }
     }
 
-    /// Illumination gain of a frame (flattened = raw × gain).
+    /// Illumination gain of a frame (flattened = raw × gain); checks the frame's size.
     fn gain(&self, frame: &GrayImage) -> Result<Gain<'_>, ExperimentError> {
+        if let Some((w, h)) = self.frame_size {
+            same_size(w, h, frame.width(), frame.height())?;
+        }
         match &self.params.background {
             BackgroundModel::None => Ok(Gain::One),
             BackgroundModel::Reference(reference) => {

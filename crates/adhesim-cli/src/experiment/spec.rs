@@ -59,9 +59,8 @@ pub struct ContactSpec {
     /// "none", "fit" or a path to a frame of the free surface.
     #[serde(default = "default_background")]
     pub background: String,
-    /// "divide" (flat field) or "subtract".
-    #[serde(default = "default_correction")]
-    pub correction: String,
+    /// "divide" (flat field, the default) or "subtract"; only with a background.
+    pub correction: Option<String>,
     #[serde(default = "one")]
     pub smooth_radius: usize,
     #[serde(default = "one")]
@@ -78,7 +77,7 @@ impl Default for ContactSpec {
             threshold: default_threshold(),
             contact_is: default_contact_is(),
             background: default_background(),
-            correction: default_correction(),
+            correction: None,
             smooth_radius: 1,
             open_radius: 1,
             close_radius: 1,
@@ -91,8 +90,9 @@ impl Default for ContactSpec {
 #[serde(deny_unknown_fields)]
 pub struct IndenterSpec {
     pub centre_px: [f64; 2],
-    #[serde(default)]
-    pub stage_x0: f64,
+    /// Stage position at which the centre is at `centre_px` (default 0); only with
+    /// `forces.stage_x`.
+    pub stage_x0: Option<f64>,
     #[serde(default = "default_motion")]
     pub motion: String,
 }
@@ -188,9 +188,6 @@ fn default_contact_is() -> String {
 fn default_background() -> String {
     "none".into()
 }
-fn default_correction() -> String {
-    "divide".into()
-}
 fn default_motion() -> String {
     "+x".into()
 }
@@ -270,6 +267,28 @@ fn positive(name: &str, value: f64) -> Result<f64> {
     Ok(value)
 }
 
+/// Fit keys that would have no effect are errors: the JKR fit needs E* and R together, and
+/// the normal force and depth columns; the friction window needs the tangential force.
+fn check_fit_keys(fits: &FitsSpec, forces: Option<&ForcesSpec>) -> Result<()> {
+    match (fits.contact_modulus.is_some(), fits.indenter_radius.is_some()) {
+        (true, false) => bail!("fits.contact_modulus is unused without fits.indenter_radius (the JKR fit needs both)"),
+        (false, true) => bail!("fits.indenter_radius is unused without fits.contact_modulus (the JKR fit needs both)"),
+        _ => {}
+    }
+    let mapped = |column: fn(&ForcesSpec) -> &Option<String>| forces.is_some_and(|f| column(f).is_some());
+    let normal_curve = mapped(|f| &f.normal) && mapped(|f| &f.stage_z);
+    if fits.contact_modulus.is_some() && !normal_curve {
+        bail!("fits.contact_modulus and fits.indenter_radius are unused without forces.normal and forces.stage_z (the JKR fit of the normal curve)");
+    }
+    if fits.pinned_tolerance.is_some() && !mapped(|f| &f.stage_z) {
+        bail!("fits.pinned_tolerance is unused without forces.stage_z (the pinned phase is found on the depth)");
+    }
+    if fits.friction_window.is_some() && !mapped(|f| &f.tangential) {
+        bail!("fits.friction_window is unused without forces.tangential (the friction-law fit)");
+    }
+    Ok(())
+}
+
 /// Reads and validates a spec; relative paths are resolved against the spec's folder.
 pub fn load(spec_path: &Path) -> Result<Settings> {
     let text = std::fs::read_to_string(spec_path).with_context(|| format!("cannot read {}", spec_path.display()))?;
@@ -299,10 +318,13 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         "" => bail!("contact.background must be \"none\", \"fit\" or a file path, got \"\""),
         path => BackgroundChoice::File(resolve(Path::new(path))),
     };
-    let correction = match spec.contact.correction.as_str() {
-        "divide" => Correction::Divide,
-        "subtract" => Correction::Subtract,
-        other => bail!("contact.correction must be \"divide\" or \"subtract\", got \"{other}\""),
+    let correction = match spec.contact.correction.as_deref() {
+        Some(_) if background == BackgroundChoice::None => {
+            bail!("contact.correction is unused with contact.background = \"none\": remove it or give a background")
+        }
+        None | Some("divide") => Correction::Divide,
+        Some("subtract") => Correction::Subtract,
+        Some(other) => bail!("contact.correction must be \"divide\" or \"subtract\", got \"{other}\""),
     };
     for (name, r) in [
         ("contact.smooth_radius", spec.contact.smooth_radius),
@@ -329,10 +351,14 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
             if !ind.centre_px.iter().all(|v| v.is_finite()) {
                 bail!("indenter.centre_px must be finite, got {:?}", ind.centre_px);
             }
-            if !ind.stage_x0.is_finite() {
-                bail!("indenter.stage_x0 must be finite, got {}", ind.stage_x0);
+            let stage_x0 = ind.stage_x0.unwrap_or(0.0);
+            if !stage_x0.is_finite() {
+                bail!("indenter.stage_x0 must be finite, got {stage_x0}");
             }
-            Some((ind.centre_px[0], ind.centre_px[1], ind.stage_x0, motion))
+            if ind.stage_x0.is_some() && spec.forces.as_ref().is_none_or(|f| f.stage_x.is_none()) {
+                bail!("indenter.stage_x0 is unused without forces.stage_x (the centre does not move): remove it or map the stage column");
+            }
+            Some((ind.centre_px[0], ind.centre_px[1], stage_x0, motion))
         }
         None => None,
     };
@@ -376,6 +402,7 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
             bail!("fits.friction_window must be [t0, t1] with t1 > t0, got [{t0}, {t1}]");
         }
     }
+    check_fit_keys(&fits, spec.forces.as_ref())?;
     if let Some(p) = fits.power_law.as_mut() {
         p.path = resolve(&p.path);
     }

@@ -1,0 +1,147 @@
+//! `adhesim experiment synth`: a synthetic experiment (frames, force log, truth, spec) with a
+//! known contact, from `adhesim_experiment::synthetic`.
+
+use super::progress;
+use adhesim_experiment::synthetic::SyntheticSpec;
+use anyhow::{bail, Context, Result};
+use rayon::prelude::*;
+use std::path::PathBuf;
+
+/// Arguments of `adhesim experiment synth`.
+#[derive(Debug, clap::Args)]
+pub struct SynthArgs {
+    /// Output folder (default: out/synth/).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Number of frames.
+    #[arg(long, default_value_t = 100)]
+    pub frames: usize,
+    /// Frame width in pixels.
+    #[arg(long, default_value_t = 1600)]
+    pub width: usize,
+    /// Frame height in pixels.
+    #[arg(long, default_value_t = 1200)]
+    pub height: usize,
+    /// Contrast-to-noise ratio (inf = no noise).
+    #[arg(long, default_value_t = 10.0)]
+    pub snr: f64,
+    /// Seed of the noise and the contact spots.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Optical blur σ in pixels.
+    #[arg(long, default_value_t = 1.5)]
+    pub blur: f64,
+    /// Strength of the uneven illumination (0 = even).
+    #[arg(long, default_value_t = 0.2)]
+    pub illumination: f64,
+    /// Contact size relative to the default (semi-axes 260/300/280 px at 1600×1200).
+    #[arg(long, default_value_t = 1.0)]
+    pub scale: f64,
+    /// Frames per stick phase.
+    #[arg(long, default_value_t = 12)]
+    pub stick_frames: usize,
+    /// Image format: png or tiff.
+    #[arg(long, default_value = "png")]
+    pub format: String,
+    /// Bits per sample: 8 or 16.
+    #[arg(long, default_value_t = 8)]
+    pub bits: u8,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs `adhesim experiment synth`: frames under `frames/`, `log.csv`, `truth.csv` and a ready
+/// `experiment.toml` in the output folder.
+pub fn run_synth(args: &SynthArgs) -> Result<()> {
+    let out_dir = args.out.clone().unwrap_or_else(|| PathBuf::from("out/synth"));
+    let defaults = SyntheticSpec::default();
+    if !(args.scale.is_finite() && args.scale > 0.0) {
+        bail!("--scale must be > 0, got {}", args.scale);
+    }
+    if !matches!(args.bits, 8 | 16) {
+        bail!("--bits must be 8 or 16, got {}", args.bits);
+    }
+    let ext = match args.format.as_str() {
+        "png" => "png",
+        "tiff" | "tif" => "tif",
+        other => bail!("--format must be png or tiff, got \"{other}\""),
+    };
+    if args.frames == 0 {
+        bail!("--frames must be >= 1, got 0");
+    }
+    // Geometry scales with the frame so that small test frames keep the same layout.
+    let fit = (args.width as f64 / 1600.0).min(args.height as f64 / 1200.0) * args.scale;
+    let spec = SyntheticSpec {
+        width: args.width,
+        height: args.height,
+        frames: args.frames,
+        seed: args.seed,
+        snr: args.snr,
+        blur_sigma_px: args.blur,
+        illumination: args.illumination,
+        start_centre_px: [args.width as f64 * 0.4375, args.height as f64 * 0.5],
+        front_radius_px: defaults.front_radius_px * fit,
+        rear_radius_px: defaults.rear_radius_px * fit,
+        half_width_px: defaults.half_width_px * fit,
+        speed_px_per_frame: (defaults.speed_px_per_frame * fit).max(0.25),
+        stick_frames: args.stick_frames,
+        ..defaults
+    };
+    spec.validate()?;
+    let frames_dir = out_dir.join("frames");
+    std::fs::create_dir_all(&frames_dir).with_context(|| format!("cannot create {}", frames_dir.display()))?;
+    let bar = progress(args.frames, args.quiet, "synth");
+    let logs: Vec<_> = (0..args.frames)
+        .into_par_iter()
+        .map(|k| -> Result<_> {
+            let frame = spec.render(k)?;
+            let (w, h) = (spec.width as u32, spec.height as u32);
+            let path = frames_dir.join(format!("frame_{k:05}.{ext}"));
+            let result = if args.bits == 8 {
+                image::GrayImage::from_raw(w, h, frame.image.to_u8()).map(|b| b.save(&path))
+            } else {
+                image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, frame.image.to_u16()).map(|b| b.save(&path))
+            };
+            result
+                .context("image buffer size")?
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            bar.inc(1);
+            Ok(frame.log)
+        })
+        .collect::<Result<_>>()?;
+    bar.finish_and_clear();
+    let mut log = csv::Writer::from_path(out_dir.join("log.csv"))?;
+    log.write_record(["t", "Fn", "Fx", "x", "z"])?;
+    let mut truth = csv::Writer::from_path(out_dir.join("truth.csv"))?;
+    truth.write_record(["frame", "time", "true_area"])?;
+    for (k, e) in logs.iter().enumerate() {
+        log.write_record([e.time, e.force_normal, e.force_tangential, e.stage_x, e.stage_z].map(|v| v.to_string()))?;
+        truth.write_record([k.to_string(), e.time.to_string(), e.true_area.to_string()])?;
+    }
+    log.flush()?;
+    truth.flush()?;
+    let toml = format!(
+        "# Generated by `adhesim experiment synth` (seed {seed}, SNR {snr}).\n\
+         [frames]\npath = \"frames/\"\npixel_size = {px}\nrate = {rate}\n\n\
+         [forces]\npath = \"log.csv\"\ntime = \"t\"\nnormal = \"Fn\"\ntangential = \"Fx\"\nstage_x = \"x\"\nstage_z = \"z\"\n\n\
+         [contact]\nthreshold = \"otsu\"\ncontact_is = \"bright\"\nbackground = \"fit\"\n\n\
+         [indenter]\ncentre_px = [{cx}, {cy}]\nstage_x0 = 0.0\nmotion = \"+x\"\n\n\
+         [changes]\nreference = \"previous\"\nevery = 0\nat_jumps = true\nmax = 20\n",
+        seed = spec.seed,
+        snr = spec.snr,
+        px = spec.pixel_size,
+        rate = spec.frame_rate,
+        cx = spec.start_centre_px[0],
+        cy = spec.start_centre_px[1],
+    );
+    std::fs::write(out_dir.join("experiment.toml"), toml)?;
+    if !args.quiet {
+        eprintln!(
+            "wrote {} frames, log.csv, truth.csv and experiment.toml to {}",
+            args.frames,
+            out_dir.display()
+        );
+    }
+    Ok(())
+}
