@@ -13,12 +13,13 @@ use crate::summary::{fit_results, TranslationResults};
 use crate::tangential::{normal_solver, run_in_memory};
 use crate::tangential_plots::{write_panels, Chart, Series, Style, PALETTE};
 use adhesim::analysis::fit::fit_jkr_work_of_adhesion;
+use adhesim::analysis::friction::eq12_rolling_resistance;
+use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
 use adhesim::{HalfSpace, IndentPulloff, StepRecord};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, ValueEnum};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -149,10 +150,6 @@ struct AlphaRow {
     mean_tangential_force_sem: Option<f64>,
     /// Mean over depths of A_real/(πa²) (Fig. 10b).
     compactness: f64,
-}
-
-fn amplitude_for(alpha: f64, wavelength: f64, gamma0: f64, contact_modulus: f64) -> f64 {
-    (2.0 * wavelength * gamma0 / (PI * PI * contact_modulus)).sqrt() / alpha
 }
 
 /// Builds a validated scenario from the base table with `changes` applied.
@@ -354,7 +351,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let amplitudes: Vec<f64> = study
         .alphas
         .iter()
-        .map(|&a| amplitude_for(a, wavelength, gamma0, jkr.contact_modulus))
+        .map(|&a| amplitude_for_johnson_parameter(a, wavelength, gamma0, jkr.contact_modulus))
         .collect();
     // Sliding cases carry their substrate angle; the base's angle is not written as an
     // override, so its cache entries are those of a study without `substrate_angles`.
@@ -487,7 +484,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|{}", study.alphas[*i], theta_label(*angle)))?;
         let (g1, g2, _) = gammas[*i];
         let prediction = match (g1, g2) {
-            (Some(g1), Some(g2)) => Some(2.0 * r.contact_half_width * (g2 - g1)),
+            (Some(g1), Some(g2)) => Some(eq12_rolling_resistance(r.contact_half_width, g1, g2)),
             _ => None,
         };
         let ratio = |f: Option<f64>| match (f, prediction) {

@@ -6,6 +6,7 @@
 //! (`indenter.radius must be > 0, got -1`); nothing here panics on bad input.
 
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
+use adhesim::analysis::scale::adhesive_force_scale;
 use adhesim::geometry::{EllipticPunch, FlatPunch, Sphere, Topography, WavySphere};
 use adhesim::solver::critical_stress;
 use adhesim::{
@@ -888,23 +889,7 @@ impl ScenarioFile {
         if let Some(radius) = o.min_fit_radius {
             non_negative("output.min_fit_radius", radius)?;
         }
-        let force_scale = if gamma0 > 0.0 {
-            match (&jkr, &indenter) {
-                (Some(j), _) => j.critical_force().abs(),
-                (None, Indenter::FlatPunch(punch)) => adhesim::analysis::reference::FlatPunchReference {
-                    radius: punch.radius(),
-                    contact_modulus,
-                }
-                .kendall_force(gamma0)
-                .abs(),
-                (None, Indenter::EllipticPunch(punch)) => {
-                    adhesim::analysis::reference::elliptic_punch_onset_force(punch.semi_axes(), contact_modulus, gamma0)
-                }
-                _ => 0.0,
-            }
-        } else {
-            0.0
-        };
+        let force_scale = adhesive_force_scale(indenter, jkr.as_ref(), contact_modulus, gamma0);
         Ok(o.jump_force_threshold * force_scale)
     }
 }

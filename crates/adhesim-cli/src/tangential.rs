@@ -60,12 +60,12 @@ fn analyse(
     TranslationResults::new(
         summary,
         &TranslationInputs {
-            kind: setup.kind,
+            kinematics: setup.contact.kinematics(),
             records,
             stationary_from: setup.protocol.stationary_from,
             distance: setup.protocol.distance,
             jkr: scenario.jkr,
-            gamma0: scenario.gamma0,
+            work_of_adhesion: scenario.gamma0,
             radius: scenario.indenter.radius_of_curvature().unwrap_or(f64::NAN),
             contact_modulus: scenario.material.contact_modulus(),
             gammas: setup.gammas,

@@ -3,7 +3,9 @@
 //! the deterministic case list.
 
 use crate::scenario;
+use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
+use adhesim::ElasticMaterial;
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -11,13 +13,18 @@ use std::path::{Path, PathBuf};
 /// Pseudo-keys: dimensionless inputs turned into scenario keys for each case.
 pub const PSEUDO_KEYS: [&str; 4] = ["lambda_over_radius", "h_over_lambda", "alpha", "size_over_a_jkr"];
 
-/// Keys that `alpha` may solve for ([derived] alpha = "...").
-const ALPHA_TARGETS: [&str; 4] = [
-    "indenter.amplitude",
-    "adhesion.work_of_adhesion",
-    "indenter.wavelength",
-    "material.contact_modulus",
+/// Keys that `alpha` may solve for ([derived] alpha = "..."), with the library's inversion.
+const ALPHA_TARGETS: [(&str, JohnsonTarget); 4] = [
+    ("indenter.amplitude", JohnsonTarget::Amplitude),
+    ("adhesion.work_of_adhesion", JohnsonTarget::WorkOfAdhesion),
+    ("indenter.wavelength", JohnsonTarget::Wavelength),
+    ("material.contact_modulus", JohnsonTarget::ContactModulus),
 ];
+
+/// The scenario keys `alpha` may set, for messages.
+fn alpha_target_keys() -> String {
+    ALPHA_TARGETS.map(|(key, _)| key).join(", ")
+}
 
 /// One case of a sweep.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -141,9 +148,10 @@ fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
     if get(table, "material.contact_modulus").is_some() {
         return number(table, "material.contact_modulus", why);
     }
-    let e = number(table, "material.youngs_modulus", why)?;
-    let nu = number(table, "material.poisson_ratio", why)?;
-    Ok(e / (1.0 - nu * nu))
+    let youngs_modulus = number(table, "material.youngs_modulus", why)?;
+    let poisson_ratio = number(table, "material.poisson_ratio", why)?;
+    let material = ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(|e| anyhow!("{why}: {e}"))?;
+    Ok(material.contact_modulus())
 }
 
 /// Applies one case's overrides: plain dotted keys first, then the pseudo-keys in the
@@ -174,30 +182,29 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
         set(table, "indenter.amplitude", toml::Value::Float(v * wavelength))?;
     }
     if let Some(alpha) = value_of("alpha") {
-        // α² = 2λγ0/(π²h²E*), solved for the target key.
-        let pi2 = std::f64::consts::PI.powi(2);
+        // α² = 2λγ0/(π²h²E*), solved for the target key by the library.
         let why = "alpha";
-        let e = || contact_modulus(table, why);
-        let lambda = || number(table, "indenter.wavelength", why);
-        let h = || number(table, "indenter.amplitude", why);
-        let gamma = || number(table, "adhesion.work_of_adhesion", why);
-        let solved = match alpha_target {
-            "indenter.amplitude" => (2.0 * lambda()? * gamma()? / (pi2 * e()? * alpha * alpha)).sqrt(),
-            "adhesion.work_of_adhesion" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * lambda()?),
-            "indenter.wavelength" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * gamma()?),
-            "material.contact_modulus" => {
-                if get(table, "material.contact_modulus").is_none() {
-                    bail!(
-                        "[derived] alpha = \"material.contact_modulus\" needs material.contact_modulus in the scenario"
-                    );
-                }
-                2.0 * lambda()? * gamma()? / (pi2 * h()?.powi(2) * alpha * alpha)
-            }
-            other => bail!(
-                "[derived] alpha = \"{other}\": alpha can set one of {}",
-                ALPHA_TARGETS.join(", ")
-            ),
+        let Some(&(_, target)) = ALPHA_TARGETS.iter().find(|(key, _)| *key == alpha_target) else {
+            bail!("[derived] alpha = \"{alpha_target}\": alpha can set one of {}", alpha_target_keys());
         };
+        if target == JohnsonTarget::ContactModulus && get(table, "material.contact_modulus").is_none() {
+            bail!("[derived] alpha = \"material.contact_modulus\" needs material.contact_modulus in the scenario");
+        }
+        // Only the three inputs the target needs must be in the scenario.
+        let input = |wanted: JohnsonTarget, key: &str| -> Result<f64> {
+            match wanted == target {
+                true => Ok(f64::NAN),
+                false if wanted == JohnsonTarget::ContactModulus => contact_modulus(table, why),
+                false => number(table, key, why),
+            }
+        };
+        let inputs = JohnsonInputs {
+            wavelength: input(JohnsonTarget::Wavelength, "indenter.wavelength")?,
+            amplitude: input(JohnsonTarget::Amplitude, "indenter.amplitude")?,
+            work_of_adhesion: input(JohnsonTarget::WorkOfAdhesion, "adhesion.work_of_adhesion")?,
+            contact_modulus: input(JohnsonTarget::ContactModulus, "")?,
+        };
+        let solved = target.solve(alpha, &inputs);
         set(table, alpha_target, toml::Value::Float(solved))?;
     }
     if let Some(v) = value_of("size_over_a_jkr") {
@@ -277,12 +284,12 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
     let mut alpha_target = "indenter.amplitude".to_string();
     for (key, value) in &derived {
         match (key.as_str(), value) {
-            ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.contains(&target.as_str()) => {
+            ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.iter().any(|(key, _)| key == target) => {
                 alpha_target = target.clone()
             }
             ("alpha", other) => bail!(
                 "derived.alpha must name the key alpha sets, one of {}; got {other}",
-                ALPHA_TARGETS.join(", ")
+                alpha_target_keys()
             ),
             (other, _) => bail!("unknown key `derived.{other}` (known: alpha)"),
         }
