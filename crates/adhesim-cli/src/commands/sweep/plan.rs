@@ -2,7 +2,7 @@
 //! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
 //! the deterministic case list.
 
-use crate::scenario;
+use adhesim_scenario as scenario;
 use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
 use adhesim::ElasticMaterial;

@@ -10,7 +10,8 @@
 pub mod plan;
 pub mod table;
 
-use crate::{run, scenario, RunOptions};
+use crate::commands::run::{run, RunOptions};
+use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

@@ -8,14 +8,11 @@
 //! rolling/sliding case), `alphas.csv` (one row per α), `study.json` and the figures in
 //! `plots/`.
 
-use crate::scenario::{self, ProtocolKind, Scenario};
-use crate::summary::{fit_results, TranslationResults};
-use crate::tangential::{normal_solver, run_in_memory};
+use adhesim_scenario::{self as scenario, ProtocolKind, RunResults, TranslationResults, ValidScenario};
 use crate::tangential_plots::{write_panels, Chart, Series, Style, PALETTE};
 use adhesim::analysis::fit::fit_jkr_work_of_adhesion;
 use adhesim::analysis::friction::eq12_rolling_resistance;
 use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
-use adhesim::{HalfSpace, IndentPulloff, StepRecord};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, ValueEnum};
 use rayon::prelude::*;
@@ -153,7 +150,7 @@ struct AlphaRow {
 }
 
 /// Builds a validated scenario from the base table with `changes` applied.
-fn build(table: &toml::Table, base_dir: &Path, changes: &[String]) -> Result<Scenario> {
+fn build(table: &toml::Table, base_dir: &Path, changes: &[String]) -> Result<ValidScenario> {
     let mut table = table.clone();
     scenario::apply_overrides(&mut table, changes)?;
     scenario::deserialize(&table)?.validate(base_dir)
@@ -172,23 +169,20 @@ fn normal_table(table: &toml::Table, normal: &NormalRun) -> toml::Table {
     table
 }
 
-/// γ1, γ2 of an indent_pulloff run (the same fits as `adhesim run`).
-fn normal_gammas(scenario: &Scenario) -> Result<(Option<f64>, Option<f64>)> {
-    let mut operator = HalfSpace::new(scenario.grid, scenario.material);
-    let mut solver = normal_solver(scenario);
-    let protocol = IndentPulloff {
-        start_depth: scenario.start_depth,
-        max_depth: scenario.max_depth,
-        depth_step: scenario.depth_step,
-        max_retract_steps: scenario.max_retract_steps,
-        jump_force_threshold: scenario.jump_force_threshold,
-    };
-    let mut records: Vec<StepRecord> = Vec::new();
-    protocol
-        .run(&mut operator, &scenario.heights, &mut solver, &mut records)
-        .map_err(|e| anyhow!(e))?;
-    let (fits, _) = fit_results(scenario, &records);
-    Ok((fits.gamma_approach, fits.gamma_pulloff))
+/// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
+fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
+    match adhesim_scenario::run(scenario, &mut ()).map_err(|e| anyhow!(e))?.results {
+        RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
+        RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
+    }
+}
+
+/// The analysed results of a roll / slide run, without writing anything.
+fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
+    match adhesim_scenario::run(scenario, &mut ()).map_err(|e| anyhow!(e))?.results {
+        RunResults::Translation(results) => Ok(results),
+        RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
+    }
 }
 
 /// Finished runs of a study are kept under `<out>/cache/` so that a killed study resumes
@@ -209,7 +203,7 @@ impl RunCache {
     fn path(&self, name: &str, table: &toml::Table, changes: &[String]) -> PathBuf {
         let text = format!("{table}\n{}", changes.join("\n"));
         self.folder
-            .join(format!("{name}-{:016x}.json", crate::sweep::plan::results_hash(&text)))
+            .join(format!("{name}-{:016x}.json", crate::commands::sweep::plan::results_hash(&text)))
     }
 
     /// The stored result, if a readable one exists (a damaged file is simply redone).
@@ -392,7 +386,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
             }
         }
     }
-    let normals: Vec<(usize, Scenario, PathBuf)> = if study.kind == StudyKind::Rolling {
+    let normals: Vec<(usize, ValidScenario, PathBuf)> = if study.kind == StudyKind::Rolling {
         let normal = normal_table(&table, &study.normal);
         amplitudes
             .iter()
@@ -457,7 +451,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
                             return Ok((record.results, record.wall_seconds));
                         }
                         let t = Instant::now();
-                        let (_, _, results) = run_in_memory(s)?;
+                        let results = translation_results(s)?;
                         let record = CaseRecord {
                             results,
                             wall_seconds: t.elapsed().as_secs_f64(),
