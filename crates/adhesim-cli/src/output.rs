@@ -18,6 +18,80 @@ const ATTACHED: [u8; 3] = [215, 25, 28];
 const DETACHED: [u8; 3] = [30, 90, 220];
 const FREE: [u8; 3] = [255, 255, 255];
 
+/// One `curve.csv` column: its header and how a step's record gives its cell.
+type Column = (&'static str, Box<dyn Fn(&StepRecord) -> String>);
+
+/// The columns of `curve.csv`, declared once (docs/cli.md lists them): header and row
+/// cannot drift apart. The normalised columns exist where the JKR scales do.
+fn curve_columns(jkr: Option<Jkr>) -> Vec<Column> {
+    fn column(name: &'static str, value: impl Fn(&StepRecord) -> String + 'static) -> Column {
+        (name, Box::new(value))
+    }
+    let mut columns = vec![
+        column("step", |r| r.step.to_string()),
+        column("phase", |r| r.phase.map(|p| p.name()).unwrap_or("").to_string()),
+        column("d", |r| r.depth.to_string()),
+        column("x", |r| r.offset.to_string()),
+        column("force_normal", |r| r.force_normal.to_string()),
+        column("force_tangential", |r| r.force_tangential.to_string()),
+        column("area", |r| r.area.to_string()),
+        column("radius", |r| r.radius.to_string()),
+        column("n_contact", |r| r.contact_elements.to_string()),
+        column("dissipated_energy", |r| r.cumulative_dissipated_energy.to_string()),
+        column("force_tangential_before_change", |r| r.force_tangential_before_change.to_string()),
+        column("half_width", |r| r.half_width.to_string()),
+    ];
+    if let Some(jkr) = jkr {
+        columns.extend([
+            column("d_norm", move |r| (r.depth / jkr.critical_depth().abs()).to_string()),
+            column("force_norm", move |r| (r.force_normal / jkr.critical_force().abs()).to_string()),
+            column("radius_norm", move |r| (r.radius / jkr.critical_radius()).to_string()),
+        ]);
+    }
+    columns.extend([
+        column("attached", |r| r.report.attached.to_string()),
+        column("detached", |r| r.report.detached.to_string()),
+        column("jumped", |r| u8::from(r.jumped).to_string()),
+        column("step_dissipated_energy", |r| r.report.dissipated_energy.to_string()),
+        column("solves", |r| r.report.solves.to_string()),
+        column("cg_iterations", |r| r.report.cg_iterations.to_string()),
+        column("fft_pairs", |r| r.report.operator_applications.to_string()),
+        column("touches_border", |r| u8::from(r.touches_border).to_string()),
+    ]);
+    columns
+}
+
+/// `curve.csv`: one row per step, flushed as it comes (a killed run keeps its steps).
+pub struct CurveCsv {
+    writer: csv::Writer<BufWriter<File>>,
+    columns: Vec<Column>,
+}
+
+impl CurveCsv {
+    /// Creates the file and writes its header.
+    pub fn create(path: &Path, jkr: Option<Jkr>) -> Result<Self> {
+        let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        let columns = curve_columns(jkr);
+        writer.write_record(columns.iter().map(|(name, _)| *name))?;
+        writer.flush()?;
+        Ok(Self { writer, columns })
+    }
+
+    /// Writes the row of one step.
+    pub fn write(&mut self, record: &StepRecord) -> Result<()> {
+        self.writer
+            .write_record(self.columns.iter().map(|(_, value)| value(record)))?;
+        self.writer.flush()?;
+        Ok(())
+    }
+
+    /// Flushes the file.
+    pub fn flush(&mut self) -> Result<()> {
+        Ok(self.writer.flush()?)
+    }
+}
+
 /// Which snapshots to write.
 pub struct SnapshotPlan {
     /// Steps that get a PNG and `.npy` fields.
@@ -34,15 +108,13 @@ pub struct SnapshotPlan {
 
 /// Writes the outputs of each step.
 pub struct RunObserver {
-    csv: csv::Writer<BufWriter<File>>,
+    csv: CurveCsv,
     grid: Grid,
     jkr: Option<Jkr>,
     snapshots: PathBuf,
     plan: SnapshotPlan,
     jump_snapshots: usize,
     progress: ProgressBar,
-    /// Every step's record, for the plots and the summary.
-    pub records: Vec<StepRecord>,
     largest: (usize, usize, Vec<bool>),
     last_in_contact: Option<(usize, Vec<bool>, Vec<bool>)>,
     /// Warnings for the summary (also printed to stderr).
@@ -77,38 +149,7 @@ impl RunObserver {
     ) -> Result<Self> {
         let snapshots = out.join("snapshots");
         std::fs::create_dir_all(&snapshots).with_context(|| format!("cannot create {}", snapshots.display()))?;
-        let path = out.join("curve.csv");
-        let file = File::create(&path).with_context(|| format!("cannot create {}", path.display()))?;
-        let mut csv = csv::Writer::from_writer(BufWriter::new(file));
-        let mut header: Vec<&str> = vec![
-            "step",
-            "phase",
-            "d",
-            "x",
-            "force_normal",
-            "force_tangential",
-            "area",
-            "radius",
-            "n_contact",
-            "dissipated_energy",
-            "force_tangential_before_change",
-            "half_width",
-        ];
-        if jkr.is_some() {
-            header.extend(["d_norm", "force_norm", "radius_norm"]);
-        }
-        header.extend([
-            "attached",
-            "detached",
-            "jumped",
-            "step_dissipated_energy",
-            "solves",
-            "cg_iterations",
-            "fft_pairs",
-            "touches_border",
-        ]);
-        csv.write_record(&header)?;
-        csv.flush()?;
+        let csv = CurveCsv::create(&out.join("curve.csv"), jkr)?;
         let progress = if quiet || !std::io::stderr().is_terminal() {
             ProgressBar::hidden()
         } else {
@@ -127,7 +168,6 @@ impl RunObserver {
             plan,
             jump_snapshots: 0,
             progress,
-            records: Vec::new(),
             largest: (0, 0, Vec::new()),
             last_in_contact: None,
             warnings: Vec::new(),
@@ -149,41 +189,6 @@ impl RunObserver {
         self.capture_steps.extend(steps);
     }
 
-    fn write_row(&mut self, r: &StepRecord) -> Result<()> {
-        let mut row: Vec<String> = vec![
-            r.step.to_string(),
-            r.phase.map(|p| p.name()).unwrap_or("").to_string(),
-            r.depth.to_string(),
-            r.offset.to_string(),
-            r.force_normal.to_string(),
-            r.force_tangential.to_string(),
-            r.area.to_string(),
-            r.radius.to_string(),
-            r.contact_elements.to_string(),
-            r.cumulative_dissipated_energy.to_string(),
-            r.force_tangential_before_change.to_string(),
-            r.half_width.to_string(),
-        ];
-        if let Some(jkr) = &self.jkr {
-            row.push((r.depth / jkr.critical_depth().abs()).to_string());
-            row.push((r.force_normal / jkr.critical_force().abs()).to_string());
-            row.push((r.radius / jkr.critical_radius()).to_string());
-        }
-        row.extend([
-            r.report.attached.to_string(),
-            r.report.detached.to_string(),
-            u8::from(r.jumped).to_string(),
-            r.report.dissipated_energy.to_string(),
-            r.report.solves.to_string(),
-            r.report.cg_iterations.to_string(),
-            r.report.operator_applications.to_string(),
-            u8::from(r.touches_border).to_string(),
-        ]);
-        self.csv.write_record(&row)?;
-        self.csv.flush()?;
-        Ok(())
-    }
-
     fn snapshot(&mut self, name: &str, contact: &[bool], previous: &[bool]) -> Result<()> {
         let path = self.snapshots.join(format!("{name}.png"));
         write_contact_map(&path, self.grid.n(), contact, previous)?;
@@ -193,7 +198,7 @@ impl RunObserver {
 
     fn handle(&mut self, view: &StepView<'_>) -> Result<()> {
         let r = view.record;
-        self.write_row(r)?;
+        self.csv.write(r)?;
         let step = r.step;
         let n = self.grid.n();
         let changed = r.report.attached + r.report.detached;
@@ -262,7 +267,6 @@ impl RunObserver {
                 .progress
                 .set_message(format!("{phase} d = {:.3e}, F = {:.3e}", r.depth, r.force_normal)),
         }
-        self.records.push(*r);
         Ok(())
     }
 
