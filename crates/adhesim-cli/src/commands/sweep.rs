@@ -10,6 +10,7 @@
 pub mod plan;
 pub mod table;
 
+use crate::commands::batch::{self, write_atomically};
 use crate::commands::run::{run, RunOptions};
 use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
@@ -189,16 +190,6 @@ fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
     write_atomically(&path, text.as_bytes())
 }
 
-/// Writes a file through a temporary sibling and a rename, so readers never see half of it.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&temp, bytes).with_context(|| format!("cannot write {}", temp.display()))?;
-    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
-}
 
 fn read_plan(dir: &Path) -> Result<Plan> {
     let path = dir.join("sweep.json");
@@ -356,14 +347,7 @@ fn run_case(plan: &Plan, dir: &Path, case: &Case, pool: &rayon::ThreadPool) -> R
     let failure = match outcome {
         Ok(Ok(())) => None,
         Ok(Err(error)) => Some(format!("{error:#}")),
-        Err(panic) => Some(format!(
-            "panic: {}",
-            panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default()
-        )),
+        Err(panic) => Some(batch::panic_message(panic.as_ref())),
     };
     if let Some(message) = &failure {
         std::fs::write(temp.join("error.txt"), format!("{message}\n"))?;
