@@ -111,7 +111,6 @@ fn read_table(path: &Path) -> Result<Vec<Row>> {
     Ok(rows)
 }
 
-
 /// Marker outline (pixel offsets) of series k: square, triangle, circle-ish octagon,
 /// diamond, inverted triangle, ...
 fn marker_shape(k: usize) -> Vec<(i32, i32)> {
@@ -470,7 +469,12 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         }
     }
     if !curves.is_empty() {
-        written.extend(save_svg_png(out, "force_radius_cases", (900, 640), &CaseCurves(&curves))?);
+        written.extend(save_svg_png(
+            out,
+            "force_radius_cases",
+            (900, 640),
+            &CaseCurves(&curves),
+        )?);
         if contact_shapes(&out.join("contact_shapes.png"), &thumbnails)? {
             written.push("contact_shapes.png".into());
         }

@@ -38,13 +38,17 @@ fn curve_columns(jkr: Option<Jkr>) -> Vec<Column> {
         column("radius", |r| r.radius.to_string()),
         column("n_contact", |r| r.contact_elements.to_string()),
         column("dissipated_energy", |r| r.cumulative_dissipated_energy.to_string()),
-        column("force_tangential_before_change", |r| r.force_tangential_before_change.to_string()),
+        column("force_tangential_before_change", |r| {
+            r.force_tangential_before_change.to_string()
+        }),
         column("half_width", |r| r.half_width.to_string()),
     ];
     if let Some(jkr) = jkr {
         columns.extend([
             column("d_norm", move |r| (r.depth / jkr.critical_depth().abs()).to_string()),
-            column("force_norm", move |r| (r.force_normal / jkr.critical_force().abs()).to_string()),
+            column("force_norm", move |r| {
+                (r.force_normal / jkr.critical_force().abs()).to_string()
+            }),
             column("radius_norm", move |r| (r.radius / jkr.critical_radius()).to_string()),
         ]);
     }

@@ -2,9 +2,9 @@
 //! and retraction in different colours, jumps marked, with the Hertz (γ0 = 0) or JKR
 //! (γ0 > 0, normalised axes) closed form over the points (the paper's Fig. 1 a/b).
 
+use crate::figure::{save_svg_png, Drawing};
 use adhesim::analysis::reference::{Hertz, Jkr};
 use adhesim::{Phase, StepRecord};
-use crate::figure::{save_svg_png, Drawing};
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;

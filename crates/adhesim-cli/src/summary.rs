@@ -70,4 +70,3 @@ pub fn write<R: Serialize>(path: &Path, summary: &Summary<'_, R>) -> Result<()> 
     let text = serde_json::to_string_pretty(summary)?;
     std::fs::write(path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
 }
-

@@ -96,7 +96,10 @@ pub fn min_fit_radius(scenario: &ValidScenario) -> Option<f64> {
     if let Some(radius) = scenario.file.output.min_fit_radius {
         return Some(radius);
     }
-    Some(adhesim::analysis::scale::default_min_fit_radius(&jkr, &scenario.indenter))
+    Some(adhesim::analysis::scale::default_min_fit_radius(
+        &jkr,
+        &scenario.indenter,
+    ))
 }
 
 /// Fits γ1 and γ2 to the run's force–radius records; the fitted curves go into the plot.
@@ -135,4 +138,3 @@ pub fn fit_results(scenario: &ValidScenario, records: &[StepRecord]) -> (FitResu
     };
     (results, Some(analysis))
 }
-

@@ -44,23 +44,7 @@ impl ScenarioFile {
         let p = &self.protocol;
         let kind = p.kind;
         let name = kind.name();
-        for (key, is_set) in [
-            ("max_depth", p.max_depth.is_some()),
-            ("step", p.step.is_some()),
-            ("max_retract_steps", p.max_retract_steps.is_some()),
-        ] {
-            if is_set {
-                let hint = if key == "max_depth" {
-                    " (use protocol.depth)"
-                } else {
-                    ""
-                };
-                bail!("protocol.{key} is not used by protocol.kind = \"{name}\"{hint}");
-            }
-        }
-        if p.substrate_angle.is_some() && kind != ProtocolKind::Slide {
-            bail!("protocol.substrate_angle is used by protocol.kind = \"slide\" only, not \"{name}\"");
-        }
+        check_translation_keys(p)?;
         let wavy = match &indenter {
             Indenter::WavySphere(w) => *w,
             Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
@@ -123,17 +107,7 @@ impl ScenarioFile {
         if !(0.0..1.0).contains(&stationary_from) {
             bail!("protocol.stationary_from must lie in [0, 1), got {stationary_from}");
         }
-        let a = &self.analysis;
-        let gammas = match (a.gamma_approach, a.gamma_pulloff) {
-            (Some(g1), Some(g2)) => Some((
-                non_negative("analysis.gamma_approach", g1)?,
-                non_negative("analysis.gamma_pulloff", g2)?,
-            )),
-            (None, None) => None,
-            (Some(_), None) => bail!("analysis.gamma_pulloff is required with analysis.gamma_approach"),
-            (None, Some(_)) => bail!("analysis.gamma_approach is required with analysis.gamma_pulloff"),
-        };
-        let tau0 = a.tau0.map(|t| non_negative("analysis.tau0", t)).transpose()?;
+        let (gammas, tau0) = analysis_inputs(&self.analysis)?;
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let protocol = Translation {
             start_depth,
@@ -171,4 +145,44 @@ impl ScenarioFile {
             }),
         })
     }
+}
+
+/// Keys of `[protocol]` that a translation of this kind does not use.
+fn check_translation_keys(p: &ProtocolSection) -> Result<()> {
+    let kind = p.kind;
+    let name = kind.name();
+    for (key, is_set) in [
+        ("max_depth", p.max_depth.is_some()),
+        ("step", p.step.is_some()),
+        ("max_retract_steps", p.max_retract_steps.is_some()),
+    ] {
+        if is_set {
+            let hint = if key == "max_depth" {
+                " (use protocol.depth)"
+            } else {
+                ""
+            };
+            bail!("protocol.{key} is not used by protocol.kind = \"{name}\"{hint}");
+        }
+    }
+    if p.substrate_angle.is_some() && kind != ProtocolKind::Slide {
+        bail!("protocol.substrate_angle is used by protocol.kind = \"slide\" only, not \"{name}\"");
+    }
+    Ok(())
+}
+
+/// `[analysis]`: γ1, γ2 for Eq. 12 (both or neither) and τ0 for Eqs. 16–18.
+#[allow(clippy::type_complexity)]
+fn analysis_inputs(a: &AnalysisSection) -> Result<(Option<(f64, f64)>, Option<f64>)> {
+    let gammas = match (a.gamma_approach, a.gamma_pulloff) {
+        (Some(g1), Some(g2)) => Some((
+            non_negative("analysis.gamma_approach", g1)?,
+            non_negative("analysis.gamma_pulloff", g2)?,
+        )),
+        (None, None) => None,
+        (Some(_), None) => bail!("analysis.gamma_pulloff is required with analysis.gamma_approach"),
+        (None, Some(_)) => bail!("analysis.gamma_approach is required with analysis.gamma_pulloff"),
+    };
+    let tau0 = a.tau0.map(|t| non_negative("analysis.tau0", t)).transpose()?;
+    Ok((gammas, tau0))
 }

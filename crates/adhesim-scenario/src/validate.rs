@@ -70,7 +70,12 @@ impl ScenarioFile {
     }
 
     /// `[protocol]` of kind indent_pulloff (and `[output]`).
-    fn validate_indentation(self, inputs: TranslationInputs, heights: Vec<f64>, start_depth: f64) -> Result<ValidScenario> {
+    fn validate_indentation(
+        self,
+        inputs: TranslationInputs,
+        heights: Vec<f64>,
+        start_depth: f64,
+    ) -> Result<ValidScenario> {
         let TranslationInputs {
             grid,
             material,
@@ -159,7 +164,13 @@ impl ScenarioFile {
     }
 
     /// Checks `[output]` and returns the absolute jump force threshold.
-    pub(crate) fn output_checks(&self, gamma0: f64, jkr: &Option<Jkr>, indenter: &Indenter, contact_modulus: f64) -> Result<f64> {
+    pub(crate) fn output_checks(
+        &self,
+        gamma0: f64,
+        jkr: &Option<Jkr>,
+        indenter: &Indenter,
+        contact_modulus: f64,
+    ) -> Result<f64> {
         let o = &self.output;
         for &s in &o.snapshot_steps {
             if s < 0 {

@@ -50,7 +50,9 @@ fn reduced_fig6() -> TranslationResults {
         AdhesiveParams::default(),
     )));
     let mut records: Vec<StepRecord> = Vec::new();
-    let summary = protocol.run(&mut operator, &contact, &mut solver, &mut records).unwrap();
+    let summary = protocol
+        .run(&mut operator, &contact, &mut solver, &mut records)
+        .unwrap();
     TranslationResults::new(
         &summary,
         &TranslationInputs {
@@ -82,14 +84,34 @@ fn library_reproduces_the_cli_friction_numbers_of_fig6() {
     };
     assert_eq!(results.kind, "roll");
     assert_eq!(results.jumps, 46);
-    expect("mean_tangential_force", results.mean_tangential_force, 3.227820826946174e-07);
-    expect("mean_tangential_force_work", Some(results.mean_tangential_force_work), 8.767323953812754e-07);
-    expect("mean_normal_force", Some(results.mean_normal_force), 0.00013939482381346017);
-    expect("contact_half_width", Some(results.contact_half_width), 0.07499999999999998);
+    expect(
+        "mean_tangential_force",
+        results.mean_tangential_force,
+        3.227820826946174e-07,
+    );
+    expect(
+        "mean_tangential_force_work",
+        Some(results.mean_tangential_force_work),
+        8.767323953812754e-07,
+    );
+    expect(
+        "mean_normal_force",
+        Some(results.mean_normal_force),
+        0.00013939482381346017,
+    );
+    expect(
+        "contact_half_width",
+        Some(results.contact_half_width),
+        0.07499999999999998,
+    );
     expect("contact_radius", Some(results.contact_radius), 0.08533466045928989);
     expect("compactness", Some(results.compactness), 0.8447873977535257);
     expect("energy_balance_ratio", results.energy_balance_ratio, 0.917536391866976);
-    expect("mean_normal_force_norm", results.mean_normal_force_norm, 1.4790250167557353);
+    expect(
+        "mean_normal_force_norm",
+        results.mean_normal_force_norm,
+        1.4790250167557353,
+    );
     expect("gamma3", results.gamma3, 3.0530947616339456e-05);
     expect("gamma3_half_width", results.gamma3_half_width, 1.688390994329627e-05);
     expect("gamma3_depth", results.gamma3_depth, 1.634956931571274e-05);

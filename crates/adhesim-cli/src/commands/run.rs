@@ -106,9 +106,14 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         }
     };
     let plot_files = match (&outcome.report, scenario.protocol_setup()) {
-        (ProtocolReport::Translation(summary), ProtocolSetup::Translation(setup)) => {
-            translation_plots(&scenario, setup, summary, &outcome.records, &observer, &out.join("plots"))?
-        }
+        (ProtocolReport::Translation(summary), ProtocolSetup::Translation(setup)) => translation_plots(
+            &scenario,
+            setup,
+            summary,
+            &outcome.records,
+            &observer,
+            &out.join("plots"),
+        )?,
         _ => indentation_plots(&scenario, &outcome, &out.join("plots"))?,
     };
     let wall_seconds = start.elapsed().as_secs_f64();

@@ -190,7 +190,6 @@ fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
     write_atomically(&path, text.as_bytes())
 }
 
-
 fn read_plan(dir: &Path) -> Result<Plan> {
     let path = dir.join("sweep.json");
     let text = std::fs::read_to_string(&path)

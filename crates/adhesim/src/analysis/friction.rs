@@ -169,9 +169,8 @@ impl TranslationResults {
             Some((g1, g2)) if rolling => Some(eq12_rolling_resistance(a, g1, g2)),
             _ => None,
         };
-        let fit_points = |f: &dyn Fn(&StepRecord) -> (f64, f64)| -> Vec<(f64, f64)> {
-            stationary.iter().map(|r| f(r)).collect()
-        };
+        let fit_points =
+            |f: &dyn Fn(&StepRecord) -> (f64, f64)| -> Vec<(f64, f64)> { stationary.iter().map(|r| f(r)).collect() };
         let fit_force = |radius_of: &dyn Fn(&StepRecord) -> f64| {
             rolling
                 .then(|| {

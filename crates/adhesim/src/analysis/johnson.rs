@@ -53,22 +53,42 @@ impl JohnsonTarget {
 }
 
 /// h = √(2λγ/(π²E*α²)).
-pub fn amplitude_for_johnson_parameter(alpha: f64, wavelength: f64, work_of_adhesion: f64, contact_modulus: f64) -> f64 {
+pub fn amplitude_for_johnson_parameter(
+    alpha: f64,
+    wavelength: f64,
+    work_of_adhesion: f64,
+    contact_modulus: f64,
+) -> f64 {
     (2.0 * wavelength * work_of_adhesion / (PI.powi(2) * contact_modulus * alpha * alpha)).sqrt()
 }
 
 /// γ = α²π²h²E*/(2λ).
-pub fn work_of_adhesion_for_johnson_parameter(alpha: f64, wavelength: f64, amplitude: f64, contact_modulus: f64) -> f64 {
+pub fn work_of_adhesion_for_johnson_parameter(
+    alpha: f64,
+    wavelength: f64,
+    amplitude: f64,
+    contact_modulus: f64,
+) -> f64 {
     alpha * alpha * PI.powi(2) * amplitude.powi(2) * contact_modulus / (2.0 * wavelength)
 }
 
 /// λ = α²π²h²E*/(2γ).
-pub fn wavelength_for_johnson_parameter(alpha: f64, amplitude: f64, work_of_adhesion: f64, contact_modulus: f64) -> f64 {
+pub fn wavelength_for_johnson_parameter(
+    alpha: f64,
+    amplitude: f64,
+    work_of_adhesion: f64,
+    contact_modulus: f64,
+) -> f64 {
     alpha * alpha * PI.powi(2) * amplitude.powi(2) * contact_modulus / (2.0 * work_of_adhesion)
 }
 
 /// E* = 2λγ/(π²h²α²).
-pub fn contact_modulus_for_johnson_parameter(alpha: f64, wavelength: f64, amplitude: f64, work_of_adhesion: f64) -> f64 {
+pub fn contact_modulus_for_johnson_parameter(
+    alpha: f64,
+    wavelength: f64,
+    amplitude: f64,
+    work_of_adhesion: f64,
+) -> f64 {
     2.0 * wavelength * work_of_adhesion / (PI.powi(2) * amplitude.powi(2) * alpha * alpha)
 }
 

@@ -23,8 +23,10 @@ impl RunCache {
 
     pub fn path(&self, name: &str, table: &toml::Table, changes: &[String]) -> PathBuf {
         let text = format!("{table}\n{}", changes.join("\n"));
-        self.folder
-            .join(format!("{name}-{:016x}.json", crate::commands::sweep::plan::results_hash(&text)))
+        self.folder.join(format!(
+            "{name}-{:016x}.json",
+            crate::commands::sweep::plan::results_hash(&text)
+        ))
     }
 
     /// The stored result, if a readable one exists (a damaged file is simply redone).
@@ -56,4 +58,3 @@ pub struct CaseRecord {
     pub results: TranslationResults,
     pub wall_seconds: f64,
 }
-

@@ -19,11 +19,11 @@ use adhesim_scenario::{self as scenario, ProtocolKind, RunResults, TranslationRe
 use anyhow::{anyhow, bail, Context, Result};
 use cache::{CaseRecord, NormalRecord, RunCache, ROLLING_ANALYSIS};
 use clap::{Args, ValueEnum};
+use plots::{rolling_plots, sliding_plots};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use plots::{rolling_plots, sliding_plots};
 use tables::{theta_label, write_csv, AlphaRow, Row};
 
 /// Which study.
@@ -119,7 +119,10 @@ fn normal_table(table: &toml::Table, normal: &NormalRun) -> toml::Table {
 
 /// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
 fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
-    match adhesim_scenario::run(scenario, &mut ()).map_err(|e| anyhow!(e))?.results {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
         RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
         RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
     }
@@ -127,7 +130,10 @@ fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)>
 
 /// The analysed results of a roll / slide run, without writing anything.
 fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
-    match adhesim_scenario::run(scenario, &mut ()).map_err(|e| anyhow!(e))?.results {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
         RunResults::Translation(results) => Ok(results),
         RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
     }
@@ -298,7 +304,10 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
 
 /// The results of a study's runs, in the order of the plan: ((γ1, γ2), wall time) of each
 /// normal run, (results, wall time) of each case.
-type Executed = (Vec<Result<((Option<f64>, Option<f64>), f64)>>, Vec<Result<(TranslationResults, f64)>>);
+type Executed = (
+    Vec<Result<((Option<f64>, Option<f64>), f64)>>,
+    Vec<Result<(TranslationResults, f64)>>,
+);
 
 /// Runs the normal runs and the cases on `--jobs` workers, each at most once: a cached
 /// run is reused, a panicking one is an error of its case.
@@ -422,11 +431,9 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     Ok(())
 }
 
-
 fn show(v: Option<f64>) -> String {
     v.map_or("—".into(), |v| format!("{v:.3}"))
 }
-
 
 /// The study's report on stdout.
 fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: &[String], start: Instant) {

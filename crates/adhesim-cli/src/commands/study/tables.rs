@@ -97,7 +97,6 @@ pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
     Ok(())
 }
 
-
 /// The row of each case (`table.csv`) and its results, in the order of the plan; `gammas`
 /// holds (γ1, γ2, wall time) of each α's normal run.
 pub fn case_rows(
