@@ -317,7 +317,7 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
             )
         }
     };
-    let heights = indenter.heights(&grid);
+    let heights = indenter.heights(grid);
     let start_depth = heights
         .iter()
         .copied()
@@ -394,7 +394,7 @@ fn validate_adhesion(
             WorkOfAdhesion::Map(values.into_iter().map(|v| v * gamma0).collect())
         }
     };
-    let gamma = adhesion.on_grid(&grid).map_err(|e| anyhow!("[adhesion]: {e}"))?;
+    let gamma = adhesion.on_grid(grid).map_err(|e| anyhow!("[adhesion]: {e}"))?;
     if gamma0 == 0.0 && section.field.is_some() {
         bail!("adhesion.field needs adhesion.work_of_adhesion > 0, got 0");
     }

@@ -97,6 +97,9 @@ pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
     Ok(())
 }
 
+/// A case's α index and its analysed results.
+pub type CaseResults = (usize, TranslationResults);
+
 /// The row of each case (`table.csv`) and its results, in the order of the plan; `gammas`
 /// holds (γ1, γ2, wall time) of each α's normal run.
 pub fn case_rows(
@@ -106,7 +109,7 @@ pub fn case_rows(
     amplitudes: &[f64],
     gammas: &[(Option<f64>, Option<f64>, Option<f64>)],
     jkr: &Jkr,
-) -> Result<(Vec<Row>, Vec<(usize, TranslationResults)>)> {
+) -> Result<(Vec<Row>, Vec<CaseResults>)> {
     let gamma0 = jkr.work_of_adhesion;
     let f_jkr = jkr.critical_force().abs();
     let a_jkr = jkr.critical_radius();
