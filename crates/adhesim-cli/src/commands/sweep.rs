@@ -290,14 +290,7 @@ fn execute(
             todo.len(),
             failures.len()
         );
-        println!(
-            "{}: {} of {} cases finished ({} with errors)",
-            summary.path.display(),
-            summary.finished,
-            plan.cases.len(),
-            summary.errors
-        );
-        println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+        print_table_and_plots(dir, plan, &summary, &plots);
     }
     Ok(())
 }
@@ -367,20 +360,25 @@ fn run_case(plan: &Plan, dir: &Path, case: &Case, pool: &rayon::ThreadPool) -> R
     Ok(failure)
 }
 
+/// The report on the table and the plots of a sweep.
+fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary, plots: &[String]) {
+    println!(
+        "{}: {} of {} cases finished ({} with errors)",
+        summary.path.display(),
+        summary.finished,
+        plan.cases.len(),
+        summary.errors
+    );
+    println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+}
+
 /// `adhesim sweep merge DIR`: rebuilds the table and the plots.
 pub fn merge(dir: &Path, quiet: bool) -> Result<()> {
     let plan = read_plan(dir)?;
     let summary = table::rebuild(dir, &plan)?;
     let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
     if !quiet {
-        println!(
-            "{}: {} of {} cases finished ({} with errors)",
-            summary.path.display(),
-            summary.finished,
-            plan.cases.len(),
-            summary.errors
-        );
-        println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+        print_table_and_plots(dir, &plan, &summary, &plots);
     }
     Ok(())
 }
