@@ -96,6 +96,82 @@ impl CurveCsv {
     }
 }
 
+/// The progress bar (hidden when quiet or when stderr is not a terminal) with the
+/// current depth and force, normalised by the JKR scales where they exist.
+struct Progress {
+    bar: ProgressBar,
+    jkr: Option<Jkr>,
+}
+
+impl Progress {
+    fn new(expected_steps: usize, quiet: bool, jkr: Option<Jkr>) -> Self {
+        let bar = if quiet || !std::io::stderr().is_terminal() {
+            ProgressBar::hidden()
+        } else {
+            let bar = ProgressBar::with_draw_target(Some(expected_steps as u64), ProgressDrawTarget::stderr());
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps {msg}")
+                    .expect("valid template"),
+            );
+            bar
+        };
+        Self { bar, jkr }
+    }
+
+    fn step(&self, r: &StepRecord) {
+        if r.step as u64 >= self.bar.length().unwrap_or(0) {
+            self.bar.inc_length(1);
+        }
+        self.bar.set_position(r.step as u64 + 1);
+        let phase = r.phase.map(|p| p.name()).unwrap_or("");
+        match &self.jkr {
+            Some(jkr) => self.bar.set_message(format!(
+                "{phase} d/|d_JKR| = {:.2}, F/|F_JKR| = {:.3}",
+                r.depth / jkr.critical_depth().abs(),
+                r.force_normal / jkr.critical_force().abs()
+            )),
+            None => self
+                .bar
+                .set_message(format!("{phase} d = {:.3e}, F = {:.3e}", r.depth, r.force_normal)),
+        }
+    }
+}
+
+/// Wall time per phase: the solver's (time between steps, without the output) and the
+/// output's own.
+pub struct PhaseTimings {
+    /// Solver wall time per phase.
+    pub phase_seconds: BTreeMap<&'static str, f64>,
+    /// Steps per phase.
+    pub phase_steps: BTreeMap<&'static str, usize>,
+    /// Wall time spent writing curve.csv rows and snapshots.
+    pub output_seconds: f64,
+    last_tick: Instant,
+}
+
+impl PhaseTimings {
+    fn new() -> Self {
+        Self {
+            phase_seconds: BTreeMap::new(),
+            phase_steps: BTreeMap::new(),
+            output_seconds: 0.0,
+            last_tick: Instant::now(),
+        }
+    }
+
+    /// A step of `phase` has been solved (since the last tick).
+    fn solver_step(&mut self, phase: &'static str) {
+        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
+        *self.phase_steps.entry(phase).or_default() += 1;
+    }
+
+    /// The output of a step, begun at `start`, is written.
+    fn output_done(&mut self, start: Instant) {
+        self.output_seconds += start.elapsed().as_secs_f64();
+        self.last_tick = Instant::now();
+    }
+}
+
 /// Which snapshots to write.
 pub struct SnapshotPlan {
     /// Steps that get a PNG and `.npy` fields.
@@ -114,11 +190,10 @@ pub struct SnapshotPlan {
 pub struct RunObserver {
     csv: CurveCsv,
     grid: Grid,
-    jkr: Option<Jkr>,
     snapshots: PathBuf,
     plan: SnapshotPlan,
     jump_snapshots: usize,
-    progress: ProgressBar,
+    progress: Progress,
     largest: (usize, usize, Vec<bool>),
     last_in_contact: Option<(usize, Vec<bool>, Vec<bool>)>,
     /// Warnings for the summary (also printed to stderr).
@@ -132,13 +207,8 @@ pub struct RunObserver {
     capture_steps: BTreeSet<usize>,
     /// (step, contact, previous contact) of the captured steps, in step order.
     pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
-    /// Solver wall time per phase (time between steps, without this observer's output).
-    pub phase_seconds: BTreeMap<&'static str, f64>,
-    /// Steps per phase.
-    pub phase_steps: BTreeMap<&'static str, usize>,
-    /// Wall time spent writing curve.csv rows and snapshots.
-    pub output_seconds: f64,
-    last_tick: Instant,
+    /// Solver and output wall time per phase.
+    pub timings: PhaseTimings,
 }
 
 impl RunObserver {
@@ -154,20 +224,10 @@ impl RunObserver {
         let snapshots = out.join("snapshots");
         std::fs::create_dir_all(&snapshots).with_context(|| format!("cannot create {}", snapshots.display()))?;
         let csv = CurveCsv::create(&out.join("curve.csv"), jkr)?;
-        let progress = if quiet || !std::io::stderr().is_terminal() {
-            ProgressBar::hidden()
-        } else {
-            let bar = ProgressBar::with_draw_target(Some(expected_steps as u64), ProgressDrawTarget::stderr());
-            bar.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps {msg}")
-                    .expect("valid template"),
-            );
-            bar
-        };
+        let progress = Progress::new(expected_steps, quiet, jkr);
         Ok(Self {
             csv,
             grid,
-            jkr,
             snapshots,
             plan,
             jump_snapshots: 0,
@@ -180,10 +240,7 @@ impl RunObserver {
             snapshot_files: Vec::new(),
             capture_steps: BTreeSet::new(),
             captured: Vec::new(),
-            phase_seconds: BTreeMap::new(),
-            phase_steps: BTreeMap::new(),
-            output_seconds: 0.0,
-            last_tick: Instant::now(),
+            timings: PhaseTimings::new(),
         })
     }
 
@@ -253,31 +310,17 @@ impl RunObserver {
                 "contact reached the domain border at step {step} (d = {:.6e}): the domain is too small, enlarge grid.size",
                 r.depth
             );
-            self.progress.suspend(|| eprintln!("warning: {message}"));
+            self.progress.bar.suspend(|| eprintln!("warning: {message}"));
             self.warnings.push(message);
         }
-        if step as u64 >= self.progress.length().unwrap_or(0) {
-            self.progress.inc_length(1);
-        }
-        self.progress.set_position(step as u64 + 1);
-        let phase = r.phase.map(|p| p.name()).unwrap_or("");
-        match &self.jkr {
-            Some(jkr) => self.progress.set_message(format!(
-                "{phase} d/|d_JKR| = {:.2}, F/|F_JKR| = {:.3}",
-                r.depth / jkr.critical_depth().abs(),
-                r.force_normal / jkr.critical_force().abs()
-            )),
-            None => self
-                .progress
-                .set_message(format!("{phase} d = {:.3e}, F = {:.3e}", r.depth, r.force_normal)),
-        }
+        self.progress.step(r);
         Ok(())
     }
 
     /// Writes the contact maps of the largest contact and of the last configuration before
     /// contact was lost, and closes the CSV and the progress bar.
     pub fn finish(&mut self) -> Result<()> {
-        self.progress.finish_and_clear();
+        self.progress.bar.finish_and_clear();
         self.csv.flush()?;
         if self.largest.0 > 0 {
             let contact = std::mem::take(&mut self.largest.2);
@@ -293,13 +336,11 @@ impl RunObserver {
 
 impl Observer for RunObserver {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        let phase = view.record.phase.map_or("unknown", |p| p.name());
-        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
-        *self.phase_steps.entry(phase).or_default() += 1;
+        self.timings
+            .solver_step(view.record.phase.map_or("unknown", |p| p.name()));
         let output_start = Instant::now();
         let result = self.handle(&view);
-        self.output_seconds += output_start.elapsed().as_secs_f64();
-        self.last_tick = Instant::now();
+        self.timings.output_done(output_start);
         match result {
             Ok(()) => ControlFlow::Continue(()),
             Err(error) => {

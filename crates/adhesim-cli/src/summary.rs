@@ -47,9 +47,9 @@ impl Performance {
             fft_pairs_per_step: per(fft_pairs as f64, steps),
             solves_per_step: per(solves as f64, steps),
             cg_iterations_per_solve: per(solver_iterations as f64, solves),
-            phase_seconds: observer.phase_seconds.clone(),
-            phase_steps: observer.phase_steps.clone(),
-            output_seconds: observer.output_seconds,
+            phase_seconds: observer.timings.phase_seconds.clone(),
+            phase_steps: observer.timings.phase_steps.clone(),
+            output_seconds: observer.timings.output_seconds,
         }
     }
 }
