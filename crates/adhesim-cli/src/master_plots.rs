@@ -5,7 +5,7 @@
 //! - `force_radius_cases`: F/|F_JKR| vs a/a_JKR of up to eight cases (from their curve.csv),
 //!   and `contact_shapes.png`: their contact maps at the deepest indentation.
 
-use crate::plots::register_font;
+use crate::figure::{grey_first, save_svg_png, Drawing};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
 use plotters::coord::Shift;
@@ -111,17 +111,6 @@ fn read_table(path: &Path) -> Result<Vec<Row>> {
     Ok(rows)
 }
 
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(110, 110, 110),
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-];
-
 /// Marker outline (pixel offsets) of series k: square, triangle, circle-ish octagon,
 /// diamond, inverted triangle, ...
 fn marker_shape(k: usize) -> Vec<(i32, i32)> {
@@ -219,9 +208,9 @@ where
         for (name, points) in series {
             let k = styles.iter().position(|s| s == name).unwrap_or(0);
             let colour = if data.len() > 1 {
-                PALETTE[(1 + q) % PALETTE.len()]
+                grey_first(1 + q)
             } else {
-                PALETTE[k % PALETTE.len()]
+                grey_first(k)
             };
             let shape = marker_shape(k);
             let style = colour.stroke_width(2);
@@ -305,7 +294,7 @@ where
         .draw()
         .map_err(err)?;
     for (k, (label, points)) in curves.iter().enumerate() {
-        let colour = PALETTE[(k + 1) % PALETTE.len()];
+        let colour = grey_first(k + 1);
         chart
             .draw_series(LineSeries::new(points.iter().copied(), colour.stroke_width(1)))
             .map_err(err)?
@@ -423,7 +412,6 @@ where
 
 /// Draws every plot the tables allow into `out`; returns the file names written.
 pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
-    register_font()?;
     let mut rows = Vec::new();
     for table in tables {
         rows.extend(read_table(table)?);
@@ -451,43 +439,17 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
             ("(γ1+γ2)/(2γ0)".to_string(), mean),
             ("(γ1−γ2)/(2γ0)".to_string(), half_difference),
         ];
-        let svg = out.join("fig3_master.svg");
-        draw_fig3(
-            SVGBackend::new(&svg, (1500, 480)).into_drawing_area(),
-            &fig3,
-            &styles,
-            range,
-        )?;
-        let png = out.join("fig3_master.png");
-        draw_fig3(
-            BitMapBackend::new(&png, (1500, 480)).into_drawing_area(),
-            &fig3,
-            &styles,
-            range,
-        )?;
-        let svg = out.join("fig5_master.svg");
-        draw_fig5(
-            SVGBackend::new(&svg, (800, 560)).into_drawing_area(),
-            &fig5,
-            &styles,
-            range,
-        )?;
-        let png = out.join("fig5_master.png");
-        draw_fig5(
-            BitMapBackend::new(&png, (800, 560)).into_drawing_area(),
-            &fig5,
-            &styles,
-            range,
-        )?;
-        written.extend(
-            [
-                "fig3_master.svg",
-                "fig3_master.png",
-                "fig5_master.svg",
-                "fig5_master.png",
-            ]
-            .map(String::from),
-        );
+        for (name, size, figure) in [
+            ("fig3_master", (1500, 480), MasterFigure::Fig3(&fig3)),
+            ("fig5_master", (800, 560), MasterFigure::Fig5(&fig5)),
+        ] {
+            let drawing = Master {
+                figure,
+                styles: &styles,
+                range,
+            };
+            written.extend(save_svg_png(out, name, size, &drawing)?);
+        }
     }
     // Fig. 2: up to eight cases with folders, spread over the α range.
     let mut with_folders: Vec<&Row> = rows.iter().filter(|r| r.folder.is_some()).collect();
@@ -507,15 +469,52 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         }
     }
     if !curves.is_empty() {
-        let svg = out.join("force_radius_cases.svg");
-        force_radius(&SVGBackend::new(&svg, (900, 640)).into_drawing_area(), &curves)?;
-        let png = out.join("force_radius_cases.png");
-        force_radius(&BitMapBackend::new(&png, (900, 640)).into_drawing_area(), &curves)?;
-        written.push("force_radius_cases.svg".into());
-        written.push("force_radius_cases.png".into());
+        written.extend(save_svg_png(
+            out,
+            "force_radius_cases",
+            (900, 640),
+            &CaseCurves(&curves),
+        )?);
         if contact_shapes(&out.join("contact_shapes.png"), &thumbnails)? {
             written.push("contact_shapes.png".into());
         }
     }
     Ok(written)
+}
+
+/// Fig. 3 (γ1, γ2, force vs α) or Fig. 5 (mean and half difference) of the master curves.
+enum MasterFigure<'a> {
+    Fig3(&'a [Series; 3]),
+    Fig5(&'a [(String, Series)]),
+}
+
+/// A master-curve figure with its series styles and α range, as a [`Drawing`].
+struct Master<'a> {
+    figure: MasterFigure<'a>,
+    styles: &'a [String],
+    range: (f64, f64),
+}
+
+impl Drawing for Master<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        match self.figure {
+            MasterFigure::Fig3(data) => draw_fig3(area.clone(), data, self.styles, self.range),
+            MasterFigure::Fig5(data) => draw_fig5(area.clone(), data, self.styles, self.range),
+        }
+    }
+}
+
+/// The force–radius curves of chosen cases, as a [`Drawing`].
+struct CaseCurves<'a>(&'a [(String, Vec<(f64, f64)>)]);
+
+impl Drawing for CaseCurves<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        force_radius(area, self.0)
+    }
 }

@@ -18,6 +18,160 @@ const ATTACHED: [u8; 3] = [215, 25, 28];
 const DETACHED: [u8; 3] = [30, 90, 220];
 const FREE: [u8; 3] = [255, 255, 255];
 
+/// One `curve.csv` column: its header and how a step's record gives its cell.
+type Column = (&'static str, Box<dyn Fn(&StepRecord) -> String>);
+
+/// The columns of `curve.csv`, declared once (docs/cli.md lists them): header and row
+/// cannot drift apart. The normalised columns exist where the JKR scales do.
+fn curve_columns(jkr: Option<Jkr>) -> Vec<Column> {
+    fn column(name: &'static str, value: impl Fn(&StepRecord) -> String + 'static) -> Column {
+        (name, Box::new(value))
+    }
+    let mut columns = vec![
+        column("step", |r| r.step.to_string()),
+        column("phase", |r| r.phase.map(|p| p.name()).unwrap_or("").to_string()),
+        column("d", |r| r.depth.to_string()),
+        column("x", |r| r.offset.to_string()),
+        column("force_normal", |r| r.force_normal.to_string()),
+        column("force_tangential", |r| r.force_tangential.to_string()),
+        column("area", |r| r.area.to_string()),
+        column("radius", |r| r.radius.to_string()),
+        column("n_contact", |r| r.contact_elements.to_string()),
+        column("dissipated_energy", |r| r.cumulative_dissipated_energy.to_string()),
+        column("force_tangential_before_change", |r| {
+            r.force_tangential_before_change.to_string()
+        }),
+        column("half_width", |r| r.half_width.to_string()),
+    ];
+    if let Some(jkr) = jkr {
+        columns.extend([
+            column("d_norm", move |r| (r.depth / jkr.critical_depth().abs()).to_string()),
+            column("force_norm", move |r| {
+                (r.force_normal / jkr.critical_force().abs()).to_string()
+            }),
+            column("radius_norm", move |r| (r.radius / jkr.critical_radius()).to_string()),
+        ]);
+    }
+    columns.extend([
+        column("attached", |r| r.report.attached.to_string()),
+        column("detached", |r| r.report.detached.to_string()),
+        column("jumped", |r| u8::from(r.jumped).to_string()),
+        column("step_dissipated_energy", |r| r.report.dissipated_energy.to_string()),
+        column("solves", |r| r.report.solves.to_string()),
+        column("cg_iterations", |r| r.report.cg_iterations.to_string()),
+        column("fft_pairs", |r| r.report.operator_applications.to_string()),
+        column("touches_border", |r| u8::from(r.touches_border).to_string()),
+    ]);
+    columns
+}
+
+/// `curve.csv`: one row per step, flushed as it comes (a killed run keeps its steps).
+pub struct CurveCsv {
+    writer: csv::Writer<BufWriter<File>>,
+    columns: Vec<Column>,
+}
+
+impl CurveCsv {
+    /// Creates the file and writes its header.
+    pub fn create(path: &Path, jkr: Option<Jkr>) -> Result<Self> {
+        let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        let columns = curve_columns(jkr);
+        writer.write_record(columns.iter().map(|(name, _)| *name))?;
+        writer.flush()?;
+        Ok(Self { writer, columns })
+    }
+
+    /// Writes the row of one step.
+    pub fn write(&mut self, record: &StepRecord) -> Result<()> {
+        self.writer
+            .write_record(self.columns.iter().map(|(_, value)| value(record)))?;
+        self.writer.flush()?;
+        Ok(())
+    }
+
+    /// Flushes the file.
+    pub fn flush(&mut self) -> Result<()> {
+        Ok(self.writer.flush()?)
+    }
+}
+
+/// The progress bar (hidden when quiet or when stderr is not a terminal) with the
+/// current depth and force, normalised by the JKR scales where they exist.
+struct Progress {
+    bar: ProgressBar,
+    jkr: Option<Jkr>,
+}
+
+impl Progress {
+    fn new(expected_steps: usize, quiet: bool, jkr: Option<Jkr>) -> Self {
+        let bar = if quiet || !std::io::stderr().is_terminal() {
+            ProgressBar::hidden()
+        } else {
+            let bar = ProgressBar::with_draw_target(Some(expected_steps as u64), ProgressDrawTarget::stderr());
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps {msg}")
+                    .expect("valid template"),
+            );
+            bar
+        };
+        Self { bar, jkr }
+    }
+
+    fn step(&self, r: &StepRecord) {
+        if r.step as u64 >= self.bar.length().unwrap_or(0) {
+            self.bar.inc_length(1);
+        }
+        self.bar.set_position(r.step as u64 + 1);
+        let phase = r.phase.map(|p| p.name()).unwrap_or("");
+        match &self.jkr {
+            Some(jkr) => self.bar.set_message(format!(
+                "{phase} d/|d_JKR| = {:.2}, F/|F_JKR| = {:.3}",
+                r.depth / jkr.critical_depth().abs(),
+                r.force_normal / jkr.critical_force().abs()
+            )),
+            None => self
+                .bar
+                .set_message(format!("{phase} d = {:.3e}, F = {:.3e}", r.depth, r.force_normal)),
+        }
+    }
+}
+
+/// Wall time per phase: the solver's (time between steps, without the output) and the
+/// output's own.
+pub struct PhaseTimings {
+    /// Solver wall time per phase.
+    pub phase_seconds: BTreeMap<&'static str, f64>,
+    /// Steps per phase.
+    pub phase_steps: BTreeMap<&'static str, usize>,
+    /// Wall time spent writing curve.csv rows and snapshots.
+    pub output_seconds: f64,
+    last_tick: Instant,
+}
+
+impl PhaseTimings {
+    fn new() -> Self {
+        Self {
+            phase_seconds: BTreeMap::new(),
+            phase_steps: BTreeMap::new(),
+            output_seconds: 0.0,
+            last_tick: Instant::now(),
+        }
+    }
+
+    /// A step of `phase` has been solved (since the last tick).
+    fn solver_step(&mut self, phase: &'static str) {
+        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
+        *self.phase_steps.entry(phase).or_default() += 1;
+    }
+
+    /// The output of a step, begun at `start`, is written.
+    fn output_done(&mut self, start: Instant) {
+        self.output_seconds += start.elapsed().as_secs_f64();
+        self.last_tick = Instant::now();
+    }
+}
+
 /// Which snapshots to write.
 pub struct SnapshotPlan {
     /// Steps that get a PNG and `.npy` fields.
@@ -34,15 +188,12 @@ pub struct SnapshotPlan {
 
 /// Writes the outputs of each step.
 pub struct RunObserver {
-    csv: csv::Writer<BufWriter<File>>,
+    csv: CurveCsv,
     grid: Grid,
-    jkr: Option<Jkr>,
     snapshots: PathBuf,
     plan: SnapshotPlan,
     jump_snapshots: usize,
-    progress: ProgressBar,
-    /// Every step's record, for the plots and the summary.
-    pub records: Vec<StepRecord>,
+    progress: Progress,
     largest: (usize, usize, Vec<bool>),
     last_in_contact: Option<(usize, Vec<bool>, Vec<bool>)>,
     /// Warnings for the summary (also printed to stderr).
@@ -56,13 +207,8 @@ pub struct RunObserver {
     capture_steps: BTreeSet<usize>,
     /// (step, contact, previous contact) of the captured steps, in step order.
     pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
-    /// Solver wall time per phase (time between steps, without this observer's output).
-    pub phase_seconds: BTreeMap<&'static str, f64>,
-    /// Steps per phase.
-    pub phase_steps: BTreeMap<&'static str, usize>,
-    /// Wall time spent writing curve.csv rows and snapshots.
-    pub output_seconds: f64,
-    last_tick: Instant,
+    /// Solver and output wall time per phase.
+    pub timings: PhaseTimings,
 }
 
 impl RunObserver {
@@ -77,57 +223,15 @@ impl RunObserver {
     ) -> Result<Self> {
         let snapshots = out.join("snapshots");
         std::fs::create_dir_all(&snapshots).with_context(|| format!("cannot create {}", snapshots.display()))?;
-        let path = out.join("curve.csv");
-        let file = File::create(&path).with_context(|| format!("cannot create {}", path.display()))?;
-        let mut csv = csv::Writer::from_writer(BufWriter::new(file));
-        let mut header: Vec<&str> = vec![
-            "step",
-            "phase",
-            "d",
-            "x",
-            "force_normal",
-            "force_tangential",
-            "area",
-            "radius",
-            "n_contact",
-            "dissipated_energy",
-            "force_tangential_before_change",
-            "half_width",
-        ];
-        if jkr.is_some() {
-            header.extend(["d_norm", "force_norm", "radius_norm"]);
-        }
-        header.extend([
-            "attached",
-            "detached",
-            "jumped",
-            "step_dissipated_energy",
-            "solves",
-            "cg_iterations",
-            "fft_pairs",
-            "touches_border",
-        ]);
-        csv.write_record(&header)?;
-        csv.flush()?;
-        let progress = if quiet || !std::io::stderr().is_terminal() {
-            ProgressBar::hidden()
-        } else {
-            let bar = ProgressBar::with_draw_target(Some(expected_steps as u64), ProgressDrawTarget::stderr());
-            bar.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps {msg}")
-                    .expect("valid template"),
-            );
-            bar
-        };
+        let csv = CurveCsv::create(&out.join("curve.csv"), jkr)?;
+        let progress = Progress::new(expected_steps, quiet, jkr);
         Ok(Self {
             csv,
             grid,
-            jkr,
             snapshots,
             plan,
             jump_snapshots: 0,
             progress,
-            records: Vec::new(),
             largest: (0, 0, Vec::new()),
             last_in_contact: None,
             warnings: Vec::new(),
@@ -136,10 +240,7 @@ impl RunObserver {
             snapshot_files: Vec::new(),
             capture_steps: BTreeSet::new(),
             captured: Vec::new(),
-            phase_seconds: BTreeMap::new(),
-            phase_steps: BTreeMap::new(),
-            output_seconds: 0.0,
-            last_tick: Instant::now(),
+            timings: PhaseTimings::new(),
         })
     }
 
@@ -147,41 +248,6 @@ impl RunObserver {
     /// the consecutive sliding snapshots of the paper's Fig. 9).
     pub fn capture(&mut self, steps: impl IntoIterator<Item = usize>) {
         self.capture_steps.extend(steps);
-    }
-
-    fn write_row(&mut self, r: &StepRecord) -> Result<()> {
-        let mut row: Vec<String> = vec![
-            r.step.to_string(),
-            r.phase.map(|p| p.name()).unwrap_or("").to_string(),
-            r.depth.to_string(),
-            r.offset.to_string(),
-            r.force_normal.to_string(),
-            r.force_tangential.to_string(),
-            r.area.to_string(),
-            r.radius.to_string(),
-            r.contact_elements.to_string(),
-            r.cumulative_dissipated_energy.to_string(),
-            r.force_tangential_before_change.to_string(),
-            r.half_width.to_string(),
-        ];
-        if let Some(jkr) = &self.jkr {
-            row.push((r.depth / jkr.critical_depth().abs()).to_string());
-            row.push((r.force_normal / jkr.critical_force().abs()).to_string());
-            row.push((r.radius / jkr.critical_radius()).to_string());
-        }
-        row.extend([
-            r.report.attached.to_string(),
-            r.report.detached.to_string(),
-            u8::from(r.jumped).to_string(),
-            r.report.dissipated_energy.to_string(),
-            r.report.solves.to_string(),
-            r.report.cg_iterations.to_string(),
-            r.report.operator_applications.to_string(),
-            u8::from(r.touches_border).to_string(),
-        ]);
-        self.csv.write_record(&row)?;
-        self.csv.flush()?;
-        Ok(())
     }
 
     fn snapshot(&mut self, name: &str, contact: &[bool], previous: &[bool]) -> Result<()> {
@@ -193,7 +259,7 @@ impl RunObserver {
 
     fn handle(&mut self, view: &StepView<'_>) -> Result<()> {
         let r = view.record;
-        self.write_row(r)?;
+        self.csv.write(r)?;
         let step = r.step;
         let n = self.grid.n();
         let changed = r.report.attached + r.report.detached;
@@ -244,32 +310,17 @@ impl RunObserver {
                 "contact reached the domain border at step {step} (d = {:.6e}): the domain is too small, enlarge grid.size",
                 r.depth
             );
-            self.progress.suspend(|| eprintln!("warning: {message}"));
+            self.progress.bar.suspend(|| eprintln!("warning: {message}"));
             self.warnings.push(message);
         }
-        if step as u64 >= self.progress.length().unwrap_or(0) {
-            self.progress.inc_length(1);
-        }
-        self.progress.set_position(step as u64 + 1);
-        let phase = r.phase.map(|p| p.name()).unwrap_or("");
-        match &self.jkr {
-            Some(jkr) => self.progress.set_message(format!(
-                "{phase} d/|d_JKR| = {:.2}, F/|F_JKR| = {:.3}",
-                r.depth / jkr.critical_depth().abs(),
-                r.force_normal / jkr.critical_force().abs()
-            )),
-            None => self
-                .progress
-                .set_message(format!("{phase} d = {:.3e}, F = {:.3e}", r.depth, r.force_normal)),
-        }
-        self.records.push(*r);
+        self.progress.step(r);
         Ok(())
     }
 
     /// Writes the contact maps of the largest contact and of the last configuration before
     /// contact was lost, and closes the CSV and the progress bar.
     pub fn finish(&mut self) -> Result<()> {
-        self.progress.finish_and_clear();
+        self.progress.bar.finish_and_clear();
         self.csv.flush()?;
         if self.largest.0 > 0 {
             let contact = std::mem::take(&mut self.largest.2);
@@ -285,13 +336,11 @@ impl RunObserver {
 
 impl Observer for RunObserver {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        let phase = view.record.phase.map_or("unknown", |p| p.name());
-        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
-        *self.phase_steps.entry(phase).or_default() += 1;
+        self.timings
+            .solver_step(view.record.phase.map_or("unknown", |p| p.name()));
         let output_start = Instant::now();
         let result = self.handle(&view);
-        self.output_seconds += output_start.elapsed().as_secs_f64();
-        self.last_tick = Instant::now();
+        self.timings.output_done(output_start);
         match result {
             Ok(()) => ControlFlow::Continue(()),
             Err(error) => {

@@ -2,30 +2,17 @@
 //! and retraction in different colours, jumps marked, with the Hertz (γ0 = 0) or JKR
 //! (γ0 > 0, normalised axes) closed form over the points (the paper's Fig. 1 a/b).
 
+use crate::figure::{save_svg_png, Drawing};
 use adhesim::analysis::reference::{Hertz, Jkr};
 use adhesim::{Phase, StepRecord};
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::FontStyle;
 use std::path::Path;
-use std::sync::OnceLock;
 
-const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 const APPROACH: RGBColor = RGBColor(31, 119, 180);
 const RETRACT: RGBColor = RGBColor(214, 39, 40);
 const REFERENCE: RGBColor = RGBColor(120, 120, 120);
-
-/// Registers the bundled font as "sans-serif" (there are no system fonts to rely on).
-pub fn register_font() -> Result<()> {
-    static DONE: OnceLock<bool> = OnceLock::new();
-    let ok = *DONE.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
-    if ok {
-        Ok(())
-    } else {
-        Err(anyhow!("the bundled font could not be loaded"))
-    }
-}
 
 /// (x, y) points of a series.
 type Points = Vec<(f64, f64)>;
@@ -319,7 +306,6 @@ pub fn write_all_with_overlays(
     figures: &[(&'static str, Figure)],
     overlays: &[FigureOverlays<'_>],
 ) -> Result<Vec<String>> {
-    register_font()?;
     std::fs::create_dir_all(dir)?;
     let mut written = Vec::new();
     for (name, figure) in figures {
@@ -328,12 +314,20 @@ pub fn write_all_with_overlays(
             .find(|(target, _)| target == name)
             .map(|(_, curves)| curves.as_slice())
             .unwrap_or(&[]);
-        let svg = dir.join(format!("{name}.svg"));
-        draw_with_overlays(&SVGBackend::new(&svg, (800, 600)).into_drawing_area(), figure, extra)?;
-        let png = dir.join(format!("{name}.png"));
-        draw_with_overlays(&BitMapBackend::new(&png, (800, 600)).into_drawing_area(), figure, extra)?;
-        written.push(format!("plots/{name}.svg"));
-        written.push(format!("plots/{name}.png"));
+        let files = save_svg_png(dir, name, (800, 600), &WithOverlays(figure, extra))?;
+        written.extend(files.map(|file| format!("plots/{file}")));
     }
     Ok(written)
+}
+
+/// A figure with its overlay curves, as a [`Drawing`].
+struct WithOverlays<'a>(&'a Figure, &'a Overlays);
+
+impl Drawing for WithOverlays<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_with_overlays(area, self.0, self.1)
+    }
 }

@@ -2,7 +2,7 @@
 //! of consecutive contact maps with the moving axis marked, and the study plots (generic
 //! multi-series charts with optional reference lines).
 
-use crate::plots::register_font;
+use crate::figure::{save_svg_png, Drawing};
 use adhesim::analysis::reference::Jkr;
 use adhesim::{Grid, Phase, StepRecord};
 use anyhow::{anyhow, Context, Result};
@@ -10,17 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// Colours of the series, in order.
-pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(140, 86, 75),
-    RGBColor(23, 190, 207),
-    RGBColor(127, 127, 127),
-];
+pub use crate::figure::PALETTE;
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -185,13 +175,9 @@ where
 /// Writes `NAME.svg` and `NAME.png` with the charts stacked vertically; returns the paths
 /// relative to the parent of `dir` (`plots/NAME.svg`, ...).
 pub fn write_panels(dir: &Path, name: &str, charts: &[Chart]) -> Result<Vec<String>> {
-    register_font()?;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let height = 420 * charts.len().max(1) as u32 + 60;
-    let svg = dir.join(format!("{name}.svg"));
-    draw_panels(&SVGBackend::new(&svg, (800, height)).into_drawing_area(), charts)?;
-    let png = dir.join(format!("{name}.png"));
-    draw_panels(&BitMapBackend::new(&png, (800, height)).into_drawing_area(), charts)?;
+    save_svg_png(dir, name, (800, height), &Panels(charts))?;
     let folder = dir
         .file_name()
         .map(|f| f.to_string_lossy().into_owned())
@@ -358,4 +344,16 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
     image
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Charts stacked vertically, as a [`Drawing`].
+struct Panels<'a>(&'a [Chart]);
+
+impl Drawing for Panels<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_panels(area, self.0)
+    }
 }

@@ -3,4 +3,7 @@
 pub mod contact;
 pub mod curve;
 pub mod fit;
+pub mod friction;
+pub mod johnson;
 pub mod reference;
+pub mod scale;

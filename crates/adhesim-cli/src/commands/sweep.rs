@@ -10,7 +10,9 @@
 pub mod plan;
 pub mod table;
 
-use crate::{run, scenario, RunOptions};
+use crate::commands::batch::{self, write_atomically};
+use crate::commands::run::{run, RunOptions};
+use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -188,17 +190,6 @@ fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
     write_atomically(&path, text.as_bytes())
 }
 
-/// Writes a file through a temporary sibling and a rename, so readers never see half of it.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&temp, bytes).with_context(|| format!("cannot write {}", temp.display()))?;
-    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
-}
-
 fn read_plan(dir: &Path) -> Result<Plan> {
     let path = dir.join("sweep.json");
     let text = std::fs::read_to_string(&path)
@@ -299,14 +290,7 @@ fn execute(
             todo.len(),
             failures.len()
         );
-        println!(
-            "{}: {} of {} cases finished ({} with errors)",
-            summary.path.display(),
-            summary.finished,
-            plan.cases.len(),
-            summary.errors
-        );
-        println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+        print_table_and_plots(dir, plan, &summary, &plots);
     }
     Ok(())
 }
@@ -355,14 +339,7 @@ fn run_case(plan: &Plan, dir: &Path, case: &Case, pool: &rayon::ThreadPool) -> R
     let failure = match outcome {
         Ok(Ok(())) => None,
         Ok(Err(error)) => Some(format!("{error:#}")),
-        Err(panic) => Some(format!(
-            "panic: {}",
-            panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default()
-        )),
+        Err(panic) => Some(batch::panic_message(panic.as_ref())),
     };
     if let Some(message) = &failure {
         std::fs::write(temp.join("error.txt"), format!("{message}\n"))?;
@@ -383,20 +360,25 @@ fn run_case(plan: &Plan, dir: &Path, case: &Case, pool: &rayon::ThreadPool) -> R
     Ok(failure)
 }
 
+/// The report on the table and the plots of a sweep.
+fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary, plots: &[String]) {
+    println!(
+        "{}: {} of {} cases finished ({} with errors)",
+        summary.path.display(),
+        summary.finished,
+        plan.cases.len(),
+        summary.errors
+    );
+    println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+}
+
 /// `adhesim sweep merge DIR`: rebuilds the table and the plots.
 pub fn merge(dir: &Path, quiet: bool) -> Result<()> {
     let plan = read_plan(dir)?;
     let summary = table::rebuild(dir, &plan)?;
     let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
     if !quiet {
-        println!(
-            "{}: {} of {} cases finished ({} with errors)",
-            summary.path.display(),
-            summary.finished,
-            plan.cases.len(),
-            summary.errors
-        );
-        println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+        print_table_and_plots(dir, &plan, &summary, &plots);
     }
     Ok(())
 }

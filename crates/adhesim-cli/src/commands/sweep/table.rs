@@ -7,7 +7,8 @@
 //! sharded sweep is byte-identical to an uninterrupted one.
 
 use super::plan::Plan;
-use super::{case_state, write_atomically, CaseState};
+use super::{case_state, CaseState};
+use crate::commands::batch::write_atomically;
 use anyhow::{Context, Result};
 use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::Deserialize;

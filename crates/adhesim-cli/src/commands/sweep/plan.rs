@@ -2,9 +2,11 @@
 //! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
 //! the deterministic case list.
 
-use crate::scenario;
+use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
 use adhesim::rng::SplitMix64;
+use adhesim::ElasticMaterial;
+use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -12,13 +14,18 @@ use std::path::{Path, PathBuf};
 /// Pseudo-keys: dimensionless inputs turned into scenario keys for each case.
 pub const PSEUDO_KEYS: [&str; 4] = ["lambda_over_radius", "h_over_lambda", "alpha", "size_over_a_jkr"];
 
-/// Keys that `alpha` may solve for ([derived] alpha = "...").
-const ALPHA_TARGETS: [&str; 4] = [
-    "indenter.amplitude",
-    "adhesion.work_of_adhesion",
-    "indenter.wavelength",
-    "material.contact_modulus",
+/// Keys that `alpha` may solve for ([derived] alpha = "..."), with the library's inversion.
+const ALPHA_TARGETS: [(&str, JohnsonTarget); 4] = [
+    ("indenter.amplitude", JohnsonTarget::Amplitude),
+    ("adhesion.work_of_adhesion", JohnsonTarget::WorkOfAdhesion),
+    ("indenter.wavelength", JohnsonTarget::Wavelength),
+    ("material.contact_modulus", JohnsonTarget::ContactModulus),
 ];
+
+/// The scenario keys `alpha` may set, for messages.
+fn alpha_target_keys() -> String {
+    ALPHA_TARGETS.map(|(key, _)| key).join(", ")
+}
 
 /// One case of a sweep.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -122,9 +129,11 @@ fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
     if get(table, "material.contact_modulus").is_some() {
         return number(table, "material.contact_modulus", why);
     }
-    let e = number(table, "material.youngs_modulus", why)?;
-    let nu = number(table, "material.poisson_ratio", why)?;
-    Ok(e / (1.0 - nu * nu))
+    let youngs_modulus = number(table, "material.youngs_modulus", why)?;
+    let poisson_ratio = number(table, "material.poisson_ratio", why)?;
+    let material =
+        ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(|e| anyhow!("{why}: {e}"))?;
+    Ok(material.contact_modulus())
 }
 
 /// Applies one case's overrides: plain dotted keys first, then the pseudo-keys in the
@@ -155,30 +164,32 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
         set(table, "indenter.amplitude", toml::Value::Float(v * wavelength))?;
     }
     if let Some(alpha) = value_of("alpha") {
-        // α² = 2λγ0/(π²h²E*), solved for the target key.
-        let pi2 = std::f64::consts::PI.powi(2);
+        // α² = 2λγ0/(π²h²E*), solved for the target key by the library.
         let why = "alpha";
-        let e = || contact_modulus(table, why);
-        let lambda = || number(table, "indenter.wavelength", why);
-        let h = || number(table, "indenter.amplitude", why);
-        let gamma = || number(table, "adhesion.work_of_adhesion", why);
-        let solved = match alpha_target {
-            "indenter.amplitude" => (2.0 * lambda()? * gamma()? / (pi2 * e()? * alpha * alpha)).sqrt(),
-            "adhesion.work_of_adhesion" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * lambda()?),
-            "indenter.wavelength" => alpha * alpha * pi2 * h()?.powi(2) * e()? / (2.0 * gamma()?),
-            "material.contact_modulus" => {
-                if get(table, "material.contact_modulus").is_none() {
-                    bail!(
-                        "[derived] alpha = \"material.contact_modulus\" needs material.contact_modulus in the scenario"
-                    );
-                }
-                2.0 * lambda()? * gamma()? / (pi2 * h()?.powi(2) * alpha * alpha)
-            }
-            other => bail!(
-                "[derived] alpha = \"{other}\": alpha can set one of {}",
-                ALPHA_TARGETS.join(", ")
-            ),
+        let Some(&(_, target)) = ALPHA_TARGETS.iter().find(|(key, _)| *key == alpha_target) else {
+            bail!(
+                "[derived] alpha = \"{alpha_target}\": alpha can set one of {}",
+                alpha_target_keys()
+            );
         };
+        if target == JohnsonTarget::ContactModulus && get(table, "material.contact_modulus").is_none() {
+            bail!("[derived] alpha = \"material.contact_modulus\" needs material.contact_modulus in the scenario");
+        }
+        // Only the three inputs the target needs must be in the scenario.
+        let input = |wanted: JohnsonTarget, key: &str| -> Result<f64> {
+            match wanted == target {
+                true => Ok(f64::NAN),
+                false if wanted == JohnsonTarget::ContactModulus => contact_modulus(table, why),
+                false => number(table, key, why),
+            }
+        };
+        let inputs = JohnsonInputs {
+            wavelength: input(JohnsonTarget::Wavelength, "indenter.wavelength")?,
+            amplitude: input(JohnsonTarget::Amplitude, "indenter.amplitude")?,
+            work_of_adhesion: input(JohnsonTarget::WorkOfAdhesion, "adhesion.work_of_adhesion")?,
+            contact_modulus: input(JohnsonTarget::ContactModulus, "")?,
+        };
+        let solved = target.solve(alpha, &inputs);
         set(table, alpha_target, toml::Value::Float(solved))?;
     }
     if let Some(v) = value_of("size_over_a_jkr") {
@@ -224,21 +235,7 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
             bail!("{origin}: unknown key `{key}` (expected: {})", TOP.join(", "));
         }
     }
-    // Base scenario.
-    let (base, base_dir) = match (sweep.get("base"), sweep.get("scenario")) {
-        (Some(toml::Value::String(file)), None) => {
-            let base_path = sweep_dir.join(file);
-            let text = std::fs::read_to_string(&base_path)
-                .with_context(|| format!("base = \"{file}\": cannot read {}", base_path.display()))?;
-            let table = scenario::parse_toml(&text, &base_path.display().to_string())?;
-            (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
-        }
-        (None, Some(toml::Value::Table(table))) => (table.clone(), sweep_dir.to_path_buf()),
-        (Some(_), Some(_)) => bail!("{origin}: give either base = \"file.toml\" or an inline [scenario], not both"),
-        (Some(other), None) => bail!("base must be a file name (string), got {other}"),
-        (None, Some(other)) => bail!("scenario must be a table [scenario], got {other}"),
-        (None, None) => bail!("{origin}: missing base = \"scenario.toml\" (or an inline [scenario] table)"),
-    };
+    let (base, base_dir) = base_scenario(&sweep, origin, sweep_dir)?;
     scenario::deserialize(&base)
         .and_then(|file| file.validate(&base_dir).map(|_| ()))
         .context("base scenario")?;
@@ -255,19 +252,7 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
         }
     };
     let derived = table_of("derived")?;
-    let mut alpha_target = "indenter.amplitude".to_string();
-    for (key, value) in &derived {
-        match (key.as_str(), value) {
-            ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.contains(&target.as_str()) => {
-                alpha_target = target.clone()
-            }
-            ("alpha", other) => bail!(
-                "derived.alpha must name the key alpha sets, one of {}; got {other}",
-                ALPHA_TARGETS.join(", ")
-            ),
-            (other, _) => bail!("unknown key `derived.{other}` (known: alpha)"),
-        }
-    }
+    let alpha_target = alpha_target(&derived)?;
     let fixed: Vec<(String, toml::Value)> = table_of("set")?.into_iter().collect();
 
     // [vary]: cartesian product.
@@ -309,7 +294,97 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
         }
     };
     // [random]: seeded draws.
-    let mut random = table_of("random")?;
+    let draws = random_draws(table_of("random")?, &mut keys)?;
+    let mut seen = std::collections::BTreeSet::new();
+    for key in keys.iter().chain(fixed.iter().map(|(k, _)| k)) {
+        if !seen.insert(key.clone()) {
+            bail!("sweep key `{key}` is given more than once (in [set], [vary], [zip] or [random])");
+        }
+        if key == "alpha" && get(&base, &alpha_target).is_none() && alpha_target != "indenter.amplitude" {
+            bail!("alpha sets {alpha_target}, which the base scenario lacks");
+        }
+    }
+    // Every key must be a scenario key (or a pseudo-key): set it alone on the base and
+    // deserialise, so that an unknown key is named.
+    for (key, value) in vary
+        .iter()
+        .map(|(k, l)| (k, &l[0]))
+        .chain(zip.iter().map(|(k, l)| (k, &l[0])))
+        .chain(draws[0].iter().map(|(k, v)| (k, v)))
+        .chain(fixed.iter().map(|(k, v)| (k, v)))
+    {
+        if PSEUDO_KEYS.contains(&key.as_str()) {
+            continue;
+        }
+        if key.split('.').any(str::is_empty) || !key.contains('.') {
+            bail!(
+                "unknown sweep key `{key}`: expected a dotted scenario key such as \"indenter.amplitude\" or one of {}",
+                PSEUDO_KEYS.join(", ")
+            );
+        }
+        let mut table = base.clone();
+        set(&mut table, key, value.clone()).with_context(|| format!("sweep key `{key}`"))?;
+        scenario::deserialize(&table).with_context(|| format!("sweep key `{key}`"))?;
+    }
+
+    let cases = case_list(&CaseInputs {
+        base: &base,
+        base_dir: &base_dir,
+        fixed: &fixed,
+        vary: &vary,
+        zip: &zip,
+        zip_rows,
+        draws: &draws,
+        alpha_target: &alpha_target,
+    })?;
+    Ok(Plan {
+        series,
+        keys,
+        cases,
+        base_dir,
+    })
+}
+
+/// The base scenario (`base = "file.toml"` or an inline `[scenario]`) and the folder its
+/// relative paths are resolved against.
+fn base_scenario(sweep: &toml::Table, origin: &str, sweep_dir: &Path) -> Result<(toml::Table, PathBuf)> {
+    Ok(match (sweep.get("base"), sweep.get("scenario")) {
+        (Some(toml::Value::String(file)), None) => {
+            let base_path = sweep_dir.join(file);
+            let text = std::fs::read_to_string(&base_path)
+                .with_context(|| format!("base = \"{file}\": cannot read {}", base_path.display()))?;
+            let table = scenario::parse_toml(&text, &base_path.display().to_string())?;
+            (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
+        }
+        (None, Some(toml::Value::Table(table))) => (table.clone(), sweep_dir.to_path_buf()),
+        (Some(_), Some(_)) => bail!("{origin}: give either base = \"file.toml\" or an inline [scenario], not both"),
+        (Some(other), None) => bail!("base must be a file name (string), got {other}"),
+        (None, Some(other)) => bail!("scenario must be a table [scenario], got {other}"),
+        (None, None) => bail!("{origin}: missing base = \"scenario.toml\" (or an inline [scenario] table)"),
+    })
+}
+
+/// The key `alpha` sets (`[derived] alpha = "..."`, indenter.amplitude by default).
+fn alpha_target(derived: &toml::Table) -> Result<String> {
+    let mut alpha_target = "indenter.amplitude".to_string();
+    for (key, value) in derived {
+        match (key.as_str(), value) {
+            ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.iter().any(|(key, _)| key == target) => {
+                alpha_target = target.clone()
+            }
+            ("alpha", other) => bail!(
+                "derived.alpha must name the key alpha sets, one of {}; got {other}",
+                alpha_target_keys()
+            ),
+            (other, _) => bail!("unknown key `derived.{other}` (known: alpha)"),
+        }
+    }
+    Ok(alpha_target)
+}
+
+/// `[random]`: `cases` seeded draws of each range (keys appended to `keys`); one empty draw
+/// without a `[random]` table.
+fn random_draws(mut random: toml::Table, keys: &mut Vec<String>) -> Result<Vec<Vec<(String, toml::Value)>>> {
     let mut draws: Vec<Vec<(String, toml::Value)>> = Vec::new();
     if !random.is_empty() {
         let seed = match random.remove("seed") {
@@ -379,41 +454,35 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
     if draws.is_empty() {
         draws.push(Vec::new());
     }
-    let mut seen = std::collections::BTreeSet::new();
-    for key in keys.iter().chain(fixed.iter().map(|(k, _)| k)) {
-        if !seen.insert(key.clone()) {
-            bail!("sweep key `{key}` is given more than once (in [set], [vary], [zip] or [random])");
-        }
-        if key == "alpha" && get(&base, &alpha_target).is_none() && alpha_target != "indenter.amplitude" {
-            bail!("alpha sets {alpha_target}, which the base scenario lacks");
-        }
-    }
-    // Every key must be a scenario key (or a pseudo-key): set it alone on the base and
-    // deserialise, so that an unknown key is named.
-    for (key, value) in vary
-        .iter()
-        .map(|(k, l)| (k, &l[0]))
-        .chain(zip.iter().map(|(k, l)| (k, &l[0])))
-        .chain(draws[0].iter().map(|(k, v)| (k, v)))
-        .chain(fixed.iter().map(|(k, v)| (k, v)))
-    {
-        if PSEUDO_KEYS.contains(&key.as_str()) {
-            continue;
-        }
-        if key.split('.').any(str::is_empty) || !key.contains('.') {
-            bail!(
-                "unknown sweep key `{key}`: expected a dotted scenario key such as \"indenter.amplitude\" or one of {}",
-                PSEUDO_KEYS.join(", ")
-            );
-        }
-        let mut table = base.clone();
-        set(&mut table, key, value.clone()).with_context(|| format!("sweep key `{key}`"))?;
-        scenario::deserialize(&table).with_context(|| format!("sweep key `{key}`"))?;
-    }
+    Ok(draws)
+}
 
-    // The case list: vary (last key fastest) × zip rows × random draws.
+/// What the case list is built from.
+struct CaseInputs<'a> {
+    base: &'a toml::Table,
+    base_dir: &'a Path,
+    fixed: &'a [(String, toml::Value)],
+    vary: &'a [(String, Vec<toml::Value>)],
+    zip: &'a [(String, Vec<toml::Value>)],
+    zip_rows: usize,
+    draws: &'a [Vec<(String, toml::Value)>],
+    alpha_target: &'a str,
+}
+
+/// The case list: vary (last key fastest) × zip rows × random draws, each case validated.
+fn case_list(inputs: &CaseInputs<'_>) -> Result<Vec<Case>> {
+    let CaseInputs {
+        base,
+        base_dir,
+        fixed,
+        vary,
+        zip,
+        zip_rows,
+        draws,
+        alpha_target,
+    } = *inputs;
     let mut combos: Vec<Vec<(String, toml::Value)>> = vec![Vec::new()];
-    for (key, list) in &vary {
+    for (key, list) in vary {
         let mut next = Vec::with_capacity(combos.len() * list.len());
         for combo in &combos {
             for value in list {
@@ -427,7 +496,7 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
     let mut cases = Vec::new();
     for combo in &combos {
         for row in 0..zip_rows {
-            for draw in &draws {
+            for draw in draws {
                 let mut overrides = combo.clone();
                 overrides.extend(zip.iter().map(|(k, l)| (k.clone(), l[row].clone())));
                 overrides.extend(draw.iter().cloned());
@@ -440,9 +509,9 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
                     let list: Vec<String> = overrides.iter().map(|(k, v)| format!("{k} = {v}")).collect();
                     format!("case {index} ({})", list.join(", "))
                 };
-                apply(&mut table, &all, &alpha_target).with_context(describe)?;
+                apply(&mut table, &all, alpha_target).with_context(describe)?;
                 scenario::deserialize(&table)
-                    .and_then(|file| file.validate(&base_dir).map(|_| ()))
+                    .and_then(|file| file.validate(base_dir).map(|_| ()))
                     .with_context(describe)?;
                 let scenario_text = toml::to_string(&table).context("cannot serialise a case scenario")?;
                 cases.push(Case {
@@ -455,12 +524,7 @@ pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Resu
             }
         }
     }
-    Ok(Plan {
-        series,
-        keys,
-        cases,
-        base_dir,
-    })
+    Ok(cases)
 }
 
 #[cfg(test)]

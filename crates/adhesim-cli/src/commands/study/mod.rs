@@ -1,0 +1,483 @@
+//! `adhesim study rolling|sliding STUDY.toml [--out DIR] [--jobs N]`: the multi-run
+//! studies of the paper's Figs. 7, 8 and 10 (docs/friction.md).
+//!
+//! A study file names a roll or slide scenario and the Johnson parameters α to visit
+//! (indenter.amplitude is set from α at the scenario's λ, γ0, E*); rolling also lists
+//! the depths d/|d_JKR| of the rolling runs and the indent_pulloff run per α that gives
+//! γ1, γ2 for Eq. 12. Cases run in parallel; the study writes `table.csv` (one row per
+//! rolling/sliding case), `alphas.csv` (one row per α), `study.json` and the figures in
+//! `plots/`.
+
+mod cache;
+mod plots;
+mod tables;
+
+use crate::commands::batch;
+use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
+use adhesim::analysis::reference::Jkr;
+use adhesim_scenario::{self as scenario, ProtocolKind, RunResults, TranslationResults, ValidScenario};
+use anyhow::{anyhow, bail, Context, Result};
+use cache::{CaseRecord, NormalRecord, RunCache, ROLLING_ANALYSIS};
+use clap::{Args, ValueEnum};
+use plots::{rolling_plots, sliding_plots};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tables::{theta_label, write_csv, AlphaRow, Row};
+
+/// Which study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StudyKind {
+    /// Figs. 7 and 8: rolling friction vs Eq. 12, γ3 vs α.
+    Rolling,
+    /// Fig. 10: sliding boundary friction and compactness vs α.
+    Sliding,
+}
+
+#[derive(Args)]
+pub struct StudyArgs {
+    /// rolling (Figs. 7, 8) or sliding (Fig. 10).
+    pub kind: StudyKind,
+    /// Study file (TOML).
+    pub study: PathBuf,
+    /// Output folder [default: out/<study file stem>/].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Cases run at the same time [default: 1].
+    #[arg(long, default_value_t = 1)]
+    pub jobs: usize,
+    /// No progress lines.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// The study file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyFile {
+    /// rolling or sliding (must match the command line).
+    pub kind: StudyKind,
+    /// Scenario of kind roll (rolling) or slide (sliding), relative to the study file.
+    pub base: PathBuf,
+    /// Johnson parameters α = √(2λγ0/(π²h²E*)); h is set from each.
+    pub alphas: Vec<f64>,
+    /// Depths d/|d_JKR| of the translation runs [default: the base scenario's depth].
+    #[serde(default)]
+    pub depths: Vec<f64>,
+    /// sliding: substrate orientations θ (degrees) to run every case at; the per-α means
+    /// average over them and their spread gives the standard error of Fig. 10a (each θ is
+    /// an independent incommensurate substrate) [default: the base scenario's θ].
+    #[serde(default)]
+    pub substrate_angles: Vec<f64>,
+    /// Overrides `KEY=VALUE` applied to every case (as `--set`).
+    #[serde(default)]
+    pub set: Vec<String>,
+    /// rolling: the indent_pulloff run per α that gives γ1, γ2.
+    #[serde(default)]
+    pub normal: NormalRun,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalRun {
+    /// d_max/|d_JKR| of the normal run.
+    pub max_depth: f64,
+    /// Approach steps of the normal run.
+    pub steps: i64,
+}
+
+impl Default for NormalRun {
+    fn default() -> Self {
+        Self {
+            max_depth: 13.0,
+            steps: 150,
+        }
+    }
+}
+
+/// Builds a validated scenario from the base table with `changes` applied.
+fn build(table: &toml::Table, base_dir: &Path, changes: &[String]) -> Result<ValidScenario> {
+    let mut table = table.clone();
+    scenario::apply_overrides(&mut table, changes)?;
+    scenario::deserialize(&table)?.validate(base_dir)
+}
+
+/// The indent_pulloff case of a rolling study: the base with its protocol replaced.
+fn normal_table(table: &toml::Table, normal: &NormalRun) -> toml::Table {
+    let mut table = table.clone();
+    table.remove("analysis");
+    let mut protocol = toml::Table::new();
+    protocol.insert("kind".into(), "indent_pulloff".into());
+    protocol.insert("max_depth".into(), normal.max_depth.into());
+    protocol.insert("depth_unit".into(), "jkr".into());
+    protocol.insert("steps".into(), normal.steps.into());
+    table.insert("protocol".into(), toml::Value::Table(protocol));
+    table
+}
+
+/// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
+fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
+        RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
+        RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
+    }
+}
+
+/// The analysed results of a roll / slide run, without writing anything.
+fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
+        RunResults::Translation(results) => Ok(results),
+        RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
+    }
+}
+
+/// A study ready to run: the base, the scales and every case, validated.
+struct StudyPlan {
+    study: StudyFile,
+    wanted: ProtocolKind,
+    jkr: Jkr,
+    amplitudes: Vec<f64>,
+    /// Substrate angles visited (one `None` for rolling).
+    angles: Vec<Option<f64>>,
+    /// (α index, depth, substrate angle, scenario, cache file) of each translation case.
+    cases: Vec<(usize, f64, Option<f64>, ValidScenario, PathBuf)>,
+    /// (α index, scenario, cache file) of each normal run (rolling only).
+    normals: Vec<(usize, ValidScenario, PathBuf)>,
+    out: PathBuf,
+}
+
+/// Reads the study file and checks its own keys.
+fn read_study(args: &StudyArgs) -> Result<(StudyFile, String)> {
+    let text = std::fs::read_to_string(&args.study)
+        .with_context(|| format!("cannot read study file {}", args.study.display()))?;
+    let origin = args.study.display().to_string();
+    let study: StudyFile = toml::from_str(&text).map_err(|e| anyhow!("{origin}: {}", e.message().trim()))?;
+    if study.kind != args.kind {
+        bail!(
+            "{origin}: kind = {:?} but the command asks for {:?}",
+            study.kind,
+            args.kind
+        );
+    }
+    if args.jobs == 0 {
+        bail!("--jobs must be >= 1, got 0");
+    }
+    if study.alphas.is_empty() || study.alphas.iter().any(|a| !(a.is_finite() && *a > 0.0)) {
+        bail!(
+            "{origin}: alphas must be a non-empty list of numbers > 0, got {:?}",
+            study.alphas
+        );
+    }
+    if study.depths.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+        bail!("{origin}: depths must be numbers > 0, got {:?}", study.depths);
+    }
+    if !study.substrate_angles.is_empty() && study.kind != StudyKind::Sliding {
+        bail!("{origin}: substrate_angles is a key of sliding studies only");
+    }
+    if study.substrate_angles.iter().any(|a| !a.is_finite()) {
+        bail!(
+            "{origin}: substrate_angles must be finite numbers (degrees), got {:?}",
+            study.substrate_angles
+        );
+    }
+    Ok((study, origin))
+}
+
+/// Validates the base and every case before running any.
+fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
+    let study_dir = args.study.parent().unwrap_or(Path::new("."));
+    let base_path = study_dir.join(&study.base);
+    let base_text =
+        std::fs::read_to_string(&base_path).with_context(|| format!("base = {}: cannot read", base_path.display()))?;
+    let base_dir = base_path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let mut table = scenario::parse_toml(&base_text, &base_path.display().to_string())?;
+    scenario::apply_overrides(&mut table, &study.set).context("set")?;
+    let base = build(&table, &base_dir, &[]).with_context(|| format!("base = {}", study.base.display()))?;
+    let wanted = match study.kind {
+        StudyKind::Rolling => ProtocolKind::Roll,
+        StudyKind::Sliding => ProtocolKind::Slide,
+    };
+    let setup = base.translation.filter(|t| t.kind == wanted).ok_or_else(|| {
+        anyhow!(
+            "base = {}: needs protocol.kind = \"{}\"",
+            study.base.display(),
+            wanted.name()
+        )
+    })?;
+    let wavelength = base
+        .file
+        .indenter
+        .wavelength
+        .ok_or_else(|| anyhow!("base = {}: needs a wavy_sphere indenter", study.base.display()))?;
+    let jkr = base
+        .jkr
+        .ok_or_else(|| anyhow!("base = {}: needs adhesion.work_of_adhesion > 0", study.base.display()))?;
+    let gamma0 = jkr.work_of_adhesion;
+    let depths: Vec<f64> = if study.depths.is_empty() {
+        vec![setup.protocol.depth / jkr.critical_depth().abs()]
+    } else {
+        study.depths.clone()
+    };
+    let out = match &args.out {
+        Some(out) => out.clone(),
+        None => Path::new("out").join(args.study.file_stem().unwrap_or_default()),
+    };
+    std::fs::create_dir_all(out.join("plots")).with_context(|| format!("cannot create {}", out.display()))?;
+    let amplitudes: Vec<f64> = study
+        .alphas
+        .iter()
+        .map(|&a| amplitude_for_johnson_parameter(a, wavelength, gamma0, jkr.contact_modulus))
+        .collect();
+    // Sliding cases carry their substrate angle; the base's angle is not written as an
+    // override, so its cache entries are those of a study without `substrate_angles`.
+    let base_angle = (study.kind == StudyKind::Sliding).then(|| {
+        base.file
+            .protocol
+            .substrate_angle
+            .unwrap_or(scenario::DEFAULT_SUBSTRATE_ANGLE)
+    });
+    let angles: Vec<Option<f64>> = match base_angle {
+        Some(_) if !study.substrate_angles.is_empty() => study.substrate_angles.iter().map(|&a| Some(a)).collect(),
+        other => vec![other],
+    };
+    let cache = RunCache::new(&out)?;
+    // Validate every case before running any.
+    let mut cases = Vec::new();
+    for (i, &h) in amplitudes.iter().enumerate() {
+        for (j, &d) in depths.iter().enumerate() {
+            for &angle in &angles {
+                let mut changes = vec![
+                    format!("indenter.amplitude={h:e}"),
+                    format!("protocol.depth={d:e}"),
+                    "protocol.depth_unit=\"jkr\"".to_string(),
+                ];
+                let mut name = format!("case-{i}-{j}");
+                if let Some(theta) = angle.filter(|&a| Some(a) != base_angle) {
+                    changes.push(format!("protocol.substrate_angle={theta:e}"));
+                    name.push_str(&format!("-theta{theta}"));
+                }
+                let scenario = build(&table, &base_dir, &changes)
+                    .with_context(|| format!("case α = {}, d = {d}·|d_JKR|{}", study.alphas[i], theta_label(angle)))?;
+                let mut key = changes.clone();
+                if study.kind == StudyKind::Rolling {
+                    key.push(ROLLING_ANALYSIS.to_string());
+                }
+                let path = cache.path(&name, &table, &key);
+                cases.push((i, d, angle, scenario, path));
+            }
+        }
+    }
+    let normals: Vec<(usize, ValidScenario, PathBuf)> = if study.kind == StudyKind::Rolling {
+        let normal = normal_table(&table, &study.normal);
+        amplitudes
+            .iter()
+            .enumerate()
+            .map(|(i, &h)| {
+                let changes = [format!("indenter.amplitude={h:e}")];
+                let path = cache.path(&format!("normal-{i}"), &normal, &changes);
+                Ok((i, build(&normal, &base_dir, &changes)?, path))
+            })
+            .collect::<Result<_>>()
+            .context("the normal (indent_pulloff) run of the study")?
+    } else {
+        Vec::new()
+    };
+    Ok(StudyPlan {
+        study,
+        wanted,
+        jkr,
+        amplitudes,
+        angles,
+        cases,
+        normals,
+        out,
+    })
+}
+
+/// The results of a study's runs, in the order of the plan: ((γ1, γ2), wall time) of each
+/// normal run, (results, wall time) of each case.
+type Executed = (
+    Vec<Result<((Option<f64>, Option<f64>), f64)>>,
+    Vec<Result<(TranslationResults, f64)>>,
+);
+
+/// Runs the normal runs and the cases on `--jobs` workers, each at most once: a cached
+/// run is reused, a panicking one is an error of its case.
+fn execute(plan: &StudyPlan, args: &StudyArgs, start: Instant) -> Result<Executed> {
+    let StudyPlan {
+        study,
+        wanted,
+        angles,
+        cases,
+        normals,
+        ..
+    } = plan;
+    let pool = batch::worker_pool(args.jobs)?;
+    let total = cases.len() + normals.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let report = |what: String| {
+        let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        if !args.quiet {
+            eprintln!("[{k}/{total}] {what} ({:.0} s)", start.elapsed().as_secs_f64());
+        }
+    };
+    Ok(pool.install(|| {
+        rayon::join(
+            || {
+                normals
+                    .par_iter()
+                    .map(|(i, s, path)| {
+                        if let Some(record) = RunCache::load::<NormalRecord>(path) {
+                            report(format!("normal run α = {} (finished earlier)", study.alphas[*i]));
+                            return Ok(((record.gamma_approach, record.gamma_pulloff), record.wall_seconds));
+                        }
+                        let t = Instant::now();
+                        let (g1, g2) = batch::catch_panic(|| normal_gammas(s))?;
+                        let record = NormalRecord {
+                            gamma_approach: g1,
+                            gamma_pulloff: g2,
+                            wall_seconds: t.elapsed().as_secs_f64(),
+                        };
+                        RunCache::store(path, &record)?;
+                        report(format!("normal run α = {}", study.alphas[*i]));
+                        Ok(((g1, g2), record.wall_seconds))
+                    })
+                    .collect::<Vec<Result<_>>>()
+            },
+            || {
+                cases
+                    .par_iter()
+                    .map(|(i, d, angle, s, path)| {
+                        let what = format!(
+                            "{} α = {}, d = {d}·|d_JKR|{}",
+                            wanted.name(),
+                            study.alphas[*i],
+                            theta_label(angle.filter(|_| angles.len() > 1))
+                        );
+                        if let Some(record) = RunCache::load::<CaseRecord>(path) {
+                            report(format!("{what} (finished earlier)"));
+                            return Ok((record.results, record.wall_seconds));
+                        }
+                        let t = Instant::now();
+                        let results = batch::catch_panic(|| translation_results(s))?;
+                        let record = CaseRecord {
+                            results,
+                            wall_seconds: t.elapsed().as_secs_f64(),
+                        };
+                        RunCache::store(path, &record)?;
+                        report(what);
+                        Ok((record.results, record.wall_seconds))
+                    })
+                    .collect::<Vec<Result<_>>>()
+            },
+        )
+    }))
+}
+
+/// Runs a study.
+pub fn run(args: &StudyArgs) -> Result<()> {
+    let start = Instant::now();
+    let (study, _origin) = read_study(args)?;
+    let plan = plan(args, study)?;
+    let (normal_results, case_results) = execute(&plan, args, start)?;
+    let StudyPlan {
+        study,
+        jkr,
+        amplitudes,
+        cases,
+        normals,
+        out,
+        ..
+    } = &plan;
+    let jkr = *jkr;
+    let mut gammas: Vec<(Option<f64>, Option<f64>, Option<f64>)> = vec![(None, None, None); amplitudes.len()];
+    for ((i, _, _), result) in normals.iter().zip(normal_results) {
+        let ((g1, g2), seconds) = result.with_context(|| format!("normal run α = {}", study.alphas[*i]))?;
+        gammas[*i] = (g1, g2, Some(seconds));
+    }
+    let case_keys: Vec<(usize, f64, Option<f64>)> = cases.iter().map(|(i, d, angle, _, _)| (*i, *d, *angle)).collect();
+    let (rows, per_case) = tables::case_rows(&case_keys, case_results, study, amplitudes, &gammas, &jkr)?;
+    let alpha_rows = tables::alpha_rows(study, amplitudes, &gammas, &rows, &per_case, &jkr);
+    let a_jkr = jkr.critical_radius();
+    write_csv(&out.join("table.csv"), &rows)?;
+    write_csv(&out.join("alphas.csv"), &alpha_rows)?;
+    let plots = match study.kind {
+        StudyKind::Rolling => rolling_plots(&out.join("plots"), &rows, &alpha_rows)?,
+        StudyKind::Sliding => sliding_plots(&out.join("plots"), &alpha_rows)?,
+    };
+    let json = serde_json::json!({
+        "study": study,
+        "f_jkr": jkr.critical_force(),
+        "d_jkr": jkr.critical_depth(),
+        "a_jkr": a_jkr,
+        "cases": rows.len(),
+        "normal_runs": normals.len(),
+        "wall_seconds": start.elapsed().as_secs_f64(),
+        "jobs": args.jobs,
+        "alphas": alpha_rows,
+    });
+    std::fs::write(out.join("study.json"), serde_json::to_string_pretty(&json)? + "\n")?;
+    if !args.quiet {
+        print_report(&plan, &rows, &alpha_rows, &plots, start);
+    }
+    Ok(())
+}
+
+fn show(v: Option<f64>) -> String {
+    v.map_or("—".into(), |v| format!("{v:.3}"))
+}
+
+/// The study's report on stdout.
+fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: &[String], start: Instant) {
+    let StudyPlan {
+        study,
+        wanted,
+        normals,
+        out,
+        ..
+    } = plan;
+    println!(
+        "adhesim study {}: {} cases + {} normal runs in {:.0} s",
+        wanted.name(),
+        rows.len(),
+        normals.len(),
+        start.elapsed().as_secs_f64()
+    );
+    for a in alpha_rows {
+        match study.kind {
+            StudyKind::Rolling => println!(
+                "  α = {:.3}: γ1/γ0 = {}, γ2/γ0 = {}, F_T/2a(γ2−γ1) = {} (per step), {} (work), γ3/γ0 = {}",
+                a.alpha,
+                show(a.gamma_approach_norm),
+                show(a.gamma_pulloff_norm),
+                show(a.mean_eq12_ratio),
+                show(a.mean_eq12_ratio_work),
+                show(a.gamma3_norm)
+            ),
+            StudyKind::Sliding => println!(
+                "  α = {:.3}: F_B/|F_JKR| = {} (per step), {} (work), F_B/(2aγ0) = {}{}, A/(πa²) = {:.3}",
+                a.alpha,
+                show(a.mean_tangential_force_norm),
+                show(a.mean_tangential_force_work_norm),
+                show(a.boundary_force_per_width_norm),
+                a.boundary_force_per_width_sem
+                    .map(|e| format!(" ± {e:.3} (standard error over cases)"))
+                    .unwrap_or_default(),
+                a.compactness
+            ),
+        }
+    }
+    println!(
+        "outputs in {}/: table.csv, alphas.csv, study.json, {}",
+        out.display(),
+        plots.join(", ")
+    );
+}

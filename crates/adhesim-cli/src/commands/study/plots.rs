@@ -1,0 +1,189 @@
+//! The figures of a study: Figs. 7 and 8 (rolling), Fig. 10 (sliding).
+
+use super::tables::{AlphaRow, Row};
+use crate::tangential_plots::{write_panels, Chart, Series, Style, PALETTE};
+use anyhow::Result;
+use std::path::Path;
+
+fn by_alpha(alphas: &[AlphaRow], f: impl Fn(&AlphaRow) -> Option<f64>) -> Vec<(f64, f64)> {
+    alphas.iter().filter_map(|a| f(a).map(|y| (a.alpha, y))).collect()
+}
+
+pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Vec<String>> {
+    let mut files = Vec::new();
+    for (name, work) in [("fig7", false), ("fig7_work", true)] {
+        let mut series = Vec::new();
+        let mut top: f64 = 0.0;
+        for (k, a) in alphas.iter().enumerate() {
+            let points: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.alpha == a.alpha)
+                .filter_map(|r| {
+                    let y = if work {
+                        r.mean_tangential_force_work_norm
+                    } else {
+                        r.mean_tangential_force_norm
+                    };
+                    Some((r.eq12_prediction_norm?, y?))
+                })
+                .collect();
+            top = points.iter().fold(top, |t, p| t.max(p.0).max(p.1));
+            series.push(Series::new(
+                format!("α = {:.2}", a.alpha),
+                PALETTE[k % PALETTE.len()],
+                Style::Points,
+                points,
+            ));
+        }
+        series.push(Series::new(
+            "slope 1 (Eq. 12)",
+            BLACKISH,
+            Style::Dashed,
+            vec![(0.0, 0.0), (top, top)],
+        ));
+        let which = if work { "work-based mean" } else { "per-step mean" };
+        files.extend(write_panels(
+            dir,
+            name,
+            &[Chart {
+                title: format!("Rolling friction vs Eq. 12 ({which})"),
+                x_label: "2a(γ2 − γ1) / |F_JKR|".into(),
+                y_label: "F_T / |F_JKR|".into(),
+                series,
+                include_zero: true,
+            }],
+        )?);
+    }
+    let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
+    let (lo, hi) = (
+        x.iter().copied().fold(f64::INFINITY, f64::min),
+        x.iter().copied().fold(0.0, f64::max),
+    );
+    files.extend(write_panels(
+        dir,
+        "fig8",
+        &[Chart {
+            title: "Rolling contact: effective work of adhesion γ3".into(),
+            x_label: "Johnson parameter α".into(),
+            y_label: "γ / γ0".into(),
+            series: vec![
+                Series::new(
+                    "γ3 (rolling, F_N vs contact radius)",
+                    PALETTE[0],
+                    Style::LinePoints,
+                    by_alpha(alphas, |a| a.gamma3_norm),
+                ),
+                Series::new(
+                    "γ3 (F_N vs half-width)",
+                    PALETTE[3],
+                    Style::Dashed,
+                    by_alpha(alphas, |a| a.gamma3_half_width_norm),
+                ),
+                Series::new(
+                    "γ1 (approach)",
+                    PALETTE[2],
+                    Style::LinePoints,
+                    by_alpha(alphas, |a| a.gamma_approach_norm),
+                ),
+                Series::new(
+                    "γ2 (pull-off)",
+                    PALETTE[1],
+                    Style::LinePoints,
+                    by_alpha(alphas, |a| a.gamma_pulloff_norm),
+                ),
+                Series::new("1.15 (paper)", BLACKISH, Style::Dashed, vec![(lo, 1.15), (hi, 1.15)]),
+            ],
+            include_zero: true,
+        }],
+    )?);
+    Ok(files)
+}
+
+/// Per-step mean ± one standard error over the cases (substrate angles, depths) where a
+/// study has more than one case per α.
+fn error_band(alphas: &[AlphaRow]) -> Vec<Series> {
+    if alphas.iter().all(|a| a.mean_tangential_force_sem.is_none()) {
+        return Vec::new();
+    }
+    [1.0, -1.0]
+        .iter()
+        .map(|&sign| {
+            Series::new(
+                if sign > 0.0 { "± standard error" } else { "" },
+                PALETTE[0],
+                Style::Dashed,
+                by_alpha(alphas, |a| {
+                    Some(a.mean_tangential_force_norm? + sign * a.mean_tangential_force_sem?)
+                }),
+            )
+        })
+        .collect()
+}
+
+const BLACKISH: plotters::style::RGBColor = plotters::style::RGBColor(60, 60, 60);
+
+pub fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
+    let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
+    let (lo, hi) = (
+        x.iter().copied().fold(f64::INFINITY, f64::min),
+        x.iter().copied().fold(0.0, f64::max),
+    );
+    // Two panels: the per-step mean on its own scale (with the standard error over the
+    // cases where there are several), then both means, whose scales differ by 10–50×.
+    let per_step = || {
+        Series::new(
+            "per-step mean",
+            PALETTE[0],
+            Style::LinePoints,
+            by_alpha(alphas, |a| a.mean_tangential_force_norm),
+        )
+    };
+    let mut files = write_panels(
+        dir,
+        "fig10a",
+        &[
+            Chart {
+                title: "Sliding: boundary contribution to friction (per-step mean)".into(),
+                x_label: "Johnson parameter α".into(),
+                y_label: "F_B / |F_JKR|".into(),
+                series: std::iter::once(per_step()).chain(error_band(alphas)).collect(),
+                include_zero: true,
+            },
+            Chart {
+                title: "Per-step and work-based means".into(),
+                x_label: "Johnson parameter α".into(),
+                y_label: "F_B / |F_JKR|".into(),
+                series: vec![
+                    per_step(),
+                    Series::new(
+                        "work-based mean",
+                        PALETTE[4],
+                        Style::LinePoints,
+                        by_alpha(alphas, |a| a.mean_tangential_force_work_norm),
+                    ),
+                ],
+                include_zero: true,
+            },
+        ],
+    )?;
+    files.extend(write_panels(
+        dir,
+        "fig10b",
+        &[Chart {
+            title: "Sliding: compactness of the contact".into(),
+            x_label: "Johnson parameter α".into(),
+            y_label: "A_real / (π a²)".into(),
+            series: vec![
+                Series::new(
+                    "A_real/(πa²)",
+                    PALETTE[0],
+                    Style::LinePoints,
+                    by_alpha(alphas, |a| Some(a.compactness)),
+                ),
+                Series::new("1", BLACKISH, Style::Dashed, vec![(lo, 1.0), (hi, 1.0)]),
+            ],
+            include_zero: true,
+        }],
+    )?);
+    Ok(files)
+}

@@ -1,0 +1,105 @@
+//! Scenarios of the adhesim simulator without the terminal: read a scenario (the TOML
+//! format of `docs/cli.md`), override keys, validate it into library objects and run it
+//! through one pipeline for every protocol. The `adhesim` command line and the Python
+//! package are thin layers over this crate. It writes no files itself: outputs are
+//! observers the caller passes to [`run`].
+//!
+//! ```
+//! use adhesim_scenario::{run, RunResults, Scenario};
+//!
+//! let text = r#"
+//! [grid]
+//! n = 32
+//! size = 0.3
+//! [material]
+//! contact_modulus = 1.0
+//! [adhesion]
+//! work_of_adhesion = 0.0
+//! [indenter]
+//! shape = "sphere"
+//! radius = 1.0
+//! [protocol]
+//! kind = "indent_pulloff"
+//! max_depth = 0.005
+//! steps = 10
+//! "#;
+//! let mut scenario = Scenario::from_toml_str(text, "hertz.toml").unwrap();
+//! scenario.apply_override("grid.n", "24").unwrap();
+//! let valid = scenario.validate(std::path::Path::new(".")).unwrap();
+//! let outcome = run(&valid, &mut ()).unwrap();
+//! let RunResults::Indentation(results) = &outcome.results else { unreachable!() };
+//! assert_eq!(results.max_adhesive_force, 0.0); // no adhesion, no tensile force
+//! assert!(outcome.records.len() >= 10);
+//!
+//! // Errors name the key and the value.
+//! scenario.apply_override("indenter.radius", "-1").unwrap();
+//! let error = scenario.validate(std::path::Path::new(".")).err().unwrap();
+//! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
+//! ```
+
+mod model;
+mod parse;
+mod pipeline;
+mod results;
+mod translation;
+mod validate;
+
+pub use model::*;
+pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_npy_2d};
+pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
+pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
+pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
+
+pub use adhesim::analysis::friction::TranslationResults;
+use anyhow::Result;
+use std::path::Path;
+
+/// A scenario as read: its TOML table (overrides applied) and where it came from. Not yet
+/// checked; [`Scenario::validate`] turns it into a [`ValidScenario`].
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    table: toml::Table,
+    origin: String,
+}
+
+impl Scenario {
+    /// Parses TOML text; `origin` (a file name) goes into error messages.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self> {
+        Ok(Self {
+            table: parse_toml(text, origin)?,
+            origin: origin.to_string(),
+        })
+    }
+
+    /// Sets a dotted key (`grid.n`) to a value given as TOML text (`64`, `"free"`,
+    /// `[1, 2]`; a bare word is a string), as `adhesim run --set KEY=VALUE` does.
+    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<()> {
+        apply_override(&mut self.table, key, value)
+    }
+
+    /// Checks every value and builds the library objects; relative file paths (height
+    /// maps, adhesion maps) are resolved against `base`. Errors name the key and value.
+    pub fn validate(&self, base: &Path) -> Result<ValidScenario> {
+        deserialize(&self.table)?.validate(base)
+    }
+
+    /// The TOML table (after overrides).
+    pub fn table(&self) -> &toml::Table {
+        &self.table
+    }
+
+    /// Where the text came from.
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+}
+
+/// Reads, overrides (`KEY=VALUE` items), deserialises and validates a scenario.
+pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Result<ValidScenario> {
+    let mut table = parse_toml(text, origin)?;
+    apply_overrides(&mut table, overrides)?;
+    deserialize(&table)?.validate(base)
+}
+
+#[cfg(test)]
+mod tests;

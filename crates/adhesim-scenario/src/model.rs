@@ -1,0 +1,334 @@
+//! The serde mirror of a scenario file (one struct per `[section]`) and the validated
+//! scenario built from it.
+
+use adhesim::analysis::reference::Jkr;
+use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// The whole scenario file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioFile {
+    pub grid: GridSection,
+    pub material: MaterialSection,
+    pub adhesion: AdhesionSection,
+    pub indenter: IndenterSection,
+    pub protocol: ProtocolSection,
+    #[serde(default)]
+    pub output: OutputSection,
+    /// Inputs of the analysis of a run (roll/slide: γ1, γ2 for Eq. 12, τ0 for Eq. 16).
+    #[serde(default, skip_serializing_if = "AnalysisSection::is_empty")]
+    pub analysis: AnalysisSection,
+}
+
+/// `[analysis]`: numbers the analysis of a run needs but the run does not produce.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSection {
+    /// γ1 (approach branch of a normal run at the same α), for Eq. 12 of a rolling run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_approach: Option<f64>,
+    /// γ2 (pull-off branch), for Eq. 12.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma_pulloff: Option<f64>,
+    /// Shear strength τ0 of the contact area, for the friction law of Eqs. 16–18.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tau0: Option<f64>,
+}
+
+impl AnalysisSection {
+    pub fn is_empty(&self) -> bool {
+        self.gamma_approach.is_none() && self.gamma_pulloff.is_none() && self.tau0.is_none()
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSection {
+    /// Elements per side (kept signed so that a negative value gets our own message).
+    pub n: i64,
+    pub size: f64,
+    #[serde(default)]
+    pub boundary: BoundaryName,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BoundaryName {
+    #[default]
+    Free,
+    Periodic,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_modulus: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson_ratio: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdhesionSection {
+    pub work_of_adhesion: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field: Option<FieldSpec>,
+}
+
+/// Heterogeneous work of adhesion.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum FieldSpec {
+    /// γ(s) = γ0·[1 + (k − 1)(s/half_length)²] along `axis`.
+    Quadratic {
+        ratio_edge_to_centre: f64,
+        #[serde(default)]
+        axis: AxisName,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        half_length: Option<f64>,
+    },
+    /// γ = γ0 × the map's value per element (an N×N `.npy` of f64, rows along y).
+    Map { file: PathBuf },
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisName {
+    #[default]
+    X,
+    Y,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShapeName {
+    Sphere,
+    WavySphere,
+    FlatPunch,
+    EllipticPunch,
+    Topography,
+}
+
+impl ShapeName {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sphere => "sphere",
+            Self::WavySphere => "wavy_sphere",
+            Self::FlatPunch => "flat_punch",
+            Self::EllipticPunch => "elliptic_punch",
+            Self::Topography => "topography",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IndenterSection {
+    pub shape: ShapeName,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitude: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wavelength: Option<f64>,
+    /// Degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angle: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub semi_axes: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spacing: Option<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProtocolKind {
+    IndentPulloff,
+    Roll,
+    Slide,
+    /// The frictionless control: the whole rough profile translates over a smooth body.
+    Translate,
+}
+
+impl ProtocolKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::IndentPulloff => "indent_pulloff",
+            Self::Roll => "roll",
+            Self::Slide => "slide",
+            Self::Translate => "translate",
+        }
+    }
+
+    /// Roll, slide or translate: motion at fixed indentation.
+    pub fn is_translation(self) -> bool {
+        !matches!(self, Self::IndentPulloff)
+    }
+}
+
+/// Unit of `protocol.distance`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DistanceUnit {
+    #[default]
+    Length,
+    /// Multiples of the waviness wavelength λ.
+    Wavelength,
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DepthUnit {
+    Jkr,
+    #[default]
+    Length,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProtocolSection {
+    pub kind: ProtocolKind,
+    /// Deepest indentation of `indent_pulloff`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_depth: Option<f64>,
+    #[serde(default)]
+    pub depth_unit: DepthUnit,
+    /// roll / slide / translate: indentation held during the motion (in `depth_unit`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth: Option<f64>,
+    /// roll / slide / translate: travel of the indenter axis in +x.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance_unit: Option<DistanceUnit>,
+    /// roll / slide / translate: steps of the approach to `depth` (default 50).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_steps: Option<i64>,
+    /// roll / slide / translate: travel back to x = 0 after the forward stroke.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_stroke: Option<bool>,
+    /// roll / slide / translate: means are taken over x > stationary_from·distance (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stationary_from: Option<f64>,
+    /// slide: rotation of the substrate's waviness against the indenter's, degrees (default 30).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substrate_angle: Option<f64>,
+    /// Steps per branch (approach); the retraction uses the same step size.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<i64>,
+    /// Step size in `depth_unit` (alternative to `steps`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step: Option<f64>,
+    /// Safety limit on retraction steps (default: 20 × the approach steps, at least 1000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_retract_steps: Option<i64>,
+}
+
+fn default_jump_snapshot_elements() -> i64 {
+    20
+}
+fn default_jump_force_threshold() -> f64 {
+    1e-3
+}
+fn default_max_snapshots() -> i64 {
+    200
+}
+
+/// What the run writes besides `curve.csv`, `summary.json` and the plots.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Steps (0-based, as in `curve.csv`) that get a contact-map PNG and `.npy` fields.
+    #[serde(default)]
+    pub snapshot_steps: Vec<i64>,
+    /// Also every k-th step (0 = off).
+    #[serde(default)]
+    pub snapshot_every: i64,
+    /// A jump step gets a PNG when at least this many elements attached or detached.
+    #[serde(default = "default_jump_snapshot_elements")]
+    pub jump_snapshot_elements: i64,
+    /// A step is a jump when the force changes at fixed depth by more than this, in units
+    /// of the adhesive force scale (|F_JKR|; Kendall's force for a flat punch; the onset
+    /// force for an elliptic punch).
+    #[serde(default = "default_jump_force_threshold")]
+    pub jump_force_threshold: f64,
+    /// At most this many jump snapshots (chosen steps are always written).
+    #[serde(default = "default_max_snapshots")]
+    pub max_snapshots: i64,
+    /// Contact radii below this (length units) are left out of the JKR fits of γ1/γ2
+    /// [default: max(0.5·a_JKR, 2λ) for a wavy sphere, 0.5·a_JKR otherwise].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_fit_radius: Option<f64>,
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self {
+            snapshot_steps: Vec::new(),
+            snapshot_every: 0,
+            jump_snapshot_elements: default_jump_snapshot_elements(),
+            jump_force_threshold: default_jump_force_threshold(),
+            max_snapshots: default_max_snapshots(),
+            min_fit_radius: None,
+        }
+    }
+}
+
+/// A scenario ready to run: library objects plus derived numbers.
+pub struct ValidScenario {
+    pub file: ScenarioFile,
+    pub grid: Grid,
+    pub material: ElasticMaterial,
+    /// γ per element.
+    pub gamma: Vec<f64>,
+    /// Reference γ0.
+    pub gamma0: f64,
+    pub indenter: Indenter,
+    pub heights: Vec<f64>,
+    /// Depth of first contact (lowest finite height).
+    pub start_depth: f64,
+    pub max_depth: f64,
+    pub depth_step: f64,
+    pub approach_steps: usize,
+    pub max_retract_steps: usize,
+    /// JKR closed form where γ0 > 0 and the indenter has a radius of curvature.
+    pub jkr: Option<Jkr>,
+    pub derived: Derived,
+    /// Absolute force threshold for a jump.
+    pub jump_force_threshold: f64,
+    /// roll / slide / translate: the motion (`None` for indent_pulloff).
+    pub translation: Option<TranslationSetup>,
+}
+
+/// A validated roll / slide / translate protocol.
+#[derive(Debug, Clone, Copy)]
+pub struct TranslationSetup {
+    pub kind: ProtocolKind,
+    pub contact: TranslatingContact,
+    /// Library protocol (start_depth is the depth of first contact at x = 0).
+    pub protocol: Translation,
+    /// γ1, γ2 from `[analysis]` (Eq. 12), absolute units.
+    pub gammas: Option<(f64, f64)>,
+    /// τ0 from `[analysis]` (Eqs. 16–18).
+    pub tau0: Option<f64>,
+    /// Waviness wavelength λ (None for a smooth sphere).
+    pub wavelength: Option<f64>,
+}
+
+/// Derived quantities for `summary.json`; `None` is written as null.
+#[derive(Debug, Clone, Serialize)]
+pub struct Derived {
+    pub f_jkr: Option<f64>,
+    pub d_jkr: Option<f64>,
+    pub a_jkr: Option<f64>,
+    pub johnson_parameter: Option<f64>,
+    pub element_size: f64,
+    pub critical_stress: Option<f64>,
+}

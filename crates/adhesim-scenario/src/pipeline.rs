@@ -1,0 +1,191 @@
+//! The run pipeline, one for every protocol: a validated scenario → elastic operator,
+//! normal solver and protocol → the caller's observer sees every step → results.
+
+use crate::model::{TranslationSetup, ValidScenario};
+use crate::results::{fit_results, Results, RunResults};
+use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
+use adhesim::{
+    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolError,
+    ProtocolSummary, StepRecord, StepView, TranslationSummary,
+};
+use std::ops::ControlFlow;
+
+/// The protocol of a scenario, built in one place ([`ValidScenario::protocol_setup`]).
+#[derive(Debug, Clone, Copy)]
+pub enum ProtocolSetup<'a> {
+    /// indent_pulloff: approach to the maximum depth, then retraction to pull-off.
+    Indentation(IndentPulloff),
+    /// roll / slide / translate at fixed depth.
+    Translation(&'a TranslationSetup),
+}
+
+impl ValidScenario {
+    /// The scenario's protocol.
+    pub fn protocol_setup(&self) -> ProtocolSetup<'_> {
+        match &self.translation {
+            Some(setup) => ProtocolSetup::Translation(setup),
+            None => ProtocolSetup::Indentation(IndentPulloff {
+                start_depth: self.start_depth,
+                max_depth: self.max_depth,
+                depth_step: self.depth_step,
+                max_retract_steps: self.max_retract_steps,
+                jump_force_threshold: self.jump_force_threshold,
+            }),
+        }
+    }
+
+    /// The normal solver: the adhesive active set where γ0 > 0, the library's
+    /// non-adhesive default otherwise.
+    pub fn normal_solver(&self) -> NormalSolver {
+        if self.gamma0 > 0.0 {
+            NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
+                self.grid,
+                self.material.contact_modulus(),
+                self.gamma.clone(),
+                AdhesiveParams::default(),
+            )))
+        } else {
+            adhesim::protocol::non_adhesive_solver(self.grid, self.material)
+        }
+    }
+
+    /// Steps the protocol will report (for progress bars): approach + retraction of an
+    /// indentation (an estimate), approach + stroke(s) of a translation.
+    pub fn expected_steps(&self) -> usize {
+        match self.protocol_setup() {
+            ProtocolSetup::Indentation(_) => 2 * self.approach_steps,
+            ProtocolSetup::Translation(setup) => {
+                let p = &setup.protocol;
+                p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
+            }
+        }
+    }
+}
+
+/// The library's own summary of a run.
+#[derive(Debug, Clone)]
+pub enum ProtocolReport {
+    Indentation(ProtocolSummary),
+    Translation(TranslationSummary),
+}
+
+/// Counters of a run (for the performance section of `summary.json`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Counters {
+    pub steps: usize,
+    pub solves: usize,
+    pub cg_iterations: usize,
+    /// Forward + inverse FFT pairs.
+    pub operator_applications: u64,
+    /// Contact on the border of a free grid at some step.
+    pub touches_border: bool,
+}
+
+impl ProtocolReport {
+    /// The run's counters.
+    pub fn counters(&self) -> Counters {
+        match self {
+            Self::Indentation(s) => Counters {
+                steps: s.steps,
+                solves: s.solves,
+                cg_iterations: s.cg_iterations,
+                operator_applications: s.operator_applications,
+                touches_border: s.touches_border,
+            },
+            Self::Translation(s) => Counters {
+                steps: s.steps,
+                solves: s.solves,
+                cg_iterations: s.cg_iterations,
+                operator_applications: s.operator_applications,
+                touches_border: s.touches_border,
+            },
+        }
+    }
+}
+
+/// What [`run`] gives back.
+#[derive(Debug, Clone)]
+pub struct RunOutcome {
+    /// The `results` section of `summary.json`.
+    pub results: RunResults,
+    /// The library's summary of the protocol.
+    pub report: ProtocolReport,
+    /// Every step's record.
+    pub records: Vec<StepRecord>,
+}
+
+/// Keeps every record and passes each step on to the caller's observer.
+struct Recording<'a> {
+    records: Vec<StepRecord>,
+    inner: &'a mut dyn Observer,
+}
+
+impl Observer for Recording<'_> {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        self.records.push(*view.record);
+        self.inner.on_step(view)
+    }
+}
+
+/// Runs a validated scenario: builds the elastic operator and the normal solver, runs the
+/// protocol with `observer` seeing every step (pass `&mut ()` for none), and analyses the
+/// records into the results `summary.json` reports. Writes nothing itself.
+pub fn run(scenario: &ValidScenario, observer: &mut dyn Observer) -> Result<RunOutcome, ProtocolError> {
+    let mut operator = HalfSpace::new(scenario.grid, scenario.material);
+    let mut solver = scenario.normal_solver();
+    let mut recording = Recording {
+        records: Vec::new(),
+        inner: observer,
+    };
+    match scenario.protocol_setup() {
+        ProtocolSetup::Indentation(protocol) => {
+            let summary = protocol.run(&mut operator, &scenario.heights, &mut solver, &mut recording)?;
+            let records = recording.records;
+            let (fits, _) = fit_results(scenario, &records);
+            Ok(RunOutcome {
+                results: RunResults::Indentation(Results {
+                    fits,
+                    ..Results::from_protocol(&summary)
+                }),
+                report: ProtocolReport::Indentation(summary),
+                records,
+            })
+        }
+        ProtocolSetup::Translation(setup) => {
+            let summary = setup
+                .protocol
+                .run(&mut operator, &setup.contact, &mut solver, &mut recording)?;
+            let records = recording.records;
+            let results = analyse_translation(scenario, setup, &summary, &records);
+            Ok(RunOutcome {
+                results: RunResults::Translation(results),
+                report: ProtocolReport::Translation(summary),
+                records,
+            })
+        }
+    }
+}
+
+/// The library's friction analysis with the scenario's inputs.
+fn analyse_translation(
+    scenario: &ValidScenario,
+    setup: &TranslationSetup,
+    summary: &TranslationSummary,
+    records: &[StepRecord],
+) -> TranslationResults {
+    TranslationResults::new(
+        summary,
+        &TranslationInputs {
+            kinematics: setup.contact.kinematics(),
+            records,
+            stationary_from: setup.protocol.stationary_from,
+            distance: setup.protocol.distance,
+            jkr: scenario.jkr,
+            work_of_adhesion: scenario.gamma0,
+            radius: scenario.indenter.radius_of_curvature().unwrap_or(f64::NAN),
+            contact_modulus: scenario.material.contact_modulus(),
+            gammas: setup.gammas,
+            tau0: setup.tau0,
+        },
+    )
+}

@@ -1,0 +1,456 @@
+//! `ScenarioFile::validate`: every value checked, the library objects built. Every error
+//! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
+//! -1`); nothing here panics on bad input.
+
+use crate::model::*;
+use crate::parse::read_npy_2d;
+use crate::translation::TranslationInputs;
+use adhesim::analysis::reference::{johnson_parameter, Jkr};
+use adhesim::analysis::scale::adhesive_force_scale;
+use adhesim::geometry::{EllipticPunch, FlatPunch, Sphere, Topography, WavySphere};
+use adhesim::solver::critical_stress;
+use adhesim::{Axis, Boundary, ElasticMaterial, Grid, Indenter, Profile, WorkOfAdhesion};
+use anyhow::{anyhow, bail, Result};
+use std::path::Path;
+
+pub(crate) fn positive(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        bail!("{key} must be > 0, got {value}")
+    }
+}
+
+pub(crate) fn non_negative(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        bail!("{key} must be >= 0, got {value}")
+    }
+}
+
+pub(crate) fn finite(key: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        bail!("{key} must be finite, got {value}")
+    }
+}
+
+pub(crate) fn required<T: Copy>(key: &str, value: Option<T>, shape: ShapeName) -> Result<T> {
+    value.ok_or_else(|| anyhow!("{key} is required for indenter.shape = \"{}\"", shape.name()))
+}
+
+impl ScenarioFile {
+    /// Checks every value and builds the library objects, one section after the other.
+    /// `base` resolves relative file paths.
+    pub fn validate(self, base: &Path) -> Result<ValidScenario> {
+        let grid = validate_grid(&self.grid)?;
+        let material = validate_material(&self.material)?;
+        let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base)?;
+        let shape = self.indenter.shape;
+        let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
+        let (jkr, derived) = derived_scales(&grid, &material, &indenter, gamma0);
+        let unit = depth_unit(&self.protocol, shape, jkr.as_ref(), gamma0)?;
+        let inputs = TranslationInputs {
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            unit,
+            jkr,
+            derived,
+        };
+        if self.protocol.kind.is_translation() {
+            self.validate_translation(inputs)
+        } else {
+            self.validate_indentation(inputs, heights, start_depth)
+        }
+    }
+
+    /// `[protocol]` of kind indent_pulloff (and `[output]`).
+    fn validate_indentation(
+        self,
+        inputs: TranslationInputs,
+        heights: Vec<f64>,
+        start_depth: f64,
+    ) -> Result<ValidScenario> {
+        let TranslationInputs {
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            unit,
+            jkr,
+            derived,
+        } = inputs;
+        let contact_modulus = material.contact_modulus();
+        let p = &self.protocol;
+        for (key, is_set) in [
+            ("depth", p.depth.is_some()),
+            ("distance", p.distance.is_some()),
+            ("distance_unit", p.distance_unit.is_some()),
+            ("approach_steps", p.approach_steps.is_some()),
+            ("return_stroke", p.return_stroke.is_some()),
+            ("stationary_from", p.stationary_from.is_some()),
+            ("substrate_angle", p.substrate_angle.is_some()),
+        ] {
+            if is_set {
+                bail!(
+                    "protocol.{key} is not used by protocol.kind = \"indent_pulloff\" (it belongs to \"roll\", \"slide\", \"translate\")"
+                );
+            }
+        }
+        if !self.analysis.is_empty() {
+            bail!(
+                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only"
+            );
+        }
+        let raw_max_depth = p.max_depth.ok_or_else(|| {
+            anyhow!("missing key `protocol.max_depth` (needed by protocol.kind = \"indent_pulloff\")")
+        })?;
+        let max_depth = finite("protocol.max_depth", raw_max_depth)? * unit;
+        if max_depth <= start_depth {
+            bail!(
+                "protocol.max_depth must exceed the depth of first contact ({:.6e} in length units), got {}",
+                start_depth / unit,
+                raw_max_depth
+            );
+        }
+        let span = max_depth - start_depth;
+        let depth_step = match (p.steps, p.step) {
+            (Some(steps), None) => {
+                if steps < 1 {
+                    bail!("protocol.steps must be >= 1, got {steps}");
+                }
+                span / steps as f64
+            }
+            (None, Some(step)) => positive("protocol.step", step)? * unit,
+            (Some(_), Some(_)) => bail!("give either protocol.steps or protocol.step, not both"),
+            (None, None) => bail!("missing key `protocol.steps` (or `protocol.step`)"),
+        };
+        let approach_steps = (span / depth_step).ceil() as usize;
+        if approach_steps > 10_000_000 {
+            bail!("protocol.step is too small: {approach_steps} approach steps");
+        }
+        let max_retract_steps = match p.max_retract_steps {
+            Some(s) if s < 1 => bail!("protocol.max_retract_steps must be >= 1, got {s}"),
+            Some(s) => s as usize,
+            None => (20 * approach_steps).max(1000),
+        };
+
+        let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, contact_modulus)?;
+
+        Ok(ValidScenario {
+            file: self,
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            heights,
+            start_depth,
+            max_depth,
+            depth_step,
+            approach_steps,
+            max_retract_steps,
+            jkr,
+            derived,
+            jump_force_threshold,
+            translation: None,
+        })
+    }
+
+    /// Checks `[output]` and returns the absolute jump force threshold.
+    pub(crate) fn output_checks(
+        &self,
+        gamma0: f64,
+        jkr: &Option<Jkr>,
+        indenter: &Indenter,
+        contact_modulus: f64,
+    ) -> Result<f64> {
+        let o = &self.output;
+        for &s in &o.snapshot_steps {
+            if s < 0 {
+                bail!("output.snapshot_steps must hold steps >= 0, got {s}");
+            }
+        }
+        if o.snapshot_every < 0 {
+            bail!("output.snapshot_every must be >= 0, got {}", o.snapshot_every);
+        }
+        if o.jump_snapshot_elements < 1 {
+            bail!(
+                "output.jump_snapshot_elements must be >= 1, got {}",
+                o.jump_snapshot_elements
+            );
+        }
+        if o.max_snapshots < 0 {
+            bail!("output.max_snapshots must be >= 0, got {}", o.max_snapshots);
+        }
+        non_negative("output.jump_force_threshold", o.jump_force_threshold)?;
+        if let Some(radius) = o.min_fit_radius {
+            non_negative("output.min_fit_radius", radius)?;
+        }
+        let force_scale = adhesive_force_scale(indenter, jkr.as_ref(), contact_modulus, gamma0);
+        Ok(o.jump_force_threshold * force_scale)
+    }
+}
+
+/// `[grid]`.
+fn validate_grid(section: &GridSection) -> Result<Grid> {
+    let n = section.n;
+    if n < 2 {
+        bail!("grid.n must be >= 2, got {n}");
+    }
+    if n > 16_384 {
+        bail!("grid.n must be <= 16384, got {n}");
+    }
+    let n = n as usize;
+    let size = positive("grid.size", section.size)?;
+    let boundary = match section.boundary {
+        BoundaryName::Free => Boundary::Free,
+        BoundaryName::Periodic => Boundary::Periodic,
+    };
+    Grid::new(n, size, boundary).map_err(|e| anyhow!("[grid]: {e}"))
+}
+
+/// `[material]`: E* directly, or E and ν.
+fn validate_material(section: &MaterialSection) -> Result<ElasticMaterial> {
+    let m = section;
+    let material = match (m.contact_modulus, m.youngs_modulus, m.poisson_ratio) {
+        (Some(e), None, None) => ElasticMaterial::new(positive("material.contact_modulus", e)?)?,
+        (None, Some(e), Some(nu)) => {
+            positive("material.youngs_modulus", e)?;
+            if !(nu > -1.0 && nu <= 0.5) {
+                bail!("material.poisson_ratio must lie in (-1, 0.5], got {nu}");
+            }
+            ElasticMaterial::from_youngs_modulus(e, nu)?
+        }
+        (None, Some(_), None) => bail!("material.poisson_ratio is required with material.youngs_modulus"),
+        (None, None, Some(_)) => bail!("material.youngs_modulus is required with material.poisson_ratio"),
+        (None, None, None) => {
+            bail!("[material] needs contact_modulus, or youngs_modulus and poisson_ratio")
+        }
+        (Some(_), _, _) => bail!(
+            "material.contact_modulus cannot be combined with material.youngs_modulus/poisson_ratio; give one form"
+        ),
+    };
+    Ok(material)
+}
+
+/// `[indenter]`: the profile, its heights on the grid and the depth of first contact.
+fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Result<(Indenter, Vec<f64>, f64)> {
+    let ind = section;
+    let shape = ind.shape;
+    let allowed: &[&str] = match shape {
+        ShapeName::Sphere => &["radius"],
+        ShapeName::WavySphere => &["radius", "amplitude", "wavelength", "angle"],
+        ShapeName::FlatPunch => &["radius"],
+        ShapeName::EllipticPunch => &["semi_axes", "angle"],
+        ShapeName::Topography => &["file", "spacing"],
+    };
+    let present = [
+        ("radius", ind.radius.is_some()),
+        ("amplitude", ind.amplitude.is_some()),
+        ("wavelength", ind.wavelength.is_some()),
+        ("angle", ind.angle.is_some()),
+        ("semi_axes", ind.semi_axes.is_some()),
+        ("file", ind.file.is_some()),
+        ("spacing", ind.spacing.is_some()),
+    ];
+    for (key, is_set) in present {
+        if is_set && !allowed.contains(&key) {
+            bail!(
+                "indenter.{key} is not used by indenter.shape = \"{}\" (its keys: {})",
+                shape.name(),
+                allowed.join(", ")
+            );
+        }
+    }
+    let angle_degrees = finite("indenter.angle", ind.angle.unwrap_or(0.0))?;
+    let angle = angle_degrees.to_radians();
+    let indenter = match shape {
+        ShapeName::Sphere => {
+            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
+            Indenter::Sphere(Sphere::new(radius)?)
+        }
+        ShapeName::WavySphere => {
+            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
+            let amplitude = non_negative(
+                "indenter.amplitude",
+                required("indenter.amplitude", ind.amplitude, shape)?,
+            )?;
+            let wavelength = positive(
+                "indenter.wavelength",
+                required("indenter.wavelength", ind.wavelength, shape)?,
+            )?;
+            Indenter::WavySphere(WavySphere::new(radius, amplitude, wavelength, angle)?)
+        }
+        ShapeName::FlatPunch => {
+            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
+            Indenter::FlatPunch(FlatPunch::new(radius)?)
+        }
+        ShapeName::EllipticPunch => {
+            let axes = ind
+                .semi_axes
+                .as_ref()
+                .ok_or_else(|| anyhow!("indenter.semi_axes is required for indenter.shape = \"elliptic_punch\""))?;
+            if axes.len() != 2 {
+                bail!("indenter.semi_axes must be [a, b], got {axes:?}");
+            }
+            let a = positive("indenter.semi_axes[0]", axes[0])?;
+            let b = positive("indenter.semi_axes[1]", axes[1])?;
+            Indenter::EllipticPunch(EllipticPunch::new((a, b), angle)?)
+        }
+        ShapeName::Topography => {
+            let file = ind
+                .file
+                .as_ref()
+                .ok_or_else(|| anyhow!("indenter.file is required for indenter.shape = \"topography\""))?;
+            let spacing = positive("indenter.spacing", required("indenter.spacing", ind.spacing, shape)?)?;
+            let (values, rows, columns) = read_npy_2d(&base.join(file), "indenter.file")?;
+            Indenter::Topography(
+                Topography::new(values, rows, columns, spacing)
+                    .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
+            )
+        }
+    };
+    let heights = indenter.heights(grid);
+    let start_depth = heights
+        .iter()
+        .copied()
+        .filter(|h| h.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    if !start_depth.is_finite() {
+        bail!(
+            "the indenter (indenter.shape = \"{}\") has no surface inside the domain: enlarge grid.size ({}) or grid.n ({})",
+            shape.name(),
+            grid.size(),
+            grid.n()
+        );
+    }
+    Ok((indenter, heights, start_depth))
+}
+
+/// `[adhesion]`: the reference γ0 and γ per element.
+fn validate_adhesion(
+    section: &AdhesionSection,
+    grid: &Grid,
+    indenter: &Indenter,
+    shape: ShapeName,
+    base: &Path,
+) -> Result<(f64, Vec<f64>)> {
+    let n = grid.n();
+    let gamma0 = non_negative("adhesion.work_of_adhesion", section.work_of_adhesion)?;
+    let adhesion = match &section.field {
+        None => WorkOfAdhesion::Uniform(gamma0),
+        Some(FieldSpec::Quadratic {
+            ratio_edge_to_centre,
+            axis,
+            half_length,
+        }) => {
+            let ratio = positive("adhesion.field.ratio_edge_to_centre", *ratio_edge_to_centre)?;
+            let default_half_length = match (indenter, axis) {
+                (Indenter::EllipticPunch(p), AxisName::X) => Some(p.semi_axes().0),
+                (Indenter::EllipticPunch(p), AxisName::Y) => Some(p.semi_axes().1),
+                (Indenter::FlatPunch(p), _) => Some(p.radius()),
+                _ => None,
+            };
+            let half_length = match half_length {
+                Some(h) => positive("adhesion.field.half_length", *h)?,
+                None => default_half_length.ok_or_else(|| {
+                    anyhow!(
+                        "adhesion.field.half_length is required for indenter.shape = \"{}\" (defaults exist only for punches)",
+                        shape.name()
+                    )
+                })?,
+            };
+            WorkOfAdhesion::Quadratic {
+                middle: gamma0,
+                ratio_end_to_middle: ratio,
+                half_length,
+                axis: match axis {
+                    AxisName::X => Axis::X,
+                    AxisName::Y => Axis::Y,
+                },
+            }
+        }
+        Some(FieldSpec::Map { file }) => {
+            let (values, rows, columns) = read_npy_2d(&base.join(file), "adhesion.field.file")?;
+            if rows != n || columns != n {
+                bail!(
+                    "adhesion.field.file = {}: the map is {rows}×{columns}, the grid is {n}×{n} (grid.n = {n})",
+                    file.display()
+                );
+            }
+            if let Some(bad) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+                bail!(
+                    "adhesion.field.file = {}: values must be finite and >= 0, found {bad}",
+                    file.display()
+                );
+            }
+            WorkOfAdhesion::Map(values.into_iter().map(|v| v * gamma0).collect())
+        }
+    };
+    let gamma = adhesion.on_grid(grid).map_err(|e| anyhow!("[adhesion]: {e}"))?;
+    if gamma0 == 0.0 && section.field.is_some() {
+        bail!("adhesion.field needs adhesion.work_of_adhesion > 0, got 0");
+    }
+    Ok((gamma0, gamma))
+}
+
+/// The JKR scales and the other derived numbers of `summary.json`.
+fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, gamma0: f64) -> (Option<Jkr>, Derived) {
+    let contact_modulus = material.contact_modulus();
+    let delta = grid.element_size();
+    let jkr = match (gamma0 > 0.0, indenter.radius_of_curvature()) {
+        (true, Some(radius)) => Some(Jkr {
+            radius,
+            contact_modulus,
+            work_of_adhesion: gamma0,
+        }),
+        _ => None,
+    };
+    let johnson = match &indenter {
+        Indenter::WavySphere(w) if w.waviness().amplitude() > 0.0 => Some(johnson_parameter(
+            w.waviness().wavelength(),
+            w.waviness().amplitude(),
+            gamma0,
+            contact_modulus,
+        )),
+        _ => None,
+    };
+    let derived = Derived {
+        f_jkr: jkr.map(|j| j.critical_force()),
+        d_jkr: jkr.map(|j| j.critical_depth()),
+        a_jkr: jkr.map(|j| j.critical_radius()),
+        johnson_parameter: johnson,
+        element_size: delta,
+        critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, delta)),
+    };
+    (jkr, derived)
+}
+
+/// The length of one `protocol.depth_unit`.
+fn depth_unit(section: &ProtocolSection, shape: ShapeName, jkr: Option<&Jkr>, gamma0: f64) -> Result<f64> {
+    let p = section;
+    if p.kind.is_translation() && !matches!(shape, ShapeName::Sphere | ShapeName::WavySphere) {
+        bail!(
+            "protocol.kind = \"{}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+            p.kind.name(),
+            shape.name()
+        );
+    }
+    Ok(match p.depth_unit {
+        DepthUnit::Length => 1.0,
+        DepthUnit::Jkr => match jkr {
+            Some(j) => j.critical_depth().abs(),
+            None => bail!(
+                "protocol.depth_unit = \"jkr\" needs adhesion.work_of_adhesion > 0 (got {gamma0}) and a curved indenter (indenter.shape = \"{}\")",
+                shape.name()
+            ),
+        },
+    })
+}
