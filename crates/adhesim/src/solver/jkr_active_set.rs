@@ -1,3 +1,4 @@
+use super::certificate::{pressure_error_bound, releases_certain};
 use super::{masked_pcg, ContactState, PcgBuffers, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
@@ -41,6 +42,13 @@ pub enum Detachment {
         /// Relative band below the largest ratio, e.g. 0.01.
         fraction: f64,
     },
+    /// A random half of the violators (at least the worst one) per round, drawn from
+    /// `seed`: a deliberately different release order, the independent oracle of the
+    /// order-independence argument (docs/fast-step.md). Solves are fully converged.
+    RandomHalf {
+        /// Seed of the xorshift generator.
+        seed: u64,
+    },
 }
 
 /// Parameters of [`AdhesiveSolver`].
@@ -78,6 +86,15 @@ pub struct AdhesiveParams {
     /// lifted only when the contact is larger than at every earlier retry of the step, so
     /// the step still ends.
     pub retry_after_growth: bool,
+    /// The pre-issue-14 rule (default false): every fixed-set solve converges fully before
+    /// its release decisions. Otherwise a solve whose release decisions are certified
+    /// (docs/fast-step.md) stops early; contact sets are the same, the reference mode is
+    /// kept to show it.
+    pub reference_rule: bool,
+    /// Test aid (default false): after every certified early stop, converge the solve
+    /// fully on a copy and panic if a pressure moved by more than the certified bound or a
+    /// release decision changed. Costs a full solve per early stop.
+    pub check_certificates: bool,
 }
 
 impl Default for AdhesiveParams {
@@ -92,6 +109,8 @@ impl Default for AdhesiveParams {
             preconditioned: true,
             carry_bans_when_retracting: true,
             retry_after_growth: true,
+            reference_rule: false,
+            check_certificates: false,
         }
     }
 }
@@ -164,6 +183,14 @@ pub struct AdhesiveSolver {
     ring_history: Vec<RingAttempt>,
     /// The ring being tried in this step.
     current_ring: Option<RingAttempt>,
+    /// State of the xorshift generator of [`Detachment::RandomHalf`].
+    random_state: u64,
+    /// Bound on the pressure error of the last solve (docs/fast-step.md).
+    pressure_error_bound: f64,
+    /// Whether the last solve stopped early on certified release decisions.
+    last_solve_certified: bool,
+    /// Solves stopped early on a certificate, over the solver's life.
+    certified_stops: u64,
 }
 
 /// One round of a trial-ring peel: the trial elements present, their pressures after the
@@ -173,6 +200,8 @@ struct RingRound {
     members: Vec<usize>,
     pressures: Vec<f64>,
     failed: Vec<bool>,
+    /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
+    error_bound: f64,
 }
 
 /// A trial ring tried on contact set `contact` at `depth` that failed completely.
@@ -224,7 +253,20 @@ impl AdhesiveSolver {
             history: Vec::with_capacity(2),
             ring_history: Vec::with_capacity(2),
             current_ring: None,
+            random_state: match params.detachment {
+                Detachment::RandomHalf { seed } => seed | 1,
+                _ => 1,
+            },
+            pressure_error_bound: 0.0,
+            last_solve_certified: false,
+            certified_stops: 0,
         }
+    }
+
+    /// Fixed-set solves that stopped early on certified release decisions (docs/fast-step.md),
+    /// over the solver's life.
+    pub fn certified_stops(&self) -> u64 {
+        self.certified_stops
     }
 
     /// The parameters.
@@ -354,7 +396,9 @@ impl AdhesiveSolver {
             // u is recomputed exactly at the start of every step (and every
             // EXACT_DISPLACEMENT_PERIOD solves); in between it follows the pressure changes.
             let exact = report.solves % EXACT_DISPLACEMENT_PERIOD == 1;
-            report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact)?;
+            // The first solve gives the outputs before any change: always converged.
+            let certify = !first && !self.params.reference_rule && self.params.detachment == Detachment::AllViolators;
+            report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact, certify)?;
             if first {
                 report.force_before_change = state.force(self.grid.element_area());
                 report.energy_before_change = self.solved_energy(state, heights, depth);
@@ -376,6 +420,7 @@ impl AdhesiveSolver {
                         members,
                         pressures,
                         failed,
+                        error_bound: self.pressure_error_bound,
                     });
                 }
             }
@@ -542,10 +587,22 @@ impl AdhesiveSolver {
             if failed != b.failed {
                 return false;
             }
+            // Extrapolated from pressures known to ±error_bound: predict only decisions
+            // that bound cannot flip (the reference rule trusts converged pressures).
+            let error_bound = (1.0 + factor.abs()) * b.error_bound + factor.abs() * a.error_bound;
+            if !self.params.reference_rule
+                && b.members
+                    .iter()
+                    .zip(&pressures)
+                    .any(|(&k, p)| (-p - self.critical_stress[k]).abs() <= error_bound)
+            {
+                return false;
+            }
             predicted.push(RingRound {
                 members: b.members.clone(),
                 pressures,
                 failed,
+                error_bound,
             });
         }
         self.ring_history.remove(0);
@@ -584,7 +641,7 @@ impl AdhesiveSolver {
             return;
         }
         let threshold = match self.params.detachment {
-            Detachment::AllViolators => smallest,
+            Detachment::AllViolators | Detachment::RandomHalf { .. } => smallest,
             Detachment::WorstFirst { fraction } => smallest.max(largest * (1.0 - fraction)),
         } * (1.0 - 1e-9);
         for k in 0..self.grid.len() {
@@ -592,6 +649,27 @@ impl AdhesiveSolver {
                 self.violators.push(k);
             }
         }
+        if let Detachment::RandomHalf { .. } = self.params.detachment {
+            self.keep_random_half(state, largest);
+        }
+    }
+
+    /// Keeps a random half of the violators, always including one of the worst.
+    fn keep_random_half(&mut self, state: &ContactState, largest: f64) {
+        let worst = self
+            .violators
+            .iter()
+            .position(|&k| -state.pressure[k] / self.critical_stress[k] >= largest);
+        let mut random = self.random_state;
+        let mut index = 0;
+        self.violators.retain(|_| {
+            random ^= random << 13;
+            random ^= random >> 7;
+            random ^= random << 17;
+            index += 1;
+            Some(index - 1) == worst || random & 1 == 0
+        });
+        self.random_state = random;
     }
 
     /// Applications of the preconditioner so far (each an N×N FFT pair).
@@ -613,6 +691,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
         exact: bool,
+        certify: bool,
     ) -> Result<usize, SolveError> {
         let len = self.grid.len();
         for k in 0..len {
@@ -635,9 +714,45 @@ impl AdhesiveSolver {
                 }
             }
         }
-        let iterations = self.iterate_fixed_set(operator, heights, depth, state);
+        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, certify)?;
+        if self.last_solve_certified {
+            self.certified_stops += 1;
+            if self.params.check_certificates {
+                iterations += self.check_certificate(operator, heights, depth, state)?;
+            }
+        }
         self.displacement_pressure.copy_from_slice(&state.pressure);
-        iterations
+        Ok(iterations)
+    }
+
+    /// [`AdhesiveParams::check_certificates`]: converges the solve fully from the early
+    /// stop, checks every pressure moved by less than the certified bound and every release
+    /// decision stayed, then restores the early state.
+    fn check_certificate<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<usize, SolveError> {
+        let early = state.clone();
+        let bound = self.pressure_error_bound;
+        let iterations = self.iterate_fixed_set(operator, heights, depth, state, false)?;
+        for k in 0..self.grid.len() {
+            if state.contact[k] {
+                let (converged, certified) = (state.pressure[k], early.pressure[k]);
+                let sigma = self.critical_stress[k];
+                assert!(
+                    (converged - certified).abs() <= bound && (converged < -sigma) == (certified < -sigma),
+                    "certificate violated at element {k}: converged p = {converged:e}, early p = {certified:e}, bound {bound:e}, σ_c = {sigma:e}"
+                );
+            }
+        }
+        state.pressure.copy_from_slice(&early.pressure);
+        state.displacement.copy_from_slice(&early.displacement);
+        self.pressure_error_bound = bound;
+        self.last_solve_certified = true;
+        Ok(iterations)
     }
 
     /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
@@ -648,7 +763,9 @@ impl AdhesiveSolver {
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
+        certify: bool,
     ) -> Result<usize, SolveError> {
+        self.last_solve_certified = false;
         let len = self.grid.len();
         let mut target_norm = 0.0;
         let mut residual_norm = 0.0;
@@ -663,6 +780,7 @@ impl AdhesiveSolver {
             }
         }
         if target_norm == 0.0 && residual_norm == 0.0 {
+            self.pressure_error_bound = 0.0;
             return Ok(0);
         }
         // Stop on ‖r‖ ≤ ε‖b‖ and on a point-wise bound well below the displacement an
@@ -685,7 +803,9 @@ impl AdhesiveSolver {
                 true
             }
         };
+        let (contact_modulus, element_size) = (operator.contact_modulus(), delta);
         if converged(residual_norm, &self.residual, &state.contact) {
+            self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
             return Ok(0);
         }
         // 1 on C, 0 elsewhere: branch-free vector loops (direction and residual are 0
@@ -694,6 +814,8 @@ impl AdhesiveSolver {
             *m = if c { 1.0 } else { 0.0 };
         }
         let contact = &state.contact;
+        let critical_stress = &self.critical_stress;
+        let mut certified = false;
         let mut preconditioner = self.preconditioner.as_mut();
         let applications = &mut self.preconditioner_applications;
         let buffers = PcgBuffers {
@@ -715,9 +837,21 @@ impl AdhesiveSolver {
                 }
                 None => preconditioned.copy_from_slice(residual),
             },
-            |norm2, residual| Some(converged(norm2, residual, contact)),
+            |norm2, residual, pressure| {
+                if converged(norm2, residual, contact) {
+                    return Some(true);
+                }
+                // Stop once the release decisions cannot change (docs/fast-step.md).
+                if certify {
+                    let band = pressure_error_bound(residual, contact_modulus, element_size);
+                    certified = releases_certain(pressure, contact, critical_stress, band);
+                }
+                Some(certified)
+            },
             self.params.max_cg_iterations,
         );
+        self.last_solve_certified = certified;
+        self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
         outcome?.map_err(|norm2| SolveError::NotConverged {
             iterations: self.params.max_cg_iterations,
             residual: norm2.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
