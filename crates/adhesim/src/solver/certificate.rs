@@ -25,21 +25,49 @@ pub fn pressure_error_bound(residual: &[f64], contact_modulus: f64, element_size
     CERTIFICATE_SAFETY * 2.0 * LATTICE_INVERSE_DIAGONAL * contact_modulus / element_size * largest
 }
 
-/// The release decisions of an iterate are certain when no element of the set has its
-/// tension within `band` of σ_c, and worth acting on when at least one element certainly
-/// violates (p < −σ_c − band). Returns true in exactly that case.
-pub fn releases_certain(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> bool {
+/// The attachment decisions of an iterate (which free elements penetrate) are certain
+/// when no free element with a surface has |g| within `band` of 0. The displacement error
+/// of a free element i is K_iC·S_C·r: K_iC·S_C is non-negative with row sums below 1 (the
+/// M-matrix structure of S_{C∪i}, docs/fast-step.md), so |δu_i| ≤ ‖r‖∞ = the band before
+/// the safety factor.
+pub fn attachments_certain(heights: &[f64], depth: f64, displacement: &[f64], contact: &[bool], band: f64) -> bool {
+    (0..heights.len())
+        .all(|k| contact[k] || !heights[k].is_finite() || (heights[k] - depth + displacement[k]).abs() > band)
+}
+
+/// Bound on |u_i − u*_i| over the free elements: `CERTIFICATE_SAFETY`·‖r‖∞.
+pub fn gap_error_bound(residual: &[f64]) -> f64 {
+    CERTIFICATE_SAFETY * residual.iter().fold(0.0f64, |m, r| m.max(r.abs()))
+}
+
+/// The release decision an iterate certifies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Releases {
+    /// At least one certain violator, no tie.
+    Some,
+    /// Certainly no violator.
+    None,
+    /// Some element lies within the band.
+    Uncertain,
+}
+
+/// Classifies the release decisions of an iterate for the pressure error bound `band`.
+pub fn classify_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> Releases {
     let mut violator = false;
     for k in 0..pressure.len() {
         if contact[k] {
             let excess = -pressure[k] - critical_stress[k];
             if excess.abs() <= band {
-                return false;
+                return Releases::Uncertain;
             }
             violator |= excess > 0.0;
         }
     }
-    violator
+    if violator {
+        Releases::Some
+    } else {
+        Releases::None
+    }
 }
 
 #[cfg(test)]
@@ -173,17 +201,18 @@ mod tests {
     }
 
     #[test]
-    fn releases_need_a_certain_violator_and_no_tie() {
+    fn decisions_are_certain_outside_the_band() {
         let sigma = [1.0, 1.0, 1.0];
         let contact = [true, true, false];
-        assert!(releases_certain(&[-1.5, 0.2, -9.0], &contact, &sigma, 0.1));
+        let classify = |p: [f64; 3]| classify_releases(&p, &contact, &sigma, 0.1);
+        assert_eq!(classify([-1.5, 0.2, -9.0]), Releases::Some);
+        assert_eq!(classify([-1.05, 0.2, -9.0]), Releases::Uncertain, "tie at σ_c");
+        assert_eq!(classify([-0.5, 0.2, -9.0]), Releases::None, "no violator");
+        let heights = [0.0, 0.0, 1.0];
+        assert!(attachments_certain(&heights, 0.5, &[0.0, 0.0, 0.0], &contact, 0.1));
         assert!(
-            !releases_certain(&[-1.05, 0.2, -9.0], &contact, &sigma, 0.1),
-            "tie at σ_c"
-        );
-        assert!(
-            !releases_certain(&[-0.5, 0.2, -9.0], &contact, &sigma, 0.1),
-            "no violator"
+            !attachments_certain(&heights, 0.95, &[0.0, 0.0, 0.0], &contact, 0.1),
+            "gap 0.05 < band"
         );
     }
 }

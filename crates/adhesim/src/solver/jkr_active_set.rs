@@ -1,4 +1,4 @@
-use super::certificate::{pressure_error_bound, releases_certain};
+use super::certificate::{attachments_certain, classify_releases, gap_error_bound, pressure_error_bound, Releases};
 use super::{masked_pcg, ContactState, PcgBuffers, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
@@ -187,10 +187,26 @@ pub struct AdhesiveSolver {
     random_state: u64,
     /// Bound on the pressure error of the last solve (docs/fast-step.md).
     pressure_error_bound: f64,
-    /// Whether the last solve stopped early on certified release decisions.
+    /// Bound on the gap error of the last solve.
+    gap_error_bound: f64,
+    /// Whether the last solve stopped early on certified decisions.
     last_solve_certified: bool,
+    /// Whether the state saved before a trial ring came from such an early stop.
+    saved_certified: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
+}
+
+/// When a fixed-set solve may stop (docs/fast-step.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StopRule {
+    /// Converge fully (outputs, reference rule, oracle).
+    Converge,
+    /// Stop once the release decisions are certain and release something.
+    Releases,
+    /// As `Releases`, or once there is certainly no release and the attachment decisions
+    /// are certain (the step goes on to attach: trial neighbours exist).
+    ReleasesOrAttachments,
 }
 
 /// One round of a trial-ring peel: the trial elements present, their pressures after the
@@ -258,7 +274,9 @@ impl AdhesiveSolver {
                 _ => 1,
             },
             pressure_error_bound: 0.0,
+            gap_error_bound: 0.0,
             last_solve_certified: false,
+            saved_certified: false,
             certified_stops: 0,
         }
     }
@@ -397,8 +415,8 @@ impl AdhesiveSolver {
             // EXACT_DISPLACEMENT_PERIOD solves); in between it follows the pressure changes.
             let exact = report.solves % EXACT_DISPLACEMENT_PERIOD == 1;
             // The first solve gives the outputs before any change: always converged.
-            let certify = !first && !self.params.reference_rule && self.params.detachment == Detachment::AllViolators;
-            report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact, certify)?;
+            let stop = self.stop_rule(first, heights, state, retry_high_water);
+            report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact, stop)?;
             if first {
                 report.force_before_change = state.force(self.grid.element_area());
                 report.energy_before_change = self.solved_energy(state, heights, depth);
@@ -441,6 +459,11 @@ impl AdhesiveSolver {
                         state.pressure.copy_from_slice(&self.saved_pressure);
                         state.displacement.copy_from_slice(&self.saved_displacement);
                         self.displacement_pressure.copy_from_slice(&self.saved_pressure);
+                        if self.saved_certified {
+                            report.solves += 1;
+                            report.cg_iterations +=
+                                self.solve_fixed_set(operator, heights, depth, state, false, StopRule::Converge)?;
+                        }
                         if let Some(ring) = self.current_ring.take() {
                             if self.ring_history.len() == 2 {
                                 self.ring_history.remove(0);
@@ -499,12 +522,19 @@ impl AdhesiveSolver {
             ring_restorable = pure_ring;
             if ring_restorable {
                 if self.predict_failed_ring(depth, state) {
+                    if self.last_solve_certified {
+                        // This state ends the step: its outputs need the converged solve.
+                        report.solves += 1;
+                        report.cg_iterations +=
+                            self.solve_fixed_set(operator, heights, depth, state, false, StopRule::Converge)?;
+                    }
                     for &k in &self.candidates {
                         self.trial[k] = false;
                         self.banned[k] = true;
                     }
                     break;
                 }
+                self.saved_certified = self.last_solve_certified;
                 self.saved_pressure.copy_from_slice(&state.pressure);
                 self.saved_displacement.copy_from_slice(&state.displacement);
                 self.current_ring = Some(RingAttempt {
@@ -533,6 +563,35 @@ impl AdhesiveSolver {
         report.dissipated_energy = report.energy_before_change - report.energy;
         report.operator_applications = operator.applications() - applications_before;
         Ok(report)
+    }
+
+    /// How the next solve may stop: never early on the first solve of a step (its outputs
+    /// are reported), in the reference rule or another release order; on certain
+    /// attachment decisions only when trial neighbours exist (bans as the attachment
+    /// phase will see them), so that the step certainly goes on.
+    fn stop_rule(&self, first: bool, heights: &[f64], state: &ContactState, retry_high_water: usize) -> StopRule {
+        if first || self.params.reference_rule || self.params.detachment != Detachment::AllViolators {
+            return StopRule::Converge;
+        }
+        if self.params.attachment != Attachment::Trial {
+            return StopRule::Releases;
+        }
+        let bans_lifted =
+            self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
+        let trial_available = (0..self.grid.len()).any(|k| {
+            if state.contact[k] || !heights[k].is_finite() || (self.banned[k] && !bans_lifted) {
+                return false;
+            }
+            let mut touches = false;
+            self.grid
+                .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
+            touches
+        });
+        if trial_available {
+            StopRule::ReleasesOrAttachments
+        } else {
+            StopRule::Releases
+        }
     }
 
     /// Exact shortcut for a quiet step: if the last two steps tried the same trial ring on
@@ -691,7 +750,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
         exact: bool,
-        certify: bool,
+        stop: StopRule,
     ) -> Result<usize, SolveError> {
         let len = self.grid.len();
         for k in 0..len {
@@ -714,7 +773,7 @@ impl AdhesiveSolver {
                 }
             }
         }
-        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, certify)?;
+        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
         if self.last_solve_certified {
             self.certified_stops += 1;
             if self.params.check_certificates {
@@ -736,9 +795,17 @@ impl AdhesiveSolver {
         state: &mut ContactState,
     ) -> Result<usize, SolveError> {
         let early = state.clone();
-        let bound = self.pressure_error_bound;
-        let iterations = self.iterate_fixed_set(operator, heights, depth, state, false)?;
+        let (bound, gap_bound) = (self.pressure_error_bound, self.gap_error_bound);
+        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge)?;
         for k in 0..self.grid.len() {
+            if !state.contact[k] && heights[k].is_finite() {
+                let converged = heights[k] - depth + state.displacement[k];
+                let certified = heights[k] - depth + early.displacement[k];
+                assert!(
+                    (converged - certified).abs() <= gap_bound,
+                    "gap certificate violated at element {k}: converged g = {converged:e}, early g = {certified:e}, bound {gap_bound:e}"
+                );
+            }
             if state.contact[k] {
                 let (converged, certified) = (state.pressure[k], early.pressure[k]);
                 let sigma = self.critical_stress[k];
@@ -750,7 +817,7 @@ impl AdhesiveSolver {
         }
         state.pressure.copy_from_slice(&early.pressure);
         state.displacement.copy_from_slice(&early.displacement);
-        self.pressure_error_bound = bound;
+        (self.pressure_error_bound, self.gap_error_bound) = (bound, gap_bound);
         self.last_solve_certified = true;
         Ok(iterations)
     }
@@ -763,7 +830,7 @@ impl AdhesiveSolver {
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
-        certify: bool,
+        stop: StopRule,
     ) -> Result<usize, SolveError> {
         self.last_solve_certified = false;
         let len = self.grid.len();
@@ -780,7 +847,7 @@ impl AdhesiveSolver {
             }
         }
         if target_norm == 0.0 && residual_norm == 0.0 {
-            self.pressure_error_bound = 0.0;
+            (self.pressure_error_bound, self.gap_error_bound) = (0.0, 0.0);
             return Ok(0);
         }
         // Stop on ‖r‖ ≤ ε‖b‖ and on a point-wise bound well below the displacement an
@@ -806,6 +873,7 @@ impl AdhesiveSolver {
         let (contact_modulus, element_size) = (operator.contact_modulus(), delta);
         if converged(residual_norm, &self.residual, &state.contact) {
             self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
+            self.gap_error_bound = gap_error_bound(&self.residual);
             return Ok(0);
         }
         // 1 on C, 0 elsewhere: branch-free vector loops (direction and residual are 0
@@ -837,14 +905,20 @@ impl AdhesiveSolver {
                 }
                 None => preconditioned.copy_from_slice(residual),
             },
-            |norm2, residual, pressure| {
+            |norm2, residual, pressure, displacement| {
                 if converged(norm2, residual, contact) {
                     return Some(true);
                 }
                 // Stop once the release decisions cannot change (docs/fast-step.md).
-                if certify {
+                if stop != StopRule::Converge {
                     let band = pressure_error_bound(residual, contact_modulus, element_size);
-                    certified = releases_certain(pressure, contact, critical_stress, band);
+                    certified = match classify_releases(pressure, contact, critical_stress, band) {
+                        Releases::Some => true,
+                        Releases::None if stop == StopRule::ReleasesOrAttachments => {
+                            attachments_certain(heights, depth, displacement, contact, gap_error_bound(residual))
+                        }
+                        _ => false,
+                    };
                 }
                 Some(certified)
             },
@@ -852,6 +926,7 @@ impl AdhesiveSolver {
         );
         self.last_solve_certified = certified;
         self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
+        self.gap_error_bound = gap_error_bound(&self.residual);
         outcome?.map_err(|norm2| SolveError::NotConverged {
             iterations: self.params.max_cg_iterations,
             residual: norm2.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),

@@ -108,7 +108,7 @@ struct PcgBuffers<'a> {
 /// from the residual in `buffers.residual` (zero outside the set); updates `pressure` p and
 /// `displacement` u = K p. Search directions are applied in single precision (`apply_single`): each
 /// caller restarts from an exact residual, so the rounding stays far below its goals.
-/// `precondition` writes M⁻¹r; `converged` sees ‖r‖², r and p after each iteration and
+/// `precondition` writes M⁻¹r; `converged` sees ‖r‖², r, p and u after each iteration and
 /// answers `None` for a residual it rejects as non-finite.
 /// Returns `Ok(iterations)`, or `Err(‖r‖²)` if `max_iterations` did not suffice.
 /// Shared by the adhesive solver and the nested active set (their stopping rules differ).
@@ -118,7 +118,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     displacement: &mut [f64],
     buffers: PcgBuffers<'_>,
     mut precondition: impl FnMut(&[f64], &mut [f64]),
-    mut converged: impl FnMut(f64, &[f64], &[f64]) -> Option<bool>,
+    mut converged: impl FnMut(f64, &[f64], &[f64], &[f64]) -> Option<bool>,
     max_iterations: usize,
 ) -> Result<Result<usize, f64>, SolveError> {
     let PcgBuffers {
@@ -152,7 +152,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             residual[k] -= step * response[k] * mask[k];
         }
         norm2 = dot(residual, residual);
-        if converged(norm2, residual, pressure).ok_or(SolveError::NonFinite { iteration })? {
+        if converged(norm2, residual, pressure, displacement).ok_or(SolveError::NonFinite { iteration })? {
             return Ok(Ok(iteration));
         }
         let new_rho = apply_preconditioner(residual, preconditioned);
