@@ -5,13 +5,32 @@
 //!
 //! Prints wall time, FFT pairs, solves and CG iterations per step and, if a path is
 //! given, writes depth, force and contact size per step (to compare solver options).
-//! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance.
+//! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
+//! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
+//! no certified early stops; docs/fast-step.md) to compare work and results.
 use adhesim::analysis::reference::Jkr;
+use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
     Profile, StepRecord, WavySphere,
 };
 use std::io::Write;
+
+/// CPU time (user + system) of this process so far, from /proc (0 where unavailable).
+fn process_cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the command name (which ends with ')'): utime and stime are 14 and 15.
+    let fields: Vec<&str> = stat
+        .rsplit_once(')')
+        .map_or(vec![], |(_, rest)| rest.split_whitespace().collect());
+    let ticks: f64 = [11, 12]
+        .iter()
+        .filter_map(|&i| fields.get(i)?.parse::<f64>().ok())
+        .sum();
+    ticks / 100.0
+}
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -38,6 +57,7 @@ fn main() {
                 .map_or(AdhesiveParams::default().relative_tolerance, |v| {
                     v.parse().expect("ADHESIM_RELATIVE_TOLERANCE as a number")
                 }),
+            reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
             ..AdhesiveParams::default()
         },
     )));
@@ -49,11 +69,13 @@ fn main() {
         jump_force_threshold: 0.0,
     };
     let mut records: Vec<StepRecord> = Vec::new();
+    let cpu_start = process_cpu_seconds();
     let start = std::time::Instant::now();
     let summary = protocol
         .run(&mut operator, &heights, &mut solver, &mut records)
         .expect("cycle");
     let wall = start.elapsed().as_secs_f64();
+    let cpu = process_cpu_seconds() - cpu_start;
     let per_step = |total: f64| total / summary.steps as f64;
     println!(
         "N = {n}: {} steps in {wall:.1} s ({:.3} s/step), {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve, pull-off force {:.4} |F_JKR|",
@@ -64,6 +86,28 @@ fn main() {
         summary.cg_iterations as f64 / summary.solves as f64,
         summary.max_adhesive_force / jkr.critical_force().abs()
     );
+    let approach = records.iter().filter(|r| r.phase == Some(Phase::Approach)).count();
+    for (label, part) in [("approach", &records[..approach]), ("retraction", &records[approach..])] {
+        let steps = part.len().max(1) as f64;
+        let fft: u64 = part.iter().map(|r| r.report.operator_applications).sum();
+        let solves: usize = part.iter().map(|r| r.report.solves).sum();
+        let cg: usize = part.iter().map(|r| r.report.cg_iterations).sum();
+        println!(
+            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve",
+            part.len(),
+            fft as f64 / steps,
+            solves as f64 / steps,
+            cg as f64 / solves.max(1) as f64
+        );
+    }
+    if let NormalSolver::Adhesive(adhesive) = &solver {
+        println!(
+            "  certified early stops: {} of {} solves; CPU {cpu:.1} s ({:.2} cores)",
+            adhesive.certified_stops(),
+            summary.solves,
+            cpu / wall
+        );
+    }
     if let Some(path) = curve_path {
         let mut file = std::io::BufWriter::new(std::fs::File::create(&path).expect("curve file"));
         writeln!(

@@ -1,8 +1,9 @@
 use super::certificate::{attachments_certain, classify_releases, gap_error_bound, pressure_error_bound, Releases};
+use super::local_peel::{LocalPeel, REACH};
 use super::{masked_pcg, ContactState, PcgBuffers, SolveError};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
-use crate::grid::Grid;
+use crate::grid::{Boundary, Grid};
 
 /// c_U = [2 ln(1+√2) − (2/3)(√2 − 1)]/π: elastic energy U = c_U σ²Δ³/E* stored by one
 /// square element under uniform tension σ (mean displacement; physics notes §2.2).
@@ -195,6 +196,10 @@ pub struct AdhesiveSolver {
     saved_certified: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
+    /// Certified local release rounds (free grids, fast rule only).
+    local_peel: Option<LocalPeel>,
+    /// Trial elements released by local certificates (without a solve), over the solver's life.
+    local_releases: u64,
 }
 
 /// When a fixed-set solve may stop (docs/fast-step.md).
@@ -278,7 +283,18 @@ impl AdhesiveSolver {
             last_solve_certified: false,
             saved_certified: false,
             certified_stops: 0,
+            local_peel: (grid.boundary() == Boundary::Free
+                && !params.reference_rule
+                && params.detachment == Detachment::AllViolators)
+                .then(|| LocalPeel::new(len)),
+            local_releases: 0,
         }
+    }
+
+    /// Trial elements released by certified local rounds (docs/fast-step.md) instead of
+    /// after a solve, over the solver's life.
+    pub fn local_releases(&self) -> u64 {
+        self.local_releases
     }
 
     /// Fixed-set solves that stopped early on certified release decisions (docs/fast-step.md),
@@ -447,10 +463,13 @@ impl AdhesiveSolver {
                 if any_failed_trial {
                     // Failed trial elements go first; ordinary violators wait for the
                     // next solve (a badly placed trial element must not start a cascade).
-                    for index in 0..self.violators.len() {
-                        let k = self.violators[index];
-                        if self.trial[k] {
-                            self.release(k, state);
+                    if self.release_failed_trials(state) > 0 {
+                        // Rounds released without a solve are not the recorded rounds that
+                        // the failed-ring prediction extrapolates.
+                        self.current_ring = None;
+                        self.ring_history.clear();
+                        if self.params.check_certificates {
+                            self.check_local_bounds(operator, heights, depth, state)?;
                         }
                     }
                     if ring_restorable && !self.trial.iter().any(|&t| t) {
@@ -671,6 +690,109 @@ impl AdhesiveSolver {
             rounds: predicted,
         });
         true
+    }
+
+    /// Releases the failed trial elements among the violators, then (with local rounds)
+    /// every trial element whose tension a local lower bound certifies above σ_c, in a
+    /// sequence of single releases. Returns the number of those extra releases.
+    fn release_failed_trials(&mut self, state: &mut ContactState) -> usize {
+        let Some(mut peel) = self.local_peel.take() else {
+            for index in 0..self.violators.len() {
+                let k = self.violators[index];
+                if self.trial[k] {
+                    self.release(k, state);
+                }
+            }
+            return 0;
+        };
+        let len = self.grid.len();
+        let n = self.grid.n();
+        for k in 0..len {
+            if self.trial[k] {
+                peel.lower[k] = -state.pressure[k] - self.pressure_error_bound;
+            }
+        }
+        peel.queue.clear();
+        for &k in &self.violators {
+            if self.trial[k] {
+                peel.queue.push(k);
+                peel.queued[k] = true;
+            }
+        }
+        let certain = peel.queue.len();
+        let mut head = 0;
+        while head < peel.queue.len() {
+            let released = peel.queue[head];
+            head += 1;
+            let tension = peel.lower[released].max(0.0);
+            self.release(released, state);
+            let centre = ((released / n) as i64, (released % n) as i64);
+            peel.prepare(n, centre, |k| !state.contact[k]);
+            for a in -REACH..=REACH {
+                for b in -REACH..=REACH {
+                    let (row, column) = (centre.0 + a, centre.1 + b);
+                    if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
+                        continue;
+                    }
+                    let k = row as usize * n + column as usize;
+                    if !state.contact[k] || !self.trial[k] || peel.queued[k] {
+                        continue;
+                    }
+                    peel.lower[k] += peel.rise((row, column)) * tension;
+                    if peel.lower[k] > self.critical_stress[k] {
+                        peel.queue.push(k);
+                        peel.queued[k] = true;
+                    }
+                }
+            }
+        }
+        for &k in &peel.queue {
+            peel.queued[k] = false;
+        }
+        let extra = peel.queue.len() - certain;
+        self.local_releases += extra as u64;
+        self.local_peel = Some(peel);
+        extra
+    }
+
+    /// [`AdhesiveParams::check_certificates`] for local rounds: solves the set left by them
+    /// on a copy and panics if a remaining trial element's tension is below its certified
+    /// lower bound; leaves the state and the solver as they were.
+    fn check_local_bounds<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<(), SolveError> {
+        let before = state.clone();
+        let displacement_pressure = self.displacement_pressure.clone();
+        let (bound, gap_bound, certified) = (
+            self.pressure_error_bound,
+            self.gap_error_bound,
+            self.last_solve_certified,
+        );
+        self.solve_fixed_set(operator, heights, depth, state, true, StopRule::Converge)?;
+        if let Some(peel) = &self.local_peel {
+            for k in 0..self.grid.len() {
+                if state.contact[k] && self.trial[k] {
+                    let tension = -state.pressure[k] + self.pressure_error_bound;
+                    assert!(
+                        peel.lower[k] <= tension,
+                        "local bound violated at element {k}: lower bound {:e} > tension {tension:e}",
+                        peel.lower[k]
+                    );
+                }
+            }
+        }
+        *state = before;
+        self.displacement_pressure = displacement_pressure;
+        (
+            self.pressure_error_bound,
+            self.gap_error_bound,
+            self.last_solve_certified,
+        ) = (bound, gap_bound, certified);
+        Ok(())
     }
 
     fn release(&mut self, k: usize, state: &mut ContactState) {

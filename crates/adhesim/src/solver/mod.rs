@@ -8,6 +8,7 @@
 mod ccg;
 mod certificate;
 mod jkr_active_set;
+mod local_peel;
 mod nested;
 mod state;
 
