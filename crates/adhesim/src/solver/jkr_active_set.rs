@@ -463,13 +463,13 @@ impl AdhesiveSolver {
                 if any_failed_trial {
                     // Failed trial elements go first; ordinary violators wait for the
                     // next solve (a badly placed trial element must not start a cascade).
-                    if self.release_failed_trials(state) > 0 {
+                    if self.release_with_local_rounds(state, true) > 0 {
                         // Rounds released without a solve are not the recorded rounds that
                         // the failed-ring prediction extrapolates.
                         self.current_ring = None;
                         self.ring_history.clear();
                         if self.params.check_certificates {
-                            self.check_local_bounds(operator, heights, depth, state)?;
+                            self.check_local_bounds(operator, heights, depth, state, true)?;
                         }
                     }
                     if ring_restorable && !self.trial.iter().any(|&t| t) {
@@ -495,9 +495,11 @@ impl AdhesiveSolver {
                 }
                 ring_restorable = false;
                 self.trial.iter_mut().for_each(|t| *t = false);
-                for index in 0..self.violators.len() {
-                    let k = self.violators[index];
-                    self.release(k, state);
+                if self.release_with_local_rounds(state, false) > 0 {
+                    self.ring_history.clear();
+                    if self.params.check_certificates {
+                        self.check_local_bounds(operator, heights, depth, state, false)?;
+                    }
                 }
                 continue;
             }
@@ -692,14 +694,16 @@ impl AdhesiveSolver {
         true
     }
 
-    /// Releases the failed trial elements among the violators, then (with local rounds)
-    /// every trial element whose tension a local lower bound certifies above σ_c, in a
-    /// sequence of single releases. Returns the number of those extra releases.
-    fn release_failed_trials(&mut self, state: &mut ContactState) -> usize {
+    /// Releases the violators (only the failed trial elements with `trial_only`), then,
+    /// with local rounds, every element of the same kind whose tension a local lower bound
+    /// certifies above σ_c, in a sequence of single releases (docs/fast-step.md). These are
+    /// elements the following rounds of the reference rule would release. Returns the
+    /// number of the extra releases.
+    fn release_with_local_rounds(&mut self, state: &mut ContactState, trial_only: bool) -> usize {
         let Some(mut peel) = self.local_peel.take() else {
             for index in 0..self.violators.len() {
                 let k = self.violators[index];
-                if self.trial[k] {
+                if self.trial[k] || !trial_only {
                     self.release(k, state);
                 }
             }
@@ -708,13 +712,13 @@ impl AdhesiveSolver {
         let len = self.grid.len();
         let n = self.grid.n();
         for k in 0..len {
-            if self.trial[k] {
+            if state.contact[k] && (self.trial[k] || !trial_only) {
                 peel.lower[k] = -state.pressure[k] - self.pressure_error_bound;
             }
         }
         peel.queue.clear();
         for &k in &self.violators {
-            if self.trial[k] {
+            if self.trial[k] || !trial_only {
                 peel.queue.push(k);
                 peel.queued[k] = true;
             }
@@ -735,7 +739,7 @@ impl AdhesiveSolver {
                         continue;
                     }
                     let k = row as usize * n + column as usize;
-                    if !state.contact[k] || !self.trial[k] || peel.queued[k] {
+                    if !state.contact[k] || (trial_only && !self.trial[k]) || peel.queued[k] {
                         continue;
                     }
                     peel.lower[k] += peel.rise((row, column)) * tension;
@@ -764,6 +768,7 @@ impl AdhesiveSolver {
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
+        trial_only: bool,
     ) -> Result<(), SolveError> {
         let before = state.clone();
         let displacement_pressure = self.displacement_pressure.clone();
@@ -775,7 +780,7 @@ impl AdhesiveSolver {
         self.solve_fixed_set(operator, heights, depth, state, true, StopRule::Converge)?;
         if let Some(peel) = &self.local_peel {
             for k in 0..self.grid.len() {
-                if state.contact[k] && self.trial[k] {
+                if state.contact[k] && (self.trial[k] || !trial_only) {
                     let tension = -state.pressure[k] + self.pressure_error_bound;
                     assert!(
                         peel.lower[k] <= tension,
