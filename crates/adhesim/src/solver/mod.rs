@@ -5,18 +5,18 @@
 //! [`ContactState`] that is both the warm start and the result. Gap g = z − d + u ≥ 0,
 //! pressure p > 0 compressive; contact means g = 0.
 
+mod adhesive;
 mod ccg;
 mod certificate;
-mod jkr_active_set;
 mod local_peel;
 mod nested;
 mod state;
 
-pub use ccg::{Ccg, CcgParams};
-pub use certificate::LATTICE_INVERSE_DIAGONAL;
-pub use jkr_active_set::{
+pub use adhesive::{
     critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
 };
+pub use ccg::{Ccg, CcgParams};
+pub use certificate::LATTICE_INVERSE_DIAGONAL;
 pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 
