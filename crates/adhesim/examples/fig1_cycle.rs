@@ -9,6 +9,7 @@
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results.
 use adhesim::analysis::reference::Jkr;
+use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
@@ -86,6 +87,22 @@ fn main() {
         summary.cg_iterations as f64 / summary.solves as f64,
         summary.max_adhesive_force / jkr.critical_force().abs()
     );
+    // γ1, γ2 as `adhesim run` reports them (fits over a ≥ max(a_JKR/2, 2λ)).
+    let analysis = analyse_indentation(
+        &records,
+        &CurveAnalysisOptions {
+            radius: 1.0,
+            contact_modulus: 1.0,
+            work_of_adhesion,
+            min_fit_radius: (0.5 * jkr.critical_radius()).max(2.0 * 0.05),
+        },
+    );
+    let ratio = |fit: Option<adhesim::analysis::fit::JkrFit>| fit.map_or(f64::NAN, |f| f.work_of_adhesion / work_of_adhesion);
+    println!(
+        "  γ1/γ0 {:.4}, γ2/γ0 {:.4}",
+        ratio(analysis.gamma_approach),
+        ratio(analysis.gamma_pulloff)
+    );
     let approach = records.iter().filter(|r| r.phase == Some(Phase::Approach)).count();
     for (label, part) in [("approach", &records[..approach]), ("retraction", &records[approach..])] {
         let steps = part.len().max(1) as f64;
@@ -112,17 +129,18 @@ fn main() {
         let mut file = std::io::BufWriter::new(std::fs::File::create(&path).expect("curve file"));
         writeln!(
             file,
-            "step,depth,force_normal,contact_elements,solves,cg_iterations,fft_pairs,attached,detached"
+            "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached"
         )
         .expect("write");
         for r in &records {
             writeln!(
                 file,
-                "{},{:e},{:e},{},{},{},{},{},{}",
+                "{},{:e},{:e},{},{:e},{},{},{},{},{}",
                 r.step,
                 r.depth,
                 r.force_normal,
                 r.contact_elements,
+                r.radius,
                 r.report.solves,
                 r.report.cg_iterations,
                 r.report.operator_applications,
