@@ -119,10 +119,9 @@ impl LocalPeel {
                 if (a, b) == (0, 0) || a * a + b * b > WINDOW * WINDOW {
                     continue;
                 }
-                if row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n {
-                    if free(row as usize * n + column as usize) {
-                        self.window.push((row, column));
-                    }
+                let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
+                if inside && free(row as usize * n + column as usize) {
+                    self.window.push((row, column));
                 }
             }
         }
