@@ -8,8 +8,8 @@
 //! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results.
-use adhesim::analysis::reference::Jkr;
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
+use adhesim::analysis::reference::Jkr;
 use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
@@ -97,7 +97,8 @@ fn main() {
             min_fit_radius: (0.5 * jkr.critical_radius()).max(2.0 * 0.05),
         },
     );
-    let ratio = |fit: Option<adhesim::analysis::fit::JkrFit>| fit.map_or(f64::NAN, |f| f.work_of_adhesion / work_of_adhesion);
+    let ratio =
+        |fit: Option<adhesim::analysis::fit::JkrFit>| fit.map_or(f64::NAN, |f| f.work_of_adhesion / work_of_adhesion);
     println!(
         "  γ1/γ0 {:.4}, γ2/γ0 {:.4}",
         ratio(analysis.gamma_approach),

@@ -469,7 +469,7 @@ impl AdhesiveSolver {
         report: &mut StepReport,
     ) -> Result<(), SolveError> {
         report.solves += 1;
-        report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, false, StopRule::Converge)?;
+        report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, true, StopRule::Converge)?;
         Ok(())
     }
 
