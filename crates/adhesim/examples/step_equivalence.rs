@@ -8,7 +8,8 @@
 //! `cargo run --release -p adhesim --example step_equivalence -- [--check] [CASE ...]`
 //!
 //! Cases: sphere8 sphere16 sphere32 fig1_64_75 fig1_64_150 fig1_128_75 fig1_128_150
-//! fig2_h120 fig12_homogeneous fig12_ratio13 fig12_ratio20 fig6_roll (default: all).
+//! fig2_h120 fig12_homogeneous fig12_ratio13 fig12_ratio20 fig6_roll (default: all), and
+//! fig1_256_start (the first 3 steps of the Fig. 1 case at n = 256: a tie, docs/fast-step.md §2).
 //! `--tight` runs all three with CG tolerances 1e-10 (relative) and 1e-8 (front) instead
 //! of 1e-6 and 1e-4, to tell ties inside the default CG error band from real differences.
 //! `ADHESIM_VERBOSE=1` lists the differing steps and the pressures there.
