@@ -5,13 +5,33 @@
 //!
 //! Prints wall time, FFT pairs, solves and CG iterations per step and, if a path is
 //! given, writes depth, force and contact size per step (to compare solver options).
-//! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance.
+//! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
+//! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
+//! no certified early stops; docs/fast-step.md) to compare work and results.
+use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
+use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
     Profile, StepRecord, WavySphere,
 };
 use std::io::Write;
+
+/// CPU time (user + system) of this process so far, from /proc (0 where unavailable).
+fn process_cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the command name (which ends with ')'): utime and stime are 14 and 15.
+    let fields: Vec<&str> = stat
+        .rsplit_once(')')
+        .map_or(vec![], |(_, rest)| rest.split_whitespace().collect());
+    let ticks: f64 = [11, 12]
+        .iter()
+        .filter_map(|&i| fields.get(i)?.parse::<f64>().ok())
+        .sum();
+    ticks / 100.0
+}
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -38,6 +58,7 @@ fn main() {
                 .map_or(AdhesiveParams::default().relative_tolerance, |v| {
                     v.parse().expect("ADHESIM_RELATIVE_TOLERANCE as a number")
                 }),
+            reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
             ..AdhesiveParams::default()
         },
     )));
@@ -49,11 +70,13 @@ fn main() {
         jump_force_threshold: 0.0,
     };
     let mut records: Vec<StepRecord> = Vec::new();
+    let cpu_start = process_cpu_seconds();
     let start = std::time::Instant::now();
     let summary = protocol
         .run(&mut operator, &heights, &mut solver, &mut records)
         .expect("cycle");
     let wall = start.elapsed().as_secs_f64();
+    let cpu = process_cpu_seconds() - cpu_start;
     let per_step = |total: f64| total / summary.steps as f64;
     println!(
         "N = {n}: {} steps in {wall:.1} s ({:.3} s/step), {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve, pull-off force {:.4} |F_JKR|",
@@ -64,21 +87,61 @@ fn main() {
         summary.cg_iterations as f64 / summary.solves as f64,
         summary.max_adhesive_force / jkr.critical_force().abs()
     );
+    // γ1, γ2 as `adhesim run` reports them (fits over a ≥ max(a_JKR/2, 2λ)).
+    let analysis = analyse_indentation(
+        &records,
+        &CurveAnalysisOptions {
+            radius: 1.0,
+            contact_modulus: 1.0,
+            work_of_adhesion,
+            min_fit_radius: (0.5 * jkr.critical_radius()).max(2.0 * 0.05),
+        },
+    );
+    let ratio =
+        |fit: Option<adhesim::analysis::fit::JkrFit>| fit.map_or(f64::NAN, |f| f.work_of_adhesion / work_of_adhesion);
+    println!(
+        "  γ1/γ0 {:.4}, γ2/γ0 {:.4}",
+        ratio(analysis.gamma_approach),
+        ratio(analysis.gamma_pulloff)
+    );
+    let approach = records.iter().filter(|r| r.phase == Some(Phase::Approach)).count();
+    for (label, part) in [("approach", &records[..approach]), ("retraction", &records[approach..])] {
+        let steps = part.len().max(1) as f64;
+        let fft: u64 = part.iter().map(|r| r.report.operator_applications).sum();
+        let solves: usize = part.iter().map(|r| r.report.solves).sum();
+        let cg: usize = part.iter().map(|r| r.report.cg_iterations).sum();
+        println!(
+            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve",
+            part.len(),
+            fft as f64 / steps,
+            solves as f64 / steps,
+            cg as f64 / solves.max(1) as f64
+        );
+    }
+    if let NormalSolver::Adhesive(adhesive) = &solver {
+        println!(
+            "  certified early stops: {} of {} solves; CPU {cpu:.1} s ({:.2} cores)",
+            adhesive.certified_stops(),
+            summary.solves,
+            cpu / wall
+        );
+    }
     if let Some(path) = curve_path {
         let mut file = std::io::BufWriter::new(std::fs::File::create(&path).expect("curve file"));
         writeln!(
             file,
-            "step,depth,force_normal,contact_elements,solves,cg_iterations,fft_pairs,attached,detached"
+            "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached"
         )
         .expect("write");
         for r in &records {
             writeln!(
                 file,
-                "{},{:e},{:e},{},{},{},{},{},{}",
+                "{},{:e},{:e},{},{:e},{},{},{},{},{}",
                 r.step,
                 r.depth,
                 r.force_normal,
                 r.contact_elements,
+                r.radius,
                 r.report.solves,
                 r.report.cg_iterations,
                 r.report.operator_applications,

@@ -5,15 +5,18 @@
 //! [`ContactState`] that is both the warm start and the result. Gap g = z − d + u ≥ 0,
 //! pressure p > 0 compressive; contact means g = 0.
 
+mod adhesive;
 mod ccg;
-mod jkr_active_set;
+mod certificate;
+mod local_peel;
 mod nested;
 mod state;
 
-pub use ccg::{Ccg, CcgParams};
-pub use jkr_active_set::{
+pub use adhesive::{
     critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
 };
+pub use ccg::{Ccg, CcgParams};
+pub use certificate::LATTICE_INVERSE_DIAGONAL;
 pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 
@@ -106,7 +109,7 @@ struct PcgBuffers<'a> {
 /// from the residual in `buffers.residual` (zero outside the set); updates `pressure` p and
 /// `displacement` u = K p. Search directions are applied in single precision (`apply_single`): each
 /// caller restarts from an exact residual, so the rounding stays far below its goals.
-/// `precondition` writes M⁻¹r; `converged` sees ‖r‖² and r after each iteration and
+/// `precondition` writes M⁻¹r; `converged` sees ‖r‖², r, p and u after each iteration and
 /// answers `None` for a residual it rejects as non-finite.
 /// Returns `Ok(iterations)`, or `Err(‖r‖²)` if `max_iterations` did not suffice.
 /// Shared by the adhesive solver and the nested active set (their stopping rules differ).
@@ -116,7 +119,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     displacement: &mut [f64],
     buffers: PcgBuffers<'_>,
     mut precondition: impl FnMut(&[f64], &mut [f64]),
-    mut converged: impl FnMut(f64, &[f64]) -> Option<bool>,
+    mut converged: impl FnMut(f64, &[f64], &[f64], &[f64]) -> Option<bool>,
     max_iterations: usize,
 ) -> Result<Result<usize, f64>, SolveError> {
     let PcgBuffers {
@@ -150,7 +153,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             residual[k] -= step * response[k] * mask[k];
         }
         norm2 = dot(residual, residual);
-        if converged(norm2, residual).ok_or(SolveError::NonFinite { iteration })? {
+        if converged(norm2, residual, pressure, displacement).ok_or(SolveError::NonFinite { iteration })? {
             return Ok(Ok(iteration));
         }
         let new_rho = apply_preconditioner(residual, preconditioned);

@@ -355,7 +355,7 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
         &mut state.displacement,
         buffers,
         |residual, preconditioned| preconditioner.apply(residual, preconditioned),
-        |norm2, _| {
+        |norm2, _, _, _| {
             let norm = norm2.sqrt();
             norm.is_finite().then_some(norm <= goal)
         },

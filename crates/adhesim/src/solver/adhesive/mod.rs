@@ -1,0 +1,541 @@
+//! The adhesive step (docs/physics.md §2.4, docs/fast-step.md): [`AdhesiveSolver`], its
+//! parameters and the per-step loop; the fixed-set solve is in `fixed_set`, the release
+//! rules (violators, local rounds, failed-ring prediction) in `release`.
+
+mod fixed_set;
+mod params;
+mod release;
+
+pub use params::{critical_stress, AdhesiveParams, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR};
+
+use super::local_peel::LocalPeel;
+use super::{ContactState, SolveError};
+use crate::elastic::{ElasticOperator, SpectralPreconditioner};
+use crate::grid::{Boundary, Grid};
+
+/// Solves per step after which u is recomputed in double precision (besides the first).
+const EXACT_DISPLACEMENT_PERIOD: usize = 32;
+
+/// Quasi-static JKR-type adhesive contact with the local mesh-dependent detachment
+/// criterion (Pohrt & Popov 2015; Popov et al. 2021, Sect. 2.2–2.3).
+///
+/// Per displacement step (docs/physics.md §2.4): CG on the fixed contact set C (warm
+/// started), release of elements whose tension exceeds σ_c (failed trial elements
+/// first), attachment of penetrating elements and of trial neighbours, repeated until the
+/// configuration is stable. Elements released in a step are banned from trial attachment
+/// until the contact grows beyond its largest size so far in the step (then all are
+/// retried), which makes the loop terminate.
+pub struct AdhesiveSolver {
+    params: AdhesiveParams,
+    grid: Grid,
+    work_of_adhesion: Vec<f64>,
+    critical_stress: Vec<f64>,
+    minimum_critical_stress: f64,
+    // scratch, allocated once
+    residual: Vec<f64>,
+    mask: Vec<f64>,
+    preconditioned_residual: Vec<f64>,
+    direction: Vec<f64>,
+    preconditioner: Option<SpectralPreconditioner>,
+    preconditioner_applications: u64,
+    response: Vec<f64>,
+    banned: Vec<bool>,
+    trial: Vec<bool>,
+    start_contact: Vec<bool>,
+    violators: Vec<usize>,
+    candidates: Vec<usize>,
+    /// Solution on C saved before a trial ring is attached: restored if the whole ring fails.
+    saved_pressure: Vec<f64>,
+    /// The pressure that `state.displacement` currently belongs to: later solves of a
+    /// step update u by the (sparse) pressure change instead of recomputing it.
+    displacement_pressure: Vec<f64>,
+    saved_displacement: Vec<f64>,
+    /// Final states of the last two steps, for the extrapolated warm start.
+    history: Vec<(f64, Vec<f64>, Vec<bool>)>,
+    /// Completely failed trial rings of the last two steps, for exact prediction.
+    ring_history: Vec<RingAttempt>,
+    /// The ring being tried in this step.
+    current_ring: Option<RingAttempt>,
+    /// State of the xorshift generator of [`Detachment::RandomHalf`].
+    random_state: u64,
+    /// Bound on the pressure error of the last solve (docs/fast-step.md).
+    pressure_error_bound: f64,
+    /// Bound on the gap error of the last solve.
+    gap_error_bound: f64,
+    /// Whether the last solve stopped early on certified decisions.
+    last_solve_certified: bool,
+    /// Whether the state saved before a trial ring came from such an early stop.
+    saved_certified: bool,
+    /// Solves stopped early on a certificate, over the solver's life.
+    certified_stops: u64,
+    /// Certified local release rounds (free grids, fast rule only).
+    local_peel: Option<LocalPeel>,
+    /// Trial elements released by local certificates (without a solve), over the solver's life.
+    local_releases: u64,
+}
+
+/// When a fixed-set solve may stop (docs/fast-step.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StopRule {
+    /// Converge fully (outputs, reference rule, oracle).
+    Converge,
+    /// Stop once the release decisions are certain and release something.
+    Releases,
+    /// As `Releases`, or once there is certainly no release and the attachment decisions
+    /// are certain (the step goes on to attach: trial neighbours exist).
+    ReleasesOrAttachments,
+}
+
+/// One round of a trial-ring peel: the trial elements present, their pressures after the
+/// solve, and which of them failed.
+#[derive(Debug, Clone, PartialEq)]
+struct RingRound {
+    members: Vec<usize>,
+    pressures: Vec<f64>,
+    failed: Vec<bool>,
+    /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
+    error_bound: f64,
+}
+
+/// A trial ring tried on contact set `contact` at `depth` that failed completely.
+#[derive(Debug, Clone, PartialEq)]
+struct RingAttempt {
+    depth: f64,
+    contact: Vec<bool>,
+    rounds: Vec<RingRound>,
+}
+impl AdhesiveSolver {
+    /// A solver for `grid` with the work of adhesion γ per element (row-major) and the
+    /// half-space's contact modulus.
+    ///
+    /// # Panics
+    /// If `work_of_adhesion` does not have one value per element.
+    pub fn new(grid: Grid, contact_modulus: f64, work_of_adhesion: Vec<f64>, params: AdhesiveParams) -> Self {
+        assert_eq!(work_of_adhesion.len(), grid.len(), "one work of adhesion per element");
+        let delta = grid.element_size();
+        let critical_stress: Vec<f64> = work_of_adhesion
+            .iter()
+            .map(|&gamma| critical_stress(contact_modulus, gamma, delta))
+            .collect();
+        let minimum_critical_stress = critical_stress.iter().cloned().fold(f64::INFINITY, f64::min);
+        let len = grid.len();
+        Self {
+            params,
+            grid,
+            work_of_adhesion,
+            critical_stress,
+            minimum_critical_stress,
+            residual: vec![0.0; len],
+            mask: vec![0.0; len],
+            preconditioned_residual: vec![0.0; len],
+            direction: vec![0.0; len],
+            preconditioner: params
+                .preconditioned
+                .then(|| SpectralPreconditioner::new(&grid, contact_modulus)),
+            preconditioner_applications: 0,
+            response: vec![0.0; len],
+            banned: vec![false; len],
+            trial: vec![false; len],
+            start_contact: vec![false; len],
+            violators: Vec::new(),
+            candidates: Vec::new(),
+            saved_pressure: vec![0.0; len],
+            displacement_pressure: vec![0.0; len],
+            saved_displacement: vec![0.0; len],
+            history: Vec::with_capacity(2),
+            ring_history: Vec::with_capacity(2),
+            current_ring: None,
+            random_state: match params.detachment {
+                Detachment::RandomHalf { seed } => seed | 1,
+                _ => 1,
+            },
+            pressure_error_bound: 0.0,
+            gap_error_bound: 0.0,
+            last_solve_certified: false,
+            saved_certified: false,
+            certified_stops: 0,
+            local_peel: (grid.boundary() == Boundary::Free
+                && !params.reference_rule
+                && params.detachment == Detachment::AllViolators)
+                .then(|| LocalPeel::new(len)),
+            local_releases: 0,
+        }
+    }
+
+    /// Trial elements released by certified local rounds (docs/fast-step.md) instead of
+    /// after a solve, over the solver's life.
+    pub fn local_releases(&self) -> u64 {
+        self.local_releases
+    }
+
+    /// Fixed-set solves that stopped early on certified release decisions (docs/fast-step.md),
+    /// over the solver's life.
+    pub fn certified_stops(&self) -> u64 {
+        self.certified_stops
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &AdhesiveParams {
+        &self.params
+    }
+
+    /// σ_c per element.
+    pub fn critical_stresses(&self) -> &[f64] {
+        &self.critical_stress
+    }
+
+    /// γ per element.
+    pub fn work_of_adhesion(&self) -> &[f64] {
+        &self.work_of_adhesion
+    }
+
+    /// Forgets the history of previous steps (warm-start extrapolation, carried bans):
+    /// call before driving a new, unrelated load path with the same solver.
+    pub fn reset(&mut self) {
+        self.history.clear();
+        self.ring_history.clear();
+        self.current_ring = None;
+        self.banned.iter_mut().for_each(|b| *b = false);
+    }
+
+    /// Π = ½Δ²Σp·u − Δ²Σ_C γ: elastic energy minus adhesion energy of the state.
+    pub fn energy(&self, state: &ContactState) -> f64 {
+        let area = self.grid.element_area();
+        let mut elastic = 0.0;
+        let mut adhesion = 0.0;
+        for k in 0..self.grid.len() {
+            elastic += state.pressure[k] * state.displacement[k];
+            if state.contact[k] {
+                adhesion += self.work_of_adhesion[k];
+            }
+        }
+        area * (0.5 * elastic - adhesion)
+    }
+
+    /// Π of a state solved on its contact set, evaluated as Δ²[Σ_C p(d − z) − ½Σp·u] −
+    /// Δ²Σ_C γ. At the exact solution this equals [`energy`](Self::energy) (u = d − z on
+    /// C); for a CG iterate with pressure error e it is off by −½eᵀKe only (the fixed-set
+    /// solution maximises this functional), while ½Σp·u is off to first order in e. So the
+    /// energy bookkeeping stays exact at a CG tolerance set by the contact front alone.
+    fn solved_energy(&self, state: &ContactState, heights: &[f64], depth: f64) -> f64 {
+        let mut work = 0.0;
+        let mut elastic = 0.0;
+        let mut adhesion = 0.0;
+        for k in 0..self.grid.len() {
+            elastic += state.pressure[k] * state.displacement[k];
+            if state.contact[k] {
+                work += state.pressure[k] * (depth - heights[k]);
+                adhesion += self.work_of_adhesion[k];
+            }
+        }
+        self.grid.element_area() * (work - 0.5 * elastic - adhesion)
+    }
+
+    /// Brings `state` to a stable configuration at indentation `depth` (displacement
+    /// control). `heights` are the indenter heights z (+∞ where there is no surface).
+    pub fn step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<StepReport, SolveError> {
+        self.step_probed(operator, heights, depth, state, &mut |_| {})
+    }
+
+    /// As [`step`](Self::step), calling `before_change` with the state solved on the
+    /// previous contact set at the new depth/position, before any attachment or release
+    /// (e.g. to measure the tangential force at the end of a stick phase).
+    pub fn step_probed<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        before_change: &mut dyn FnMut(&ContactState),
+    ) -> Result<StepReport, SolveError> {
+        let len = self.grid.len();
+        if heights.len() != len {
+            return Err(SolveError::SizeMismatch {
+                expected: len,
+                got: heights.len(),
+            });
+        }
+        let applications_before = operator.applications();
+        let mut round = Round {
+            report: StepReport::default(),
+            retry_high_water: self.begin_step(heights, depth, state),
+            ring_restorable: false,
+        };
+        loop {
+            round.report.solves += 1;
+            if round.report.solves > self.params.max_rounds {
+                return Err(SolveError::TooManyRounds {
+                    rounds: self.params.max_rounds,
+                });
+            }
+            let first = round.report.solves == 1;
+            // u is recomputed exactly at the start of every step (and every
+            // EXACT_DISPLACEMENT_PERIOD solves); in between it follows the pressure changes.
+            let exact = round.report.solves % EXACT_DISPLACEMENT_PERIOD == 1;
+            let stop = self.stop_rule(first, heights, state, round.retry_high_water);
+            round.report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact, stop)?;
+            if first {
+                round.report.force_before_change = state.force(self.grid.element_area());
+                round.report.energy_before_change = self.solved_energy(state, heights, depth);
+                before_change(state);
+            }
+            self.find_violators(state);
+            if round.ring_restorable {
+                self.record_ring_round(state);
+            }
+            let flow = if self.violators.is_empty() {
+                self.attach(operator, heights, depth, state, &mut round)?
+            } else {
+                self.release_violators(operator, heights, depth, state, &mut round)?
+            };
+            if flow == Flow::Stop {
+                break;
+            }
+        }
+        Ok(self.finish_step(operator, heights, depth, state, round.report, applications_before))
+    }
+
+    /// Start of a step: bans (kept while retracting), trial marks, elements without a
+    /// surface leave, and the extrapolated warm start. Returns the contact size (the first
+    /// high-water mark of the retry rule).
+    fn begin_step(&mut self, heights: &[f64], depth: f64, state: &mut ContactState) -> usize {
+        let len = self.grid.len();
+        let retracting = self.history.last().is_some_and(|last| depth < last.0);
+        if !(retracting && self.params.carry_bans_when_retracting) {
+            self.banned.iter_mut().for_each(|b| *b = false);
+        }
+        self.trial.iter_mut().for_each(|t| *t = false);
+        self.start_contact.copy_from_slice(&state.contact);
+        for k in 0..len {
+            if state.contact[k] && !heights[k].is_finite() {
+                state.contact[k] = false;
+            }
+        }
+        // Warm start: on a contact set unchanged over the last two steps p is linear in d
+        // (docs/physics.md §2.5), so extrapolate; CG then only cleans up round-off.
+        if self.history.len() == 2 && self.history[0].2 == state.contact && self.history[1].2 == state.contact {
+            let (d0, d1) = (self.history[0].0, self.history[1].0);
+            if d1 != d0 && state.pressure == self.history[1].1 {
+                let factor = (depth - d1) / (d1 - d0);
+                for k in 0..len {
+                    if state.contact[k] {
+                        state.pressure[k] += factor * (self.history[1].1[k] - self.history[0].1[k]);
+                    }
+                }
+            }
+        }
+        state.contact.iter().filter(|&&c| c).count()
+    }
+
+    /// A round with violators: failed trial elements go first, ordinary violators wait for
+    /// the next solve (a badly placed trial element must not start a cascade); when the
+    /// whole trial ring failed, the saved state before it is restored and the step ends.
+    fn release_violators<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        round: &mut Round,
+    ) -> Result<Flow, SolveError> {
+        let any_failed_trial = self.violators.iter().any(|&k| self.trial[k]);
+        if !any_failed_trial {
+            round.ring_restorable = false;
+            self.trial.iter_mut().for_each(|t| *t = false);
+        }
+        if self.release_with_local_rounds(state, any_failed_trial) > 0 {
+            // Rounds released without a solve are not the recorded rounds that the
+            // failed-ring prediction extrapolates.
+            self.current_ring = None;
+            self.ring_history.clear();
+            if self.params.check_certificates {
+                self.check_local_bounds(operator, heights, depth, state, any_failed_trial)?;
+            }
+        }
+        if !(any_failed_trial && round.ring_restorable && !self.trial.iter().any(|&t| t)) {
+            return Ok(Flow::Continue);
+        }
+        // The whole ring failed and nothing else changed: C is the saved set, stable
+        // before the ring was tried. Restore and stop.
+        state.pressure.copy_from_slice(&self.saved_pressure);
+        state.displacement.copy_from_slice(&self.saved_displacement);
+        self.displacement_pressure.copy_from_slice(&self.saved_pressure);
+        if self.saved_certified {
+            self.converge_final(operator, heights, depth, state, &mut round.report)?;
+        }
+        if let Some(ring) = self.current_ring.take() {
+            if self.ring_history.len() == 2 {
+                self.ring_history.remove(0);
+            }
+            self.ring_history.push(ring);
+        }
+        Ok(Flow::Stop)
+    }
+
+    /// A round without violators: bans lifted after growth, then penetrating elements and
+    /// trial neighbours attach; the step ends when there is none (or the ring is known to
+    /// fail again).
+    fn attach<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        round: &mut Round,
+    ) -> Result<Flow, SolveError> {
+        self.trial.iter_mut().for_each(|t| *t = false);
+        if self.params.retry_after_growth {
+            let size = state.contact.iter().filter(|&&c| c).count();
+            if size > round.retry_high_water {
+                round.retry_high_water = size;
+                self.banned.iter_mut().for_each(|b| *b = false);
+            }
+        }
+        self.find_candidates(heights, depth, state);
+        if self.candidates.is_empty() {
+            return Ok(Flow::Stop);
+        }
+        let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
+        if !pure_ring || self.current_ring.is_some() {
+            // A ring that partly held (or penetration) breaks the chain of identical
+            // failed rings the prediction needs.
+            self.ring_history.clear();
+        }
+        self.current_ring = None;
+        round.ring_restorable = pure_ring;
+        if pure_ring {
+            if self.predict_failed_ring(depth, state) {
+                if self.last_solve_certified {
+                    self.converge_final(operator, heights, depth, state, &mut round.report)?;
+                }
+                for &k in &self.candidates {
+                    self.trial[k] = false;
+                    self.banned[k] = true;
+                }
+                return Ok(Flow::Stop);
+            }
+            self.saved_certified = self.last_solve_certified;
+            self.saved_pressure.copy_from_slice(&state.pressure);
+            self.saved_displacement.copy_from_slice(&state.displacement);
+            self.current_ring = Some(RingAttempt {
+                depth,
+                contact: state.contact.clone(),
+                rounds: Vec::new(),
+            });
+        }
+        for &k in &self.candidates {
+            state.contact[k] = true;
+        }
+        Ok(Flow::Continue)
+    }
+
+    /// Attachment candidates: penetrating elements, then (trial attachment) free
+    /// unbanned edge-neighbours of the contact, marked as trial.
+    fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
+        self.candidates.clear();
+        for k in 0..self.grid.len() {
+            if state.contact[k] || !heights[k].is_finite() {
+                continue;
+            }
+            let gap = heights[k] - depth + state.displacement[k];
+            if gap < 0.0 {
+                self.candidates.push(k);
+            } else if self.params.attachment == Attachment::Trial && !self.banned[k] {
+                let mut touches = false;
+                self.grid
+                    .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
+                if touches {
+                    self.candidates.push(k);
+                    self.trial[k] = true;
+                }
+            }
+        }
+    }
+
+    /// A state that ends the step after a certified early stop is converged first: the
+    /// step's outputs (force, energy) need the converged solve.
+    fn converge_final<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        report: &mut StepReport,
+    ) -> Result<(), SolveError> {
+        report.solves += 1;
+        report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, true, StopRule::Converge)?;
+        Ok(())
+    }
+
+    /// End of a step: history for the next warm start, and the report.
+    fn finish_step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &O,
+        heights: &[f64],
+        depth: f64,
+        state: &ContactState,
+        mut report: StepReport,
+        applications_before: u64,
+    ) -> StepReport {
+        (report.attached, report.detached) = state.changes_from(&self.start_contact);
+        if self.history.len() == 2 {
+            let mut oldest = self.history.remove(0);
+            oldest.0 = depth;
+            oldest.1.copy_from_slice(&state.pressure);
+            oldest.2.copy_from_slice(&state.contact);
+            self.history.push(oldest);
+        } else {
+            self.history
+                .push((depth, state.pressure.clone(), state.contact.clone()));
+        }
+        report.force = state.force(self.grid.element_area());
+        report.energy = self.solved_energy(state, heights, depth);
+        report.dissipated_energy = report.energy_before_change - report.energy;
+        report.operator_applications = operator.applications() - applications_before;
+        report
+    }
+
+    /// Records the trial members' pressures and failures of this solve in the ring being
+    /// tried (for the failed-ring prediction).
+    fn record_ring_round(&mut self, state: &ContactState) {
+        let Some(ring) = self.current_ring.as_mut() else {
+            return;
+        };
+        let members: Vec<usize> = (0..self.grid.len()).filter(|&k| self.trial[k]).collect();
+        let pressures = members.iter().map(|&k| state.pressure[k]).collect();
+        let mut failed = vec![false; members.len()];
+        for &k in &self.violators {
+            if let Ok(position) = members.binary_search(&k) {
+                failed[position] = true;
+            }
+        }
+        ring.rounds.push(RingRound {
+            members,
+            pressures,
+            failed,
+            error_bound: self.pressure_error_bound,
+        });
+    }
+}
+
+/// What the step loop does after a round.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Flow {
+    Continue,
+    Stop,
+}
+
+/// Per-step loop state.
+struct Round {
+    report: StepReport,
+    /// Contact size at the last lifting of bans (retry rule).
+    retry_high_water: usize,
+    /// The last attachment was a pure trial ring whose failure restores the saved state.
+    ring_restorable: bool,
+}

@@ -1,0 +1,252 @@
+//! Release rules of the adhesive step: violators (all, worst first, random half),
+//! certified local rounds (docs/fast-step.md) and the failed-ring prediction.
+
+use super::{AdhesiveSolver, Detachment, RingAttempt, RingRound, StopRule};
+use crate::elastic::ElasticOperator;
+use crate::solver::local_peel::REACH;
+use crate::solver::{ContactState, SolveError};
+
+impl AdhesiveSolver {
+    /// Exact shortcut for a quiet step: if the last two steps tried the same trial ring on
+    /// the same contact set and every round of its peel released the same elements, the
+    /// trial pressures of each round are linear in d (fixed sets), so this step's rounds
+    /// are known by extrapolation. When every extrapolated round releases exactly the
+    /// recorded elements, the ring fails again: record it and report `true` (no solve).
+    pub(super) fn predict_failed_ring(&mut self, depth: f64, state: &ContactState) -> bool {
+        if self.params.detachment != Detachment::AllViolators || self.ring_history.len() < 2 {
+            return false;
+        }
+        let (older, newer) = (&self.ring_history[0], &self.ring_history[1]);
+        if older.depth == newer.depth
+            || newer.depth == depth
+            || older.rounds.len() != newer.rounds.len()
+            || newer.contact != state.contact
+            || older.contact != state.contact
+        {
+            return false;
+        }
+        if newer.rounds.first().map(|r| &r.members) != Some(&self.candidates) {
+            return false;
+        }
+        let factor = (depth - newer.depth) / (newer.depth - older.depth);
+        let mut predicted = Vec::with_capacity(newer.rounds.len());
+        for (a, b) in older.rounds.iter().zip(&newer.rounds) {
+            if a.members != b.members || a.failed != b.failed {
+                return false;
+            }
+            let pressures: Vec<f64> = a
+                .pressures
+                .iter()
+                .zip(&b.pressures)
+                .map(|(p0, p1)| p1 + factor * (p1 - p0))
+                .collect();
+            // The same violator rule as find_violators, on the trial members.
+            let ratios: Vec<f64> = b
+                .members
+                .iter()
+                .zip(&pressures)
+                .map(|(&k, p)| -p / self.critical_stress[k])
+                .collect();
+            let smallest = ratios
+                .iter()
+                .cloned()
+                .filter(|&r| r > 1.0)
+                .fold(f64::INFINITY, f64::min);
+            let failed: Vec<bool> = ratios
+                .iter()
+                .map(|&r| smallest.is_finite() && r >= smallest * (1.0 - 1e-9))
+                .collect();
+            if failed != b.failed {
+                return false;
+            }
+            // Extrapolated from pressures known to ±error_bound: predict only decisions
+            // that bound cannot flip (the reference rule trusts converged pressures).
+            let error_bound = (1.0 + factor.abs()) * b.error_bound + factor.abs() * a.error_bound;
+            if !self.params.reference_rule
+                && b.members
+                    .iter()
+                    .zip(&pressures)
+                    .any(|(&k, p)| (-p - self.critical_stress[k]).abs() <= error_bound)
+            {
+                return false;
+            }
+            predicted.push(RingRound {
+                members: b.members.clone(),
+                pressures,
+                failed,
+                error_bound,
+            });
+        }
+        self.ring_history.remove(0);
+        self.ring_history.push(RingAttempt {
+            depth,
+            contact: state.contact.clone(),
+            rounds: predicted,
+        });
+        true
+    }
+
+    /// Releases the violators (only the failed trial elements with `trial_only`), then,
+    /// with local rounds, every element of the same kind whose tension a local lower bound
+    /// certifies above σ_c, in a sequence of single releases (docs/fast-step.md). These are
+    /// elements the following rounds of the reference rule would release. Returns the
+    /// number of the extra releases.
+    pub(super) fn release_with_local_rounds(&mut self, state: &mut ContactState, trial_only: bool) -> usize {
+        let Some(mut peel) = self.local_peel.take() else {
+            for index in 0..self.violators.len() {
+                let k = self.violators[index];
+                if self.trial[k] || !trial_only {
+                    self.release(k, state);
+                }
+            }
+            return 0;
+        };
+        let len = self.grid.len();
+        let n = self.grid.n();
+        for k in 0..len {
+            if state.contact[k] && (self.trial[k] || !trial_only) {
+                peel.lower[k] = -state.pressure[k] - self.pressure_error_bound;
+            }
+        }
+        peel.queue.clear();
+        for &k in &self.violators {
+            if self.trial[k] || !trial_only {
+                peel.queue.push(k);
+                peel.queued[k] = true;
+            }
+        }
+        let certain = peel.queue.len();
+        let mut head = 0;
+        while head < peel.queue.len() {
+            let released = peel.queue[head];
+            head += 1;
+            let tension = peel.lower[released].max(0.0);
+            self.release(released, state);
+            let centre = ((released / n) as i64, (released % n) as i64);
+            peel.prepare(n, centre, |k| !state.contact[k]);
+            for a in -REACH..=REACH {
+                for b in -REACH..=REACH {
+                    let (row, column) = (centre.0 + a, centre.1 + b);
+                    if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
+                        continue;
+                    }
+                    let k = row as usize * n + column as usize;
+                    if !state.contact[k] || (trial_only && !self.trial[k]) || peel.queued[k] {
+                        continue;
+                    }
+                    peel.lower[k] += peel.rise((row, column)) * tension;
+                    if peel.lower[k] > self.critical_stress[k] {
+                        peel.queue.push(k);
+                        peel.queued[k] = true;
+                    }
+                }
+            }
+        }
+        for &k in &peel.queue {
+            peel.queued[k] = false;
+        }
+        let extra = peel.queue.len() - certain;
+        self.local_releases += extra as u64;
+        self.local_peel = Some(peel);
+        extra
+    }
+
+    /// [`AdhesiveParams::check_certificates`] for local rounds: solves the set left by them
+    /// on a copy and panics if a remaining trial element's tension is below its certified
+    /// lower bound; leaves the state and the solver as they were.
+    pub(super) fn check_local_bounds<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        trial_only: bool,
+    ) -> Result<(), SolveError> {
+        let before = state.clone();
+        let displacement_pressure = self.displacement_pressure.clone();
+        let (bound, gap_bound, certified) = (
+            self.pressure_error_bound,
+            self.gap_error_bound,
+            self.last_solve_certified,
+        );
+        self.solve_fixed_set(operator, heights, depth, state, true, StopRule::Converge)?;
+        if let Some(peel) = &self.local_peel {
+            for k in 0..self.grid.len() {
+                if state.contact[k] && (self.trial[k] || !trial_only) {
+                    let tension = -state.pressure[k] + self.pressure_error_bound;
+                    assert!(
+                        peel.lower[k] <= tension,
+                        "local bound violated at element {k}: lower bound {:e} > tension {tension:e}",
+                        peel.lower[k]
+                    );
+                }
+            }
+        }
+        *state = before;
+        self.displacement_pressure = displacement_pressure;
+        (
+            self.pressure_error_bound,
+            self.gap_error_bound,
+            self.last_solve_certified,
+        ) = (bound, gap_bound, certified);
+        Ok(())
+    }
+
+    pub(super) fn release(&mut self, k: usize, state: &mut ContactState) {
+        state.contact[k] = false;
+        state.pressure[k] = 0.0;
+        self.banned[k] = true;
+        self.trial[k] = false;
+    }
+
+    /// Collects elements of C with p < −σ_c. Exact ties (symmetric geometries) are treated
+    /// alike: every element whose over-stress ratio is within 1e-9 of the smallest violating
+    /// ratio is included.
+    pub(super) fn find_violators(&mut self, state: &ContactState) {
+        self.violators.clear();
+        let mut smallest = f64::INFINITY;
+        let mut largest: f64 = 0.0;
+        for k in 0..self.grid.len() {
+            if state.contact[k] {
+                let ratio = -state.pressure[k] / self.critical_stress[k];
+                if ratio > 1.0 {
+                    smallest = smallest.min(ratio);
+                    largest = largest.max(ratio);
+                }
+            }
+        }
+        if !smallest.is_finite() {
+            return;
+        }
+        let threshold = match self.params.detachment {
+            Detachment::AllViolators | Detachment::RandomHalf { .. } => smallest,
+            Detachment::WorstFirst { fraction } => smallest.max(largest * (1.0 - fraction)),
+        } * (1.0 - 1e-9);
+        for k in 0..self.grid.len() {
+            if state.contact[k] && -state.pressure[k] / self.critical_stress[k] >= threshold {
+                self.violators.push(k);
+            }
+        }
+        if let Detachment::RandomHalf { .. } = self.params.detachment {
+            self.keep_random_half(state, largest);
+        }
+    }
+
+    /// Keeps a random half of the violators, always including one of the worst.
+    pub(super) fn keep_random_half(&mut self, state: &ContactState, largest: f64) {
+        let worst = self
+            .violators
+            .iter()
+            .position(|&k| -state.pressure[k] / self.critical_stress[k] >= largest);
+        let mut random = self.random_state;
+        let mut index = 0;
+        self.violators.retain(|_| {
+            random ^= random << 13;
+            random ^= random >> 7;
+            random ^= random << 17;
+            index += 1;
+            Some(index - 1) == worst || random & 1 == 0
+        });
+        self.random_state = random;
+    }
+}

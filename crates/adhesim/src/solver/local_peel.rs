@@ -1,0 +1,232 @@
+//! Certified local release rounds (docs/fast-step.md, "Local rounds").
+//!
+//! Releasing an element v of tension t_v from a contact set raises every remaining tension
+//! (docs/physics.md §2.4a, F1). Clamping more elements only lowers those rises, so the
+//! rises on the infinite lattice with every element clamped except v and the free elements
+//! near v (the window G) are rigorous lower bounds: Δt_k = −t_v Σ_g Ŝ(k − g) y_g with
+//! Ŝ_GG y = e_v, Ŝ the lattice inverse of the discrete Love operator (scale free: only
+//! ratios of Ŝ enter, so Δ = E* = 1 here).
+
+use crate::elastic::influence::love_coefficient;
+use num_complex::Complex;
+use rustfft::FftPlanner;
+
+/// Free elements within this distance (in elements) of a released one are free in the bound.
+pub(crate) const WINDOW: i64 = 4;
+/// Rises are bounded for contact elements within this distance of the released one (farther
+/// ones get no rise: still a lower bound).
+pub(crate) const REACH: i64 = 8;
+/// Largest offset looked up in the table.
+const TABLE: i64 = WINDOW + REACH;
+/// Periodic box on which the lattice inverse is evaluated: its diagonal agrees with the
+/// 2048² box to 7e-8 relative.
+const BOX: usize = 256;
+/// Factor below 1 on every bounded rise: covers the box's deviation from the infinite
+/// lattice and rounding in the small dense solves.
+const SAFETY: f64 = 0.999;
+
+/// Entries Ŝ(a, b) of the lattice inverse for |a|, |b| ≤ `TABLE` (units E*/Δ).
+pub(crate) struct LatticeInverse {
+    table: Vec<f64>,
+}
+
+impl LatticeInverse {
+    pub(crate) fn new() -> Self {
+        let m = BOX;
+        let wrap = |i: usize| if i < m / 2 { i as f64 } else { i as f64 - m as f64 };
+        let mut data: Vec<Complex<f64>> = (0..m * m)
+            .map(|k| Complex::new(love_coefficient(wrap(k / m), wrap(k % m), 1.0, 1.0), 0.0))
+            .collect();
+        let mut planner = FftPlanner::new();
+        transform_2d(&mut data, m, &*planner.plan_fft_forward(m));
+        // The kernel is even, so its transform is real and (checked in the tests) positive.
+        for value in data.iter_mut() {
+            *value = Complex::new(1.0 / value.re, 0.0);
+        }
+        transform_2d(&mut data, m, &*planner.plan_fft_inverse(m));
+        let side = (2 * TABLE + 1) as usize;
+        let scale = 1.0 / (m * m) as f64;
+        let index = |a: i64| a.rem_euclid(m as i64) as usize;
+        let table = (0..side * side)
+            .map(|k| {
+                let (a, b) = ((k / side) as i64 - TABLE, (k % side) as i64 - TABLE);
+                data[index(a) * m + index(b)].re * scale
+            })
+            .collect();
+        Self { table }
+    }
+
+    /// Ŝ at offset (a, b) in elements; |a|, |b| ≤ `TABLE`.
+    pub(crate) fn at(&self, a: i64, b: i64) -> f64 {
+        let side = 2 * TABLE + 1;
+        self.table[((a + TABLE) * side + b + TABLE) as usize]
+    }
+}
+
+/// In-place 2-D FFT of an m×m row-major array.
+fn transform_2d(data: &mut [Complex<f64>], m: usize, fft: &dyn rustfft::Fft<f64>) {
+    for row in data.chunks_exact_mut(m) {
+        fft.process(row);
+    }
+    let mut column = vec![Complex::new(0.0, 0.0); m];
+    for j in 0..m {
+        for i in 0..m {
+            column[i] = data[i * m + j];
+        }
+        fft.process(&mut column);
+        for i in 0..m {
+            data[i * m + j] = column[i];
+        }
+    }
+}
+
+/// Scratch of the local rounds, allocated once per solver.
+pub(crate) struct LocalPeel {
+    pub(crate) inverse: LatticeInverse,
+    /// Lower bound on the tension −p of each trial element.
+    pub(crate) lower: Vec<f64>,
+    /// Whether an element is queued for release.
+    pub(crate) queued: Vec<bool>,
+    /// Elements to release, in order.
+    pub(crate) queue: Vec<usize>,
+    window: Vec<(i64, i64)>,
+    matrix: Vec<f64>,
+    solution: Vec<f64>,
+}
+
+impl LocalPeel {
+    pub(crate) fn new(len: usize) -> Self {
+        Self {
+            inverse: LatticeInverse::new(),
+            lower: vec![0.0; len],
+            queued: vec![false; len],
+            queue: Vec::new(),
+            window: Vec::new(),
+            matrix: Vec::new(),
+            solution: Vec::new(),
+        }
+    }
+
+    /// Sets up the window around the released element at `centre` (row, column) of an n×n
+    /// grid: the element itself first, then every free element within `WINDOW`; solves
+    /// Ŝ_GG y = e_first. `free(k)` tells whether element k is out of contact.
+    pub(crate) fn prepare(&mut self, n: usize, centre: (i64, i64), free: impl Fn(usize) -> bool) {
+        self.window.clear();
+        self.window.push(centre);
+        for a in -WINDOW..=WINDOW {
+            for b in -WINDOW..=WINDOW {
+                let (row, column) = (centre.0 + a, centre.1 + b);
+                if (a, b) == (0, 0) || a * a + b * b > WINDOW * WINDOW {
+                    continue;
+                }
+                let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
+                if inside && free(row as usize * n + column as usize) {
+                    self.window.push((row, column));
+                }
+            }
+        }
+        let size = self.window.len();
+        self.matrix.clear();
+        for &(ri, ci) in &self.window {
+            for &(rj, cj) in &self.window {
+                self.matrix.push(self.inverse.at(ri - rj, ci - cj));
+            }
+        }
+        cholesky_in_place(&mut self.matrix, size);
+        self.solution.clear();
+        self.solution.resize(size, 0.0);
+        self.solution[0] = 1.0;
+        cholesky_solve(&self.matrix, size, &mut self.solution);
+    }
+
+    /// Lower bound on the tension rise at `element` (row, column) per unit of tension
+    /// released at the window's centre (≥ 0).
+    pub(crate) fn rise(&self, element: (i64, i64)) -> f64 {
+        let sum: f64 = self
+            .window
+            .iter()
+            .zip(&self.solution)
+            .map(|(&(r, c), y)| self.inverse.at(element.0 - r, element.1 - c) * y)
+            .sum();
+        (-sum * SAFETY).max(0.0)
+    }
+}
+
+/// Lower-triangular Cholesky factor of the SPD size×size row-major `a`, in place.
+fn cholesky_in_place(a: &mut [f64], size: usize) {
+    for j in 0..size {
+        let mut diagonal = a[j * size + j];
+        for k in 0..j {
+            diagonal -= a[j * size + k] * a[j * size + k];
+        }
+        let diagonal = diagonal.sqrt();
+        a[j * size + j] = diagonal;
+        for i in j + 1..size {
+            let mut value = a[i * size + j];
+            for k in 0..j {
+                value -= a[i * size + k] * a[j * size + k];
+            }
+            a[i * size + j] = value / diagonal;
+        }
+    }
+}
+
+/// Solves L Lᵀ x = b for the factor from [`cholesky_in_place`]; `x` holds b on entry.
+fn cholesky_solve(factor: &[f64], size: usize, x: &mut [f64]) {
+    for i in 0..size {
+        let mut value = x[i];
+        for k in 0..i {
+            value -= factor[i * size + k] * x[k];
+        }
+        x[i] = value / factor[i * size + i];
+    }
+    for i in (0..size).rev() {
+        let mut value = x[i];
+        for k in i + 1..size {
+            value -= factor[k * size + i] * x[k];
+        }
+        x[i] = value / factor[i * size + i];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::LATTICE_INVERSE_DIAGONAL;
+
+    /// The tabulated lattice inverse has the M-matrix signs and the diagonal the
+    /// certificate's bound rests on (1.162 781, docs/fast-step.md).
+    #[test]
+    fn lattice_inverse_table_has_m_matrix_signs() {
+        let inverse = LatticeInverse::new();
+        let diagonal = inverse.at(0, 0);
+        assert!(
+            (diagonal - 1.162_781).abs() < 1e-5 && diagonal < LATTICE_INVERSE_DIAGONAL,
+            "{diagonal}"
+        );
+        for a in -TABLE..=TABLE {
+            for b in -TABLE..=TABLE {
+                assert!(
+                    (a, b) == (0, 0) || inverse.at(a, b) < 0.0,
+                    "Ŝ({a},{b}) = {}",
+                    inverse.at(a, b)
+                );
+            }
+        }
+    }
+
+    /// Releasing one element with all else clamped (an empty window) raises the tension
+    /// of its neighbour by −Ŝ(0,1)/Ŝ(0,0) per unit released, less than with free elements
+    /// around it (the free ones carry nothing, so the clamped rest carries more).
+    #[test]
+    fn rise_grows_when_more_elements_are_free() {
+        let mut peel = LocalPeel::new(64 * 64);
+        peel.prepare(64, (32, 32), |_| false);
+        let clamped = peel.rise((32, 33));
+        let expected = -peel.inverse.at(0, 1) / peel.inverse.at(0, 0) * SAFETY;
+        assert!((clamped - expected).abs() < 1e-12, "{clamped} vs {expected}");
+        peel.prepare(64, (32, 32), |k| k % 64 < 32);
+        let half_free = peel.rise((32, 33));
+        assert!(half_free > clamped, "{half_free} ≤ {clamped}");
+    }
+}

@@ -1,0 +1,186 @@
+//! The fast adhesive step (docs/fast-step.md) against the reference rule: certified early
+//! stops of the fixed-set CG and certified local release rounds must leave every step's
+//! contact set unchanged, and so must a different release order (random half of the
+//! violators per round), the independent oracle of the order-independence argument
+//! (docs/physics.md §2.4a). The full case list runs with
+//! `cargo run --release -p adhesim --example step_equivalence`.
+use adhesim::{
+    AdhesiveParams, AdhesiveSolver, Attachment, Boundary, Detachment, ElasticMaterial, FreeOperator, Grid,
+    IndentPulloff, NormalSolver, Profile, Sphere, WavySphere,
+};
+
+/// Contact sets and forces of every step of an indentation–pull-off cycle.
+struct Cycle {
+    sets: Vec<Vec<bool>>,
+    forces: Vec<f64>,
+    fft_pairs: u64,
+}
+
+impl adhesim::Observer for Cycle {
+    fn on_step(&mut self, view: adhesim::StepView<'_>) -> std::ops::ControlFlow<()> {
+        self.sets.push(view.state.contact.clone());
+        self.forces.push(view.record.force_normal);
+        self.fft_pairs += view.record.report.operator_applications;
+        std::ops::ControlFlow::Continue(())
+    }
+}
+
+fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, params: AdhesiveParams) -> Cycle {
+    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
+        grid,
+        1.0,
+        vec![gamma; grid.len()],
+        params,
+    )));
+    let start_depth = heights.iter().cloned().fold(f64::INFINITY, f64::min);
+    let protocol = IndentPulloff {
+        start_depth,
+        max_depth,
+        depth_step: (max_depth - start_depth) / steps as f64,
+        max_retract_steps: 10_000,
+        jump_force_threshold: 0.0,
+    };
+    let mut record = Cycle {
+        sets: Vec::new(),
+        forces: Vec::new(),
+        fft_pairs: 0,
+    };
+    protocol.run(&mut operator, heights, &mut solver, &mut record).unwrap();
+    record
+}
+
+/// Same sets at every step; forces equal to 1e-5 of the largest |F| (both runs stop the CG
+/// at a relative residual of 1e-6 on different iterates, so forces differ at that level).
+fn assert_same(reference: &Cycle, other: &Cycle, label: &str) {
+    assert_eq!(reference.sets.len(), other.sets.len(), "{label}: number of steps");
+    let scale = reference.forces.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    for (step, (a, b)) in reference.sets.iter().zip(&other.sets).enumerate() {
+        assert!(a == b, "{label}: contact sets differ at step {step}");
+        let (fa, fb) = (reference.forces[step], other.forces[step]);
+        assert!(
+            (fa - fb).abs() <= 1e-5 * scale,
+            "{label}: step {step} force {fa:e} vs {fb:e}"
+        );
+    }
+}
+
+/// Tolerances under which a decision inside the default CG error band (a tie at the
+/// reference's precision, docs/fast-step.md) cannot occur on these small cases.
+fn tight() -> AdhesiveParams {
+    AdhesiveParams {
+        relative_tolerance: 1e-10,
+        front_tolerance: 1e-8,
+        ..AdhesiveParams::default()
+    }
+}
+
+/// The fast rule (with its certificates checked) against the reference rule at the default
+/// tolerances; the random-half order against the reference rule at tight tolerances: a
+/// different order may meet an element whose tension lies within the reference's CG error
+/// band of σ_c in a different set, and decide that tie otherwise.
+fn all_modes(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize) {
+    let run = |params| cycle(grid, heights, gamma, max_depth, steps, params);
+    let reference = run(AdhesiveParams {
+        reference_rule: true,
+        ..AdhesiveParams::default()
+    });
+    // check_certificates panics if a certified bound or decision is wrong.
+    let fast = run(AdhesiveParams {
+        check_certificates: true,
+        ..AdhesiveParams::default()
+    });
+    assert_same(&reference, &fast, "fast");
+    let plain = run(AdhesiveParams::default());
+    assert!(
+        plain.fft_pairs < reference.fft_pairs,
+        "{} ≥ {}",
+        plain.fft_pairs,
+        reference.fft_pairs
+    );
+    let tight_reference = run(AdhesiveParams {
+        reference_rule: true,
+        ..tight()
+    });
+    let oracle = run(AdhesiveParams {
+        detachment: Detachment::RandomHalf { seed: 7 },
+        ..tight()
+    });
+    assert_same(&tight_reference, &oracle, "random half");
+}
+
+/// Smooth sphere, a_JKR/Δ = 8, to 3|d_JKR| and back.
+#[test]
+fn smooth_sphere_sets_are_unchanged() {
+    let a_jkr: f64 = 0.05;
+    let gamma = a_jkr.powi(3) * 8.0 / (9.0 * std::f64::consts::PI);
+    let d_jkr = (3.0 * std::f64::consts::PI.powi(2) * gamma * gamma / 64.0).cbrt();
+    let grid = Grid::new(32, 32.0 * a_jkr / 8.0, Boundary::Free).unwrap();
+    let heights = Sphere::new(1.0).unwrap().heights(&grid);
+    all_modes(grid, &heights, gamma, 3.0 * d_jkr, 40);
+}
+
+/// The Fig. 1 wavy sphere (α = 1) at n = 48, to 6|d_JKR| and back: trial rings, cascades
+/// and jumps.
+#[test]
+fn wavy_sphere_sets_are_unchanged() {
+    let gamma = 6.168_502_750_680_85e-4;
+    let d_jkr = (3.0 * std::f64::consts::PI.powi(2) * gamma * gamma / 64.0).cbrt();
+    let grid = Grid::new(48, 0.6, Boundary::Free).unwrap();
+    let heights = WavySphere::new(1.0, 0.0025, 0.05, 0.0).unwrap().heights(&grid);
+    all_modes(grid, &heights, gamma, 6.0 * d_jkr, 30);
+}
+
+/// Options without a test elsewhere: worst-first releases and penetration-only attachment
+/// run a cycle on the smooth sphere; worst-first reaches the same sets (any release order
+/// gives the same stable set), penetration-only attaches later on the approach (its
+/// largest contact is not larger than with trial attachment).
+#[test]
+fn worst_first_and_penetration_only_options() {
+    let a_jkr: f64 = 0.05;
+    let gamma = a_jkr.powi(3) * 8.0 / (9.0 * std::f64::consts::PI);
+    let d_jkr = (3.0 * std::f64::consts::PI.powi(2) * gamma * gamma / 64.0).cbrt();
+    let grid = Grid::new(32, 32.0 * a_jkr / 8.0, Boundary::Free).unwrap();
+    let heights = Sphere::new(1.0).unwrap().heights(&grid);
+    let reference = cycle(
+        grid,
+        &heights,
+        gamma,
+        3.0 * d_jkr,
+        40,
+        AdhesiveParams {
+            reference_rule: true,
+            ..AdhesiveParams::default()
+        },
+    );
+    let worst = cycle(
+        grid,
+        &heights,
+        gamma,
+        3.0 * d_jkr,
+        40,
+        AdhesiveParams {
+            detachment: Detachment::WorstFirst { fraction: 0.01 },
+            ..AdhesiveParams::default()
+        },
+    );
+    assert_same(&reference, &worst, "worst first");
+    let penetration = cycle(
+        grid,
+        &heights,
+        gamma,
+        3.0 * d_jkr,
+        40,
+        AdhesiveParams {
+            attachment: Attachment::PenetrationOnly,
+            ..AdhesiveParams::default()
+        },
+    );
+    let largest = |c: &Cycle| c.sets.iter().map(|s| s.iter().filter(|&&x| x).count()).max().unwrap();
+    assert!(
+        largest(&penetration) <= largest(&reference),
+        "{} > {}",
+        largest(&penetration),
+        largest(&reference)
+    );
+}
