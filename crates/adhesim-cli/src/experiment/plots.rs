@@ -4,7 +4,6 @@ use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::Once;
 
 /// One line of a panel: label, colour, (t, y) points (gaps already removed).
 pub struct Series {
@@ -19,31 +18,25 @@ pub struct Panel {
     pub series: Vec<Series>,
 }
 
-static FONT: Once = Once::new();
+/// The stacked panels of one figure, drawn by the shared figure module.
+struct PanelFigure<'a> {
+    title: &'a str,
+    panels: &'a [Panel],
+}
 
-fn register_font() {
-    FONT.call_once(|| {
-        // The bundled font makes text rendering independent of system fonts.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            include_bytes!("../../assets/DejaVuSans.ttf"),
-        );
-    });
+impl crate::figure::Drawing for PanelFigure<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw(area.clone(), self.title, self.panels)
+    }
 }
 
 /// Writes `<stem>.svg` and `<stem>.png`: panels stacked vertically over a shared time axis.
 pub fn write_panels(dir: &Path, stem: &str, title: &str, panels: &[Panel]) -> Result<()> {
-    register_font();
     let height = 80 + 260 * panels.len() as u32;
-    let svg = dir.join(format!("{stem}.svg"));
-    draw(SVGBackend::new(&svg, (900, height)).into_drawing_area(), title, panels)?;
-    let png = dir.join(format!("{stem}.png"));
-    draw(
-        BitMapBackend::new(&png, (900, height)).into_drawing_area(),
-        title,
-        panels,
-    )?;
+    crate::figure::save_svg_png(dir, stem, (900, height), &PanelFigure { title, panels })?;
     Ok(())
 }
 
