@@ -51,7 +51,9 @@ pub struct RunOptions {
 pub fn run_default() -> Result<()> {
     let out = PathBuf::from("out/default");
     let scenario = adhesim_scenario::load(DEFAULT_SCENARIO, "built-in scenario fig1.toml", Path::new("."), &[])?;
-    folder::prepare_run_folder(&out, false)?;
+    folder::prepare_run_folder(&out, false).context(
+        "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
+    )?;
     run(scenario, &out, &RunOptions::default())
 }
 
