@@ -341,3 +341,38 @@ fn a_case_failing_in_its_run_is_counted() {
         assert!(message.contains("1 of 2 cases failed"), "stderr: {message}");
     }
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_locked_study_folder_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let study = write(
+        dir.path(),
+        "rolling.toml",
+        &format!(
+            "kind = \"rolling\"\nbase = \"{}\"\nalphas = [0.8]\nset = [\"grid.n=16\"]\n",
+            base.display()
+        ),
+    );
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let mut holder = Command::new("sleep").arg("60").spawn().unwrap();
+    write(
+        &out,
+        ".adhesim-lock",
+        &format!("pid = {}\nhost = {}\n", holder.id(), host_name()),
+    );
+    let output = adhesim(&[
+        "study",
+        "rolling",
+        study.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_fails_with(&output, &[".adhesim-lock", &format!("pid {}", holder.id())]);
+    assert!(!out.join("table.csv").exists());
+    holder.kill().unwrap();
+    holder.wait().unwrap();
+}
