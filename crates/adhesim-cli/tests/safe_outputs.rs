@@ -57,6 +57,30 @@ fn run(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
     adhesim(&args)
 }
 
+/// A child process killed and reaped when dropped, also when an assertion fails.
+struct Reaped(std::process::Child);
+
+impl Reaped {
+    fn spawn(command: &mut Command) -> Self {
+        Self(command.spawn().expect("spawns"))
+    }
+
+    fn id(&self) -> u32 {
+        self.0.id()
+    }
+
+    fn stop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+impl Drop for Reaped {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
 fn names(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .map(|entries| {
@@ -155,30 +179,29 @@ fn a_killed_run_never_leaves_a_cut_curve_csv() {
             .replace("max_depth = 0.01", "max_depth = 0.02"),
     );
     let out = dir.path().join("out");
-    let mut child = Command::new(BIN)
-        .args([
-            "run",
-            scenario.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--quiet",
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = Reaped::spawn(
+        Command::new(BIN)
+            .args([
+                "run",
+                scenario.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--quiet",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null()),
+    );
     let partial = out.join("curve.csv.partial");
     let start = Instant::now();
     while std::fs::read_to_string(&partial).map_or(0, |t| t.lines().count()) < 3 {
         assert!(start.elapsed() < Duration::from_secs(60), "no rows written");
         assert!(
-            child.try_wait().unwrap().is_none(),
+            child.0.try_wait().unwrap().is_none(),
             "the run ended too early for the test"
         );
         std::thread::sleep(Duration::from_millis(20));
     }
-    child.kill().unwrap();
-    child.wait().unwrap();
+    child.stop();
     assert!(!out.join("curve.csv").exists(), "a killed run left a curve.csv");
     let text = std::fs::read_to_string(&partial).unwrap();
     assert!(text.lines().count() >= 3);
@@ -213,7 +236,7 @@ fn a_locked_sweep_folder_is_refused_and_a_stale_lock_taken_over() {
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
     // A live process of this host holds the folder.
-    let mut holder = Command::new("sleep").arg("60").spawn().unwrap();
+    let mut holder = Reaped::spawn(Command::new("sleep").arg("60"));
     let lock = out.join(".adhesim-lock");
     write(
         &out,
@@ -241,8 +264,7 @@ fn a_locked_sweep_folder_is_refused_and_a_stale_lock_taken_over() {
     );
 
     // The holder dies: its lock is stale, taken over with a message, released at the end.
-    holder.kill().unwrap();
-    holder.wait().unwrap();
+    holder.stop();
     let output = sweep(&[]);
     assert_ok(&output);
     assert!(stderr(&output).contains("stale lock"), "stderr: {}", stderr(&output));
@@ -257,7 +279,7 @@ fn shards_lock_only_their_own_cases() {
     let file = write(dir.path(), "sweep.toml", SWEEP);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let mut holder = Command::new("sleep").arg("60").spawn().unwrap();
+    let mut holder = Reaped::spawn(Command::new("sleep").arg("60"));
     write(
         &out,
         ".adhesim-lock-shard-0-of-2",
@@ -278,8 +300,7 @@ fn shards_lock_only_their_own_cases() {
     assert_ok(&sweep("1/2"));
     // Shard 0/4 shares cases with 0/2 (k = 0, 4, ...): refused.
     assert_fails_with(&sweep("0/4"), &[".adhesim-lock-shard-0-of-2"]);
-    holder.kill().unwrap();
-    holder.wait().unwrap();
+    holder.stop();
 }
 
 #[test]
@@ -357,7 +378,7 @@ fn a_locked_study_folder_is_refused() {
     );
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-    let mut holder = Command::new("sleep").arg("60").spawn().unwrap();
+    let mut holder = Reaped::spawn(Command::new("sleep").arg("60"));
     write(
         &out,
         ".adhesim-lock",
@@ -373,6 +394,5 @@ fn a_locked_study_folder_is_refused() {
     ]);
     assert_fails_with(&output, &[".adhesim-lock", &format!("pid {}", holder.id())]);
     assert!(!out.join("table.csv").exists());
-    holder.kill().unwrap();
-    holder.wait().unwrap();
+    holder.stop();
 }
