@@ -65,34 +65,64 @@ fn curve_columns(jkr: Option<Jkr>) -> Vec<Column> {
     columns
 }
 
-/// `curve.csv`: one row per step, flushed as it comes (a killed run keeps its steps).
+/// `curve.csv`: one row per step, flushed as it comes into `curve.csv.partial` (a killed
+/// run keeps its steps there), renamed to `curve.csv` when the run ends: a `curve.csv`
+/// is always whole, never cut mid-line by a full disk. I/O errors name the file.
 pub struct CurveCsv {
     writer: csv::Writer<BufWriter<File>>,
     columns: Vec<Column>,
+    partial: PathBuf,
+    path: PathBuf,
 }
 
 impl CurveCsv {
-    /// Creates the file and writes its header.
+    /// Creates `PATH.partial` and writes its header.
     pub fn create(path: &Path, jkr: Option<Jkr>) -> Result<Self> {
-        let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-        let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        let mut partial = path.as_os_str().to_owned();
+        partial.push(".partial");
+        let partial = PathBuf::from(partial);
+        let file = File::create(&partial).with_context(|| format!("cannot create {}", partial.display()))?;
+        let writer = csv::Writer::from_writer(BufWriter::new(file));
         let columns = curve_columns(jkr);
-        writer.write_record(columns.iter().map(|(name, _)| *name))?;
-        writer.flush()?;
-        Ok(Self { writer, columns })
+        let mut csv = Self {
+            writer,
+            columns,
+            partial,
+            path: path.to_path_buf(),
+        };
+        let header: Vec<&str> = csv.columns.iter().map(|(name, _)| *name).collect();
+        csv.writer
+            .write_record(header)
+            .map_err(anyhow::Error::from)
+            .and_then(|()| csv.flush())
+            .with_context(|| format!("cannot write {}", csv.partial.display()))?;
+        Ok(csv)
     }
 
     /// Writes the row of one step.
     pub fn write(&mut self, record: &StepRecord) -> Result<()> {
         self.writer
-            .write_record(self.columns.iter().map(|(_, value)| value(record)))?;
-        self.writer.flush()?;
-        Ok(())
+            .write_record(self.columns.iter().map(|(_, value)| value(record)))
+            .map_err(anyhow::Error::from)
+            .and_then(|()| self.flush())
+            .with_context(|| format!("cannot write {}", self.partial.display()))
     }
 
     /// Flushes the file.
     pub fn flush(&mut self) -> Result<()> {
-        Ok(self.writer.flush()?)
+        self.writer.flush()?;
+        Ok(())
+    }
+
+    /// Flushes the rows to disk and renames the file to its final name.
+    pub fn commit(&mut self) -> Result<()> {
+        self.writer
+            .flush()
+            .map_err(anyhow::Error::from)
+            .and_then(|()| Ok(self.writer.get_ref().get_ref().sync_all()?))
+            .with_context(|| format!("cannot write {}", self.partial.display()))?;
+        std::fs::rename(&self.partial, &self.path)
+            .with_context(|| format!("cannot rename {} to {}", self.partial.display(), self.path.display()))
     }
 }
 
@@ -319,9 +349,13 @@ impl RunObserver {
 
     /// Writes the contact maps of the largest contact and of the last configuration before
     /// contact was lost, and closes the CSV and the progress bar.
+    /// After an I/O error (in `error`) the partial `curve.csv` is left as it is.
     pub fn finish(&mut self) -> Result<()> {
         self.progress.bar.finish_and_clear();
-        self.csv.flush()?;
+        if self.error.is_some() {
+            return Ok(());
+        }
+        self.csv.commit()?;
         if self.largest.0 > 0 {
             let contact = std::mem::take(&mut self.largest.2);
             // Shown without change colours: the map of the contact itself.

@@ -65,8 +65,8 @@ pub struct Summary<'a, R> {
     pub warnings: Vec<String>,
 }
 
-/// Writes `summary.json` with null for non-finite numbers (JSON has no NaN).
+/// Writes `summary.json` atomically, with null for non-finite numbers (JSON has no NaN).
 pub fn write<R: Serialize>(path: &Path, summary: &Summary<'_, R>) -> Result<()> {
-    let text = serde_json::to_string_pretty(summary)?;
-    std::fs::write(path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
+    let text = serde_json::to_string_pretty(summary).with_context(|| format!("cannot write {}", path.display()))?;
+    crate::commands::batch::write_atomically(path, (text + "\n").as_bytes())
 }

@@ -2,6 +2,7 @@
 //! run pipeline (`adhesim_scenario::run`) with the CLI's observer writing `curve.csv`,
 //! snapshots and the progress bar; then the figures of the protocol and `summary.json`.
 
+use crate::commands::folder;
 use crate::{output, plots, summary, tangential_plots};
 use adhesim::analysis::reference::Hertz;
 use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
@@ -24,6 +25,10 @@ pub struct RunArgs {
     /// Output folder [default: out/<scenario file stem>/].
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Write into --out even when it is a non-empty folder that is not an adhesim run
+    /// folder (its curve.csv, summary.json, plots/ and snapshots/ are replaced).
+    #[arg(long)]
+    force: bool,
     #[command(flatten)]
     options: RunOptions,
 }
@@ -46,6 +51,9 @@ pub struct RunOptions {
 pub fn run_default() -> Result<()> {
     let out = PathBuf::from("out/default");
     let scenario = adhesim_scenario::load(DEFAULT_SCENARIO, "built-in scenario fig1.toml", Path::new("."), &[])?;
+    folder::prepare_run_folder(&out, false).context(
+        "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
+    )?;
     run(scenario, &out, &RunOptions::default())
 }
 
@@ -64,10 +72,12 @@ pub fn command(args: &RunArgs) -> Result<()> {
             Path::new("out").join(stem)
         }
     };
+    folder::prepare_run_folder(&out, args.force)?;
     run(scenario, &out, &args.options)
 }
 
-/// Runs a validated scenario into `out`: curve.csv, snapshots, plots, summary.json.
+/// Runs a validated scenario into `out`: curve.csv, snapshots, plots, summary.json. `out`
+/// is new, or made ready by [`folder::prepare_run_folder`]; it gets the run marker.
 pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
     if let Some(threads) = options.threads {
         if threads == 0 {
@@ -79,6 +89,7 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             .context("cannot set up the thread pool")?;
     }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
+    folder::write_run_marker(out)?;
     let start = Instant::now();
     let (plan, strip) = snapshot_plan(&scenario);
     let mut observer = output::RunObserver::new(

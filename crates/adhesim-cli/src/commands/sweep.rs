@@ -11,6 +11,7 @@ pub mod plan;
 pub mod table;
 
 use crate::commands::batch::{self, write_atomically};
+use crate::commands::folder::{FolderLock, Shard};
 use crate::commands::run::{run, RunOptions};
 use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
@@ -206,19 +207,31 @@ fn execute(
     quiet: bool,
     retry_failed: bool,
 ) -> Result<()> {
+    // Held until the end: a second command on the same cases is refused, not interleaved.
+    let _lock = FolderLock::acquire(
+        dir,
+        Shard {
+            index: shard,
+            count: shards,
+        },
+    )?;
     write_plan(dir, plan)?;
     let temp_root = dir.join("tmp");
     std::fs::create_dir_all(&temp_root).with_context(|| format!("cannot create {}", temp_root.display()))?;
     let mine: Vec<&Case> = plan.cases.iter().filter(|c| c.index % shards == shard).collect();
     let mut todo = Vec::new();
     let mut skipped = 0;
+    let mut kept_failures = Vec::new();
     for case in &mine {
         // Leftovers of a killed run of this case (only this shard's cases: other shards may
         // be running in the same folder).
         remove_temp_folders(&temp_root, &case.id);
         match case_state(dir, case) {
             CaseState::Finished { ok: true } => skipped += 1,
-            CaseState::Finished { ok: false } if !retry_failed => skipped += 1,
+            CaseState::Finished { ok: false } if !retry_failed => {
+                skipped += 1;
+                kept_failures.push(case.id.clone());
+            }
             CaseState::Broken | CaseState::Finished { .. } => {
                 let folder = dir.join("cases").join(&case.id);
                 std::fs::remove_dir_all(&folder).with_context(|| format!("cannot remove {}", folder.display()))?;
@@ -292,7 +305,38 @@ fn execute(
         );
         print_table_and_plots(dir, plan, &summary, &plots);
     }
-    Ok(())
+    failure_status(dir, mine.len(), &failures, &kept_failures)
+}
+
+/// The sweep's exit: an error counting the failed cases of this run (and those kept from
+/// an earlier run), so that a script notices; Ok when none failed.
+fn failure_status(dir: &Path, cases: usize, failed_now: &[String], kept: &[String]) -> Result<()> {
+    let total = failed_now.len() + kept.len();
+    if total == 0 {
+        return Ok(());
+    }
+    let list = |ids: &[String]| {
+        let mut text = ids.iter().take(10).cloned().collect::<Vec<_>>().join(", ");
+        if ids.len() > 10 {
+            text.push_str(", ...");
+        }
+        text
+    };
+    let mut message = format!("{total} of {cases} cases failed");
+    if !failed_now.is_empty() {
+        message.push_str(&format!("; {} in this run: {}", failed_now.len(), list(failed_now)));
+    }
+    if !kept.is_empty() {
+        message.push_str(&format!(
+            "; {} failed earlier and were kept (--retry-failed redoes them): {}",
+            kept.len(),
+            list(kept)
+        ));
+    }
+    bail!(
+        "{message} (each case's error is in {}/cases/<id>/error.txt)",
+        dir.display()
+    )
 }
 
 fn remove_temp_folders(temp_root: &Path, id: &str) {
@@ -375,6 +419,7 @@ fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary,
 /// `adhesim sweep merge DIR`: rebuilds the table and the plots.
 pub fn merge(dir: &Path, quiet: bool) -> Result<()> {
     let plan = read_plan(dir)?;
+    let _lock = FolderLock::acquire(dir, Shard::ALL)?;
     let summary = table::rebuild(dir, &plan)?;
     let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
     if !quiet {

@@ -13,6 +13,7 @@ mod plots;
 mod tables;
 
 use crate::commands::batch;
+use crate::commands::folder::{FolderLock, Shard};
 use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
 use adhesim::analysis::reference::Jkr;
 use adhesim_scenario::{self as scenario, ProtocolKind, RunResults, TranslationResults, ValidScenario};
@@ -387,7 +388,10 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let start = Instant::now();
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
+    // Held until the end: a second study on the same folder is refused, not interleaved.
+    let _lock = FolderLock::acquire(&plan.out, Shard::ALL)?;
     let (normal_results, case_results) = execute(&plan, args, start)?;
+    failure_status(&plan, &normal_results, &case_results)?;
     let StudyPlan {
         study,
         jkr,
@@ -424,9 +428,43 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         "jobs": args.jobs,
         "alphas": alpha_rows,
     });
-    std::fs::write(out.join("study.json"), serde_json::to_string_pretty(&json)? + "\n")?;
+    batch::write_atomically(
+        &out.join("study.json"),
+        (serde_json::to_string_pretty(&json)? + "\n").as_bytes(),
+    )?;
     if !args.quiet {
         print_report(&plan, &rows, &alpha_rows, &plots, start);
+    }
+    Ok(())
+}
+
+/// An error counting the failed runs (each printed to stderr), so that a script notices;
+/// the finished runs are cached and a re-run does only the failed ones.
+fn failure_status(plan: &StudyPlan, normals: &[Result<impl Sized>], cases: &[Result<impl Sized>]) -> Result<()> {
+    let alphas = &plan.study.alphas;
+    let mut failed = 0;
+    for ((i, _, _), result) in plan.normals.iter().zip(normals) {
+        if let Err(error) = result {
+            failed += 1;
+            eprintln!("normal run α = {} failed: {error:#}", alphas[*i]);
+        }
+    }
+    for ((i, d, angle, _, _), result) in plan.cases.iter().zip(cases) {
+        if let Err(error) = result {
+            failed += 1;
+            eprintln!(
+                "case α = {}, d = {d}·|d_JKR|{} failed: {error:#}",
+                alphas[*i],
+                theta_label(*angle)
+            );
+        }
+    }
+    if failed > 0 {
+        bail!(
+            "{failed} of {} study runs failed (listed above); the finished runs are kept in {} and a re-run redoes only the failed ones",
+            plan.normals.len() + plan.cases.len(),
+            plan.out.display()
+        );
     }
     Ok(())
 }

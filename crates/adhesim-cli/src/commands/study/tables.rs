@@ -88,13 +88,17 @@ pub fn standard_error(values: impl Iterator<Item = Option<f64>>) -> Option<f64> 
     })
 }
 
+/// Writes a table atomically (a killed or failing write leaves the previous file or none).
 pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
-    let mut w = csv::Writer::from_path(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = csv::Writer::from_writer(Vec::new());
     for row in rows {
-        w.serialize(row)?;
+        w.serialize(row)
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
-    w.flush()?;
-    Ok(())
+    let bytes = w
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
+    crate::commands::batch::write_atomically(path, &bytes)
 }
 
 /// A case's α index and its analysed results.
