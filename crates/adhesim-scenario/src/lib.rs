@@ -37,6 +37,7 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+mod guards;
 mod model;
 mod parse;
 mod pipeline;
@@ -44,6 +45,7 @@ mod results;
 mod translation;
 mod validate;
 
+pub use guards::{memory_estimate, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
@@ -101,5 +103,7 @@ pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Resu
     deserialize(&table)?.validate(base)
 }
 
+#[cfg(test)]
+mod guards_tests;
 #[cfg(test)]
 mod tests;
