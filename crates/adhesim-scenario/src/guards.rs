@@ -198,3 +198,46 @@ pub fn memory_estimate(n: u64, boundary: BoundaryName) -> u64 {
     let real = padded * padded * 8;
     3 * spectrum + 2 * real + 32 * n * n * 8
 }
+
+/// `1.5 GiB`.
+fn gibibytes(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+impl ScenarioFile {
+    /// [`memory_estimate`] of this scenario's grid (0 for a `grid.n` that validation refuses).
+    pub fn memory_estimate(&self) -> u64 {
+        if (2..=MAX_GRID_N).contains(&self.grid.n) {
+            memory_estimate(self.grid.n as u64, self.grid.boundary)
+        } else {
+            0
+        }
+    }
+
+    /// Refuses, naming `grid.n` and the estimate, a scenario of which `runs` concurrent runs
+    /// need more than `available` bytes. Call it before [`ScenarioFile::validate`], which
+    /// allocates the grid's fields.
+    pub fn check_memory(&self, available: u64, runs: u64) -> Result<()> {
+        let need = self.memory_estimate().saturating_mul(runs.max(1));
+        if need > available {
+            let each = if runs > 1 {
+                format!(
+                    " ({runs} concurrent runs of {} each)",
+                    gibibytes(self.memory_estimate())
+                )
+            } else {
+                String::new()
+            };
+            bail!(
+                "grid.n = {} needs about {}{each}, more than the {} of memory available: lower grid.n (or override this check where the estimate is known to be too high)",
+                self.grid.n,
+                gibibytes(need),
+                gibibytes(available)
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Largest `grid.n` validation accepts.
+pub const MAX_GRID_N: i64 = 16_384;

@@ -148,3 +148,16 @@ fn the_memory_estimate_grows_with_the_grid() {
     assert!((4090..=4096).contains(&(large / small)), "{}", large / small);
     assert!(memory_estimate(256, BoundaryName::Periodic) < small);
 }
+
+#[test]
+fn a_grid_beyond_the_available_memory_is_refused_before_allocation() {
+    let big = SPHERE.replace("n = 16", "n = 8192");
+    // 1 GiB available: n = 8192 needs tens of GiB.
+    let error = load_within(&big, "test", Path::new("."), &[], Some(1 << 30))
+        .err()
+        .unwrap();
+    let error = format!("{error:#}");
+    assert!(error.contains("grid.n = 8192 needs about"), "{error}");
+    assert!(error.contains("1.0 GiB of memory available"), "{error}");
+    assert!(load_within(SPHERE, "test", Path::new("."), &[], Some(1 << 30)).is_ok());
+}

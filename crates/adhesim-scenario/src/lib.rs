@@ -45,7 +45,7 @@ mod results;
 mod translation;
 mod validate;
 
-pub use guards::{memory_estimate, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
+pub use guards::{memory_estimate, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
@@ -98,9 +98,25 @@ impl Scenario {
 
 /// Reads, overrides (`KEY=VALUE` items), deserialises and validates a scenario.
 pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Result<ValidScenario> {
+    load_within(text, origin, base, overrides, None)
+}
+
+/// [`load`], refusing before the grid's fields are allocated a scenario whose
+/// [`memory_estimate`] exceeds `available_memory` bytes (`None`: no limit).
+pub fn load_within(
+    text: &str,
+    origin: &str,
+    base: &Path,
+    overrides: &[String],
+    available_memory: Option<u64>,
+) -> Result<ValidScenario> {
     let mut table = parse_toml(text, origin)?;
     apply_overrides(&mut table, overrides)?;
-    deserialize(&table)?.validate(base)
+    let file = deserialize(&table)?;
+    if let Some(available) = available_memory {
+        file.check_memory(available, 1)?;
+    }
+    file.validate(base)
 }
 
 #[cfg(test)]

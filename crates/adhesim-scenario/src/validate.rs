@@ -2,7 +2,7 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
-use crate::guards::{check_field, resolution_warnings, step_count};
+use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::read_npy_2d;
 use crate::translation::TranslationInputs;
@@ -213,8 +213,8 @@ fn validate_grid(section: &GridSection) -> Result<Grid> {
     if n < 2 {
         bail!("grid.n must be >= 2, got {n}");
     }
-    if n > 16_384 {
-        bail!("grid.n must be <= 16384, got {n}");
+    if n > MAX_GRID_N {
+        bail!("grid.n must be <= {MAX_GRID_N}, got {n}");
     }
     let n = n as usize;
     let size = positive("grid.size", section.size)?;
