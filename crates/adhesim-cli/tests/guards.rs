@@ -151,3 +151,96 @@ fn sweeps_with_too_many_cases_are_refused_before_they_are_built() {
         assert!(!out.exists());
     }
 }
+
+/// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
+fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+        shape.0, shape.1
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for v in values {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}
+
+const TOPOGRAPHY: &str = r#"
+[grid]
+n = 16
+size = 0.8
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 0.001
+[indenter]
+shape = "topography"
+file = "FILE"
+spacing = 0.05
+[protocol]
+kind = "indent_pulloff"
+max_depth = 0.01
+steps = 8
+"#;
+
+fn run_in(dir: &Path, text: &str, out: &str) -> Output {
+    let path = scenario(dir, text);
+    let out = dir.join(out);
+    adhesim(
+        &["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"],
+        None,
+    )
+}
+
+#[test]
+fn topographies_are_read_in_every_format_and_a_lying_header_is_an_error() {
+    let temp = tempfile::tempdir().unwrap();
+    let (rows, columns) = (24, 20);
+    let heights: Vec<f64> = (0..rows * columns)
+        .map(|k| {
+            let (i, j) = (k / columns, k % columns);
+            let x = (j as f64 - columns as f64 / 2.0 + 0.5) * 0.05;
+            let y = (i as f64 - rows as f64 / 2.0 + 0.5) * 0.05;
+            (x * x + y * y) / 2.0 + 0.001 * ((i * 7 + j * 3) % 5) as f64
+        })
+        .collect();
+    std::fs::write(temp.path().join("bump.npy"), npy_bytes((rows, columns), &heights)).unwrap();
+    let ascii: String = heights
+        .chunks(columns)
+        .map(|row| row.iter().map(|h| format!("{h:e}")).collect::<Vec<_>>().join(" ") + "\n")
+        .collect();
+    std::fs::write(temp.path().join("bump.txt"), ascii).unwrap();
+    let npy = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "bump.npy"), "npy");
+    assert!(npy.status.success(), "{}", stderr(&npy));
+    let txt = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "bump.txt"), "txt");
+    assert!(txt.status.success(), "{}", stderr(&txt));
+    // The same heights through two readers: the same curve, byte for byte.
+    let curve = |folder: &str| std::fs::read(temp.path().join(folder).join("curve.csv")).unwrap();
+    assert_eq!(curve("npy"), curve("txt"));
+    // Without indenter.spacing a file that records none is an error naming the key.
+    let no_spacing = TOPOGRAPHY.replace("FILE", "bump.npy").replace("spacing = 0.05\n", "");
+    assert_fails_with(
+        &run_in(temp.path(), &no_spacing, "none"),
+        &["indenter.file", "indenter.spacing"],
+    );
+    // A 64-byte file whose header claims 10⁶ × 10⁶ elements aborted on allocation.
+    std::fs::write(
+        temp.path().join("huge.npy"),
+        npy_bytes((1_000_000, 1_000_000), &[0.0; 8]),
+    )
+    .unwrap();
+    let huge = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "huge.npy"), "huge");
+    assert_fails_with(&huge, &["indenter.file", "huge.npy", "1000000"]);
+    // A NaN in the map is refused, not filled silently.
+    let mut holed = heights.clone();
+    holed[5] = f64::NAN;
+    std::fs::write(temp.path().join("holed.npy"), npy_bytes((rows, columns), &holed)).unwrap();
+    let holed = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "holed.npy"), "holed");
+    assert_fails_with(&holed, &["indenter.file", "holed.npy", "1 of 480 points are invalid"]);
+}

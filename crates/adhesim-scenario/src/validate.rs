@@ -4,7 +4,7 @@
 
 use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
-use crate::parse::read_npy_2d;
+use crate::parse::{read_height_map, read_npy_2d};
 use crate::translation::TranslationInputs;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
@@ -318,8 +318,8 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
                 .file
                 .as_ref()
                 .ok_or_else(|| anyhow!("indenter.file is required for indenter.shape = \"topography\""))?;
-            let spacing = positive("indenter.spacing", required("indenter.spacing", ind.spacing, shape)?)?;
-            let (values, rows, columns) = read_npy_2d(&base.join(file), "indenter.file")?;
+            let spacing = ind.spacing.map(|s| positive("indenter.spacing", s)).transpose()?;
+            let (values, rows, columns, spacing) = read_height_map(&base.join(file), spacing)?;
             Indenter::Topography(
                 Topography::new(values, rows, columns, spacing)
                     .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
