@@ -103,7 +103,7 @@ impl ScenarioFile {
             );
         }
         let steps = ((end_depth - start_depth) / depth_step).ceil();
-        if !(steps <= MAX_STEPS as f64) {
+        if steps.is_nan() || steps > MAX_STEPS as f64 {
             bail!("{keys} imply {steps:e} approach steps, more than the cap of {MAX_STEPS}");
         }
         Ok(steps as usize)
