@@ -7,6 +7,7 @@ mod figure;
 mod master_plots;
 mod output;
 mod plots;
+mod resources;
 mod summary;
 mod tangential_plots;
 

@@ -37,6 +37,7 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+mod guards;
 mod model;
 mod parse;
 mod pipeline;
@@ -44,8 +45,9 @@ mod results;
 mod translation;
 mod validate;
 
+pub use guards::{memory_estimate, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use model::*;
-pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_npy_2d};
+pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
@@ -96,10 +98,28 @@ impl Scenario {
 
 /// Reads, overrides (`KEY=VALUE` items), deserialises and validates a scenario.
 pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Result<ValidScenario> {
-    let mut table = parse_toml(text, origin)?;
-    apply_overrides(&mut table, overrides)?;
-    deserialize(&table)?.validate(base)
+    load_within(text, origin, base, overrides, None)
 }
 
+/// [`load`], refusing before the grid's fields are allocated a scenario whose
+/// [`memory_estimate`] exceeds `available_memory` bytes (`None`: no limit).
+pub fn load_within(
+    text: &str,
+    origin: &str,
+    base: &Path,
+    overrides: &[String],
+    available_memory: Option<u64>,
+) -> Result<ValidScenario> {
+    let mut table = parse_toml(text, origin)?;
+    apply_overrides(&mut table, overrides)?;
+    let file = deserialize(&table)?;
+    if let Some(available) = available_memory {
+        file.check_memory(available, 1)?;
+    }
+    file.validate(base)
+}
+
+#[cfg(test)]
+mod guards_tests;
 #[cfg(test)]
 mod tests;

@@ -305,6 +305,9 @@ pub struct ValidScenario {
     pub jump_force_threshold: f64,
     /// roll / slide / translate: the motion (`None` for indent_pulloff).
     pub translation: Option<TranslationSetup>,
+    /// Resolution warnings (elements per wavelength, across a punch, per a_JKR), for
+    /// stderr and `summary.json`.
+    pub warnings: Vec<String>,
 }
 
 /// A validated roll / slide / translate protocol.

@@ -2,7 +2,8 @@
 //! section-by-section deserialisation whose errors name the dotted key.
 
 use crate::model::ScenarioFile;
-use anyhow::{anyhow, bail, Context, Result};
+use adhesim_topography::{read_topography, ReadOptions, Topography};
+use anyhow::{anyhow, bail, Result};
 use std::path::Path;
 
 /// Parses TOML text into a table (with the file name in the message on failure).
@@ -168,20 +169,74 @@ fn serde_kind(toml_type: &str) -> &'static str {
     }
 }
 
-/// Reads a 2-D `.npy` array of f64 (or f32) as (row-major values, rows, columns).
+/// Reads a 2-D `.npy` array of f64 (or f32) as (row-major values, rows, columns), through
+/// `adhesim_topography`'s reader: a header's shape is checked against the bytes present
+/// before anything is allocated. NaN values are an error naming `key` and the file.
 pub fn read_npy_2d(path: &Path, key: &str) -> Result<(Vec<f64>, usize, usize)> {
-    use ndarray_npy::ReadNpyExt;
-    let open = || std::fs::File::open(path).with_context(|| format!("{key} = {}: cannot open", path.display()));
-    let array: ndarray::Array2<f64> = match ndarray::Array2::<f64>::read_npy(open()?) {
-        Ok(a) => a,
-        Err(first) => match ndarray::Array2::<f32>::read_npy(open()?) {
-            Ok(a) => a.mapv(f64::from),
-            Err(_) => bail!(
-                "{key} = {}: not a 2-D .npy array of f64 or f32 ({first})",
-                path.display()
-            ),
-        },
+    let options = ReadOptions {
+        spacing: Some((1.0, 1.0)),
+        height_unit: Some("m".to_string()),
+        ..ReadOptions::default()
     };
-    let (rows, columns) = array.dim();
-    Ok((array.iter().copied().collect(), rows, columns))
+    let map = read_topography(path, &options).map_err(|e| anyhow!("{key}: {e}"))?;
+    refuse_invalid_points(&map, path, key)?;
+    Ok((map.heights, map.ny, map.nx))
+}
+
+/// Errors where the file marks points invalid (NaN, a mask): the reader fills them with the
+/// mean height, which would be a silent change of the input.
+fn refuse_invalid_points(map: &Topography, path: &Path, key: &str) -> Result<()> {
+    if let Some(mask) = &map.mask {
+        let invalid = mask.iter().filter(|valid| !**valid).count();
+        if invalid > 0 {
+            bail!(
+                "{key} = {}: {invalid} of {} points are invalid (NaN or masked in the file); fill them before use",
+                path.display(),
+                mask.len()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Reads the height map of `indenter.shape = "topography"` in any format of
+/// `adhesim_topography::read_topography` (by extension), as (row-major heights, rows,
+/// columns, spacing). Formats that record a spacing and units (x3p, gwy, sur, xyz) give
+/// heights and spacing in metres; for the others (npy, npz, bare ASCII) the heights are
+/// taken in the scenario's length unit and `spacing` (`indenter.spacing`) is required.
+pub fn read_height_map(path: &Path, spacing: Option<f64>) -> Result<(Vec<f64>, usize, usize, f64)> {
+    let options = ReadOptions {
+        spacing: spacing.map(|s| (s, s)),
+        height_unit: Some("m".to_string()),
+        lateral_unit: Some("m".to_string()),
+        ..ReadOptions::default()
+    };
+    let key = "indenter.file";
+    let map = read_topography(path, &options).map_err(|e| {
+        let hint = if spacing.is_none() {
+            " (files that record no spacing need indenter.spacing)"
+        } else {
+            ""
+        };
+        anyhow!("{key}: {e}{hint}")
+    })?;
+    refuse_invalid_points(&map, path, key)?;
+    if (map.dx - map.dy).abs() > 1e-9 * map.dx.abs() {
+        bail!(
+            "{key} = {}: the spacing differs along x ({:e}) and y ({:e}); resample the map to a square spacing",
+            path.display(),
+            map.dx,
+            map.dy
+        );
+    }
+    if let Some(given) = spacing {
+        if (given - map.dx).abs() > 1e-9 * given {
+            bail!(
+                "indenter.spacing = {given} but {key} = {} records a spacing of {:e} m: leave indenter.spacing out",
+                path.display(),
+                map.dx
+            );
+        }
+    }
+    Ok((map.heights, map.ny, map.nx, map.dx))
 }

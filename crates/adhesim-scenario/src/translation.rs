@@ -1,6 +1,7 @@
 //! Validation of the roll / slide / translate protocols (`[protocol]` kind roll, slide,
 //! translate, and `[analysis]`).
 
+use crate::guards::step_count;
 use crate::model::*;
 use crate::validate::{finite, non_negative, positive};
 use adhesim::analysis::reference::Jkr;
@@ -96,13 +97,18 @@ impl ScenarioFile {
         let steps = p
             .steps
             .ok_or_else(|| anyhow!("missing key `protocol.steps` (steps of the travel, protocol.kind = \"{name}\")"))?;
-        if !(1..=10_000_000).contains(&steps) {
-            bail!("protocol.steps must be in 1..=10000000, got {steps}");
-        }
-        let approach_steps = p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS);
-        if !(1..=10_000_000).contains(&approach_steps) {
-            bail!("protocol.approach_steps must be in 1..=10000000, got {approach_steps}");
-        }
+        let steps = step_count("protocol.steps", steps)?;
+        let approach_steps = step_count(
+            "protocol.approach_steps",
+            p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS),
+        )?;
+        let depth_step = (depth - start_depth) / approach_steps as f64;
+        self.check_step(
+            start_depth,
+            depth,
+            depth_step,
+            "protocol.depth, protocol.approach_steps",
+        )?;
         let stationary_from = p.stationary_from.unwrap_or(DEFAULT_STATIONARY_FROM);
         if !(0.0..1.0).contains(&stationary_from) {
             bail!("protocol.stationary_from must lie in [0, 1), got {stationary_from}");
@@ -112,9 +118,9 @@ impl ScenarioFile {
         let protocol = Translation {
             start_depth,
             depth,
-            approach_steps: approach_steps as usize,
+            approach_steps,
             distance,
-            steps: steps as usize,
+            steps,
             return_stroke: p.return_stroke.unwrap_or(false),
             stationary_from,
             jump_force_threshold,
@@ -129,8 +135,8 @@ impl ScenarioFile {
             heights,
             start_depth,
             max_depth: depth,
-            depth_step: (depth - start_depth) / approach_steps as f64,
-            approach_steps: approach_steps as usize,
+            depth_step,
+            approach_steps,
             max_retract_steps: 0,
             jkr,
             derived,
@@ -143,6 +149,7 @@ impl ScenarioFile {
                 tau0,
                 wavelength,
             }),
+            warnings: Vec::new(),
         })
     }
 }

@@ -2,8 +2,9 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
+use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
-use crate::parse::read_npy_2d;
+use crate::parse::{read_height_map, read_npy_2d};
 use crate::translation::TranslationInputs;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
@@ -51,7 +52,12 @@ impl ScenarioFile {
         let shape = self.indenter.shape;
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, derived) = derived_scales(&grid, &material, &indenter, gamma0);
+        self.check_derived(&derived)?;
+        let warnings = resolution_warnings(&grid, &indenter, &derived);
         let unit = depth_unit(&self.protocol, shape, jkr.as_ref(), gamma0)?;
+        if !(unit.is_finite() && unit > 0.0) {
+            bail!("protocol.depth_unit = \"jkr\": the unit |d_JKR| = {unit:e} is not a positive number");
+        }
         let inputs = TranslationInputs {
             grid,
             material,
@@ -62,11 +68,13 @@ impl ScenarioFile {
             jkr,
             derived,
         };
-        if self.protocol.kind.is_translation() {
-            self.validate_translation(inputs)
+        let mut valid = if self.protocol.kind.is_translation() {
+            self.validate_translation(inputs)?
         } else {
-            self.validate_indentation(inputs, heights, start_depth)
-        }
+            self.validate_indentation(inputs, heights, start_depth)?
+        };
+        valid.warnings = warnings;
+        Ok(valid)
     }
 
     /// `[protocol]` of kind indent_pulloff (and `[output]`).
@@ -119,22 +127,22 @@ impl ScenarioFile {
                 raw_max_depth
             );
         }
-        let span = max_depth - start_depth;
-        let depth_step = match (p.steps, p.step) {
+        let (depth_step, keys) = match (p.steps, p.step) {
             (Some(steps), None) => {
-                if steps < 1 {
-                    bail!("protocol.steps must be >= 1, got {steps}");
-                }
-                span / steps as f64
+                let steps = step_count("protocol.steps", steps)?;
+                (
+                    (max_depth - start_depth) / steps as f64,
+                    "protocol.steps, protocol.max_depth",
+                )
             }
-            (None, Some(step)) => positive("protocol.step", step)? * unit,
+            (None, Some(step)) => (
+                positive("protocol.step", step)? * unit,
+                "protocol.step, protocol.max_depth",
+            ),
             (Some(_), Some(_)) => bail!("give either protocol.steps or protocol.step, not both"),
             (None, None) => bail!("missing key `protocol.steps` (or `protocol.step`)"),
         };
-        let approach_steps = (span / depth_step).ceil() as usize;
-        if approach_steps > 10_000_000 {
-            bail!("protocol.step is too small: {approach_steps} approach steps");
-        }
+        let approach_steps = self.check_step(start_depth, max_depth, depth_step, keys)?;
         let max_retract_steps = match p.max_retract_steps {
             Some(s) if s < 1 => bail!("protocol.max_retract_steps must be >= 1, got {s}"),
             Some(s) => s as usize,
@@ -160,6 +168,7 @@ impl ScenarioFile {
             derived,
             jump_force_threshold,
             translation: None,
+            warnings: Vec::new(),
         })
     }
 
@@ -204,8 +213,8 @@ fn validate_grid(section: &GridSection) -> Result<Grid> {
     if n < 2 {
         bail!("grid.n must be >= 2, got {n}");
     }
-    if n > 16_384 {
-        bail!("grid.n must be <= 16384, got {n}");
+    if n > MAX_GRID_N {
+        bail!("grid.n must be <= {MAX_GRID_N}, got {n}");
     }
     let n = n as usize;
     let size = positive("grid.size", section.size)?;
@@ -309,8 +318,8 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
                 .file
                 .as_ref()
                 .ok_or_else(|| anyhow!("indenter.file is required for indenter.shape = \"topography\""))?;
-            let spacing = positive("indenter.spacing", required("indenter.spacing", ind.spacing, shape)?)?;
-            let (values, rows, columns) = read_npy_2d(&base.join(file), "indenter.file")?;
+            let spacing = ind.spacing.map(|s| positive("indenter.spacing", s)).transpose()?;
+            let (values, rows, columns, spacing) = read_height_map(&base.join(file), spacing)?;
             Indenter::Topography(
                 Topography::new(values, rows, columns, spacing)
                     .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
@@ -394,7 +403,11 @@ fn validate_adhesion(
             WorkOfAdhesion::Map(values.into_iter().map(|v| v * gamma0).collect())
         }
     };
-    let gamma = adhesion.on_grid(grid).map_err(|e| anyhow!("[adhesion]: {e}"))?;
+    let gamma = match adhesion.on_grid(grid) {
+        Ok(gamma) => gamma,
+        Err(e) => bail!("[adhesion]: {e}"),
+    };
+    check_field(section, grid, &gamma)?;
     if gamma0 == 0.0 && section.field.is_some() {
         bail!("adhesion.field needs adhesion.work_of_adhesion > 0, got 0");
     }

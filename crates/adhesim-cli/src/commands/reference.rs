@@ -41,6 +41,10 @@ pub struct ReferenceArgs {
     max_depth: Option<f64>,
 }
 
+/// Most sample points of a reference curve: 10⁷ rows (about 0.5 GB of CSV) is far beyond
+/// any plot; more only fills the disk or, before this cap, aborted on allocation.
+const MAX_POINTS: usize = 10_000_000;
+
 fn check(name: &str, value: f64, allow_zero: bool) -> Result<f64> {
     if value.is_finite() && (value > 0.0 || (allow_zero && value == 0.0)) {
         Ok(value)
@@ -61,8 +65,8 @@ pub fn print(args: &ReferenceArgs) -> Result<()> {
     let radius = check("radius", args.radius, false)?;
     let modulus = check("contact-modulus", args.contact_modulus, false)?;
     let gamma = check("work-of-adhesion", args.work_of_adhesion, true)?;
-    if args.points < 2 {
-        bail!("--points must be >= 2, got {}", args.points);
+    if !(2..=MAX_POINTS).contains(&args.points) {
+        bail!("--points must be in 2..={MAX_POINTS}, got {}", args.points);
     }
     let stdout = std::io::stdout();
     let mut csv = csv::Writer::from_writer(stdout.lock());

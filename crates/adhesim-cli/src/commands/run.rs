@@ -3,7 +3,7 @@
 //! snapshots and the progress bar; then the figures of the protocol and `summary.json`.
 
 use crate::commands::folder;
-use crate::{output, plots, summary, tangential_plots};
+use crate::{output, plots, resources, summary, tangential_plots};
 use adhesim::analysis::reference::Hertz;
 use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
@@ -41,6 +41,10 @@ pub struct RunOptions {
     /// Worker threads for the FFTs [default: all cores].
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Run even when the memory estimate of the grid exceeds the memory available
+    /// (`MemAvailable` of /proc/meminfo), e.g. where swap or a lazy allocator makes it fit.
+    #[arg(long)]
+    pub allow_large: bool,
     /// Override a scenario key before validation, e.g. `--set grid.n=64` (repeatable;
     /// VALUE is a TOML value).
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -50,7 +54,13 @@ pub struct RunOptions {
 /// `adhesim` without a subcommand: the built-in scenario into ./out/default/.
 pub fn run_default() -> Result<()> {
     let out = PathBuf::from("out/default");
-    let scenario = adhesim_scenario::load(DEFAULT_SCENARIO, "built-in scenario fig1.toml", Path::new("."), &[])?;
+    let scenario = adhesim_scenario::load_within(
+        DEFAULT_SCENARIO,
+        "built-in scenario fig1.toml",
+        Path::new("."),
+        &[],
+        resources::memory_limit(false)?,
+    )?;
     folder::prepare_run_folder(&out, false).context(
         "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
     )?;
@@ -62,7 +72,20 @@ pub fn command(args: &RunArgs) -> Result<()> {
     let path = &args.scenario;
     let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scenario {}", path.display()))?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let scenario = adhesim_scenario::load(&text, &path.display().to_string(), base, &args.options.set)?;
+    let scenario = adhesim_scenario::load_within(
+        &text,
+        &path.display().to_string(),
+        base,
+        &args.options.set,
+        resources::memory_limit(args.options.allow_large)?,
+    )
+    .map_err(|e| {
+        if e.to_string().contains("of memory available") {
+            e.context("refused before allocating (pass --allow-large to run anyway)")
+        } else {
+            e
+        }
+    })?;
     let out = match &args.out {
         Some(out) => out.clone(),
         None => {
@@ -80,9 +103,7 @@ pub fn command(args: &RunArgs) -> Result<()> {
 /// is new, or made ready by [`folder::prepare_run_folder`]; it gets the run marker.
 pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
     if let Some(threads) = options.threads {
-        if threads == 0 {
-            return Err(anyhow!("--threads must be >= 1, got 0"));
-        }
+        let threads = resources::clamp_threads(threads)?;
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build_global()
@@ -90,6 +111,9 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
     folder::write_run_marker(out)?;
+    for warning in &scenario.warnings {
+        eprintln!("warning: {warning}");
+    }
     let start = Instant::now();
     let (plan, strip) = snapshot_plan(&scenario);
     let mut observer = output::RunObserver::new(
@@ -129,8 +153,9 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     };
     let wall_seconds = start.elapsed().as_secs_f64();
     let counters = outcome.report.counters();
-    let mut warnings = observer.warnings.clone();
-    if counters.touches_border && warnings.is_empty() {
+    let mut warnings = scenario.warnings.clone();
+    warnings.extend(observer.warnings.iter().cloned());
+    if counters.touches_border && observer.warnings.is_empty() {
         warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
     }
     let summary = summary::Summary {

@@ -13,6 +13,7 @@ pub mod table;
 use crate::commands::batch::{self, write_atomically};
 use crate::commands::folder::{FolderLock, Shard};
 use crate::commands::run::{run, RunOptions};
+use crate::resources;
 use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
@@ -57,6 +58,10 @@ pub struct SweepArgs {
     /// Print the case list (id and varied values) and exit.
     #[arg(long)]
     list: bool,
+    /// Run even when `--jobs` concurrent cases of the largest grid are estimated to need
+    /// more memory than is available (`MemAvailable` of /proc/meminfo).
+    #[arg(long)]
+    allow_large: bool,
 }
 
 #[derive(Subcommand)]
@@ -109,11 +114,31 @@ pub fn command(args: &SweepArgs) -> Result<()> {
         None => cores,
     };
     let threads = match args.threads {
-        Some(0) => bail!("--threads must be >= 1, got 0"),
-        Some(t) => t,
+        Some(t) => resources::clamp_threads(t)?,
         None => (cores / jobs).max(1),
     };
+    if let Some(available) = resources::memory_limit(args.allow_large)? {
+        check_memory(&plan, jobs, available)?;
+    }
     execute(&plan, &out, shard, jobs, threads, args.quiet, args.retry_failed)
+}
+
+/// Refuses a plan whose largest grid, run `jobs` at a time, needs more memory than is
+/// available (before any case allocates its FFT buffers).
+fn check_memory(plan: &Plan, jobs: usize, available: u64) -> Result<()> {
+    let mut largest: Option<(u64, &Case, adhesim_scenario::ScenarioFile)> = None;
+    for case in &plan.cases {
+        let table = adhesim_scenario::parse_toml(&case.scenario, &case.id)?;
+        let file = adhesim_scenario::deserialize(&table)?;
+        let estimate = file.memory_estimate();
+        if largest.as_ref().is_none_or(|(e, _, _)| estimate > *e) {
+            largest = Some((estimate, case, file));
+        }
+    }
+    let Some((_, case, file)) = largest else { return Ok(()) };
+    let runs = jobs.min(plan.cases.len()) as u64;
+    file.check_memory(available, runs)
+        .with_context(|| format!("case {} (pass --allow-large to run anyway, or lower --jobs)", case.id))
 }
 
 /// Parses `I/N` with 0 <= I < N.

@@ -393,6 +393,9 @@ fn random_draws(mut random: toml::Table, keys: &mut Vec<String>) -> Result<Vec<V
             None => bail!("missing key `random.seed`"),
         };
         let cases = match random.remove("cases") {
+            Some(toml::Value::Integer(c)) if c > MAX_CASES as i64 => {
+                bail!("random.cases must be <= {MAX_CASES} (the cap on a sweep's cases), got {c}")
+            }
             Some(toml::Value::Integer(c)) if c >= 1 => c as usize,
             Some(other) => bail!("random.cases must be an integer >= 1, got {other}"),
             None => bail!("missing key `random.cases`"),
@@ -469,6 +472,28 @@ struct CaseInputs<'a> {
     alpha_target: &'a str,
 }
 
+/// Most cases a sweep plan may hold: each is validated when the plan is made and gets a
+/// folder; beyond this a plan is a mistake or a job for several sweeps (shards of one plan
+/// still list every case).
+pub const MAX_CASES: usize = 100_000;
+
+/// The case count of vary × zip rows × draws, refused above [`MAX_CASES`] before any case
+/// is built.
+fn check_case_count(vary: &[(String, Vec<toml::Value>)], zip_rows: usize, draws: usize) -> Result<()> {
+    let mut count = (zip_rows as u128) * (draws as u128);
+    for (_, list) in vary {
+        count = count.saturating_mul(list.len() as u128);
+    }
+    if count > MAX_CASES as u128 {
+        let sizes: Vec<String> = vary.iter().map(|(k, l)| format!("{k}: {}", l.len())).collect();
+        bail!(
+            "the sweep has {count} cases ([vary] {} × [zip] {zip_rows} rows × [random] {draws} draws), more than the cap of {MAX_CASES}: split it into several sweeps",
+            if sizes.is_empty() { "none".to_string() } else { sizes.join(" × ") }
+        );
+    }
+    Ok(())
+}
+
 /// The case list: vary (last key fastest) × zip rows × random draws, each case validated.
 fn case_list(inputs: &CaseInputs<'_>) -> Result<Vec<Case>> {
     let CaseInputs {
@@ -481,6 +506,7 @@ fn case_list(inputs: &CaseInputs<'_>) -> Result<Vec<Case>> {
         draws,
         alpha_target,
     } = *inputs;
+    check_case_count(vary, zip_rows, draws.len())?;
     let mut combos: Vec<Vec<(String, toml::Value)>> = vec![Vec::new()];
     for (key, list) in vary {
         let mut next = Vec::with_capacity(combos.len() * list.len());

@@ -1,0 +1,246 @@
+//! End-to-end tests of the checks of what inputs imply and of the resource guards
+//! (`docs/reliability.md`, "Scenario inputs and resources"). Each case ran into the OOM
+//! killer, aborted, ran for hours or was accepted silently before those guards.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+
+fn adhesim(args: &[&str], memory: Option<&str>) -> Output {
+    let mut command = Command::new(BIN);
+    command.args(args);
+    match memory {
+        Some(bytes) => command.env("ADHESIM_MEMORY_AVAILABLE", bytes),
+        None => command.env_remove("ADHESIM_MEMORY_AVAILABLE"),
+    };
+    command.output().expect("binary runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+fn assert_fails_with(output: &Output, fragments: &[&str]) {
+    let message = stderr(output);
+    assert!(!output.status.success(), "expected failure, stderr: {message}");
+    assert!(!message.contains("panicked"), "panic: {message}");
+    assert_eq!(output.status.code(), Some(1), "stderr: {message}");
+    for fragment in fragments {
+        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
+    }
+}
+
+const JKR: &str = r#"
+[grid]
+n = 32
+size = 0.5
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 0.001
+[indenter]
+shape = "sphere"
+radius = 1.0
+[protocol]
+kind = "indent_pulloff"
+max_depth = 2.0
+depth_unit = "jkr"
+steps = 10
+"#;
+
+fn scenario(dir: &Path, text: &str) -> PathBuf {
+    let path = dir.join("scenario.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn run(text: &str, extra: &[&str], memory: Option<&str>) -> (tempfile::TempDir, Output) {
+    let temp = tempfile::tempdir().unwrap();
+    let path = scenario(temp.path(), text);
+    let out = temp.path().join("out");
+    let mut args = vec!["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
+    args.extend_from_slice(extra);
+    let output = adhesim(&args, memory);
+    (temp, output)
+}
+
+#[test]
+fn a_grid_beyond_the_memory_available_is_refused_unless_allowed() {
+    // 4 GiB available; grid.n = 16384 needs ~100 GiB: refused before allocating.
+    let four_gib = (4u64 << 30).to_string();
+    let (temp, output) = run(JKR, &["--set", "grid.n=16384"], Some(&four_gib));
+    assert_fails_with(&output, &["grid.n = 16384 needs about", "4.0 GiB", "--allow-large"]);
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
+    let (_, output) = run(JKR, &[], Some("not-a-number"));
+    assert_fails_with(&output, &["ADHESIM_MEMORY_AVAILABLE", "not-a-number"]);
+    // With --allow-large the same small limit does not stop a small run.
+    let (_, output) = run(JKR, &["--allow-large"], Some("1000"));
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
+#[test]
+fn extreme_inputs_blame_the_key_responsible() {
+    let (_, output) = run(JKR, &["--set", "material.contact_modulus=1e300"], None);
+    assert_fails_with(&output, &["material.contact_modulus = 1e300", "d_JKR"]);
+    let (_, output) = run(JKR, &["--set", "protocol.steps=10000000"], None);
+    assert_fails_with(&output, &["protocol.steps must be in 1..=1000000, got 10000000"]);
+}
+
+#[test]
+fn too_many_threads_are_clamped_with_a_warning() {
+    let (temp, output) = run(JKR, &["--threads", "1000"], None);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("--threads 1000 exceeds the"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(temp.path().join("out/summary.json").exists());
+}
+
+#[test]
+fn resolution_warnings_reach_stderr_and_the_summary() {
+    // Δ = 0.5/32 = 0.0156; λ = 0.02 spans 1.28 elements.
+    let wavy = JKR.replace(
+        "shape = \"sphere\"\nradius = 1.0",
+        "shape = \"wavy_sphere\"\nradius = 1.0\namplitude = 1e-5\nwavelength = 0.02",
+    );
+    let (temp, output) = run(&wavy, &[], None);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("warning: the waviness wavelength"),
+        "{}",
+        stderr(&output)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(temp.path().join("out/summary.json")).unwrap()).unwrap();
+    let warnings = summary["warnings"].as_array().unwrap();
+    assert!(
+        warnings.iter().any(|w| w.as_str().unwrap().contains("1.28 elements")),
+        "{warnings:?}"
+    );
+}
+
+#[test]
+fn reference_points_are_capped() {
+    let output = adhesim(&["reference", "hertz", "--points", "100000000000"], None);
+    assert_fails_with(&output, &["--points must be in 2..=10000000, got 100000000000"]);
+}
+
+#[test]
+fn sweeps_with_too_many_cases_are_refused_before_they_are_built() {
+    let temp = tempfile::tempdir().unwrap();
+    let base = "[scenario]\ngrid = { n = 16, size = 0.5 }\nmaterial = { contact_modulus = 1.0 }\nadhesion = { work_of_adhesion = 0.001 }\nindenter = { shape = \"sphere\", radius = 1.0 }\nprotocol = { kind = \"indent_pulloff\", max_depth = 2.0, depth_unit = \"jkr\", steps = 5 }\n";
+    let random = format!(
+        "{base}[random]\nseed = 1\ncases = 100000000\n\"material.contact_modulus\" = {{ min = 1.0, max = 2.0 }}\n"
+    );
+    let values: Vec<String> = (0..1000).map(|k| format!("{}", 1.0 + k as f64 * 1e-3)).collect();
+    let list = values.join(", ");
+    let vary = format!("{base}[vary]\n\"material.contact_modulus\" = [{list}]\n\"indenter.radius\" = [{list}]\n");
+    for (name, text, fragment) in [
+        ("random.toml", random, "random.cases must be <= 100000"),
+        ("vary.toml", vary, "1000000 cases"),
+    ] {
+        let path = temp.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = temp.path().join(format!("out-{name}"));
+        let output = adhesim(&["sweep", path.to_str().unwrap(), "--out", out.to_str().unwrap()], None);
+        assert_fails_with(&output, &[fragment]);
+        // Refused from the counts (the message gives the product), nothing created.
+        assert!(!out.exists());
+    }
+}
+
+/// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
+fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+        shape.0, shape.1
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for v in values {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}
+
+const TOPOGRAPHY: &str = r#"
+[grid]
+n = 16
+size = 0.8
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 0.001
+[indenter]
+shape = "topography"
+file = "FILE"
+spacing = 0.05
+[protocol]
+kind = "indent_pulloff"
+max_depth = 0.01
+steps = 8
+"#;
+
+fn run_in(dir: &Path, text: &str, out: &str) -> Output {
+    let path = scenario(dir, text);
+    let out = dir.join(out);
+    adhesim(
+        &["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"],
+        None,
+    )
+}
+
+#[test]
+fn topographies_are_read_in_every_format_and_a_lying_header_is_an_error() {
+    let temp = tempfile::tempdir().unwrap();
+    let (rows, columns) = (24, 20);
+    let heights: Vec<f64> = (0..rows * columns)
+        .map(|k| {
+            let (i, j) = (k / columns, k % columns);
+            let x = (j as f64 - columns as f64 / 2.0 + 0.5) * 0.05;
+            let y = (i as f64 - rows as f64 / 2.0 + 0.5) * 0.05;
+            (x * x + y * y) / 2.0 + 0.001 * ((i * 7 + j * 3) % 5) as f64
+        })
+        .collect();
+    std::fs::write(temp.path().join("bump.npy"), npy_bytes((rows, columns), &heights)).unwrap();
+    let ascii: String = heights
+        .chunks(columns)
+        .map(|row| row.iter().map(|h| format!("{h:e}")).collect::<Vec<_>>().join(" ") + "\n")
+        .collect();
+    std::fs::write(temp.path().join("bump.txt"), ascii).unwrap();
+    let npy = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "bump.npy"), "npy");
+    assert!(npy.status.success(), "{}", stderr(&npy));
+    let txt = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "bump.txt"), "txt");
+    assert!(txt.status.success(), "{}", stderr(&txt));
+    // The same heights through two readers: the same curve, byte for byte.
+    let curve = |folder: &str| std::fs::read(temp.path().join(folder).join("curve.csv")).unwrap();
+    assert_eq!(curve("npy"), curve("txt"));
+    // Without indenter.spacing a file that records none is an error naming the key.
+    let no_spacing = TOPOGRAPHY.replace("FILE", "bump.npy").replace("spacing = 0.05\n", "");
+    assert_fails_with(
+        &run_in(temp.path(), &no_spacing, "none"),
+        &["indenter.file", "indenter.spacing"],
+    );
+    // A 64-byte file whose header claims 10⁶ × 10⁶ elements aborted on allocation.
+    std::fs::write(
+        temp.path().join("huge.npy"),
+        npy_bytes((1_000_000, 1_000_000), &[0.0; 8]),
+    )
+    .unwrap();
+    let huge = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "huge.npy"), "huge");
+    assert_fails_with(&huge, &["indenter.file", "huge.npy", "1000000"]);
+    // A NaN in the map is refused, not filled silently.
+    let mut holed = heights.clone();
+    holed[5] = f64::NAN;
+    std::fs::write(temp.path().join("holed.npy"), npy_bytes((rows, columns), &holed)).unwrap();
+    let holed = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "holed.npy"), "holed");
+    assert_fails_with(&holed, &["indenter.file", "holed.npy", "1 of 480 points are invalid"]);
+}

@@ -1,0 +1,243 @@
+//! Checks of what the inputs imply, not only of each value (`docs/reliability.md`,
+//! "Scenario inputs and resources"): the derived scales must be usable numbers, every
+//! field must be finite and ≥ 0 on the whole grid, the step counts are capped, and the
+//! memory a grid needs is estimated before anything of that size is allocated. Errors name
+//! the input keys responsible; resolution problems are warnings.
+
+use crate::model::*;
+use adhesim::{Grid, Indenter};
+use anyhow::{bail, Result};
+
+/// Most steps a protocol may take (`protocol.steps`, `protocol.approach_steps`, or the
+/// approach steps implied by `protocol.step`): beyond it a run takes days and its
+/// `curve.csv` grows past what the analysis is meant for.
+pub const MAX_STEPS: usize = 1_000_000;
+
+/// A derived scale must have a magnitude in [1e-150, 1e150]: the solver multiplies two such
+/// numbers (a stress by an area, a modulus by a displacement), which then stays finite.
+const USABLE_MAGNITUDE: f64 = 1e150;
+
+/// Resolution warnings fire below this many elements across a feature (a waviness
+/// wavelength, a punch diameter, the JKR radius a_JKR): with fewer, the discrete contact
+/// cannot represent the feature and the results are a property of the grid.
+pub const MIN_ELEMENTS_PER_FEATURE: f64 = 4.0;
+
+/// `material.contact_modulus = 2` or `material.youngs_modulus = .., material.poisson_ratio = ..`.
+fn material_keys(m: &MaterialSection) -> String {
+    match (m.contact_modulus, m.youngs_modulus, m.poisson_ratio) {
+        (Some(e), _, _) => format!("material.contact_modulus = {}", show(e)),
+        (None, Some(e), Some(nu)) => format!("material.youngs_modulus = {}, material.poisson_ratio = {nu}", show(e)),
+        _ => "[material]".to_string(),
+    }
+}
+
+/// A number as a user would write it: `1e300` rather than 301 digits.
+fn show(value: f64) -> String {
+    if value != 0.0 && !(1e-4..1e6).contains(&value.abs()) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
+/// Whether `value` is finite, non-zero and of a magnitude the solver can use.
+fn usable(value: f64) -> bool {
+    value.is_finite() && value.abs() >= 1.0 / USABLE_MAGNITUDE && value.abs() <= USABLE_MAGNITUDE
+}
+
+impl ScenarioFile {
+    /// The derived scales of `summary.json` (F_JKR, d_JKR, a_JKR, σ_c, the Johnson
+    /// parameter): each one that is defined must be finite, non-zero and within
+    /// [1e-150, 1e150] in magnitude; the error names the scale and the keys it comes from.
+    pub(crate) fn check_derived(&self, derived: &Derived) -> Result<()> {
+        let material = material_keys(&self.material);
+        let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
+        let radius = format!("indenter.radius = {}", show(self.indenter.radius.unwrap_or(f64::NAN)));
+        let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
+        let waviness = format!(
+            "indenter.wavelength = {}, indenter.amplitude = {}",
+            show(self.indenter.wavelength.unwrap_or(f64::NAN)),
+            show(self.indenter.amplitude.unwrap_or(f64::NAN))
+        );
+        let scales = [
+            ("F_JKR", derived.f_jkr, format!("{gamma}, {radius}")),
+            ("d_JKR", derived.d_jkr, format!("{material}, {gamma}, {radius}")),
+            ("a_JKR", derived.a_jkr, format!("{material}, {gamma}, {radius}")),
+            (
+                "the critical stress σ_c",
+                derived.critical_stress,
+                format!("{material}, {gamma}, {element}"),
+            ),
+            (
+                "the Johnson parameter",
+                derived.johnson_parameter,
+                format!("{waviness}, {material}, {gamma}"),
+            ),
+        ];
+        for (name, value, keys) in scales {
+            if let Some(value) = value {
+                if !usable(value) {
+                    bail!(
+                        "{name} = {value:e} is not a usable number (finite, magnitude in 1e-150..1e150); it comes from {keys}: bring these inputs to commensurate units"
+                    );
+                }
+            }
+        }
+        if !usable(derived.element_size) {
+            bail!(
+                "the element size grid.size/grid.n = {:e} is not a usable number (magnitude in 1e-150..1e150); {element}",
+                derived.element_size
+            );
+        }
+        Ok(())
+    }
+
+    /// The depth step of a run: finite, positive, and large enough to move the depth at all
+    /// (`start + step != start` in floating point); the implied approach steps at most
+    /// [`MAX_STEPS`]. `keys` names the inputs that set the step.
+    pub(crate) fn check_step(&self, start_depth: f64, end_depth: f64, depth_step: f64, keys: &str) -> Result<usize> {
+        let moves = start_depth + depth_step != start_depth && end_depth - depth_step != end_depth;
+        if !(depth_step.is_finite() && depth_step > 0.0 && moves) {
+            bail!(
+                "the depth step {depth_step:e} (from {keys}) does not move the depth between {start_depth:e} and {end_depth:e}: choose fewer steps or commensurate units"
+            );
+        }
+        let steps = ((end_depth - start_depth) / depth_step).ceil();
+        if steps.is_nan() || steps > MAX_STEPS as f64 {
+            bail!("{keys} imply {steps:e} approach steps, more than the cap of {MAX_STEPS}");
+        }
+        Ok(steps as usize)
+    }
+}
+
+/// A step count from the scenario (`protocol.steps`, `protocol.approach_steps`): 1 to
+/// [`MAX_STEPS`].
+pub(crate) fn step_count(key: &str, value: i64) -> Result<usize> {
+    if value < 1 || value as u64 > MAX_STEPS as u64 {
+        bail!("{key} must be in 1..={MAX_STEPS}, got {value}");
+    }
+    Ok(value as usize)
+}
+
+/// Every γ on the grid finite and ≥ 0; the error names the field's keys and the first
+/// element at fault.
+pub(crate) fn check_field(section: &AdhesionSection, grid: &Grid, gamma: &[f64]) -> Result<()> {
+    let Some(bad) = gamma.iter().position(|g| !(g.is_finite() && *g >= 0.0)) else {
+        return Ok(());
+    };
+    let (x, y) = grid.centre(bad);
+    let keys = match &section.field {
+        Some(FieldSpec::Quadratic {
+            ratio_edge_to_centre,
+            half_length,
+            ..
+        }) => format!(
+            "adhesion.field.ratio_edge_to_centre = {}, adhesion.field.half_length = {}, adhesion.work_of_adhesion = {}",
+            show(*ratio_edge_to_centre),
+            half_length.map_or("default".to_string(), show),
+            show(section.work_of_adhesion)
+        ),
+        Some(FieldSpec::Map { file }) => format!(
+            "adhesion.field.file = {}, adhesion.work_of_adhesion = {}",
+            file.display(),
+            show(section.work_of_adhesion)
+        ),
+        None => format!("adhesion.work_of_adhesion = {}", show(section.work_of_adhesion)),
+    };
+    bail!(
+        "the work of adhesion must be finite and >= 0 on every element, got {:e} at x = {x:e}, y = {y:e} (element {bad}); it comes from {keys}",
+        gamma[bad]
+    )
+}
+
+/// Resolution warnings: fewer than [`MIN_ELEMENTS_PER_FEATURE`] elements per waviness
+/// wavelength, across a punch, or per JKR radius a_JKR.
+pub(crate) fn resolution_warnings(grid: &Grid, indenter: &Indenter, derived: &Derived) -> Vec<String> {
+    let delta = grid.element_size();
+    let mut features = Vec::new();
+    match indenter {
+        Indenter::WavySphere(w) if w.waviness().amplitude() > 0.0 => {
+            features.push((
+                "the waviness wavelength (indenter.wavelength)",
+                w.waviness().wavelength(),
+            ));
+        }
+        Indenter::FlatPunch(p) => features.push(("the punch diameter (2 indenter.radius)", 2.0 * p.radius())),
+        Indenter::EllipticPunch(p) => {
+            let (a, b) = p.semi_axes();
+            features.push(("the punch's smaller diameter (2 indenter.semi_axes)", 2.0 * a.min(b)));
+        }
+        _ => {}
+    }
+    if let Some(a_jkr) = derived.a_jkr {
+        features.push(("the JKR radius a_JKR", a_jkr));
+    }
+    features
+        .into_iter()
+        .filter(|(_, length)| length / delta < MIN_ELEMENTS_PER_FEATURE)
+        .map(|(name, length)| {
+            format!(
+                "{name} = {length:.4e} spans {:.2} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ELEMENTS_PER_FEATURE}: the grid does not resolve it; raise grid.n or lower grid.size",
+                length / delta
+            )
+        })
+        .collect()
+}
+
+/// Bytes a run on an `n`×`n` grid needs, an upper estimate: the FFT buffers of the elastic
+/// operator on the padded grid (2n per side for a free boundary, n for a periodic one: the
+/// kernel spectrum and two work spectra of complex f64, two real padded buffers) and about
+/// 32 f64 fields of n² (heights, γ, pressure, displacement, gap, the conjugate-gradient
+/// vectors and the observer's copies).
+pub fn memory_estimate(n: u64, boundary: BoundaryName) -> u64 {
+    let padded = match boundary {
+        BoundaryName::Free => 2 * n,
+        BoundaryName::Periodic => n,
+    };
+    let spectrum = padded * (padded / 2 + 1) * 16;
+    let real = padded * padded * 8;
+    3 * spectrum + 2 * real + 32 * n * n * 8
+}
+
+/// `1.5 GiB`.
+fn gibibytes(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+impl ScenarioFile {
+    /// [`memory_estimate`] of this scenario's grid (0 for a `grid.n` that validation refuses).
+    pub fn memory_estimate(&self) -> u64 {
+        if (2..=MAX_GRID_N).contains(&self.grid.n) {
+            memory_estimate(self.grid.n as u64, self.grid.boundary)
+        } else {
+            0
+        }
+    }
+
+    /// Refuses, naming `grid.n` and the estimate, a scenario of which `runs` concurrent runs
+    /// need more than `available` bytes. Call it before [`ScenarioFile::validate`], which
+    /// allocates the grid's fields.
+    pub fn check_memory(&self, available: u64, runs: u64) -> Result<()> {
+        let need = self.memory_estimate().saturating_mul(runs.max(1));
+        if need > available {
+            let each = if runs > 1 {
+                format!(
+                    " ({runs} concurrent runs of {} each)",
+                    gibibytes(self.memory_estimate())
+                )
+            } else {
+                String::new()
+            };
+            bail!(
+                "grid.n = {} needs about {}{each}, more than the {} of memory available: lower grid.n (or override this check where the estimate is known to be too high)",
+                self.grid.n,
+                gibibytes(need),
+                gibibytes(available)
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Largest `grid.n` validation accepts.
+pub const MAX_GRID_N: i64 = 16_384;
