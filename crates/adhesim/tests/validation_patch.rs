@@ -4,10 +4,11 @@
 //! field that reaches 0, in the fast rule and the reference rule.
 #![allow(clippy::needless_range_loop)]
 
-use adhesim::analysis::reference::{FlatPunchReference, Jkr};
+use adhesim::analysis::reference::{FlatPunchReference, Hertz, Jkr};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Axis, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Observer, Profile, ProtocolSummary, Sphere, StepView, WorkOfAdhesion,
+    AdhesiveParams, AdhesiveSolver, Axis, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial,
+    FreeOperator, Grid, IndentPulloff, NormalSolver, Observer, Profile, ProtocolSummary, Sphere, StepView,
+    WorkOfAdhesion,
 };
 use std::ops::ControlFlow;
 
@@ -219,4 +220,60 @@ fn quadratic_field_reaching_zero_holds_no_tension() {
     // The two rules reach the same contact sets (docs/fast-step.md); the forces agree to
     // the CG tolerance.
     assert!((forces[0] / forces[1] - 1.0).abs() < 1e-6, "{forces:?}");
+}
+
+/// γ = 0 everywhere: the adhesive step is non-adhesive contact (release at p < 0,
+/// attachment by penetration), so it reaches the unique solution of the discrete
+/// complementarity problem that the non-adhesive CCG solver finds: the same contact set and
+/// the same force to the CG tolerances (1e-5), and Hertz's force to 1 % at a = 16Δ (the
+/// discretisation error, cf. 0.5 % at 32Δ in validation_hertz.rs). Before the fix no
+/// element was ever released (the ratio −p/0 was never a finite violator).
+#[test]
+fn zero_adhesion_everywhere_is_non_adhesive_contact() {
+    let n = 64;
+    let delta = 1.0 / n as f64;
+    let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
+    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let heights = Sphere::new(SPHERE_RADIUS).unwrap().heights(&grid);
+    let a = 16.0 * delta;
+    let depth = a * a / SPHERE_RADIUS;
+    for reference_rule in [false, true] {
+        let params = AdhesiveParams {
+            reference_rule,
+            ..AdhesiveParams::default()
+        };
+        let mut solver = AdhesiveSolver::new(grid, 1.0, vec![0.0; grid.len()], params);
+        let mut state = ContactState::new(&grid);
+        // To 1.5 times the check depth and back: on retraction the contact must recede.
+        let steps = 30;
+        let depths = (1..=steps).chain((steps * 2 / 3..steps).rev());
+        for step in depths {
+            let d = 1.5 * depth * step as f64 / steps as f64;
+            solver.step(&mut operator, &heights, d, &mut state).unwrap();
+        }
+        let force = state.force(grid.element_area());
+        let mut reference = ContactState::new(&grid);
+        let report = Ccg::new(CcgParams::default())
+            .solve(&mut operator, &heights, Control::Displacement(depth), &mut reference)
+            .unwrap();
+        assert_eq!(
+            state.contact, reference.contact,
+            "contact sets (reference rule: {reference_rule})"
+        );
+        assert!(
+            (force / report.force - 1.0).abs() < 1e-5,
+            "{force} vs CCG {}",
+            report.force
+        );
+        let hertz = Hertz {
+            radius: SPHERE_RADIUS,
+            contact_modulus: 1.0,
+        };
+        assert!(
+            (force / hertz.force(depth) - 1.0).abs() < 0.01,
+            "{force} vs Hertz {}",
+            hertz.force(depth)
+        );
+        assert!(state.pressure.iter().all(|&p| p >= 0.0));
+    }
 }
