@@ -54,8 +54,10 @@
 /// Revision of the results the algorithms produce: bumped whenever a change alters results
 /// (not merely speed), so that sweep and study caches, which include it in their hashes,
 /// never reuse a case computed by an older algorithm. 2: failed closure tests are retried
-/// once the contact grows within a step (step-size independent approach).
-pub const RESULTS_REVISION: u32 = 2;
+/// once the contact grows within a step (step-size independent approach). 3: elements with
+/// γ = 0 detach under any tension and attach only by penetration (docs/physics.md §2.2);
+/// cases with γ = 0 elements (adhesion maps, quadratic fields reaching 0) change.
+pub const RESULTS_REVISION: u32 = 3;
 
 pub mod analysis;
 pub mod elastic;

@@ -30,7 +30,11 @@ impl AdhesiveSolver {
         let bans_lifted =
             self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
         let trial_available = (0..self.grid.len()).any(|k| {
+            // As find_candidates: only adhesive elements are tried.
             if state.contact[k] || !heights[k].is_finite() || (self.banned[k] && !bans_lifted) {
+                return false;
+            }
+            if self.critical_stress[k] <= 0.0 {
                 return false;
             }
             let mut touches = false;

@@ -117,7 +117,7 @@ impl AdhesiveSolver {
             .iter()
             .map(|&gamma| critical_stress(contact_modulus, gamma, delta))
             .collect();
-        let minimum_critical_stress = critical_stress.iter().cloned().fold(f64::INFINITY, f64::min);
+        let minimum_critical_stress = front_critical_stress(&critical_stress);
         let len = grid.len();
         Self {
             params,
@@ -435,8 +435,16 @@ impl AdhesiveSolver {
         Ok(Flow::Continue)
     }
 
+    /// Whether free element `k` may be tried as a trial neighbour: not banned, and adhesive.
+    /// An element with σ_c = 0 (γ = 0) attached at a positive gap carries tension (the
+    /// Schur complement of K_CC is positive) and would fail at once, so it attaches only
+    /// by penetration (docs/physics.md §2.2).
+    pub(super) fn may_try(&self, k: usize) -> bool {
+        !self.banned[k] && self.critical_stress[k] > 0.0
+    }
+
     /// Attachment candidates: penetrating elements, then (trial attachment) free
-    /// unbanned edge-neighbours of the contact, marked as trial.
+    /// unbanned adhesive edge-neighbours of the contact, marked as trial.
     fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
         self.candidates.clear();
         for k in 0..self.grid.len() {
@@ -446,7 +454,7 @@ impl AdhesiveSolver {
             let gap = heights[k] - depth + state.displacement[k];
             if gap < 0.0 {
                 self.candidates.push(k);
-            } else if self.params.attachment == Attachment::Trial && !self.banned[k] {
+            } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
                 let mut touches = false;
                 self.grid
                     .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
@@ -522,6 +530,24 @@ impl AdhesiveSolver {
             error_bound: self.pressure_error_bound,
         });
     }
+}
+
+/// Ratio floor of [`front_critical_stress`]: γ contrasts up to 10⁶ keep the front
+/// criterion of their weakest adhesive element.
+const FRONT_STRESS_FLOOR: f64 = 1e-3;
+
+/// The σ_c the CG front criterion is scaled by: the smallest positive σ_c (elements with
+/// γ = 0 decide on the sign of p, not on a stress scale of their own), but not below
+/// [`FRONT_STRESS_FLOOR`] times the largest, so that a γ field reaching 0 smoothly does not
+/// ask CG for a residual below its rounding. +∞ (relative criterion only) without adhesion.
+fn front_critical_stress(critical_stress: &[f64]) -> f64 {
+    let largest = critical_stress.iter().cloned().fold(0.0, f64::max);
+    let smallest_positive = critical_stress
+        .iter()
+        .cloned()
+        .filter(|&sigma| sigma > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    smallest_positive.max(FRONT_STRESS_FLOOR * largest)
 }
 
 /// What the step loop does after a round.

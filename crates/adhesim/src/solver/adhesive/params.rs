@@ -12,6 +12,20 @@ pub fn critical_stress(contact_modulus: f64, work_of_adhesion: f64, element_size
     (contact_modulus * work_of_adhesion / (ELEMENT_ENERGY_FACTOR * element_size)).sqrt()
 }
 
+/// Over-stress ratio −p/σ_c of an element in contact: > 1 exactly when it violates
+/// p < −σ_c. An element without adhesion (σ_c = 0, γ = 0) detaches under any tension, so
+/// its ratio is +∞ for p < 0 and 0 otherwise (never NaN): such elements are violators
+/// ahead of every finite ratio (docs/physics.md §2.2).
+pub fn over_stress_ratio(pressure: f64, critical_stress: f64) -> f64 {
+    if critical_stress > 0.0 {
+        -pressure / critical_stress
+    } else if pressure < 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
+
 /// How new contact is formed (docs/physics.md §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Attachment {

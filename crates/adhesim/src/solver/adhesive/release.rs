@@ -1,6 +1,7 @@
 //! Release rules of the adhesive step: violators (all, worst first, random half),
 //! certified local rounds (docs/fast-step.md) and the failed-ring prediction.
 
+use super::params::over_stress_ratio;
 use super::{AdhesiveSolver, Detachment, RingAttempt, RingRound, StopRule};
 use crate::elastic::ElasticOperator;
 use crate::solver::local_peel::REACH;
@@ -45,8 +46,9 @@ impl AdhesiveSolver {
                 .members
                 .iter()
                 .zip(&pressures)
-                .map(|(&k, p)| -p / self.critical_stress[k])
+                .map(|(&k, &p)| over_stress_ratio(p, self.critical_stress[k]))
                 .collect();
+            let any_violator = ratios.iter().any(|&r| r > 1.0);
             let smallest = ratios
                 .iter()
                 .cloned()
@@ -54,7 +56,7 @@ impl AdhesiveSolver {
                 .fold(f64::INFINITY, f64::min);
             let failed: Vec<bool> = ratios
                 .iter()
-                .map(|&r| smallest.is_finite() && r >= smallest * (1.0 - 1e-9))
+                .map(|&r| any_violator && r >= smallest * (1.0 - 1e-9))
                 .collect();
             if failed != b.failed {
                 return false;
@@ -201,21 +203,24 @@ impl AdhesiveSolver {
 
     /// Collects elements of C with p < −σ_c. Exact ties (symmetric geometries) are treated
     /// alike: every element whose over-stress ratio is within 1e-9 of the smallest violating
-    /// ratio is included.
+    /// ratio is included. Elements with γ = 0 under tension have an infinite ratio
+    /// ([`over_stress_ratio`]): they are violators under every rule, and the worst ones.
     pub(super) fn find_violators(&mut self, state: &ContactState) {
         self.violators.clear();
+        let mut any_violator = false;
         let mut smallest = f64::INFINITY;
         let mut largest: f64 = 0.0;
         for k in 0..self.grid.len() {
             if state.contact[k] {
-                let ratio = -state.pressure[k] / self.critical_stress[k];
+                let ratio = over_stress_ratio(state.pressure[k], self.critical_stress[k]);
                 if ratio > 1.0 {
+                    any_violator = true;
                     smallest = smallest.min(ratio);
                     largest = largest.max(ratio);
                 }
             }
         }
-        if !smallest.is_finite() {
+        if !any_violator {
             return;
         }
         let threshold = match self.params.detachment {
@@ -223,7 +228,7 @@ impl AdhesiveSolver {
             Detachment::WorstFirst { fraction } => smallest.max(largest * (1.0 - fraction)),
         } * (1.0 - 1e-9);
         for k in 0..self.grid.len() {
-            if state.contact[k] && -state.pressure[k] / self.critical_stress[k] >= threshold {
+            if state.contact[k] && over_stress_ratio(state.pressure[k], self.critical_stress[k]) >= threshold {
                 self.violators.push(k);
             }
         }
@@ -237,7 +242,7 @@ impl AdhesiveSolver {
         let worst = self
             .violators
             .iter()
-            .position(|&k| -state.pressure[k] / self.critical_stress[k] >= largest);
+            .position(|&k| over_stress_ratio(state.pressure[k], self.critical_stress[k]) >= largest);
         let mut random = self.random_state;
         let mut index = 0;
         self.violators.retain(|_| {
