@@ -6,9 +6,12 @@
 //! The Hertz case of `scenarios/hertz.toml` (R = E* = 1, L = 0.3, d = 0.01) is solved cold
 //! at d, then unloaded to f·d for several f, once from the warm state (rule off) and once
 //! from a cold nested start; f > 1 (loading) is measured too. The fraction of the warm set
-//! inside {z < f·d} (where the new set must lie) is printed with the time and fine-grid operator applications of each, and the forces must agree
-//! within 1e-7 relative (both are converged to a relative residual of 1e-10).
-use adhesim::{Boundary, ContactState, ElasticMaterial, FreeOperator, Grid, NestedActiveSet, NestedParams, Profile, Sphere};
+//! inside {z < f·d} (where the new set must lie) is printed with the time and fine-grid
+//! operator applications of each, and the forces must agree within 1e-7 relative (both are
+//! converged to a relative residual of 1e-10).
+use adhesim::{
+    Boundary, ContactState, ElasticMaterial, FreeOperator, Grid, NestedActiveSet, NestedParams, Profile, Sphere,
+};
 use std::time::Instant;
 
 fn main() {
@@ -45,15 +48,25 @@ fn main() {
         let mut warm = loaded.clone();
         // The previous solve was at d: re-solve there so each row starts from it.
         let mut again = loaded.clone();
-        warm_solver.solve(&mut operator, &heights, depth, &mut again).expect("re-solve at d");
+        warm_solver
+            .solve(&mut operator, &heights, depth, &mut again)
+            .expect("re-solve at d");
         let start = Instant::now();
-        let warm_report = warm_solver.solve(&mut operator, &heights, target, &mut warm).expect("warm solve");
+        let warm_report = warm_solver
+            .solve(&mut operator, &heights, target, &mut warm)
+            .expect("warm solve");
         let warm_time = start.elapsed().as_secs_f64();
         let mut cold = ContactState::new(&grid);
         let start = Instant::now();
-        let cold_report = cold_solver.solve(&mut operator, &heights, target, &mut cold).expect("cold solve");
+        let cold_report = cold_solver
+            .solve(&mut operator, &heights, target, &mut cold)
+            .expect("cold solve");
         let cold_time = start.elapsed().as_secs_f64();
-        let scale = warm_report.force.abs().max(cold_report.force.abs()).max(f64::MIN_POSITIVE);
+        let scale = warm_report
+            .force
+            .abs()
+            .max(cold_report.force.abs())
+            .max(f64::MIN_POSITIVE);
         let difference = (warm_report.force - cold_report.force).abs() / scale;
         println!(
             "| {fraction} | {kept:.3} | {:.3} s, {} | {:.3} s, {} (+ {}) | {difference:.1e} |",
@@ -63,6 +76,9 @@ fn main() {
             cold_report.operator_applications,
             cold_solver.coarse_applications()
         );
-        assert!(difference < 1e-7 || scale < 1e-300, "forces differ by {difference:e} at f = {fraction}");
+        assert!(
+            difference < 1e-7 || scale < 1e-300,
+            "forces differ by {difference:e} at f = {fraction}"
+        );
     }
 }
