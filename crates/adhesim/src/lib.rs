@@ -54,10 +54,9 @@
 /// Revision of the results the algorithms produce: bumped whenever a change alters results
 /// (not merely speed), so that sweep and study caches, which include it in their hashes,
 /// never reuse a case computed by an older algorithm. 2: failed closure tests are retried
-/// once the contact grows within a step (step-size independent approach). 3: Love's
-/// coefficients are evaluated at the canonical offset (exactly symmetric kernel; forces
-/// move within the CG tolerance, contact sets unchanged) and a non-adhesive unload starts
-/// cold (forces move by ~1e-11).
+/// once the contact grows within a step (step-size independent approach). 3: a
+/// non-adhesive unload starts cold with the nested continuation (forces move by ~1e-11,
+/// the same contact sets).
 pub const RESULTS_REVISION: u32 = 3;
 
 pub mod analysis;
