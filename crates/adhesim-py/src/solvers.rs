@@ -189,6 +189,7 @@ impl NestedActiveSet {
             max_cg_iterations: count("max_cg_iterations", max_cg_iterations, 1)?,
             max_rounds: count("max_rounds", max_rounds, 1)?,
             coarsest: count("coarsest", coarsest, 2)?,
+            ..adhesim::NestedParams::default()
         };
         let (grid, material) = {
             let op = operator.borrow(py);

@@ -55,8 +55,10 @@
 /// (not merely speed), so that sweep and study caches, which include it in their hashes,
 /// never reuse a case computed by an older algorithm. 2: failed closure tests are retried
 /// once the contact grows within a step (step-size independent approach). 3: elements with
-/// γ = 0 detach under any tension and attach only by penetration (docs/physics.md §2.2);
-/// cases with γ = 0 elements (adhesion maps, quadratic fields reaching 0) change.
+/// γ = 0 detach under any tension and attach only by penetration (docs/physics.md §2.2;
+/// cases with γ = 0 elements, from adhesion maps or quadratic fields reaching 0, change),
+/// and a non-adhesive unload starts cold with the nested continuation (forces move by
+/// ~1e-11, the same contact sets).
 pub const RESULTS_REVISION: u32 = 3;
 
 pub mod analysis;

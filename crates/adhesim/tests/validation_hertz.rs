@@ -183,3 +183,65 @@ fn nested_active_set_matches_ccg_and_hertz() {
         .unwrap_err();
     assert!(matches!(error, SolveError::PeriodicUnsupported { .. }), "{error}");
 }
+
+/// Unloading (issue #14 item 7): from a = 32Δ at N = 128 to half the depth (a = 22.6Δ)
+/// and to zero. The default cold restart and the warm start (`warm_unload`) must agree to
+/// 1e-7 (both converge to a relative residual of 1e-10) and with Hertz to 0.5 % (the bound
+/// of the loading test; a = 22.6Δ still resolves the edge to ~2e-4); at zero depth the
+/// cold restart finds no contact with a handful of fine applications instead of a warm
+/// descent from thousands of elements.
+#[test]
+fn nested_unload_cold_restart_matches_warm_start_and_hertz() {
+    use adhesim::{NestedActiveSet, NestedParams};
+    let grid = Grid::new(128, 1.0, Boundary::Free).unwrap();
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let mut operator = FreeOperator::new(grid, material);
+    let heights = Sphere::new(1.0).unwrap().heights(&grid);
+    let depth = (32.0f64 / 128.0).powi(2);
+    let hertz = Hertz {
+        radius: 1.0,
+        contact_modulus: 1.0,
+    };
+    let mut cold_solver = NestedActiveSet::new(grid, material, NestedParams::default());
+    let warm_params = NestedParams {
+        warm_unload: true,
+        ..NestedParams::default()
+    };
+    let mut warm_solver = NestedActiveSet::new(grid, material, warm_params);
+    let mut loaded = ContactState::new(&grid);
+    cold_solver.solve(&mut operator, &heights, depth, &mut loaded).unwrap();
+    warm_solver
+        .solve(&mut operator, &heights, depth, &mut loaded.clone())
+        .unwrap();
+
+    let (mut cold, mut warm) = (loaded.clone(), loaded.clone());
+    let cold_half = cold_solver
+        .solve(&mut operator, &heights, 0.5 * depth, &mut cold)
+        .unwrap();
+    let warm_half = warm_solver
+        .solve(&mut operator, &heights, 0.5 * depth, &mut warm)
+        .unwrap();
+    assert!(
+        cold_solver.coarse_applications() > 0,
+        "the unload restarts with the coarse levels"
+    );
+    assert_eq!(warm_solver.coarse_applications(), 0, "the warm unload keeps its state");
+    assert_eq!(cold.contact, warm.contact);
+    assert!(
+        (cold_half.force / warm_half.force - 1.0).abs() < 1e-7,
+        "{cold_half:?} {warm_half:?}"
+    );
+    assert!((cold_half.force / hertz.force(0.5 * depth) - 1.0).abs() < 5e-3);
+
+    let (mut cold, mut warm) = (loaded.clone(), loaded.clone());
+    cold_solver.solve(&mut operator, &heights, depth, &mut cold).unwrap();
+    warm_solver.solve(&mut operator, &heights, depth, &mut warm).unwrap();
+    let cold_zero = cold_solver.solve(&mut operator, &heights, 0.0, &mut cold).unwrap();
+    let warm_zero = warm_solver.solve(&mut operator, &heights, 0.0, &mut warm).unwrap();
+    assert_eq!((cold_zero.contact_elements, warm_zero.contact_elements), (0, 0));
+    assert_eq!((cold_zero.force, warm_zero.force), (0.0, 0.0));
+    assert!(
+        cold_zero.operator_applications < warm_zero.operator_applications,
+        "{cold_zero:?} vs {warm_zero:?}"
+    );
+}

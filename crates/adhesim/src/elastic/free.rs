@@ -1,8 +1,75 @@
-use super::influence::love_coefficient;
+use super::influence::{love_coefficient, love_primitive};
 use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
 use crate::grid::Grid;
 use crate::material::ElasticMaterial;
+use rayon::prelude::*;
+
+/// K(±lΔ, ±mΔ) for 0 ≤ m, l < N, bit for bit what [`love_coefficient`] gives at each
+/// signed offset, with the four primitives Φ(lΔ ± s, mΔ ± s) evaluated once per pair
+/// m ≤ l. Φ is odd in each argument and symmetric under exchange, bitwise
+/// ([`love_primitive`]), so each of the eight images of an offset is the same four values
+/// with signs, summed in the order `love_coefficient` sums them.
+/// Returns `[sign_m][sign_l][m * n + l]` with sign index 0 for + and 1 for −.
+fn love_images(n: usize, delta: f64, modulus: f64) -> [[Vec<f64>; 2]; 2] {
+    let mut images: [[Vec<f64>; 2]; 2] = Default::default();
+    for row in images.iter_mut() {
+        for table in row.iter_mut() {
+            *table = vec![0.0; n * n];
+        }
+    }
+    let s = 0.5 * delta;
+    let scale = std::f64::consts::PI * modulus;
+    // Per pair m ≤ l: (primitives [x+s or x−s][y+s or y−s] at x = lΔ, y = mΔ).
+    let primitives: Vec<[[f64; 2]; 2]> = (0..n * n)
+        .into_par_iter()
+        .map(|k| {
+            let (m, l) = (k / n, k % n);
+            if l < m {
+                return [[0.0; 2]; 2];
+            }
+            let (x, y) = (l as f64 * delta, m as f64 * delta);
+            [
+                [love_primitive(x + s, y + s), love_primitive(x + s, y - s)],
+                [love_primitive(x - s, y + s), love_primitive(x - s, y - s)],
+            ]
+        })
+        .collect();
+    // Φ(σ_x·x ± s, σ_y·y ± s) from the stored values: for σ = −1, ±s turns into ∓s and
+    // the sign comes out.
+    let corner = |p: &[[f64; 2]; 2], sign_x: usize, dx: usize, sign_y: usize, dy: usize| {
+        let value = p[dx ^ sign_x][dy ^ sign_y];
+        if sign_x ^ sign_y == 1 {
+            -value
+        } else {
+            value
+        }
+    };
+    for m in 0..n {
+        for l in 0..n {
+            let swapped = l < m;
+            let p = if swapped {
+                &primitives[l * n + m]
+            } else {
+                &primitives[m * n + l]
+            };
+            for (sign_m, row) in images.iter_mut().enumerate() {
+                for (sign_l, table) in row.iter_mut().enumerate() {
+                    // Exchange maps Φ(x±s, y∓s) to the stored Φ(y∓s, x±s).
+                    let term = |dx: usize, dy: usize| {
+                        if swapped {
+                            corner(p, sign_m, dy, sign_l, dx)
+                        } else {
+                            corner(p, sign_l, dx, sign_m, dy)
+                        }
+                    };
+                    table[m * n + l] = (term(0, 0) - term(0, 1) - term(1, 0) + term(1, 1)) / scale;
+                }
+            }
+        }
+    }
+    images
+}
 
 /// Non-periodic half-space by discrete convolution and FFT (DC-FFT).
 ///
@@ -27,15 +94,18 @@ impl FreeOperator {
         let padded = 2 * n;
         let delta = grid.element_size();
         let modulus = material.contact_modulus();
-        let wrap = |i: usize| -> Option<f64> {
+        // (|offset| in elements, sign index) for a wrapped index; row n of the padded array
+        // is zero.
+        let wrap = |i: usize| -> Option<(usize, usize)> {
             match i {
-                i if i < n => Some(i as f64),
+                i if i < n => Some((i, 0)),
                 i if i == n => None,
-                i => Some(i as f64 - padded as f64),
+                i => Some((padded - i, 1)),
             }
         };
+        let images = love_images(n, delta, modulus);
         let engine = SpectralConvolution::new(n, padded, |i, j| match (wrap(i), wrap(j)) {
-            (Some(m), Some(l)) => love_coefficient(l * delta, m * delta, delta, modulus),
+            (Some((m, sign_m)), Some((l, sign_l))) => images[sign_m][sign_l][m * n + l],
             _ => 0.0,
         });
         Self {
@@ -69,5 +139,25 @@ impl ElasticOperator for FreeOperator {
     }
     fn applications(&self) -> u64 {
         self.applications
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn octant_images_have_the_bits_of_direct_evaluation() {
+        // Every signed offset of the padded kernel, against a direct evaluation.
+        let (n, delta, modulus) = (12, 0.013, 2.5);
+        let images = love_images(n, delta, modulus);
+        for m in -(n as i64 - 1)..n as i64 {
+            for l in -(n as i64 - 1)..n as i64 {
+                let direct = love_coefficient(l as f64 * delta, m as f64 * delta, delta, modulus);
+                let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
+                let tabulated = images[sign_m][sign_l][m.unsigned_abs() as usize * n + l.unsigned_abs() as usize];
+                assert_eq!(tabulated.to_bits(), direct.to_bits(), "offset ({l}, {m})");
+            }
+        }
     }
 }

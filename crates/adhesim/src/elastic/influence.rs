@@ -5,8 +5,12 @@
 
 /// Φ(X, Y) = X·asinh(Y/|X|) + Y·asinh(X/|Y|), each term taken as zero when its prefactor
 /// vanishes. This form of Love's primitive has no cancellation for negative arguments.
+///
+/// Bitwise, Φ(−X, Y) = Φ(X, −Y) = −Φ(X, Y) (asinh is odd by `copysign`, and a sum of
+/// negated terms is the negated sum) and Φ(Y, X) = Φ(X, Y) (the two terms commute): the free
+/// operator uses this to evaluate Love's coefficients on one octant.
 #[inline]
-fn love_primitive(x: f64, y: f64) -> f64 {
+pub(crate) fn love_primitive(x: f64, y: f64) -> f64 {
     let mut value = 0.0;
     if x != 0.0 {
         value += x * (y / x.abs()).asinh();

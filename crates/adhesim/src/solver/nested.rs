@@ -16,6 +16,11 @@ pub struct NestedParams {
     /// Coarse-to-fine continuation halves the grid while it stays even and at least this
     /// size (default 32; a value above N disables it).
     pub coarsest: usize,
+    /// Keep a warm start when the depth decreases from the previous solve (default
+    /// false: an unload starts cold, with the nested continuation, which measured 1.2–2×
+    /// cheaper than the warm start for every unload fraction at N = 512; the warm start
+    /// stays for loading. See `BENCHMARKS.md`, issue #14 item 7).
+    pub warm_unload: bool,
 }
 
 impl Default for NestedParams {
@@ -25,6 +30,7 @@ impl Default for NestedParams {
             max_cg_iterations: 2_000,
             max_rounds: 200,
             coarsest: 32,
+            warm_unload: false,
         }
     }
 }
@@ -91,6 +97,8 @@ pub struct NestedActiveSet {
     fine: Workspace,
     coarse: Vec<CoarseLevel>,
     coarse_applications: u64,
+    /// Depth of the last successful solve (decides whether a warm start is an unload).
+    last_depth: Option<f64>,
 }
 
 impl NestedActiveSet {
@@ -118,6 +126,7 @@ impl NestedActiveSet {
             fine: Workspace::new(&grid, modulus),
             coarse,
             coarse_applications: 0,
+            last_depth: None,
         }
     }
 
@@ -137,8 +146,25 @@ impl NestedActiveSet {
         self.coarse_applications
     }
 
+    /// Whether the contact in `state` is kept as the warm start at `depth`; when not (an
+    /// unload, see [`NestedParams::warm_unload`]) the state is cleared for a cold start.
+    fn keep_warm_start(&self, depth: f64, state: &mut ContactState) -> bool {
+        if !state.contact.iter().any(|&c| c) {
+            return false;
+        }
+        let unload = self.last_depth.is_some_and(|previous| depth < previous);
+        if unload && !self.params.warm_unload {
+            state.contact.fill(false);
+            state.pressure.fill(0.0);
+            return false;
+        }
+        true
+    }
+
     /// Solves at indentation `depth`. A `state` that already has contact is the warm start
-    /// (no continuation); otherwise the coarse levels supply the first contact set.
+    /// (no continuation) unless the depth decreased since the previous solve (see
+    /// [`NestedParams::warm_unload`]); otherwise the coarse levels supply the
+    /// first contact set.
     ///
     /// # Panics
     /// If `operator` acts on another grid than the one the solver was planned for.
@@ -167,7 +193,8 @@ impl NestedActiveSet {
             return Err(SolveError::NonFinite { iteration: 0 });
         }
         self.coarse_applications = 0;
-        let warm = state.contact.iter().any(|&c| c);
+        let warm = self.keep_warm_start(depth, state);
+        self.last_depth = None;
         if !warm && !self.coarse.is_empty() {
             // Restrict the heights down the levels (2×2 means), solve from the coarsest up.
             let mut finer: &[f64] = heights;
@@ -218,6 +245,7 @@ impl NestedActiveSet {
             &self.params,
             self.params.relative_tolerance,
         )?;
+        self.last_depth = Some(depth);
         let area = self.grid.element_area();
         let contact_elements = state.contact.iter().filter(|&&c| c).count();
         Ok(SolveReport {
