@@ -366,5 +366,6 @@ pub fn adhesive_params(
         preconditioned,
         carry_bans_when_retracting,
         retry_after_growth,
+        ..adhesim::AdhesiveParams::default()
     })
 }
