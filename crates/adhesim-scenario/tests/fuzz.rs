@@ -10,7 +10,7 @@
 //! The seed is fixed so that a failure reproduces; `PROPTEST_CASES` sets the case count
 //! (default [`DEFAULT_CASES`], about 16 s in `cargo test --release`). A longer run:
 //! `PROPTEST_CASES=20000 cargo test --release -p adhesim-scenario --test fuzz`.
-//! `FUZZ_SLOW=1` lists the runs that take over 0.2 s (with `-- --nocapture`).
+//! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s (with `-- --nocapture`).
 
 use adhesim_scenario::{load_within, run, RunResults, ValidScenario};
 use proptest::prelude::*;
@@ -249,6 +249,14 @@ fn scenarios_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
 }
 
+/// [`SEED`], or `PROPTEST_RNG_SEED` to draw other cases.
+fn seed() -> u64 {
+    std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(SEED)
+}
+
 fn config() -> Config {
     let cases = std::env::var("PROPTEST_CASES")
         .ok()
@@ -257,7 +265,7 @@ fn config() -> Config {
     Config {
         cases,
         rng_algorithm: RngAlgorithm::ChaCha,
-        rng_seed: RngSeed::Fixed(SEED),
+        rng_seed: RngSeed::Fixed(seed()),
         failure_persistence: None,
         ..Config::default()
     }
@@ -331,7 +339,7 @@ fn hostile_scenarios_give_a_result_or_a_clear_error() {
     let tally = std::cell::RefCell::new(Tally::default());
     let outcome = runner.run(&strategy, |case| check_case(case, &mut tally.borrow_mut()));
     let tally = tally.into_inner();
-    eprintln!("fuzz: {} cases with seed {SEED}: {tally:?}", runner.config().cases);
+    eprintln!("fuzz: {} cases with seed {}: {tally:?}", runner.config().cases, seed());
     if let Err(failure) = outcome {
         panic!("{failure}");
     }
