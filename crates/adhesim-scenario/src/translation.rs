@@ -9,8 +9,9 @@ use adhesim::geometry::WavySphere;
 use adhesim::{ElasticMaterial, Grid, Indenter, Kinematics, TranslatingContact, Translation};
 use anyhow::{anyhow, bail, Result};
 
-/// What `validate` has built before the protocol section, handed to the roll/slide part.
-pub(crate) struct TranslationInputs {
+/// What `validate` has built from every section but `[protocol]`, handed to the
+/// indentation or the roll/slide part (not the friction analysis's `TranslationInputs`).
+pub(crate) struct ValidatedSections {
     pub(crate) grid: Grid,
     pub(crate) material: ElasticMaterial,
     pub(crate) gamma: Vec<f64>,
@@ -31,8 +32,8 @@ pub const DEFAULT_SUBSTRATE_ANGLE: f64 = 30.0;
 
 impl ScenarioFile {
     /// `[protocol]` of kind roll / slide / translate (and `[analysis]`).
-    pub(crate) fn validate_translation(self, inputs: TranslationInputs) -> Result<ValidScenario> {
-        let TranslationInputs {
+    pub(crate) fn validate_translation(self, inputs: ValidatedSections) -> Result<ValidScenario> {
+        let ValidatedSections {
             grid,
             material,
             gamma,

@@ -5,7 +5,7 @@
 use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::{read_height_map, read_npy_2d};
-use crate::translation::TranslationInputs;
+use crate::translation::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
 use adhesim::geometry::{EllipticPunch, FlatPunch, Sphere, Topography, WavySphere};
@@ -58,7 +58,7 @@ impl ScenarioFile {
         if !(unit.is_finite() && unit > 0.0) {
             bail!("protocol.depth_unit = \"jkr\": the unit |d_JKR| = {unit:e} is not a positive number");
         }
-        let inputs = TranslationInputs {
+        let inputs = ValidatedSections {
             grid,
             material,
             gamma,
@@ -80,11 +80,11 @@ impl ScenarioFile {
     /// `[protocol]` of kind indent_pulloff (and `[output]`).
     fn validate_indentation(
         self,
-        inputs: TranslationInputs,
+        inputs: ValidatedSections,
         heights: Vec<f64>,
         start_depth: f64,
     ) -> Result<ValidScenario> {
-        let TranslationInputs {
+        let ValidatedSections {
             grid,
             material,
             gamma,

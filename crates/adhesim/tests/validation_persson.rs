@@ -100,9 +100,9 @@ fn fit(kappas: &[f64; 3]) -> f64 {
 /// Tolerances: (1) linearity: the seed-mean κ∞ at each load within 10 % of the fit (the
 /// law is the small-load asymptote; the area grows slightly sublinearly, by ≈ 3 % per
 /// doubling of the load here); (2) the element-count area converges from above
-/// (κ_Δ < κ_2Δ); (3) κ∞ in [1.6, 2.3] within three standard errors of its seed mean: the
-/// seed-to-seed spread of κ (≈ 0.1, a finite number of hills) is physical, not an error of
-/// the method, so the range is tested at the confidence the seeds allow.
+/// (κ_Δ < κ_2Δ); (3) the seed mean of κ∞ inside the range [1.6, 2.3] of the issue itself
+/// (the seeds are fixed, so the mean is deterministic; its standard error, from the physical
+/// seed-to-seed spread of ≈ 0.1, is printed, not added to the range).
 fn check(label: &str, study: &Study) -> (f64, f64, f64, f64) {
     let extrapolated: Vec<[f64; 3]> = study
         .fine
@@ -133,7 +133,7 @@ fn check(label: &str, study: &Study) -> (f64, f64, f64, f64) {
     }
     assert!(fine < coarse, "{label}: κ(Δ) = {fine:.3} not below κ(2Δ) = {coarse:.3}");
     assert!(
-        limit - 3.0 * error <= 2.3 && limit + 3.0 * error >= 1.6,
+        (1.6..=2.3).contains(&limit),
         "{label}: κ∞ = {limit:.3} ± {error:.3} outside Persson's and the published range 1.6–2.3"
     );
     (fine, coarse, limit, error)
