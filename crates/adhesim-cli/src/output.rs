@@ -3,6 +3,7 @@
 
 use adhesim::analysis::reference::Jkr;
 use adhesim::{Grid, Observer, StepRecord, StepView};
+use adhesim_scenario::CurveColumns;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::{BTreeMap, BTreeSet};
@@ -18,59 +19,12 @@ const ATTACHED: [u8; 3] = [215, 25, 28];
 const DETACHED: [u8; 3] = [30, 90, 220];
 const FREE: [u8; 3] = [255, 255, 255];
 
-/// One `curve.csv` column: its header and how a step's record gives its cell.
-type Column = (&'static str, Box<dyn Fn(&StepRecord) -> String>);
-
-/// The columns of `curve.csv`, declared once (docs/cli.md lists them): header and row
-/// cannot drift apart. The normalised columns exist where the JKR scales do.
-fn curve_columns(jkr: Option<Jkr>) -> Vec<Column> {
-    fn column(name: &'static str, value: impl Fn(&StepRecord) -> String + 'static) -> Column {
-        (name, Box::new(value))
-    }
-    let mut columns = vec![
-        column("step", |r| r.step.to_string()),
-        column("phase", |r| r.phase.map(|p| p.name()).unwrap_or("").to_string()),
-        column("d", |r| r.depth.to_string()),
-        column("x", |r| r.offset.to_string()),
-        column("force_normal", |r| r.force_normal.to_string()),
-        column("force_tangential", |r| r.force_tangential.to_string()),
-        column("area", |r| r.area.to_string()),
-        column("radius", |r| r.radius.to_string()),
-        column("n_contact", |r| r.contact_elements.to_string()),
-        column("dissipated_energy", |r| r.cumulative_dissipated_energy.to_string()),
-        column("force_tangential_before_change", |r| {
-            r.force_tangential_before_change.to_string()
-        }),
-        column("half_width", |r| r.half_width.to_string()),
-    ];
-    if let Some(jkr) = jkr {
-        columns.extend([
-            column("d_norm", move |r| (r.depth / jkr.critical_depth().abs()).to_string()),
-            column("force_norm", move |r| {
-                (r.force_normal / jkr.critical_force().abs()).to_string()
-            }),
-            column("radius_norm", move |r| (r.radius / jkr.critical_radius()).to_string()),
-        ]);
-    }
-    columns.extend([
-        column("attached", |r| r.report.attached.to_string()),
-        column("detached", |r| r.report.detached.to_string()),
-        column("jumped", |r| u8::from(r.jumped).to_string()),
-        column("step_dissipated_energy", |r| r.report.dissipated_energy.to_string()),
-        column("solves", |r| r.report.solves.to_string()),
-        column("cg_iterations", |r| r.report.cg_iterations.to_string()),
-        column("fft_pairs", |r| r.report.operator_applications.to_string()),
-        column("touches_border", |r| u8::from(r.touches_border).to_string()),
-    ]);
-    columns
-}
-
-/// `curve.csv`: one row per step, flushed as it comes into `curve.csv.partial` (a killed
+/// `curve.csv` (its columns are the scenario crate's [`CurveColumns`]): one row per step, flushed as it comes into `curve.csv.partial` (a killed
 /// run keeps its steps there), renamed to `curve.csv` when the run ends: a `curve.csv`
 /// is always whole, never cut mid-line by a full disk. I/O errors name the file.
 pub struct CurveCsv {
     writer: csv::Writer<BufWriter<File>>,
-    columns: Vec<Column>,
+    columns: CurveColumns,
     partial: PathBuf,
     path: PathBuf,
 }
@@ -83,14 +37,14 @@ impl CurveCsv {
         let partial = PathBuf::from(partial);
         let file = File::create(&partial).with_context(|| format!("cannot create {}", partial.display()))?;
         let writer = csv::Writer::from_writer(BufWriter::new(file));
-        let columns = curve_columns(jkr);
+        let columns = CurveColumns::new(jkr);
         let mut csv = Self {
             writer,
             columns,
             partial,
             path: path.to_path_buf(),
         };
-        let header: Vec<&str> = csv.columns.iter().map(|(name, _)| *name).collect();
+        let header: Vec<&str> = csv.columns.names().collect();
         csv.writer
             .write_record(header)
             .map_err(anyhow::Error::from)
@@ -102,7 +56,7 @@ impl CurveCsv {
     /// Writes the row of one step.
     pub fn write(&mut self, record: &StepRecord) -> Result<()> {
         self.writer
-            .write_record(self.columns.iter().map(|(_, value)| value(record)))
+            .write_record(self.columns.row(record).map(|cell| cell.to_string()))
             .map_err(anyhow::Error::from)
             .and_then(|()| self.flush())
             .with_context(|| format!("cannot write {}", self.partial.display()))
@@ -336,10 +290,7 @@ impl RunObserver {
         }
         if r.touches_border && !self.border_warned {
             self.border_warned = true;
-            let message = format!(
-                "contact reached the domain border at step {step} (d = {:.6e}): the domain is too small, enlarge grid.size",
-                r.depth
-            );
+            let message = adhesim_scenario::border_warning(step, r.depth);
             self.progress.bar.suspend(|| eprintln!("warning: {message}"));
             self.warnings.push(message);
         }

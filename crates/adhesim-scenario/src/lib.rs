@@ -37,19 +37,23 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+mod curve;
 mod guards;
 mod model;
 mod parse;
 mod pipeline;
 mod results;
+mod summary;
 mod translation;
 mod validate;
 
+pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
 pub use guards::{memory_estimate, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
+pub use summary::{border_warning, Performance, PhaseTimes, Summary};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 
 pub use adhesim::analysis::friction::TranslationResults;

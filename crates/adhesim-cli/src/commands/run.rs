@@ -153,19 +153,8 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     };
     let wall_seconds = start.elapsed().as_secs_f64();
     let counters = outcome.report.counters();
-    let mut warnings = scenario.warnings.clone();
-    warnings.extend(observer.warnings.iter().cloned());
-    if counters.touches_border && observer.warnings.is_empty() {
-        warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
-    }
-    let summary = summary::Summary {
-        adhesim_version: env!("CARGO_PKG_VERSION"),
-        inputs: &scenario.file,
-        derived: &scenario.derived,
-        results: &outcome.results,
-        performance: summary::Performance::new(wall_seconds, &counters, &observer),
-        warnings,
-    };
+    let performance = summary::performance(wall_seconds, &counters, &observer);
+    let summary = adhesim_scenario::Summary::new(&scenario, &outcome, performance, &observer.warnings);
     summary::write(&out.join("summary.json"), &summary)?;
     if !options.quiet {
         match &outcome.report {

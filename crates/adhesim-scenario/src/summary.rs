@@ -1,0 +1,123 @@
+//! The content of `summary.json` (docs/output.md): inputs echoed, derived quantities,
+//! results, performance, warnings. Built here once, so that the command line and the
+//! Python package report the same run the same way; the caller writes the text.
+
+use crate::model::{Derived, ScenarioFile, ValidScenario};
+use crate::pipeline::{Counters, RunOutcome};
+use crate::results::RunResults;
+use anyhow::{Context, Result};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Counters and wall times of a run (the only part of `summary.json` that differs between
+/// two runs of the same scenario).
+#[derive(Debug, Clone, Serialize)]
+pub struct Performance {
+    pub wall_seconds: f64,
+    /// CG iterations summed over all solves.
+    pub solver_iterations: usize,
+    /// Forward + inverse FFT pairs (elastic operator applications).
+    pub fft_pairs: u64,
+    pub solves: usize,
+    pub steps: usize,
+    pub threads: usize,
+    /// Averages per quasi-static step.
+    pub fft_pairs_per_step: f64,
+    pub solves_per_step: f64,
+    pub cg_iterations_per_solve: f64,
+    /// Solver wall time and steps per phase (approach, retract, roll, slide).
+    pub phase_seconds: BTreeMap<&'static str, f64>,
+    pub phase_steps: BTreeMap<&'static str, usize>,
+    /// Wall time of writing outputs (curve rows, snapshots) during the run.
+    pub output_seconds: f64,
+}
+
+/// Solver and output wall time per phase, as an observer measured them.
+#[derive(Debug, Clone, Default)]
+pub struct PhaseTimes {
+    /// Solver wall time per phase.
+    pub phase_seconds: BTreeMap<&'static str, f64>,
+    /// Steps per phase.
+    pub phase_steps: BTreeMap<&'static str, usize>,
+    /// Wall time spent on the outputs of the steps.
+    pub output_seconds: f64,
+}
+
+impl Performance {
+    /// Counters of a run, with the per-step averages, the threads of rayon's pool and
+    /// the observer's phase timings.
+    pub fn new(wall_seconds: f64, counters: &Counters, times: PhaseTimes) -> Self {
+        let Counters {
+            steps,
+            solves,
+            cg_iterations: solver_iterations,
+            operator_applications: fft_pairs,
+            ..
+        } = *counters;
+        let per = |value: f64, count: usize| if count > 0 { value / count as f64 } else { 0.0 };
+        Self {
+            wall_seconds,
+            solver_iterations,
+            fft_pairs,
+            solves,
+            steps,
+            threads: rayon::current_num_threads(),
+            fft_pairs_per_step: per(fft_pairs as f64, steps),
+            solves_per_step: per(solves as f64, steps),
+            cg_iterations_per_solve: per(solver_iterations as f64, solves),
+            phase_seconds: times.phase_seconds,
+            phase_steps: times.phase_steps,
+            output_seconds: times.output_seconds,
+        }
+    }
+}
+
+/// The whole `summary.json`.
+#[derive(Debug, Serialize)]
+pub struct Summary<'a> {
+    pub adhesim_version: &'static str,
+    pub inputs: &'a ScenarioFile,
+    pub derived: &'a Derived,
+    pub results: &'a RunResults,
+    pub performance: Performance,
+    pub warnings: Vec<String>,
+}
+
+impl<'a> Summary<'a> {
+    /// The summary of a finished run. `run_warnings` are those an observer raised during
+    /// the run ([`border_warning`]); the scenario's resolution warnings come first.
+    pub fn new(
+        scenario: &'a ValidScenario,
+        outcome: &'a RunOutcome,
+        performance: Performance,
+        run_warnings: &[String],
+    ) -> Self {
+        let mut warnings = scenario.warnings.clone();
+        warnings.extend(run_warnings.iter().cloned());
+        if outcome.report.counters().touches_border && run_warnings.is_empty() {
+            warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
+        }
+        Self {
+            adhesim_version: env!("CARGO_PKG_VERSION"),
+            inputs: &scenario.file,
+            derived: &scenario.derived,
+            results: &outcome.results,
+            performance,
+            warnings,
+        }
+    }
+
+    /// The text of `summary.json`: pretty JSON with a final newline, null for
+    /// non-finite numbers (JSON has no NaN).
+    pub fn to_json(&self) -> Result<String> {
+        let text = serde_json::to_string_pretty(self).context("cannot serialise summary.json")?;
+        Ok(text + "\n")
+    }
+}
+
+/// The warning of the first step whose contact reached the border of a free grid.
+pub fn border_warning(step: usize, depth: f64) -> String {
+    format!(
+        "contact reached the domain border at step {step} (d = {depth:.6e}): the domain is too small, enlarge grid.size"
+    )
+}
