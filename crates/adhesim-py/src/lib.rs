@@ -4,12 +4,14 @@
 //! Numbers cross the boundary as float64 numpy arrays of shape (n, n), row-major like the
 //! library's fields; every input is checked (shape, dtype, finiteness, ranges) and refused
 //! with a `TypeError`/`ValueError` naming the argument and value, never a panic. Solves
-//! release the GIL. The one-call runs (`run`, `load`, `sweep`) come with the scenario layer.
+//! release the GIL. The one-call runs (`adhesim.run`, `load`, `sweep`) go through the
+//! scenario crate's pipeline (`scenario.rs`).
 
 mod adhesive;
 mod convert;
 mod objects;
 mod reference;
+mod scenario;
 mod solvers;
 
 use pyo3::prelude::*;
@@ -38,5 +40,9 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reference::_fit_jkr_force, m)?)?;
     m.add_function(wrap_pyfunction!(reference::_fit_jkr_depth, m)?)?;
     m.add_function(wrap_pyfunction!(reference::_fit_power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_run_scenario, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_curve_column_kinds, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_toml_value, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_toml_document, m)?)?;
     Ok(())
 }

@@ -16,9 +16,14 @@ Fields are float64 numpy arrays of shape (n, n) indexed [row = y, column = x].
 Objects: Grid, Material, HalfSpace (u = K p), ContactState, the non-adhesive solvers
 Ccg and NestedActiveSet, the AdhesiveSolver with its step API; closed forms in
 adhesim.reference, fits in adhesim.fit, indenter heights in adhesim.geometry.
+
+One-call runs of a scenario file (the command line's TOML, a TOML string or a dict):
+run(scenario, out=None, progress=None, **overrides) -> RunResult (.curve, .summary,
+.snapshots); load(folder) reads a run folder back; sweep(scenario, vary={...}) runs cases.
 """
 
 from . import fit, geometry, reference
+from ._run import RunResult, Snapshot, load, run, sweep, sweep_table
 from ._adhesim import (
     RESULTS_REVISION,
     AdhesiveSolver,
@@ -42,10 +47,16 @@ __all__ = [
     "HalfSpace",
     "Material",
     "NestedActiveSet",
+    "RunResult",
     "SolveError",
+    "Snapshot",
     "SolveReport",
     "StepReport",
     "fit",
     "geometry",
+    "load",
     "reference",
+    "run",
+    "sweep",
+    "sweep_table",
 ]

@@ -1,0 +1,396 @@
+"""One-call runs of a scenario: ``run``, ``load``, ``sweep``.
+
+A scenario is the TOML file of the command line (docs/cli.md), given as a path, as TOML
+text, or as a nested dict with the same keys. ``run`` goes through the same Rust code as
+``adhesim run`` (reading, ``--set`` overrides, validation, the run pipeline, the
+``curve.csv`` columns and the ``summary.json`` content), so its curve is bit-identical to
+the command line's.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import json
+import os
+import re
+from pathlib import Path
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
+
+import numpy as np
+
+from . import _adhesim
+
+__all__ = ["RunResult", "Snapshot", "run", "load", "sweep"]
+
+ScenarioLike = Union[str, "os.PathLike[str]", Mapping[str, Any]]
+
+
+class Snapshot:
+    """The contact fields of one step, float64 (n, n) arrays indexed [row = y, column = x].
+
+    Attributes:
+        step: step number (0-based, as in curve.csv).
+        depth: indentation depth d of the step (> 0 into the body).
+        pressure: p (> 0 compressive, < 0 tensile).
+        displacement: u (> 0 into the body).
+        gap: g = z - d + u (>= 0; +inf where the indenter has no surface); None when
+            read back from a run folder (the command line does not write it).
+        contact: bool (n, n) contact mask; None when read back from a run folder without
+            a contact field.
+    """
+
+    __slots__ = ("step", "depth", "pressure", "displacement", "gap", "contact")
+
+    def __init__(self, step, depth, pressure, displacement, gap=None, contact=None):
+        self.step = int(step)
+        self.depth = float(depth)
+        self.pressure = pressure
+        self.displacement = displacement
+        self.gap = gap
+        self.contact = contact
+
+    def __repr__(self) -> str:
+        n = self.pressure.shape[0]
+        return f"Snapshot(step={self.step}, depth={self.depth:.6g}, fields {n}x{n})"
+
+
+class RunResult:
+    """What ``run`` and ``load`` return.
+
+    Attributes:
+        curve_arrays: dict of 1-D numpy arrays, one per ``curve.csv`` column with exactly
+            its name (docs/cli.md): int64 counts and flags, float64 quantities, str phase.
+        curve: a pandas DataFrame of the same columns when pandas is importable, else
+            ``curve_arrays``.
+        summary: dict equal to the content of ``summary.json`` (inputs, derived, results,
+            performance, warnings).
+        snapshots: list of ``Snapshot`` for the steps the scenario's ``[output]`` selects
+            (``snapshot_steps``, ``snapshot_every``).
+        out: the folder the files were written to, or None.
+    """
+
+    def __init__(self, curve_arrays, summary, snapshots, out=None):
+        self.curve_arrays: Dict[str, np.ndarray] = curve_arrays
+        self.summary: Dict[str, Any] = summary
+        self.snapshots: List[Snapshot] = snapshots
+        self.out: Optional[Path] = out
+
+    @property
+    def curve(self):
+        try:
+            import pandas
+        except ImportError:
+            return self.curve_arrays
+        return pandas.DataFrame(self.curve_arrays)
+
+    @property
+    def results(self) -> Dict[str, Any]:
+        """``summary["results"]``: max adhesive force, γ1, γ2, ... (docs/output.md)."""
+        return self.summary["results"]
+
+    def __repr__(self) -> str:
+        steps = len(next(iter(self.curve_arrays.values()))) if self.curve_arrays else 0
+        where = f", out={str(self.out)!r}" if self.out is not None else ""
+        return f"RunResult({steps} steps, {len(self.snapshots)} snapshots{where})"
+
+
+def _scenario_text(scenario: ScenarioLike):
+    """(TOML text, origin for messages, base folder of relative paths)."""
+    if isinstance(scenario, Mapping):
+        return _adhesim._toml_document(dict(scenario)), "scenario dict", Path.cwd()
+    if isinstance(scenario, os.PathLike) or (
+        isinstance(scenario, str)
+        and (os.path.isfile(scenario) or ("\n" not in scenario and "=" not in scenario))
+    ):
+        path = Path(scenario)
+        try:
+            text = path.read_text()
+        except OSError as error:
+            raise ValueError(f"cannot read scenario {path}: {error.strerror or error}") from None
+        # Relative paths inside the file resolve against its folder, as the command line's.
+        return text, str(path), path.parent if str(path.parent) else Path(".")
+    if isinstance(scenario, str):
+        return scenario, "scenario text", Path.cwd()
+    raise TypeError(
+        f"scenario must be a path, a TOML string or a dict, got {type(scenario).__name__}"
+    )
+
+
+def _override_items(overrides: Optional[Mapping[str, Any]], keywords: Mapping[str, Any]):
+    """``KEY=VALUE`` items as ``--set`` takes them (VALUE as TOML text)."""
+    merged = dict(overrides or {})
+    merged.update(keywords)
+    items = []
+    for key, value in merged.items():
+        if not isinstance(key, str):
+            raise TypeError(f"override keys must be str like 'grid.n', got {key!r}")
+        try:
+            items.append(f"{key}={_adhesim._toml_value(value)}")
+        except (TypeError, ValueError) as error:
+            raise type(error)(f"override {key}: {error}") from None
+    return items
+
+
+def _progress_callback(progress):
+    """(callback for the run, bar to close afterwards)."""
+    if progress is None or progress is False:
+        return None, None
+    if progress is True:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            return None, None
+        bar = tqdm(total=0, unit="step")
+
+        def update(step, total):
+            if bar.total != total:
+                bar.total = total
+            bar.update(step - bar.n)
+
+        return update, bar
+    if callable(progress):
+        return progress, None
+    raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
+
+
+def _write_outputs(out: Path, columns_csv: str, summary_json: str, snapshots: List[Snapshot]):
+    """curve.csv, summary.json and snapshots/step_*_{pressure,displacement}.npy, each
+    written to a temporary name and renamed (a file is always whole)."""
+    out.mkdir(parents=True, exist_ok=True)
+
+    def atomic(path: Path, write: Callable[[Any], None], mode: str):
+        partial = path.with_name(path.name + ".partial")
+        with open(partial, mode) as handle:
+            write(handle)
+        os.replace(partial, path)
+
+    atomic(out / "curve.csv", lambda f: f.write(columns_csv), "w")
+    atomic(out / "summary.json", lambda f: f.write(summary_json), "w")
+    if snapshots:
+        folder = out / "snapshots"
+        folder.mkdir(exist_ok=True)
+        for s in snapshots:
+            for name in ("pressure", "displacement"):
+                array = getattr(s, name)
+                atomic(folder / f"step_{s.step:06d}_{name}.npy", lambda f: np.save(f, array), "wb")
+
+
+def run(
+    scenario: ScenarioLike,
+    out: Union[str, "os.PathLike[str]", None] = None,
+    progress: Union[bool, Callable[[int, int], Any], None] = None,
+    overrides: Optional[Mapping[str, Any]] = None,
+    **keyword_overrides: Any,
+) -> RunResult:
+    """Runs a scenario as ``adhesim run`` does and returns its results in memory.
+
+    Args:
+        scenario: a path to a scenario TOML file (relative paths inside it, such as height
+            maps, resolve against its folder), a TOML string, or a nested dict with the
+            file's keys (``{"grid": {"n": 64, ...}, ...}``; relative paths then resolve
+            against the working directory).
+        out: optional folder to write ``curve.csv`` and ``summary.json`` into (the same
+            bytes as the command line's, apart from the timings under ``performance``)
+            and the ``.npy`` fields of the snapshot steps
+            (``snapshots/step_NNNNNN_{pressure,displacement}.npy``). Figures and the
+            contact-map PNGs are the command line's only.
+        progress: None; a callable ``progress(step, total)`` called after each step
+            (``total`` is an estimate for indentations: approach steps + as many
+            retraction steps); or True for a tqdm bar when tqdm is installed.
+        overrides: dict of dotted keys to values, like ``--set`` (``{"grid.n": 64}``).
+        **keyword_overrides: more overrides; dotted keys need ``**{"grid.n": 64}``.
+
+    Returns:
+        RunResult with ``.curve``, ``.curve_arrays``, ``.summary``, ``.snapshots``.
+
+    Raises:
+        ValueError: an unreadable file or a bad value, naming the key and the value
+            (the scenario crate's messages, as the command line prints them).
+        TypeError: a scenario or override value of an unsupported type.
+        KeyboardInterrupt: Ctrl-C, checked between steps (a step itself runs to its end:
+            the library has no cancellation hook inside a step).
+        adhesim.SolveError: a solver did not converge.
+
+    The GIL is released during the run, except for the signal check and the progress
+    callback between steps.
+    """
+    text, origin, base = _scenario_text(scenario)
+    items = _override_items(overrides, keyword_overrides)
+    callback, bar = _progress_callback(progress)
+    try:
+        raw = _adhesim._run_scenario(text, origin, str(base), items, callback)
+    finally:
+        if bar is not None:
+            bar.close()
+    curve = {name: array for name, array in raw["columns"]}
+    snapshots = [
+        Snapshot(s["step"], s["depth"], s["pressure"], s["displacement"], s["gap"], s["contact"])
+        for s in raw["snapshots"]
+    ]
+    folder = None
+    if out is not None:
+        folder = Path(out)
+        _write_outputs(folder, raw["csv"], raw["summary"], snapshots)
+    return RunResult(curve, json.loads(raw["summary"]), snapshots, folder)
+
+
+def _read_curve(path: Path) -> Dict[str, np.ndarray]:
+    kinds = _adhesim._curve_column_kinds()
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    if not rows:
+        raise ValueError(f"{path} is empty (no header)")
+    header, body = rows[0], rows[1:]
+    curve = {}
+    for k, name in enumerate(header):
+        kind = kinds.get(name, "float")
+        cells = [row[k] for row in body]
+        try:
+            if kind == "str":
+                curve[name] = np.array(cells, dtype=str)
+            elif kind == "int":
+                curve[name] = np.array([int(c) for c in cells], dtype=np.int64)
+            else:
+                curve[name] = np.array([float(c) for c in cells], dtype=np.float64)
+        except (ValueError, IndexError) as error:
+            raise ValueError(f"{path}: column {name}: {error}") from None
+    return curve
+
+
+_FIELD = re.compile(r"step_(\d+)_(pressure|displacement|gap|contact)(?:\.npy)?$")
+
+
+def _read_snapshots(folder: Path, curve: Dict[str, np.ndarray]) -> List[Snapshot]:
+    fields: Dict[int, Dict[str, np.ndarray]] = {}
+    for path in sorted(folder.glob("snapshots/step_*.npy")):
+        match = _FIELD.search(path.name)
+        if match:
+            fields.setdefault(int(match[1]), {})[match[2]] = np.load(path)
+    for npz in (folder / "fields.npz", folder / "snapshots" / "fields.npz"):
+        if npz.is_file():
+            with np.load(npz) as archive:
+                for key in archive.files:
+                    match = _FIELD.search(key)
+                    if match:
+                        fields.setdefault(int(match[1]), {})[match[2]] = archive[key]
+    depths = dict(zip(curve.get("step", []), curve.get("d", [])))
+    snapshots = []
+    for step, f in sorted(fields.items()):
+        if "pressure" not in f or "displacement" not in f:
+            continue
+        contact = f.get("contact")
+        snapshots.append(
+            Snapshot(
+                step,
+                depths.get(step, float("nan")),
+                f["pressure"],
+                f["displacement"],
+                f.get("gap"),
+                None if contact is None else contact.astype(bool),
+            )
+        )
+    return snapshots
+
+
+def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
+    """Reads a finished run folder (of ``adhesim run`` or ``run(..., out=...)``) back.
+
+    Args:
+        folder: the run folder, holding ``curve.csv`` and ``summary.json``.
+
+    Returns:
+        RunResult: the curve with the same column kinds as ``run`` gives, the summary,
+        and the snapshots whose pressure and displacement fields are there
+        (``snapshots/step_NNNNNN_{pressure,displacement}.npy`` or a ``fields.npz`` with
+        keys ``step_NNNNNN_{pressure,displacement,gap,contact}``).
+
+    Raises:
+        ValueError: a missing or unreadable ``curve.csv`` / ``summary.json``, naming it.
+    """
+    folder = Path(folder)
+    curve_path, summary_path = folder / "curve.csv", folder / "summary.json"
+    for path in (curve_path, summary_path):
+        if not path.is_file():
+            raise ValueError(f"{path} does not exist: {folder} is not a finished run folder")
+    curve = _read_curve(curve_path)
+    try:
+        summary = json.loads(summary_path.read_text())
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{summary_path}: {error}") from None
+    return RunResult(curve, summary, _read_snapshots(folder, curve), folder)
+
+
+def sweep(
+    scenario: ScenarioLike,
+    vary: Mapping[str, Iterable[Any]],
+    out: Union[str, "os.PathLike[str]", None] = None,
+    progress: Union[Callable[[int, int, Dict[str, Any]], Any], None] = None,
+    overrides: Optional[Mapping[str, Any]] = None,
+    **keyword_overrides: Any,
+) -> List[RunResult]:
+    """Runs a scenario for every combination of the values in ``vary``, one after another.
+
+    Each case is ``run(scenario, overrides=common | case)``: the cases are the Cartesian
+    product of the lists in ``vary`` (dotted keys, in the dict's order, the last key
+    varying fastest). Each case already uses every core for its FFTs; for many small
+    cases, resumable folders, sampling or shards use the command line's ``adhesim sweep``.
+
+    Args:
+        scenario: as for ``run``.
+        vary: dict of dotted key -> list of values, e.g. ``{"adhesion.work_of_adhesion":
+            [1e-5, 2e-5], "grid.n": [64, 128]}``.
+        out: optional folder; case k is written into ``out/case_KKKK/`` as ``run`` does.
+        progress: optional callable ``progress(done, total, case)`` after each case.
+        overrides, **keyword_overrides: the same for every case.
+
+    Returns:
+        list of RunResult in case order; ``result.case`` holds the case's overrides.
+        ``adhesim.sweep_table(results, "results.gamma_pulloff")`` makes columns of them.
+
+    Raises:
+        ValueError: an empty ``vary`` or a bad case (the message names the case).
+    """
+    if not vary:
+        raise ValueError("vary must name at least one key with a list of values")
+    keys = list(vary)
+    values = [list(vary[key]) for key in keys]
+    for key, options in zip(keys, values):
+        if not options:
+            raise ValueError(f"vary[{key!r}] is empty")
+    cases = [dict(zip(keys, combo)) for combo in itertools.product(*values)]
+    common = dict(overrides or {})
+    common.update(keyword_overrides)
+    results = []
+    for k, case in enumerate(cases):
+        folder = None if out is None else Path(out) / f"case_{k:04d}"
+        try:
+            result = run(scenario, out=folder, overrides={**common, **case})
+        except ValueError as error:
+            raise ValueError(f"sweep case {k} {case}: {error}") from None
+        result.case = case
+        results.append(result)
+        if progress is not None:
+            progress(k + 1, len(cases), case)
+    return results
+
+
+def sweep_table(results: List[RunResult], *columns: str) -> Dict[str, np.ndarray]:
+    """A table (dict of 1-D arrays) of sweep results: the varied keys and the requested
+    summary entries given as dotted paths (``"results.gamma_pulloff"``,
+    ``"derived.johnson_parameter"``); a null (None) entry becomes NaN."""
+    table: Dict[str, np.ndarray] = {}
+    keys = list(getattr(results[0], "case", {})) if results else []
+    for key in keys:
+        table[key] = np.array([r.case[key] for r in results])
+    for column in columns:
+        values = []
+        for r in results:
+            value: Any = r.summary
+            for part in column.split("."):
+                if not isinstance(value, dict) or part not in value:
+                    raise KeyError(f"{column}: summary has no {part!r}")
+                value = value[part]
+            values.append(np.nan if value is None else value)
+        table[column] = np.array(values)
+    return table

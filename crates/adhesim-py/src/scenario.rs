@@ -1,0 +1,330 @@
+//! One-call runs of a scenario (`adhesim.run`): the scenario crate's reading, validation
+//! and run pipeline (`adhesim_scenario::run`), the same `curve.csv` columns and
+//! `summary.json` content as the command line, with the GIL released during the run and
+//! Python's signal handlers and the progress callback run between steps.
+
+use crate::convert::field;
+use adhesim::{Observer, StepView};
+use adhesim_scenario::{CurveCell, CurveColumns, CurveKind, PhaseTimes, ProtocolSetup, ValidScenario};
+use numpy::PyArray1;
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use std::collections::BTreeSet;
+use std::ops::ControlFlow;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// The fields of one snapshot step, copied when the step is done.
+struct Snapshot {
+    step: usize,
+    depth: f64,
+    offset: f64,
+    pressure: Vec<f64>,
+    displacement: Vec<f64>,
+    contact: Vec<bool>,
+}
+
+/// Steps whose fields the scenario's `[output]` selects: `snapshot_steps` and every
+/// `snapshot_every`-th step; a translation without either gets the end of the forward
+/// stroke, as the command line's snapshots.
+fn snapshot_selection(scenario: &ValidScenario) -> (BTreeSet<usize>, usize) {
+    let output = &scenario.file.output;
+    let mut chosen: BTreeSet<usize> = output.snapshot_steps.iter().map(|&s| s as usize).collect();
+    let every = output.snapshot_every as usize;
+    if let ProtocolSetup::Translation(setup) = scenario.protocol_setup() {
+        if chosen.is_empty() && every == 0 {
+            chosen.insert(setup.protocol.approach_steps + setup.protocol.steps - 1);
+        }
+    }
+    (chosen, every)
+}
+
+/// The observer of a Python run: keeps the snapshot fields, raises the border warning,
+/// and between steps runs the signal handlers and the progress callback (with the GIL).
+struct PythonObserver {
+    progress: Option<Py<PyAny>>,
+    expected_steps: usize,
+    chosen: BTreeSet<usize>,
+    every: usize,
+    snapshots: Vec<Snapshot>,
+    warnings: Vec<String>,
+    /// The Python exception (KeyboardInterrupt, or the callback's) that stopped the run.
+    error: Option<PyErr>,
+    times: PhaseTimes,
+    last_tick: Instant,
+}
+
+impl Observer for PythonObserver {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        let record = view.record;
+        let phase = record.phase.map_or("unknown", |p| p.name());
+        *self.times.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
+        *self.times.phase_steps.entry(phase).or_default() += 1;
+        let output_start = Instant::now();
+        let step = record.step;
+        if self.chosen.contains(&step) || step.checked_rem(self.every) == Some(0) {
+            self.snapshots.push(Snapshot {
+                step,
+                depth: record.depth,
+                offset: record.offset,
+                pressure: view.state.pressure.clone(),
+                displacement: view.state.displacement.clone(),
+                contact: view.state.contact.clone(),
+            });
+        }
+        if record.touches_border && self.warnings.is_empty() {
+            self.warnings.push(adhesim_scenario::border_warning(step, record.depth));
+        }
+        let total = self.expected_steps.max(step + 1);
+        let result = Python::attach(|py| {
+            py.check_signals()?;
+            match &self.progress {
+                Some(callback) => callback.call1(py, (step + 1, total)).map(drop),
+                None => Ok(()),
+            }
+        });
+        self.times.output_seconds += output_start.elapsed().as_secs_f64();
+        self.last_tick = Instant::now();
+        match result {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(error) => {
+                self.error = Some(error);
+                ControlFlow::Break(())
+            }
+        }
+    }
+}
+
+/// Reads, overrides and validates a scenario; errors become `ValueError` with the scenario
+/// crate's message (it names the key and the value, or the file).
+fn load(text: &str, origin: &str, base: &std::path::Path, overrides: &[String]) -> PyResult<ValidScenario> {
+    adhesim_scenario::load(text, origin, base, overrides).map_err(|e| PyValueError::new_err(format!("{e:#}")))
+}
+
+/// Runs a scenario given as TOML text (see `adhesim.run`, which prepares the arguments).
+///
+/// Returns a dict: `columns` (list of (name, numpy array) in `curve.csv` order), `csv`
+/// (the text of `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of
+/// dicts of the selected steps' fields).
+#[pyfunction]
+#[pyo3(signature = (text, origin, base, overrides, progress = None))]
+pub fn _run_scenario<'py>(
+    py: Python<'py>,
+    text: &str,
+    origin: &str,
+    base: PathBuf,
+    overrides: Vec<String>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scenario = load(text, origin, &base, &overrides)?;
+    let start = Instant::now();
+    let (chosen, every) = snapshot_selection(&scenario);
+    let mut observer = PythonObserver {
+        progress,
+        expected_steps: scenario.expected_steps(),
+        chosen,
+        every,
+        snapshots: Vec::new(),
+        warnings: Vec::new(),
+        error: None,
+        times: PhaseTimes::default(),
+        last_tick: Instant::now(),
+    };
+    let outcome = py.detach(|| adhesim_scenario::run(&scenario, &mut observer));
+    let outcome = match (outcome, observer.error.take()) {
+        (_, Some(error)) => return Err(error),
+        (Ok(outcome), None) => outcome,
+        (Err(error), None) => return Err(crate::convert::SolveError::new_err(format!("run failed: {error}"))),
+    };
+    let wall_seconds = start.elapsed().as_secs_f64();
+    let counters = outcome.report.counters();
+    let times = std::mem::take(&mut observer.times);
+    let performance = adhesim_scenario::Performance::new(wall_seconds, &counters, times);
+    let summary = adhesim_scenario::Summary::new(&scenario, &outcome, performance, &observer.warnings);
+    let summary = summary.to_json().map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+
+    let columns = CurveColumns::new(scenario.jkr);
+    let result = PyDict::new(py);
+    result.set_item("columns", curve_arrays(py, &columns, &outcome.records)?)?;
+    result.set_item("csv", curve_text(&columns, &outcome.records))?;
+    result.set_item("summary", summary)?;
+    result.set_item("snapshots", snapshot_dicts(py, &scenario, &observer.snapshots)?)?;
+    Ok(result)
+}
+
+/// The `curve.csv` columns as numpy arrays: int64 counts and flags, float64 quantities,
+/// str phases.
+fn curve_arrays<'py>(
+    py: Python<'py>,
+    columns: &CurveColumns,
+    records: &[adhesim::StepRecord],
+) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for (index, column) in columns.columns().iter().enumerate() {
+        let cells = records.iter().map(|r| columns.cell(index, r));
+        let array: Bound<'py, PyAny> = match column.kind {
+            CurveKind::Float => PyArray1::from_iter(
+                py,
+                cells.map(|c| match c {
+                    CurveCell::Float(v) => v,
+                    _ => f64::NAN,
+                }),
+            )
+            .into_any(),
+            CurveKind::Integer => PyArray1::from_iter(
+                py,
+                cells.map(|c| match c {
+                    CurveCell::Integer(v) => v as i64,
+                    _ => -1,
+                }),
+            )
+            .into_any(),
+            CurveKind::Text => {
+                let texts: Vec<String> = cells.map(|c| c.to_string()).collect();
+                py.import("numpy")?.call_method1("array", (texts,))?
+            }
+        };
+        list.append((column.name, array))?;
+    }
+    Ok(list)
+}
+
+/// The text of `curve.csv`, as the command line writes it (comma-separated, no cell
+/// needs quoting, `\n` line ends).
+fn curve_text(columns: &CurveColumns, records: &[adhesim::StepRecord]) -> String {
+    use std::fmt::Write;
+    let mut text = columns.names().collect::<Vec<_>>().join(",");
+    text.push('\n');
+    for record in records {
+        for (k, cell) in columns.row(record).enumerate() {
+            if k > 0 {
+                text.push(',');
+            }
+            let _ = write!(text, "{cell}");
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// The snapshots as dicts of numpy arrays: pressure, displacement, gap = z − d + u (+inf
+/// where the indenter has no surface), contact (bool).
+fn snapshot_dicts<'py>(
+    py: Python<'py>,
+    scenario: &ValidScenario,
+    snapshots: &[Snapshot],
+) -> PyResult<Bound<'py, PyList>> {
+    let n = scenario.grid.n();
+    let list = PyList::empty(py);
+    let mut heights = scenario.heights.clone();
+    for snapshot in snapshots {
+        if let ProtocolSetup::Translation(setup) = scenario.protocol_setup() {
+            setup
+                .contact
+                .fill_heights(&scenario.grid, snapshot.offset, &mut heights);
+        }
+        let gap: Vec<f64> = heights
+            .iter()
+            .zip(&snapshot.displacement)
+            .map(|(&z, &u)| z - snapshot.depth + u)
+            .collect();
+        let dict = PyDict::new(py);
+        dict.set_item("step", snapshot.step)?;
+        dict.set_item("depth", snapshot.depth)?;
+        dict.set_item("offset", snapshot.offset)?;
+        dict.set_item("pressure", field(py, &snapshot.pressure, n)?)?;
+        dict.set_item("displacement", field(py, &snapshot.displacement, n)?)?;
+        dict.set_item("gap", field(py, &gap, n)?)?;
+        dict.set_item("contact", field(py, &snapshot.contact, n)?)?;
+        list.append(dict)?;
+    }
+    Ok(list)
+}
+
+/// Every column `curve.csv` can have, with its kind ("int", "float" or "str"), for
+/// reading a run folder back (`adhesim.load`).
+#[pyfunction]
+pub fn _curve_column_kinds(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let dict = PyDict::new(py);
+    let jkr = adhesim::analysis::reference::Jkr {
+        radius: 1.0,
+        contact_modulus: 1.0,
+        work_of_adhesion: 1.0,
+    };
+    for column in CurveColumns::new(Some(jkr)).columns() {
+        let kind = match column.kind {
+            CurveKind::Integer => "int",
+            CurveKind::Float => "float",
+            CurveKind::Text => "str",
+        };
+        dict.set_item(column.name, kind)?;
+    }
+    Ok(dict)
+}
+
+/// A Python value as TOML text (for `--set`-style overrides and dict scenarios): bool,
+/// int, float, str, list/tuple and dict (an inline table).
+#[pyfunction]
+pub fn _toml_value(value: &Bound<'_, PyAny>) -> PyResult<String> {
+    Ok(to_toml(value, "value")?.to_string())
+}
+
+/// A nested dict as the text of a TOML document.
+#[pyfunction]
+pub fn _toml_document(value: &Bound<'_, PyAny>) -> PyResult<String> {
+    match to_toml(value, "scenario")? {
+        toml::Value::Table(table) => Ok(table.to_string()),
+        _ => Err(PyTypeError::new_err("scenario must be a dict")),
+    }
+}
+
+/// Converts a Python value into a TOML value; `key` (the dotted key) names it in errors.
+fn to_toml(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    if value.is_instance_of::<PyBool>() {
+        return Ok(toml::Value::Boolean(value.extract()?));
+    }
+    if value.is_instance_of::<PyInt>() {
+        return value
+            .extract::<i64>()
+            .map(toml::Value::Integer)
+            .map_err(|_| PyValueError::new_err(format!("{key}: integer {value} does not fit in 64 bits")));
+    }
+    if value.is_instance_of::<PyFloat>() {
+        return Ok(toml::Value::Float(value.extract()?));
+    }
+    if value.is_instance_of::<PyString>() {
+        return Ok(toml::Value::String(value.extract()?));
+    }
+    if let Ok(dict) = value.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (name, item) in dict.iter() {
+            let Ok(name) = name.extract::<String>() else {
+                return Err(PyTypeError::new_err(format!("{key}: keys must be str, got {name:?}")));
+            };
+            let item = to_toml(&item, &format!("{key}.{name}"))?;
+            table.insert(name, item);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let mut items = Vec::new();
+        for (k, item) in value.try_iter()?.enumerate() {
+            items.push(to_toml(&item?, &format!("{key}[{k}]"))?);
+        }
+        return Ok(toml::Value::Array(items));
+    }
+    // numpy scalars and other numbers: a float where Python can make one.
+    if let Ok(number) = value.call_method0("__float__").and_then(|f| f.extract::<f64>()) {
+        if value.hasattr("is_integer")? || value.hasattr("dtype")? {
+            if let Ok(integer) = value.call_method0("__index__").and_then(|i| i.extract::<i64>()) {
+                return Ok(toml::Value::Integer(integer));
+            }
+        }
+        return Ok(toml::Value::Float(number));
+    }
+    let type_name = value.get_type().name()?;
+    Err(PyTypeError::new_err(format!(
+        "{key} must be a bool, int, float, str, list or dict, got {type_name}"
+    )))
+}

@@ -1,0 +1,258 @@
+"""One-call runs: `adhesim.run`, `load`, `sweep` against the command line and themselves."""
+
+import _thread
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import adhesim
+
+REPO = Path(__file__).resolve().parents[3]
+JKR_TOML = REPO / "scenarios" / "jkr.toml"
+
+# scenarios/jkr.toml as a dict (the same keys and values; comments left out).
+JKR_DICT = {
+    "grid": {"n": 128, "size": 0.25, "boundary": "free"},
+    "material": {"contact_modulus": 1.0},
+    "adhesion": {"work_of_adhesion": 3.5367765131532306e-5},
+    "indenter": {"shape": "sphere", "radius": 1.0},
+    "protocol": {"kind": "indent_pulloff", "max_depth": 5.0, "depth_unit": "jkr", "steps": 150},
+    "output": {"jump_force_threshold": 0.01},
+}
+
+# A small, quick adhesive case (n = 32, 20 approach steps) for the behaviour tests.
+SMALL = {"grid.n": 32, "protocol.steps": 20}
+
+
+def cli_binary():
+    """The `adhesim` binary named by ADHESIM_BIN (`.ci/run` sets it), or None."""
+    path = os.environ.get("ADHESIM_BIN")
+    if path and Path(path).is_file():
+        return Path(path)
+    return None
+
+
+def same_bits(a, b):
+    """Equal arrays, float64 compared by their bit patterns (NaN == NaN, -0 != +0)."""
+    a, b = np.asarray(a), np.asarray(b)
+    if a.dtype.kind == "f":
+        return a.shape == b.shape and np.array_equal(a.view(np.int64), b.view(np.int64))
+    return a.shape == b.shape and np.array_equal(a, b)
+
+
+def without_performance(summary):
+    """summary.json minus its timings and counters block (wall times differ run to run)."""
+    return {k: v for k, v in summary.items() if k != "performance"}
+
+
+@pytest.mark.skipif(cli_binary() is None, reason="ADHESIM_BIN is not set to a built `adhesim` binary")
+def test_run_of_jkr_scenario_is_bit_identical_to_the_command_line(tmp_path):
+    """scenarios/jkr.toml (n = 128, 150 approach steps) through `adhesim run` and through
+    `adhesim.run`: the same curve.csv bytes, every column's values bit for bit, and the
+    same summary.json apart from `performance` (timings)."""
+    cli_out = tmp_path / "cli"
+    subprocess.run(
+        [str(cli_binary()), "run", str(JKR_TOML), "--out", str(cli_out), "--quiet"],
+        check=True,
+    )
+    result = adhesim.run(JKR_TOML, out=tmp_path / "py")
+    cli_csv = (cli_out / "curve.csv").read_bytes()
+    assert (tmp_path / "py" / "curve.csv").read_bytes() == cli_csv
+    cli_curve = adhesim.load(cli_out).curve_arrays
+    assert list(result.curve_arrays) == list(cli_curve)
+    for name, values in cli_curve.items():
+        assert same_bits(result.curve_arrays[name], values), name
+    assert len(cli_curve["step"]) > 150
+    cli_summary = json.loads((cli_out / "summary.json").read_text())
+    assert without_performance(result.summary) == without_performance(cli_summary)
+    assert result.summary["performance"].keys() == cli_summary["performance"].keys()
+    assert result.summary == json.loads((tmp_path / "py" / "summary.json").read_text())
+
+
+def test_dict_scenario_equals_its_toml_file():
+    """The same scenario as a dict and as the TOML file gives identical curves and
+    summaries (n = 32 overridden in both to keep it quick)."""
+    from_file = adhesim.run(JKR_TOML, **SMALL)
+    from_dict = adhesim.run(JKR_DICT, overrides=SMALL)
+    assert list(from_dict.curve_arrays) == list(from_file.curve_arrays)
+    for name, values in from_file.curve_arrays.items():
+        assert same_bits(from_dict.curve_arrays[name], values), name
+    assert without_performance(from_dict.summary) == without_performance(from_file.summary)
+    # and as TOML text
+    from_text = adhesim.run(JKR_TOML.read_text(), overrides=SMALL)
+    assert same_bits(from_text.curve_arrays["force_normal"], from_file.curve_arrays["force_normal"])
+
+
+def test_overrides_take_dotted_keys_like_set():
+    result = adhesim.run(JKR_TOML, overrides={"grid.n": 32}, **{"protocol.steps": 20})
+    assert result.summary["inputs"]["grid"]["n"] == 32
+    assert result.summary["inputs"]["protocol"]["steps"] == 20
+    assert result.curve_arrays["phase"][0] == "approach"
+    assert result.curve_arrays["step"].dtype == np.int64
+    assert result.curve_arrays["force_normal"].dtype == np.float64
+    # the JKR run pulls off: some tensile force, and the normalised columns exist
+    assert result.curve_arrays["force_norm"].min() < -0.5
+
+
+@pytest.mark.parametrize(
+    "scenario, overrides, names",
+    [
+        (JKR_TOML, {"indenter.radius": -1.0}, ["indenter.radius", "-1"]),
+        (JKR_TOML, {"indenter.radiu": 1.0}, ["indenter.radiu"]),
+        (JKR_TOML, {"grid.n": "many"}, ["grid.n", "many"]),
+        ({**JKR_DICT, "indenter": {"shape": "sphere", "radius": -2.0}}, {}, ["indenter.radius", "-2"]),
+        ({**JKR_DICT, "solver": {"tolerance": 1.0}}, {}, ["solver"]),
+        ("[grid]\nn = 32\nsize = 0.25\n", {}, ["material"]),
+        ("no_such_file.toml", {}, ["no_such_file.toml"]),
+    ],
+)
+def test_bad_input_raises_value_error_naming_the_key(scenario, overrides, names):
+    with pytest.raises(ValueError) as error:
+        adhesim.run(scenario, overrides=overrides)
+    message = str(error.value)
+    for name in names:
+        assert name in message, message
+
+
+def test_bad_types_raise_type_error():
+    with pytest.raises(TypeError, match="scenario must be"):
+        adhesim.run(42)
+    with pytest.raises(TypeError, match="grid.n"):
+        adhesim.run(JKR_TOML, overrides={"grid.n": object()})
+    with pytest.raises(TypeError, match="progress"):
+        adhesim.run(JKR_TOML, progress="yes", **SMALL)
+
+
+def test_progress_callback_sees_every_step_and_can_stop_the_run():
+    calls = []
+    result = adhesim.run(JKR_TOML, progress=lambda step, total: calls.append((step, total)), **SMALL)
+    steps = len(result.curve_arrays["step"])
+    assert [c[0] for c in calls] == list(range(1, steps + 1))
+    assert all(total >= step for step, total in calls)
+
+    def stop(step, total):
+        if step == 5:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        adhesim.run(JKR_TOML, progress=stop, **SMALL)
+
+
+@pytest.fixture
+def sigint_raises_keyboard_interrupt():
+    """Python turns SIGINT into KeyboardInterrupt only if its parent did not ignore the
+    signal (a CI runner may start it with SIGINT ignored): install the default handler,
+    as an interactive session has it, for the test's duration."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_interrupt_main_stops_a_run(sigint_raises_keyboard_interrupt):
+    """_thread.interrupt_main() from another thread (what Ctrl-C does) during a run of
+    minutes (jkr.toml with 20 000 approach steps at n = 64) raises KeyboardInterrupt after
+    the running step; the progress callback fails the test if that has not happened
+    after 20 s."""
+    start = time.monotonic()
+
+    def give_up(step, total):
+        if time.monotonic() - start > 20.0:
+            raise RuntimeError(f"not interrupted after 20 s ({step} steps)")
+
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            adhesim.run(JKR_TOML, progress=give_up, **{"grid.n": 64, "protocol.steps": 20000})
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10.0
+
+
+def test_snapshots_and_load_round_trip(tmp_path):
+    """Snapshot steps of [output] come back as 2-D fields; a run written with out= reads
+    back with load() as the same curve, summary and pressure/displacement fields."""
+    result = adhesim.run(JKR_TOML, out=tmp_path, **SMALL, **{"output.snapshot_steps": [3, 15]})
+    assert [s.step for s in result.snapshots] == [3, 15]
+    snapshot = result.snapshots[1]
+    n = 32
+    assert snapshot.pressure.shape == (n, n) and snapshot.contact.dtype == bool
+    assert snapshot.depth == result.curve_arrays["d"][15]
+    # the fields are those of the step: Δ²Σp is the step's force, the gap closes in contact
+    dx = 0.25 / n
+    assert dx * dx * snapshot.pressure.sum() == pytest.approx(result.curve_arrays["force_normal"][15], rel=1e-12)
+    assert np.abs(snapshot.gap[snapshot.contact]).max() < 1e-6 * abs(snapshot.depth)
+    assert snapshot.contact.sum() == result.curve_arrays["n_contact"][15]
+
+    loaded = adhesim.load(tmp_path)
+    for name, values in result.curve_arrays.items():
+        assert same_bits(loaded.curve_arrays[name], values), name
+    assert loaded.summary == result.summary
+    assert [s.step for s in loaded.snapshots] == [3, 15]
+    assert same_bits(loaded.snapshots[1].pressure, snapshot.pressure)
+    assert same_bits(loaded.snapshots[1].displacement, snapshot.displacement)
+    with pytest.raises(ValueError, match="curve.csv"):
+        adhesim.load(tmp_path / "nothing")
+
+
+def test_sweep_runs_every_case():
+    cases = adhesim.sweep(JKR_TOML, vary={"adhesion.work_of_adhesion": [2e-5, 4e-5]}, **SMALL)
+    assert [c.case for c in cases] == [{"adhesion.work_of_adhesion": 2e-5}, {"adhesion.work_of_adhesion": 4e-5}]
+    single = adhesim.run(JKR_TOML, **SMALL, **{"adhesion.work_of_adhesion": 4e-5})
+    assert same_bits(cases[1].curve_arrays["force_normal"], single.curve_arrays["force_normal"])
+    table = adhesim.sweep_table(cases, "results.max_adhesive_force")
+    # the pull-off force grows with γ (JKR: F ∝ γ)
+    assert table["results.max_adhesive_force"][1] > 1.5 * table["results.max_adhesive_force"][0]
+    with pytest.raises(ValueError, match="sweep case 0"):
+        adhesim.sweep(JKR_TOML, vary={"grid.n": [-4]})
+
+
+def rss_kib():
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    raise RuntimeError("no VmRSS")
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
+def test_no_memory_growth_over_repeated_runs():
+    """100 small runs (n = 32, 5 approach steps, one snapshot each). After 10 warm-up
+    runs the resident size may grow by at most 8 MiB. Each run allocates its operator
+    (zero-padded 64 x 64 FFT buffers of 32-64 KiB each, plans, kernel spectrum), solver
+    vectors, fields and result arrays, several hundred KiB in all, so leaking one run's
+    allocations would add tens of MiB over 100 runs; 8 MiB leaves room for the
+    allocator's and numpy's caches."""
+
+    def once():
+        result = adhesim.run(JKR_TOML, **{"grid.n": 32, "protocol.steps": 5, "output.snapshot_steps": [3]})
+        return result.curve_arrays["force_normal"].sum()
+
+    for _ in range(10):
+        once()
+    before = rss_kib()
+    for _ in range(100):
+        once()
+    growth = rss_kib() - before
+    assert growth < 8192, f"RSS grew by {growth} KiB over 100 runs"
+
+
+def test_progress_true_draws_a_tqdm_bar_when_tqdm_is_there(capsys):
+    """progress=True: a tqdm bar on stderr where tqdm is importable, silently none
+    otherwise; the results are the same either way."""
+    plain = adhesim.run(JKR_TOML, **SMALL)
+    with_bar = adhesim.run(JKR_TOML, progress=True, **SMALL)
+    assert same_bits(with_bar.curve_arrays["force_normal"], plain.curve_arrays["force_normal"])
+    try:
+        import tqdm  # noqa: F401
+    except ImportError:
+        return
+    assert "step" in capsys.readouterr().err
