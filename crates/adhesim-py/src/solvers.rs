@@ -54,6 +54,32 @@ fn state_for(py: Python<'_>, state: Option<Py<ContactState>>, grid: &adhesim::Gr
     }
 }
 
+/// Runs a non-adhesive `solve` on the operator and the state with the GIL released, then
+/// records the heights and depth in the state (for its `gap`) and reports.
+fn solve_released<F>(
+    py: Python<'_>,
+    operator: &Py<HalfSpace>,
+    heights: &[f64],
+    state: Py<ContactState>,
+    solve: F,
+) -> PyResult<SolveReport>
+where
+    F: Send
+        + FnOnce(
+            &mut adhesim::HalfSpace,
+            &[f64],
+            &mut adhesim::ContactState,
+        ) -> Result<adhesim::SolveReport, adhesim::SolveError>,
+{
+    let mut operator = operator.bind(py).try_borrow_mut()?;
+    let mut guard = state.bind(py).try_borrow_mut()?;
+    let (op, st) = (&mut operator.inner, &mut guard.inner);
+    let report = py.detach(|| solve(op, heights, st)).map_err(solve_error)?;
+    guard.record(heights, report.depth);
+    drop(guard);
+    Ok(solve_report(report, state))
+}
+
 fn solve_report(report: adhesim::SolveReport, state: Py<ContactState>) -> SolveReport {
     SolveReport {
         iterations: report.iterations,
@@ -138,16 +164,10 @@ impl Ccg {
         };
         read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
         let state = state_for(py, state, &self.grid)?;
-        let mut operator = self.operator.bind(py).try_borrow_mut()?;
-        let mut guard = state.bind(py).try_borrow_mut()?;
-        let (solver, heights) = (&mut self.inner, &self.heights);
-        let (op, st) = (&mut operator.inner, &mut guard.inner);
-        let report = py
-            .detach(|| solver.solve(op, heights, control, st))
-            .map_err(solve_error)?;
-        guard.record(&self.heights, report.depth);
-        drop(guard);
-        Ok(solve_report(report, state))
+        let solver = &mut self.inner;
+        solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
+            solver.solve(op, heights, control, st)
+        })
     }
 }
 
@@ -234,16 +254,10 @@ impl NestedActiveSet {
         let depth = finite("depth", depth)?;
         read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
         let state = state_for(py, state, &self.grid)?;
-        let mut operator = self.operator.bind(py).try_borrow_mut()?;
-        let mut guard = state.bind(py).try_borrow_mut()?;
-        let (solver, heights) = (&mut self.inner, &self.heights);
-        let (op, st) = (&mut operator.inner, &mut guard.inner);
-        let report = py
-            .detach(|| solver.solve(op, heights, depth, st))
-            .map_err(solve_error)?;
-        guard.record(&self.heights, report.depth);
-        drop(guard);
-        Ok(solve_report(report, state))
+        let solver = &mut self.inner;
+        solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
+            solver.solve(op, heights, depth, st)
+        })
     }
 
     /// Grid levels below the fine one used by the continuation.

@@ -26,16 +26,6 @@ def long_sequence():
     return grid, solver, heights, np.tile(cycle, 200_000 // cycle.size)
 
 
-@pytest.fixture
-def sigint_raises_keyboard_interrupt():
-    """Python turns SIGINT into KeyboardInterrupt only if its parent did not ignore the
-    signal (a CI runner may start it with SIGINT ignored): install the default handler,
-    as an interactive session has it, for the test's duration."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
 def give_up_after(seconds):
     """A progress callback that ends a sequence the interrupt failed to stop."""
     start = time.monotonic()
@@ -103,16 +93,8 @@ def test_gil_is_released_during_a_solve():
     assert ticks > 10
 
 
-def rss_kib():
-    with open("/proc/self/status") as status:
-        for line in status:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    raise RuntimeError("no VmRSS")
-
-
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
-def test_no_memory_growth_over_repeated_solves():
+def test_no_memory_growth_over_repeated_solves(resident_kib):
     """100 small solves, each with new objects (grid, operator, solver, state: ~2 MB of
     buffers and FFT plans at n = 64) and numpy results. After 20 warm-up solves the
     resident size may grow by at most 4 MiB: leaking one operator per solve would add
@@ -130,8 +112,8 @@ def test_no_memory_growth_over_repeated_solves():
 
     for _ in range(20):
         solve()
-    before = rss_kib()
+    before = resident_kib()
     for _ in range(100):
         solve()
-    growth = rss_kib() - before
+    growth = resident_kib() - before
     assert growth < 4096, f"RSS grew by {growth} KiB over 100 solves"

@@ -3,7 +3,6 @@
 import _thread
 import json
 import os
-import signal
 import subprocess
 import sys
 import threading
@@ -146,16 +145,6 @@ def test_progress_callback_sees_every_step_and_can_stop_the_run():
         adhesim.run(JKR_TOML, progress=stop, **SMALL)
 
 
-@pytest.fixture
-def sigint_raises_keyboard_interrupt():
-    """Python turns SIGINT into KeyboardInterrupt only if its parent did not ignore the
-    signal (a CI runner may start it with SIGINT ignored): install the default handler,
-    as an interactive session has it, for the test's duration."""
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, previous)
-
-
 def test_interrupt_main_stops_a_run(sigint_raises_keyboard_interrupt):
     """_thread.interrupt_main() from another thread (what Ctrl-C does) during a run of
     minutes (jkr.toml with 20 000 approach steps at n = 64) raises KeyboardInterrupt after
@@ -215,16 +204,8 @@ def test_sweep_runs_every_case():
         adhesim.sweep(JKR_TOML, vary={"grid.n": [-4]})
 
 
-def rss_kib():
-    with open("/proc/self/status") as status:
-        for line in status:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    raise RuntimeError("no VmRSS")
-
-
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
-def test_no_memory_growth_over_repeated_runs():
+def test_no_memory_growth_over_repeated_runs(resident_kib):
     """100 small runs (n = 32, 5 approach steps, one snapshot each). After 10 warm-up
     runs the resident size may grow by at most 8 MiB. Each run allocates its operator
     (zero-padded 64 x 64 FFT buffers of 32-64 KiB each, plans, kernel spectrum), solver
@@ -238,10 +219,10 @@ def test_no_memory_growth_over_repeated_runs():
 
     for _ in range(10):
         once()
-    before = rss_kib()
+    before = resident_kib()
     for _ in range(100):
         once()
-    growth = rss_kib() - before
+    growth = resident_kib() - before
     assert growth < 8192, f"RSS grew by {growth} KiB over 100 runs"
 
 

@@ -2,7 +2,7 @@
 signs: pressure > 0 compressive, depth > 0 into the body, displacement > 0 into the body,
 fields float64 of shape (n, n) indexed [row = y, column = x])."""
 
-from typing import Callable, Dict, Literal, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -169,3 +169,13 @@ def _fit_jkr_depth(
     contact_radius: npt.NDArray[np.float64], depth: npt.NDArray[np.float64], radius: float, contact_modulus: float
 ) -> Dict[str, float]: ...
 def _fit_power_law(t: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> Tuple[float, float]: ...
+def _run_scenario(
+    text: str,
+    origin: str,
+    base: str,
+    overrides: List[str],
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> Dict[str, Any]: ...
+def _curve_column_kinds() -> Dict[str, str]: ...
+def _toml_value(value: object) -> str: ...
+def _toml_document(value: Mapping[str, object]) -> str: ...

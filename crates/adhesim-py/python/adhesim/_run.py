@@ -40,8 +40,6 @@ class Snapshot:
             a contact field.
     """
 
-    __slots__ = ("step", "depth", "pressure", "displacement", "gap", "contact")
-
     def __init__(self, step, depth, pressure, displacement, gap=None, contact=None):
         self.step = int(step)
         self.depth = float(depth)
@@ -78,6 +76,7 @@ class RunResult:
 
     @property
     def curve(self):
+        """The curve as a pandas DataFrame when pandas is importable, else ``curve_arrays``."""
         try:
             import pandas
         except ImportError:
