@@ -96,19 +96,35 @@ impl Observer for PythonObserver {
     }
 }
 
-/// Reads, overrides and validates a scenario; errors become `ValueError` with the scenario
-/// crate's message (it names the key and the value, or the file).
-fn load(text: &str, origin: &str, base: &std::path::Path, overrides: &[String]) -> PyResult<ValidScenario> {
-    adhesim_scenario::load(text, origin, base, overrides).map_err(|e| PyValueError::new_err(format!("{e:#}")))
+/// Reads, overrides and validates a scenario, refusing before any allocation one whose
+/// memory estimate exceeds `available_memory` bytes; errors become `ValueError` with the
+/// scenario crate's message (it names the key and the value, or the file).
+fn load(
+    text: &str,
+    origin: &str,
+    base: &std::path::Path,
+    overrides: &[String],
+    available_memory: Option<u64>,
+) -> PyResult<ValidScenario> {
+    adhesim_scenario::load_within(text, origin, base, overrides, available_memory).map_err(|e| {
+        let hint = if e.to_string().contains("of memory available") {
+            " (refused before allocating; pass allow_large=True to run anyway)"
+        } else {
+            ""
+        };
+        PyValueError::new_err(format!("{e:#}{hint}"))
+    })
 }
 
 /// Runs a scenario given as TOML text (see `adhesim.run`, which prepares the arguments).
 ///
-/// Returns a dict: `columns` (list of (name, numpy array) in `curve.csv` order), `csv`
+/// `available_memory` (bytes, `None`: no check) refuses a scenario whose memory estimate
+/// exceeds it, as the command line does. Returns a dict: `columns` (list of (name, numpy
+/// array) in `curve.csv` order), `csv`
 /// (the text of `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of
 /// dicts of the selected steps' fields).
 #[pyfunction]
-#[pyo3(signature = (text, origin, base, overrides, progress = None))]
+#[pyo3(signature = (text, origin, base, overrides, progress = None, available_memory = None))]
 pub fn _run_scenario<'py>(
     py: Python<'py>,
     text: &str,
@@ -116,8 +132,9 @@ pub fn _run_scenario<'py>(
     base: PathBuf,
     overrides: Vec<String>,
     progress: Option<Py<PyAny>>,
+    available_memory: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let scenario = load(text, origin, &base, &overrides)?;
+    let scenario = load(text, origin, &base, &overrides, available_memory)?;
     let start = Instant::now();
     let (chosen, every) = snapshot_selection(&scenario);
     let mut observer = PythonObserver {

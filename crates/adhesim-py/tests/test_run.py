@@ -237,3 +237,18 @@ def test_progress_true_draws_a_tqdm_bar_when_tqdm_is_there(capsys):
     except ImportError:
         return
     assert "step" in capsys.readouterr().err
+
+
+def test_memory_guard_refuses_before_allocating(monkeypatch):
+    """As on the command line, a scenario whose memory estimate exceeds the memory
+    available (here stated as 1 MB through ADHESIM_MEMORY_AVAILABLE) is refused with a
+    ValueError naming grid.n, not attempted (an allocation failure would abort the
+    interpreter); allow_large=True runs it anyway."""
+    monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", str(1_000_000))
+    with pytest.raises(ValueError, match=r"grid\.n = 128 .*allow_large=True"):
+        adhesim.run(JKR_TOML)
+    result = adhesim.run(JKR_TOML, allow_large=True, **SMALL)
+    assert len(result.curve_arrays["step"]) > 20
+    monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", "lots")
+    with pytest.raises(ValueError, match="ADHESIM_MEMORY_AVAILABLE"):
+        adhesim.run(JKR_TOML, **SMALL)

@@ -153,6 +153,26 @@ def _progress_callback(progress):
     raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
 
 
+def _available_memory():
+    """Bytes of memory available to a run, as the command line's guard reads them:
+    ADHESIM_MEMORY_AVAILABLE where set, else MemAvailable of /proc/meminfo; None (no
+    check) where neither is there."""
+    value = os.environ.get("ADHESIM_MEMORY_AVAILABLE")
+    if value is not None:
+        try:
+            return int(value.strip())
+        except ValueError:
+            raise ValueError(f"ADHESIM_MEMORY_AVAILABLE must be a number of bytes, got {value!r}") from None
+    try:
+        with open("/proc/meminfo") as meminfo:
+            for line in meminfo:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return None
+
+
 def _write_outputs(out: Path, columns_csv: str, summary_json: str, snapshots: List[Snapshot]):
     """curve.csv, summary.json and snapshots/step_*_{pressure,displacement}.npy, each
     written to a temporary name and renamed (a file is always whole)."""
@@ -180,6 +200,7 @@ def run(
     out: Union[str, "os.PathLike[str]", None] = None,
     progress: Union[bool, Callable[[int, int], Any], None] = None,
     overrides: Optional[Mapping[str, Any]] = None,
+    allow_large: bool = False,
     **keyword_overrides: Any,
 ) -> RunResult:
     """Runs a scenario as ``adhesim run`` does and returns its results in memory.
@@ -198,6 +219,10 @@ def run(
             (``total`` is an estimate for indentations: approach steps + as many
             retraction steps); or True for a tqdm bar when tqdm is installed.
         overrides: dict of dotted keys to values, like ``--set`` (``{"grid.n": 64}``).
+        allow_large: run even when the memory estimate of the grid exceeds the memory
+            available (``MemAvailable`` of /proc/meminfo, or ``ADHESIM_MEMORY_AVAILABLE``),
+            like the command line's ``--allow-large``; by default such a scenario is
+            refused with a ValueError before anything is allocated.
         **keyword_overrides: more overrides; dotted keys need ``**{"grid.n": 64}``.
 
     Returns:
@@ -218,7 +243,8 @@ def run(
     items = _override_items(overrides, keyword_overrides)
     callback, bar = _progress_callback(progress)
     try:
-        raw = _adhesim._run_scenario(text, origin, str(base), items, callback)
+        memory = None if allow_large else _available_memory()
+        raw = _adhesim._run_scenario(text, origin, str(base), items, callback, memory)
     finally:
         if bar is not None:
             bar.close()
@@ -326,6 +352,7 @@ def sweep(
     out: Union[str, "os.PathLike[str]", None] = None,
     progress: Union[Callable[[int, int, Dict[str, Any]], Any], None] = None,
     overrides: Optional[Mapping[str, Any]] = None,
+    allow_large: bool = False,
     **keyword_overrides: Any,
 ) -> List[RunResult]:
     """Runs a scenario for every combination of the values in ``vary``, one after another.
@@ -341,7 +368,7 @@ def sweep(
             [1e-5, 2e-5], "grid.n": [64, 128]}``.
         out: optional folder; case k is written into ``out/case_KKKK/`` as ``run`` does.
         progress: optional callable ``progress(done, total, case)`` after each case.
-        overrides, **keyword_overrides: the same for every case.
+        overrides, allow_large, **keyword_overrides: as for ``run``, the same for every case.
 
     Returns:
         list of RunResult in case order; ``result.case`` holds the case's overrides.
@@ -364,7 +391,7 @@ def sweep(
     for k, case in enumerate(cases):
         folder = None if out is None else Path(out) / f"case_{k:04d}"
         try:
-            result = run(scenario, out=folder, overrides={**common, **case})
+            result = run(scenario, out=folder, overrides={**common, **case}, allow_large=allow_large)
         except ValueError as error:
             raise ValueError(f"sweep case {k} {case}: {error}") from None
         result.case = case
