@@ -261,3 +261,22 @@ def test_memory_guard_refuses_before_allocating(monkeypatch):
     monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", "lots")
     with pytest.raises(ValueError, match="ADHESIM_MEMORY_AVAILABLE"):
         adhesim.run(JKR_TOML, **SMALL)
+
+
+def test_runs_in_threads_give_the_results_of_sequential_runs():
+    """The GIL is released during a run: two runs in two threads proceed together and
+    give the same bits as one after the other (each run owns its operator and state)."""
+    cases = [{**SMALL, "adhesion.work_of_adhesion": gamma} for gamma in (2e-5, 4e-5)]
+    sequential = [adhesim.run(JKR_TOML, overrides=case) for case in cases]
+    threaded = [None, None]
+
+    def work(k):
+        threaded[k] = adhesim.run(JKR_TOML, overrides=cases[k])
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for one, other in zip(sequential, threaded):
+        assert same_bits(one.curve_arrays["force_normal"], other.curve_arrays["force_normal"])
