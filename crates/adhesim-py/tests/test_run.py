@@ -280,3 +280,29 @@ def test_runs_in_threads_give_the_results_of_sequential_runs():
         thread.join()
     for one, other in zip(sequential, threaded):
         assert same_bits(one.curve_arrays["force_normal"], other.curve_arrays["force_normal"])
+
+
+def test_out_folder_is_kept_as_the_command_line_keeps_it(tmp_path):
+    """out= refuses a non-empty folder that is not a run folder (before running), unless
+    force=True; rerunning into a run folder removes the previous run's snapshots, so
+    load() never mixes two runs; the CLI accepts the folder as a run folder."""
+    foreign = tmp_path / "notes"
+    foreign.mkdir()
+    (foreign / "thesis.tex").write_text("keep me")
+    with pytest.raises(ValueError, match="not an adhesim run folder"):
+        adhesim.run(JKR_TOML, out=foreign, **SMALL)
+    assert not (foreign / "curve.csv").exists()
+    adhesim.run(JKR_TOML, out=foreign, force=True, **SMALL)
+    assert (foreign / "thesis.tex").read_text() == "keep me"
+
+    folder = tmp_path / "run"
+    adhesim.run(JKR_TOML, out=folder, **SMALL, **{"output.snapshot_steps": [3]})
+    assert [s.step for s in adhesim.load(folder).snapshots] == [3]
+    adhesim.run(JKR_TOML, out=folder, **SMALL)
+    assert adhesim.load(folder).snapshots == []
+    assert (folder / ".adhesim-run").read_text().startswith("adhesim run folder\nresults_revision = ")
+    if cli_binary() is not None:
+        subprocess.run(
+            [str(cli_binary()), "run", str(JKR_TOML), "--out", str(folder), "--quiet", "--set", "grid.n=32"],
+            check=True,
+        )

@@ -173,10 +173,42 @@ def _available_memory():
     return None
 
 
+# The run folder's marker and outputs, as the command line keeps them
+# (crates/adhesim-cli/src/commands/folder.rs): a folder that is not empty must hold the
+# marker, and the previous run's outputs are removed before the new ones are written.
+RUN_MARKER = ".adhesim-run"
+RUN_OUTPUTS = ("curve.csv", "curve.csv.partial", "summary.json", "plots", "snapshots")
+
+
+def _check_run_folder(out: Path, force: bool):
+    """Refuses, before the run, a non-empty folder that is not a run folder."""
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"out={str(out)!r} exists and is not a folder")
+    if out.is_dir() and any(out.iterdir()) and not (out / RUN_MARKER).is_file() and not force:
+        raise ValueError(
+            f"output folder {out} is not empty and is not an adhesim run folder (no {RUN_MARKER}); "
+            "choose another out, or pass force=True to write into it (its curve.csv, summary.json, "
+            "plots/ and snapshots/ are then replaced)"
+        )
+
+
 def _write_outputs(out: Path, columns_csv: str, summary_json: str, snapshots: List[Snapshot]):
-    """curve.csv, summary.json and snapshots/step_*_{pressure,displacement}.npy, each
-    written to a temporary name and renamed (a file is always whole)."""
+    """The run marker, curve.csv, summary.json and snapshots/step_*_{pressure,
+    displacement}.npy, each written to a temporary name and renamed (a file is always
+    whole), after removing the previous run's outputs."""
+    import shutil
+
     out.mkdir(parents=True, exist_ok=True)
+    for name in RUN_OUTPUTS:
+        path = out / name
+        if path.is_dir() and not path.is_symlink():
+            shutil.rmtree(path)
+        elif path.exists() or path.is_symlink():
+            path.unlink()
+    version = json.loads(summary_json)["adhesim_version"]
+    (out / RUN_MARKER).write_text(
+        f"adhesim run folder\nresults_revision = {_adhesim.RESULTS_REVISION}\nadhesim_version = {version}\n"
+    )
 
     def atomic(path: Path, write: Callable[[Any], None], mode: str):
         partial = path.with_name(path.name + ".partial")
@@ -201,6 +233,7 @@ def run(
     progress: Union[bool, Callable[[int, int], Any], None] = None,
     overrides: Optional[Mapping[str, Any]] = None,
     allow_large: bool = False,
+    force: bool = False,
     **keyword_overrides: Any,
 ) -> RunResult:
     """Runs a scenario as ``adhesim run`` does and returns its results in memory.
@@ -214,7 +247,9 @@ def run(
             bytes as the command line's, apart from the timings under ``performance``)
             and the ``.npy`` fields of the snapshot steps
             (``snapshots/step_NNNNNN_{pressure,displacement}.npy``). Figures and the
-            contact-map PNGs are the command line's only.
+            contact-map PNGs are the command line's only. As with ``adhesim run --out``,
+            the folder must be new, empty or a run folder (it gets the ``.adhesim-run``
+            marker; the previous run's outputs are removed first).
         progress: None; a callable ``progress(step, total)`` called after each step
             (``total`` is an estimate for indentations: approach steps + as many
             retraction steps); or True for a tqdm bar when tqdm is installed.
@@ -223,6 +258,8 @@ def run(
             available (``MemAvailable`` of /proc/meminfo, or ``ADHESIM_MEMORY_AVAILABLE``),
             like the command line's ``--allow-large``; by default such a scenario is
             refused with a ValueError before anything is allocated.
+        force: write into a non-empty ``out`` that is not a run folder (its outputs are
+            replaced), like ``--force``.
         **keyword_overrides: more overrides; dotted keys need ``**{"grid.n": 64}``.
 
     Returns:
@@ -241,6 +278,8 @@ def run(
     """
     text, origin, base = _scenario_text(scenario)
     items = _override_items(overrides, keyword_overrides)
+    if out is not None:
+        _check_run_folder(Path(out), force)
     callback, bar = _progress_callback(progress)
     try:
         memory = None if allow_large else _available_memory()
