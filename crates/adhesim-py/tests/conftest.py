@@ -24,6 +24,17 @@ def _resident_kib():
 
 
 @pytest.fixture
-def resident_kib():
-    """A function giving the resident set size of this process in KiB (Linux)."""
-    return _resident_kib
+def resident_growth_kib():
+    """A function `growth(call, warm_up, repeats)`: calls `call()` `warm_up` times, then
+    `repeats` times, and gives how much the resident set size (KiB, Linux) grew over the
+    repeats."""
+
+    def growth(call, warm_up, repeats):
+        for _ in range(warm_up):
+            call()
+        before = _resident_kib()
+        for _ in range(repeats):
+            call()
+        return _resident_kib() - before
+
+    return growth

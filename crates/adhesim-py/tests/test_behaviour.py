@@ -94,7 +94,7 @@ def test_gil_is_released_during_a_solve():
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
-def test_no_memory_growth_over_repeated_solves(resident_kib):
+def test_no_memory_growth_over_repeated_solves(resident_growth_kib):
     """100 small solves, each with new objects (grid, operator, solver, state: ~2 MB of
     buffers and FFT plans at n = 64) and numpy results. After 20 warm-up solves the
     resident size may grow by at most 4 MiB: leaking one operator per solve would add
@@ -110,10 +110,5 @@ def test_no_memory_growth_over_repeated_solves(resident_kib):
         solver.step(heights, 0.01, state)
         return state.pressure.sum() + state.gap.sum() + operator.apply(state.pressure).sum()
 
-    for _ in range(20):
-        solve()
-    before = resident_kib()
-    for _ in range(100):
-        solve()
-    growth = resident_kib() - before
+    growth = resident_growth_kib(solve, warm_up=20, repeats=100)
     assert growth < 4096, f"RSS grew by {growth} KiB over 100 solves"

@@ -214,7 +214,7 @@ def test_sweep_runs_every_case():
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc/self/status")
-def test_no_memory_growth_over_repeated_runs(resident_kib):
+def test_no_memory_growth_over_repeated_runs(resident_growth_kib):
     """100 small runs (n = 32, 5 approach steps, one snapshot each). After 10 warm-up
     runs the resident size may grow by at most 8 MiB. Each run allocates its operator
     (zero-padded 64 x 64 FFT buffers of 32-64 KiB each, plans, kernel spectrum), solver
@@ -226,12 +226,7 @@ def test_no_memory_growth_over_repeated_runs(resident_kib):
         result = adhesim.run(JKR_TOML, **{"grid.n": 32, "protocol.steps": 5, "output.snapshot_steps": [3]})
         return result.curve_arrays["force_normal"].sum()
 
-    for _ in range(10):
-        once()
-    before = resident_kib()
-    for _ in range(100):
-        once()
-    growth = resident_kib() - before
+    growth = resident_growth_kib(once, warm_up=10, repeats=100)
     assert growth < 8192, f"RSS grew by {growth} KiB over 100 runs"
 
 
