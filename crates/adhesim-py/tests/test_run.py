@@ -3,6 +3,7 @@
 import _thread
 import json
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -154,18 +155,24 @@ def test_progress_callback_sees_every_step_and_can_stop_the_run():
         adhesim.run(JKR_TOML, progress=stop, **SMALL)
 
 
-def test_interrupt_main_stops_a_run(sigint_raises_keyboard_interrupt):
-    """_thread.interrupt_main() from another thread (what Ctrl-C does) during a run of
-    minutes (jkr.toml with 20 000 approach steps at n = 64) raises KeyboardInterrupt after
-    the running step; the progress callback fails the test if that has not happened
-    after 20 s."""
+def interrupt_with_sigint():
+    """A real SIGINT to the main thread, as Ctrl-C in a terminal sends it."""
+    signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
+
+
+@pytest.mark.parametrize("interrupt", [_thread.interrupt_main, interrupt_with_sigint])
+def test_interrupt_stops_a_run(sigint_raises_keyboard_interrupt, interrupt):
+    """_thread.interrupt_main() or a SIGINT from another thread (what Ctrl-C does) during
+    a run of minutes (jkr.toml with 20 000 approach steps at n = 64) raises
+    KeyboardInterrupt after the running step; the progress callback fails the test if
+    that has not happened after 20 s."""
     start = time.monotonic()
 
     def give_up(step, total):
         if time.monotonic() - start > 20.0:
             raise RuntimeError(f"not interrupted after 20 s ({step} steps)")
 
-    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer = threading.Timer(0.5, interrupt)
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
