@@ -308,3 +308,39 @@ def test_out_folder_is_kept_as_the_command_line_keeps_it(tmp_path):
             [str(cli_binary()), "run", str(JKR_TOML), "--out", str(folder), "--quiet", "--set", "grid.n=32"],
             check=True,
         )
+
+
+def test_sweep_in_parallel_gives_the_sequential_results():
+    """jobs=2 runs the cases in two threads; the results come back in case order with the
+    bits of the sequential sweep; a bad case still names itself."""
+    vary = {"adhesion.work_of_adhesion": [2e-5, 3e-5, 4e-5]}
+    sequential = adhesim.sweep(JKR_TOML, vary=vary, **SMALL)
+    done = []
+    parallel = adhesim.sweep(JKR_TOML, vary=vary, jobs=2, progress=lambda d, t, c: done.append(d), **SMALL)
+    assert [r.case for r in parallel] == [r.case for r in sequential]
+    assert sorted(done) == [1, 2, 3]
+    for one, other in zip(sequential, parallel):
+        assert same_bits(one.curve_arrays["force_normal"], other.curve_arrays["force_normal"])
+    with pytest.raises(ValueError, match=r"sweep case 1 .*grid\.n"):
+        adhesim.sweep(JKR_TOML, vary={"grid.n": [32, -4]}, jobs=2)
+    with pytest.raises(ValueError, match="jobs"):
+        adhesim.sweep(JKR_TOML, vary=vary, jobs=0)
+
+
+def test_interrupt_stops_a_parallel_sweep(sigint_raises_keyboard_interrupt):
+    """Ctrl-C during a parallel sweep of long cases raises KeyboardInterrupt in the
+    caller and stops the running cases at their next step (within seconds)."""
+    start = time.monotonic()
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            adhesim.sweep(
+                JKR_TOML,
+                vary={"adhesion.work_of_adhesion": [2e-5, 3e-5]},
+                jobs=2,
+                **{"grid.n": 64, "protocol.steps": 20000},
+            )
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10.0

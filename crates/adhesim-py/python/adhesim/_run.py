@@ -14,6 +14,7 @@ import itertools
 import json
 import os
 import re
+import threading
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
 
@@ -385,6 +386,10 @@ def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
     return RunResult(curve, summary, _read_snapshots(folder, curve), folder)
 
 
+class _Stopped(Exception):
+    """Raised inside a case's run (through its progress callback) when the sweep stops."""
+
+
 def sweep(
     scenario: ScenarioLike,
     vary: Mapping[str, Iterable[Any]],
@@ -392,32 +397,43 @@ def sweep(
     progress: Union[Callable[[int, int, Dict[str, Any]], Any], None] = None,
     overrides: Optional[Mapping[str, Any]] = None,
     allow_large: bool = False,
+    jobs: int = 1,
     **keyword_overrides: Any,
 ) -> List[RunResult]:
-    """Runs a scenario for every combination of the values in ``vary``, one after another.
+    """Runs a scenario for every combination of the values in ``vary``.
 
     Each case is ``run(scenario, overrides=common | case)``: the cases are the Cartesian
     product of the lists in ``vary`` (dotted keys, in the dict's order, the last key
-    varying fastest). Each case already uses every core for its FFTs; for many small
-    cases, resumable folders, sampling or shards use the command line's ``adhesim sweep``.
+    varying fastest). With ``jobs=1`` they run one after another (each case already uses
+    every core for its FFTs); ``jobs > 1`` runs that many cases at once in threads (the
+    GIL is released during a run; worth it for many small grids). The results are the
+    same bits either way. Resumable case folders, sampling and shards are the command
+    line's ``adhesim sweep``.
 
     Args:
         scenario: as for ``run``.
         vary: dict of dotted key -> list of values, e.g. ``{"adhesion.work_of_adhesion":
             [1e-5, 2e-5], "grid.n": [64, 128]}``.
         out: optional folder; case k is written into ``out/case_KKKK/`` as ``run`` does.
-        progress: optional callable ``progress(done, total, case)`` after each case.
+        progress: optional callable ``progress(done, total, case)`` after each case
+            (in the calling thread).
         overrides, allow_large, **keyword_overrides: as for ``run``, the same for every case.
+        jobs: cases run at once (>= 1).
 
     Returns:
         list of RunResult in case order; ``result.case`` holds the case's overrides.
         ``adhesim.sweep_table(results, "results.gamma_pulloff")`` makes columns of them.
 
     Raises:
-        ValueError: an empty ``vary`` or a bad case (the message names the case).
+        ValueError: an empty ``vary``, a bad ``jobs`` or a bad case (the message names the
+            case); the first failing case stops the sweep.
+        KeyboardInterrupt: Ctrl-C; with ``jobs > 1`` the running cases stop at their
+            next step.
     """
     if not vary:
         raise ValueError("vary must name at least one key with a list of values")
+    if not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"jobs must be an integer >= 1, got {jobs!r}")
     keys = list(vary)
     values = [list(vary[key]) for key in keys]
     for key, options in zip(keys, values):
@@ -426,17 +442,49 @@ def sweep(
     cases = [dict(zip(keys, combo)) for combo in itertools.product(*values)]
     common = dict(overrides or {})
     common.update(keyword_overrides)
-    results = []
-    for k, case in enumerate(cases):
+    stop = threading.Event()
+
+    def stop_when_asked(step, total):
+        if stop.is_set():
+            raise _Stopped()
+
+    def one(k):
         folder = None if out is None else Path(out) / f"case_{k:04d}"
+        # In a worker thread, the signal check of run() cannot see Ctrl-C: the main
+        # thread sets `stop` instead and this callback ends the case at its next step.
+        watch = stop_when_asked if jobs > 1 else None
         try:
-            result = run(scenario, out=folder, overrides={**common, **case}, allow_large=allow_large)
+            result = run(scenario, out=folder, progress=watch, overrides={**common, **cases[k]},
+                         allow_large=allow_large)
         except ValueError as error:
-            raise ValueError(f"sweep case {k} {case}: {error}") from None
-        result.case = case
-        results.append(result)
-        if progress is not None:
-            progress(k + 1, len(cases), case)
+            raise ValueError(f"sweep case {k} {cases[k]}: {error}") from None
+        result.case = cases[k]
+        return result
+
+    results: List[Optional[RunResult]] = [None] * len(cases)
+    if jobs == 1:
+        for k in range(len(cases)):
+            results[k] = one(k)
+            if progress is not None:
+                progress(k + 1, len(cases), cases[k])
+        return results
+    from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+
+    pool = ThreadPoolExecutor(max_workers=jobs)
+    pending = {pool.submit(one, k): k for k in range(len(cases))}
+    try:
+        while pending:
+            finished, _ = wait(pending, timeout=0.1, return_when=FIRST_COMPLETED)
+            for future in finished:
+                k = pending.pop(future)
+                results[k] = future.result()
+                if progress is not None:
+                    progress(sum(r is not None for r in results), len(cases), cases[k])
+    except BaseException:
+        stop.set()
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    pool.shutdown()
     return results
 
 
