@@ -344,3 +344,50 @@ def test_interrupt_stops_a_parallel_sweep(sigint_raises_keyboard_interrupt):
     finally:
         timer.cancel()
     assert time.monotonic() - start < 10.0
+
+
+def test_relative_paths_resolve_against_the_scenario_folder(tmp_path, monkeypatch):
+    """A height map named by a relative path in a scenario file is found next to the file
+    whatever the working directory (as `adhesim run` does); the same text given as a
+    string resolves against the working directory, and a missing map is a ValueError
+    naming indenter.file. A dict may hold the path as a pathlib.Path."""
+    folder = tmp_path / "study"
+    folder.mkdir()
+    n, size = 32, 0.25
+    x = (np.arange(n) - n // 2) * (size / n)
+    np.save(folder / "sphere.npy", (x[:, None] ** 2 + x[None, :] ** 2) / 2.0)  # R = 1
+    text = f"""
+[grid]
+n = {n}
+size = {size}
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 0.0
+[indenter]
+shape = "topography"
+file = "sphere.npy"
+spacing = {size / n}
+[protocol]
+kind = "indent_pulloff"
+max_depth = 0.002
+steps = 5
+"""
+    (folder / "scenario.toml").write_text(text)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    result = adhesim.run(folder / "scenario.toml")
+    assert result.curve_arrays["force_normal"].max() > 0
+    with pytest.raises(ValueError, match="indenter.file"):
+        adhesim.run(text)
+    from_dict = adhesim.run(
+        {
+            "grid": {"n": n, "size": size},
+            "material": {"contact_modulus": 1.0},
+            "adhesion": {"work_of_adhesion": 0.0},
+            "indenter": {"shape": "topography", "file": folder / "sphere.npy", "spacing": size / n},
+            "protocol": {"kind": "indent_pulloff", "max_depth": 0.002, "steps": 5},
+        }
+    )
+    assert same_bits(from_dict.curve_arrays["force_normal"], result.curve_arrays["force_normal"])

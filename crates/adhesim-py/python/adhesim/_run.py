@@ -95,10 +95,21 @@ class RunResult:
         return f"RunResult({steps} steps, {len(self.snapshots)} snapshots{where})"
 
 
+def _plain(value):
+    """Paths (os.PathLike) as str, inside dicts and lists too: TOML has no path type."""
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, Mapping):
+        return {key: _plain(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(item) for item in value]
+    return value
+
+
 def _scenario_text(scenario: ScenarioLike):
     """(TOML text, origin for messages, base folder of relative paths)."""
     if isinstance(scenario, Mapping):
-        return _adhesim._toml_document(dict(scenario)), "scenario dict", Path.cwd()
+        return _adhesim._toml_document(_plain(dict(scenario))), "scenario dict", Path.cwd()
     if isinstance(scenario, os.PathLike) or (
         isinstance(scenario, str)
         and (os.path.isfile(scenario) or ("\n" not in scenario and "=" not in scenario))
@@ -126,7 +137,7 @@ def _override_items(overrides: Optional[Mapping[str, Any]], keywords: Mapping[st
         if not isinstance(key, str):
             raise TypeError(f"override keys must be str like 'grid.n', got {key!r}")
         try:
-            items.append(f"{key}={_adhesim._toml_value(value)}")
+            items.append(f"{key}={_adhesim._toml_value(_plain(value))}")
         except (TypeError, ValueError) as error:
             raise type(error)(f"override {key}: {error}") from None
     return items
