@@ -5,7 +5,7 @@
 use crate::commands::folder;
 use crate::{output, plots, resources, summary, tangential_plots};
 use adhesim::analysis::reference::Hertz;
-use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
+use adhesim::{Phase, Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
 use anyhow::{anyhow, Context, Result};
 use clap::Args;
@@ -134,10 +134,12 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             return Err(cause.context(format!("run stopped at step {step}")));
         }
         Err(error) => {
-            return Err(anyhow!(error).context(format!(
+            // One message, not an error chain: `ProtocolError::Solve` shows its source in its
+            // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
+            return Err(anyhow!(crate::error_line(anyhow::Chain::new(&error))).context(format!(
                 "run failed; {} holds the steps done",
                 out.join("curve.csv").display()
-            )))
+            )));
         }
     };
     let plot_files = match (&outcome.report, scenario.protocol_setup()) {
@@ -157,6 +159,10 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     warnings.extend(observer.warnings.iter().cloned());
     if counters.touches_border && observer.warnings.is_empty() {
         warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
+    }
+    if let Some(warning) = lost_contact_warning(&outcome.records) {
+        eprintln!("warning: {warning}");
+        warnings.push(warning);
     }
     let summary = summary::Summary {
         adhesim_version: env!("CARGO_PKG_VERSION"),
@@ -183,6 +189,25 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         }
     }
     Ok(())
+}
+
+/// A roll, slide or translation whose contact is lost during the travel (it left the grid
+/// or came off): the zero forces of those steps are not those of a rolling contact, and
+/// the means of `summary.json` include them (docs/reliability.md).
+fn lost_contact_warning(records: &[StepRecord]) -> Option<String> {
+    let travel: Vec<&StepRecord> = records
+        .iter()
+        .filter(|r| matches!(r.phase, Some(Phase::Roll | Phase::Slide)))
+        .collect();
+    let lost: Vec<&&StepRecord> = travel.iter().filter(|r| r.contact_elements == 0).collect();
+    let first = lost.first()?;
+    Some(format!(
+        "the contact was lost in {} of {} travel steps (first at step {}, X = {:.4e}): those steps have zero force and the means in summary.json include them; lower protocol.distance, raise protocol.depth, or enlarge grid.size",
+        lost.len(),
+        travel.len(),
+        first.step,
+        first.offset
+    ))
 }
 
 /// Which snapshots the observer writes, and the steps whose contact sets it keeps for the
@@ -327,4 +352,37 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
         "  half-width a = {:.4e}, compactness A/(πa²) = {:.3}, jumps = {}",
         results.contact_half_width, results.compactness, results.jumps
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn travel_step(step: usize, offset: f64, contact_elements: usize) -> StepRecord {
+        StepRecord {
+            step,
+            phase: Some(Phase::Roll),
+            offset,
+            contact_elements,
+            ..StepRecord::default()
+        }
+    }
+
+    /// Issue #16: a roll whose contact left the grid exited 0 with zero force, no warning.
+    #[test]
+    fn a_travel_that_loses_the_contact_is_reported() {
+        let approach = StepRecord {
+            phase: Some(Phase::Approach),
+            contact_elements: 0,
+            ..StepRecord::default()
+        };
+        let mut records = vec![approach, travel_step(1, 0.1, 12), travel_step(2, 0.2, 3)];
+        assert_eq!(lost_contact_warning(&records), None);
+        records.extend([travel_step(3, 0.3, 0), travel_step(4, 0.4, 0)]);
+        let warning = lost_contact_warning(&records).unwrap();
+        assert!(
+            warning.starts_with("the contact was lost in 2 of 4 travel steps (first at step 3, X = 3.0000e-1)"),
+            "{warning}"
+        );
+    }
 }
