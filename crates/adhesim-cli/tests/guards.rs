@@ -85,6 +85,50 @@ fn extreme_inputs_blame_the_key_responsible() {
     assert_fails_with(&output, &["material.contact_modulus = 1e300", "d_JKR"]);
     let (_, output) = run(JKR, &["--set", "protocol.steps=10000000"], None);
     assert_fails_with(&output, &["protocol.steps must be in 1..=1000000, got 10000000"]);
+    // E* = γ = 1e60: every JKR scale is ordinary, but the single-precision FFTs overflow;
+    // this ran and failed with "solver produced a non-finite value" (printed twice).
+    let (temp, output) = run(
+        JKR,
+        &[
+            "--set",
+            "material.contact_modulus=1e60",
+            "--set",
+            "adhesion.work_of_adhesion=1e60",
+        ],
+        None,
+    );
+    assert_fails_with(
+        &output,
+        &[
+            "the stiffness E*/Δ = ",
+            "material.contact_modulus = 1e60",
+            "grid.size = 0.5",
+        ],
+    );
+    assert_eq!(
+        stderr(&output).matches("single-precision").count(),
+        1,
+        "{}",
+        stderr(&output)
+    );
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
+}
+
+#[test]
+fn a_roll_beyond_the_domain_is_refused() {
+    // scenarios/fig6.toml: L = 0.4, a ≈ 0.077 at 5|d_JKR|; 50 λ = 2.5 is far off the grid.
+    // This exited 0 with zero forces and no warning.
+    let fig6 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let text = std::fs::read_to_string(fig6).unwrap();
+    let (temp, output) = run(&text, &["--set", "protocol.distance=50"], None);
+    assert_fails_with(
+        &output,
+        &[
+            "protocol.distance = 50 carries the contact off the grid",
+            "grid.size/2 = 2.0000e-1",
+        ],
+    );
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
 }
 
 #[test]
