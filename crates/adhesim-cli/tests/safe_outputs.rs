@@ -207,6 +207,28 @@ fn a_killed_run_never_leaves_a_cut_curve_csv() {
     assert!(text.lines().count() >= 3);
 }
 
+/// A write that fails mid-run (a full disk; here the file-size limit of `ulimit -f`, with
+/// SIGXFSZ ignored so that the write returns EFBIG as a full disk returns ENOSPC): the
+/// error names the file, the exit status is 1, and no `curve.csv` is left cut mid-line.
+#[test]
+fn a_failed_write_names_the_file_and_leaves_no_cut_curve_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    // 300 steps of ~130 bytes: curve.csv.partial passes the 4 KiB limit mid-run.
+    let scenario = write(dir.path(), "s.toml", &SMALL.replace("steps = 6", "steps = 300"));
+    let out = dir.path().join("out");
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 8; exec '{BIN}' run '{}' --out '{}' --quiet",
+        scenario.display(),
+        out.display()
+    );
+    let output = Command::new("sh").args(["-c", &script]).output().unwrap();
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let partial = out.join("curve.csv.partial");
+    assert_fails_with(&output, &["cannot write", &partial.display().to_string()]);
+    assert!(!out.join("curve.csv").exists(), "a failed write left a curve.csv");
+    assert!(!out.join("summary.json").exists(), "a failed run left a summary.json");
+}
+
 fn host_name() -> String {
     std::fs::read_to_string("/proc/sys/kernel/hostname")
         .unwrap()
