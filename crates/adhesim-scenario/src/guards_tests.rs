@@ -136,6 +136,28 @@ fn coarse_grids_give_resolution_warnings() {
         "{:?}",
         valid.warnings
     );
+    // Features smaller than one element (issue #16: these ran without a warning): a punch
+    // of diameter 0.01 = 0.16 Δ (the grid makes it one element) and a wavelength of 0.16 Δ.
+    let tiny_punch = punch.replace("radius = 0.05", "radius = 0.005");
+    let valid = load(&tiny_punch, "test", Path::new("."), &[]).unwrap();
+    assert!(
+        valid
+            .warnings
+            .iter()
+            .any(|w| w.contains("punch diameter") && w.contains("0.16 elements")),
+        "{:?}",
+        valid.warnings
+    );
+    let fine_waves = wavy.replace("wavelength = 0.1", "wavelength = 0.01");
+    let valid = load(&fine_waves, "test", Path::new("."), &[]).unwrap();
+    assert!(
+        valid
+            .warnings
+            .iter()
+            .any(|w| w.contains("indenter.wavelength") && w.contains("0.16 elements")),
+        "{:?}",
+        valid.warnings
+    );
 }
 
 #[test]
