@@ -196,6 +196,51 @@ fn sweeps_with_too_many_cases_are_refused_before_they_are_built() {
     }
 }
 
+/// A sweep whose `--jobs` concurrent cases of its largest grid need more than the memory
+/// available is refused before any case allocates (issue #16: a sweep of large grids ran
+/// into the OOM killer). grid.n = 1024 (free) is estimated at 0.41 GiB per run.
+#[test]
+fn a_sweep_whose_concurrent_cases_exceed_the_memory_is_refused() {
+    let temp = tempfile::tempdir().unwrap();
+    let sweep = "[scenario]\ngrid = { n = 16, size = 0.5 }\nmaterial = { contact_modulus = 1.0 }\nadhesion = { work_of_adhesion = 0.001 }\nindenter = { shape = \"sphere\", radius = 1.0 }\nprotocol = { kind = \"indent_pulloff\", max_depth = 2.0, depth_unit = \"jkr\", steps = 5 }\n[vary]\n\"grid.n\" = [16, 1024]\n";
+    let path = temp.path().join("sweep.toml");
+    std::fs::write(&path, sweep).unwrap();
+    let out = temp.path().join("out");
+    let sweep = |jobs: &str, memory: &str| {
+        adhesim(
+            &[
+                "sweep",
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--jobs",
+                jobs,
+            ],
+            Some(memory),
+        )
+    };
+    // Two at a time need 0.8 GiB; 0.6 GB are available.
+    let output = sweep("2", "600000000");
+    assert_fails_with(
+        &output,
+        &[
+            "grid.n = 1024 needs about 0.8 GiB (2 concurrent runs of 0.4 GiB each)",
+            "0.6 GiB",
+            "--jobs",
+        ],
+    );
+    assert!(!out.join("cases").exists(), "no case started");
+    // One at a time still needs more than 0.3 GB.
+    let output = sweep("1", "300000000");
+    assert_fails_with(
+        &output,
+        &[
+            "grid.n = 1024 needs about 0.4 GiB, more than the 0.3 GiB",
+            "--allow-large",
+        ],
+    );
+}
+
 /// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
 fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
     let mut header = format!(
