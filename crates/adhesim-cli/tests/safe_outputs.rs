@@ -294,6 +294,44 @@ fn a_locked_sweep_folder_is_refused_and_a_stale_lock_taken_over() {
     assert_eq!(names(&out.join("cases")).len(), 2);
 }
 
+/// A lock whose owner cannot be checked (another host's, or one naming no owner) counts as
+/// held: refused, with the advice to delete it if that process is gone; nothing touched.
+#[test]
+fn a_lock_of_another_host_or_without_owner_is_held() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "sweep.toml", SWEEP);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let lock = out.join(".adhesim-lock");
+    for (text, fragment) in [
+        ("pid = 1\nhost = some-other-host\n", "held by pid 1 on some-other-host"),
+        ("garbage", "names no owner"),
+    ] {
+        write(&out, ".adhesim-lock", text);
+        let output = adhesim(&[
+            "sweep",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_fails_with(&output, &[lock.to_str().unwrap(), fragment, "delete the lock file if"]);
+        assert_eq!(std::fs::read_to_string(&lock).unwrap(), text, "the lock was changed");
+        assert!(!out.join("cases").exists(), "the refused sweep touched the folder");
+    }
+}
+
+/// `--out` naming a file is an error naming it; the file is left as it was.
+#[test]
+fn out_naming_a_file_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = write(dir.path(), "s.toml", SMALL);
+    let notes = write(dir.path(), "notes.txt", "mine");
+    assert_fails_with(&run(&scenario, &notes, &[]), &[notes.to_str().unwrap()]);
+    assert_fails_with(&run(&scenario, &notes, &["--force"]), &[notes.to_str().unwrap()]);
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine");
+}
+
 #[cfg(target_os = "linux")]
 #[test]
 fn shards_lock_only_their_own_cases() {
