@@ -333,3 +333,43 @@ fn topographies_are_read_in_every_format_and_a_lying_header_is_an_error() {
     let holed = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "holed.npy"), "holed");
     assert_fails_with(&holed, &["indenter.file", "holed.npy", "1 of 480 points are invalid"]);
 }
+
+/// An adhesion map (`adhesion.field.file`) is checked like a height map: a header lying
+/// about its size, a map of another size than the grid, and negative or NaN values are
+/// errors naming the key and the file, before the run.
+#[test]
+fn a_bad_adhesion_map_is_an_error_naming_the_key() {
+    let temp = tempfile::tempdir().unwrap();
+    let map_scenario = |file: &str| {
+        JKR.replace(
+            "work_of_adhesion = 0.001",
+            &format!("work_of_adhesion = 0.001\nfield = {{ kind = \"map\", file = \"{file}\" }}"),
+        )
+    };
+    let n = 32;
+    let mut values = vec![1.0; n * n];
+    std::fs::write(temp.path().join("good.npy"), npy_bytes((n, n), &values)).unwrap();
+    let good = run_in(temp.path(), &map_scenario("good.npy"), "good");
+    assert!(good.status.success(), "{}", stderr(&good));
+    std::fs::write(
+        temp.path().join("huge.npy"),
+        npy_bytes((1_000_000, 1_000_000), &[1.0; 8]),
+    )
+    .unwrap();
+    std::fs::write(temp.path().join("small.npy"), npy_bytes((16, 16), &values[..256])).unwrap();
+    values[40] = -0.5;
+    std::fs::write(temp.path().join("negative.npy"), npy_bytes((n, n), &values)).unwrap();
+    values[40] = f64::NAN;
+    std::fs::write(temp.path().join("nan.npy"), npy_bytes((n, n), &values)).unwrap();
+    for (file, fragment) in [
+        ("huge.npy", "1000000"),
+        ("small.npy", "the map is 16×16, the grid is 32×32"),
+        ("negative.npy", "-0.5"),
+        ("nan.npy", "NaN"),
+    ] {
+        let out = format!("out-{file}");
+        let output = run_in(temp.path(), &map_scenario(file), &out);
+        assert_fails_with(&output, &["adhesion.field.file", file, fragment]);
+        assert!(!temp.path().join(out).exists(), "nothing written for a refused run");
+    }
+}
