@@ -274,7 +274,7 @@ fn a_travel_beyond_the_domain_is_refused() {
         assert!(error.contains("X = 2.5000e0"), "{error}");
         assert!(error.contains("a ≈ 7.72"), "{error}");
         assert!(error.contains("grid.size/2 = 2.0000e-1"), "{error}");
-        assert!(error.contains("protocol.distance at most 1.22"), "{error}");
+        assert!(error.contains("protocol.distance at most 2.455"), "{error}");
     }
     // Just inside and just outside the limit of 2.46 λ.
     assert!(load(ROLL, "test", Path::new("."), &["protocol.distance=2.4".into()]).is_ok());
@@ -292,4 +292,5 @@ fn a_travel_beyond_the_domain_is_refused() {
     let error = error_of(&hertz, &["protocol.distance=0.13"]);
     assert!(error.contains("Hertz contact radius"), "{error}");
     assert!(error.contains("a ≈ 7.07"), "{error}");
+    assert!(error.contains("protocol.distance at most 1.29"), "{error}");
 }

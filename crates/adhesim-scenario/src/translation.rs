@@ -95,7 +95,7 @@ impl ScenarioFile {
             })?,
         };
         let distance = positive("protocol.distance", raw_distance)? * distance_scale;
-        check_travel_inside(&grid, &wavy, jkr.as_ref(), depth, distance, raw_distance)?;
+        check_travel_inside(&grid, &wavy, jkr.as_ref(), depth, (raw_distance, distance_scale))?;
         let steps = p
             .steps
             .ok_or_else(|| anyhow!("missing key `protocol.steps` (steps of the travel, protocol.kind = \"{name}\")"))?;
@@ -162,16 +162,17 @@ impl ScenarioFile {
 /// depth: on the stable JKR branch (`Jkr::radius_at_depth`, Johnson, Kendall & Roberts
 /// 1971) with adhesion, Hertz's √(Rd) without. Beyond the domain's half-width L/2 the
 /// contact is cut by the domain edge or lost (zero force, a frictionless "result"): an
-/// error naming `protocol.distance` and the numbers. A contact that comes within an element
+/// error naming `protocol.distance` and the numbers (`distance_scale`: the length of one
+/// `protocol.distance_unit`). A contact that comes within an element
 /// of the border is caught during the run (the border warning of `summary.json`).
 fn check_travel_inside(
     grid: &Grid,
     indenter: &WavySphere,
     jkr: Option<&Jkr>,
     depth: f64,
-    distance: f64,
-    raw_distance: f64,
+    (raw_distance, distance_scale): (f64, f64),
 ) -> Result<()> {
+    let distance = raw_distance * distance_scale;
     let radius = indenter.sphere().radius();
     let (contact_radius, how) = match jkr {
         Some(jkr) => (
@@ -188,7 +189,12 @@ fn check_travel_inside(
     if !(front <= half_width) {
         let room = half_width - contact_radius;
         let advice = if room > 0.0 {
-            format!("protocol.distance at most {room:.4e} in length units")
+            let unit = if distance_scale == 1.0 {
+                "length units"
+            } else {
+                "wavelengths"
+            };
+            format!("protocol.distance at most {:.4e} ({unit})", room / distance_scale)
         } else {
             "a smaller protocol.depth".to_string()
         };
