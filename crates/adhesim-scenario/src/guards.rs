@@ -171,7 +171,7 @@ pub const SINGLE_PRECISION_MAGNITUDE: f64 = 1e30;
 /// naming the keys it comes from.
 fn single_precision_scale(name: &str, value: f64, keys: &str) -> Result<()> {
     let magnitude = value.abs();
-    if !(magnitude >= 1.0 / SINGLE_PRECISION_MAGNITUDE && magnitude <= SINGLE_PRECISION_MAGNITUDE) {
+    if !(1.0 / SINGLE_PRECISION_MAGNITUDE..=SINGLE_PRECISION_MAGNITUDE).contains(&magnitude) {
         bail!(
             "{name} = {value:e} is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {keys}: bring these inputs to commensurate units"
         );

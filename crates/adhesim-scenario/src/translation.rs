@@ -186,7 +186,8 @@ fn check_travel_inside(
     };
     let half_width = 0.5 * grid.size();
     let front = distance + contact_radius;
-    if !(front <= half_width) {
+    let inside = front.is_finite() && front <= half_width;
+    if !inside {
         let room = half_width - contact_radius;
         let advice = if room > 0.0 {
             let unit = if distance_scale == 1.0 {
