@@ -85,6 +85,50 @@ fn extreme_inputs_blame_the_key_responsible() {
     assert_fails_with(&output, &["material.contact_modulus = 1e300", "d_JKR"]);
     let (_, output) = run(JKR, &["--set", "protocol.steps=10000000"], None);
     assert_fails_with(&output, &["protocol.steps must be in 1..=1000000, got 10000000"]);
+    // E* = γ = 1e60: every JKR scale is ordinary, but the single-precision FFTs overflow;
+    // this ran and failed with "solver produced a non-finite value" (printed twice).
+    let (temp, output) = run(
+        JKR,
+        &[
+            "--set",
+            "material.contact_modulus=1e60",
+            "--set",
+            "adhesion.work_of_adhesion=1e60",
+        ],
+        None,
+    );
+    assert_fails_with(
+        &output,
+        &[
+            "the stiffness E*/Δ = ",
+            "material.contact_modulus = 1e60",
+            "grid.size = 0.5",
+        ],
+    );
+    assert_eq!(
+        stderr(&output).matches("single-precision").count(),
+        1,
+        "{}",
+        stderr(&output)
+    );
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
+}
+
+#[test]
+fn a_roll_beyond_the_domain_is_refused() {
+    // scenarios/fig6.toml: L = 0.4, a ≈ 0.077 at 5|d_JKR|; 50 λ = 2.5 is far off the grid.
+    // This exited 0 with zero forces and no warning.
+    let fig6 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let text = std::fs::read_to_string(fig6).unwrap();
+    let (temp, output) = run(&text, &["--set", "protocol.distance=50"], None);
+    assert_fails_with(
+        &output,
+        &[
+            "protocol.distance = 50 carries the contact off the grid",
+            "grid.size/2 = 2.0000e-1",
+        ],
+    );
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
 }
 
 #[test]
@@ -150,6 +194,51 @@ fn sweeps_with_too_many_cases_are_refused_before_they_are_built() {
         // Refused from the counts (the message gives the product), nothing created.
         assert!(!out.exists());
     }
+}
+
+/// A sweep whose `--jobs` concurrent cases of its largest grid need more than the memory
+/// available is refused before any case allocates (issue #16: a sweep of large grids ran
+/// into the OOM killer). grid.n = 1024 (free) is estimated at 0.41 GiB per run.
+#[test]
+fn a_sweep_whose_concurrent_cases_exceed_the_memory_is_refused() {
+    let temp = tempfile::tempdir().unwrap();
+    let sweep = "[scenario]\ngrid = { n = 16, size = 0.5 }\nmaterial = { contact_modulus = 1.0 }\nadhesion = { work_of_adhesion = 0.001 }\nindenter = { shape = \"sphere\", radius = 1.0 }\nprotocol = { kind = \"indent_pulloff\", max_depth = 2.0, depth_unit = \"jkr\", steps = 5 }\n[vary]\n\"grid.n\" = [16, 1024]\n";
+    let path = temp.path().join("sweep.toml");
+    std::fs::write(&path, sweep).unwrap();
+    let out = temp.path().join("out");
+    let sweep = |jobs: &str, memory: &str| {
+        adhesim(
+            &[
+                "sweep",
+                path.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--jobs",
+                jobs,
+            ],
+            Some(memory),
+        )
+    };
+    // Two at a time need 0.8 GiB; 0.6 GB are available.
+    let output = sweep("2", "600000000");
+    assert_fails_with(
+        &output,
+        &[
+            "grid.n = 1024 needs about 0.8 GiB (2 concurrent runs of 0.4 GiB each)",
+            "0.6 GiB",
+            "--jobs",
+        ],
+    );
+    assert!(!out.join("cases").exists(), "no case started");
+    // One at a time still needs more than 0.3 GB.
+    let output = sweep("1", "300000000");
+    assert_fails_with(
+        &output,
+        &[
+            "grid.n = 1024 needs about 0.4 GiB, more than the 0.3 GiB",
+            "--allow-large",
+        ],
+    );
 }
 
 /// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
@@ -243,4 +332,44 @@ fn topographies_are_read_in_every_format_and_a_lying_header_is_an_error() {
     std::fs::write(temp.path().join("holed.npy"), npy_bytes((rows, columns), &holed)).unwrap();
     let holed = run_in(temp.path(), &TOPOGRAPHY.replace("FILE", "holed.npy"), "holed");
     assert_fails_with(&holed, &["indenter.file", "holed.npy", "1 of 480 points are invalid"]);
+}
+
+/// An adhesion map (`adhesion.field.file`) is checked like a height map: a header lying
+/// about its size, a map of another size than the grid, and negative or NaN values are
+/// errors naming the key and the file, before the run.
+#[test]
+fn a_bad_adhesion_map_is_an_error_naming_the_key() {
+    let temp = tempfile::tempdir().unwrap();
+    let map_scenario = |file: &str| {
+        JKR.replace(
+            "work_of_adhesion = 0.001",
+            &format!("work_of_adhesion = 0.001\nfield = {{ kind = \"map\", file = \"{file}\" }}"),
+        )
+    };
+    let n = 32;
+    let mut values = vec![1.0; n * n];
+    std::fs::write(temp.path().join("good.npy"), npy_bytes((n, n), &values)).unwrap();
+    let good = run_in(temp.path(), &map_scenario("good.npy"), "good");
+    assert!(good.status.success(), "{}", stderr(&good));
+    std::fs::write(
+        temp.path().join("huge.npy"),
+        npy_bytes((1_000_000, 1_000_000), &[1.0; 8]),
+    )
+    .unwrap();
+    std::fs::write(temp.path().join("small.npy"), npy_bytes((16, 16), &values[..256])).unwrap();
+    values[40] = -0.5;
+    std::fs::write(temp.path().join("negative.npy"), npy_bytes((n, n), &values)).unwrap();
+    values[40] = f64::NAN;
+    std::fs::write(temp.path().join("nan.npy"), npy_bytes((n, n), &values)).unwrap();
+    for (file, fragment) in [
+        ("huge.npy", "1000000"),
+        ("small.npy", "the map is 16×16, the grid is 32×32"),
+        ("negative.npy", "-0.5"),
+        ("nan.npy", "NaN"),
+    ] {
+        let out = format!("out-{file}");
+        let output = run_in(temp.path(), &map_scenario(file), &out);
+        assert_fails_with(&output, &["adhesion.field.file", file, fragment]);
+        assert!(!temp.path().join(out).exists(), "nothing written for a refused run");
+    }
 }

@@ -207,6 +207,28 @@ fn a_killed_run_never_leaves_a_cut_curve_csv() {
     assert!(text.lines().count() >= 3);
 }
 
+/// A write that fails mid-run (a full disk; here the file-size limit of `ulimit -f`, with
+/// SIGXFSZ ignored so that the write returns EFBIG as a full disk returns ENOSPC): the
+/// error names the file, the exit status is 1, and no `curve.csv` is left cut mid-line.
+#[test]
+fn a_failed_write_names_the_file_and_leaves_no_cut_curve_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    // 300 steps of ~130 bytes: curve.csv.partial passes the 4 KiB limit mid-run.
+    let scenario = write(dir.path(), "s.toml", &SMALL.replace("steps = 6", "steps = 300"));
+    let out = dir.path().join("out");
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 8; exec '{BIN}' run '{}' --out '{}' --quiet",
+        scenario.display(),
+        out.display()
+    );
+    let output = Command::new("sh").args(["-c", &script]).output().unwrap();
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let partial = out.join("curve.csv.partial");
+    assert_fails_with(&output, &["cannot write", &partial.display().to_string()]);
+    assert!(!out.join("curve.csv").exists(), "a failed write left a curve.csv");
+    assert!(!out.join("summary.json").exists(), "a failed run left a summary.json");
+}
+
 fn host_name() -> String {
     std::fs::read_to_string("/proc/sys/kernel/hostname")
         .unwrap()
@@ -270,6 +292,44 @@ fn a_locked_sweep_folder_is_refused_and_a_stale_lock_taken_over() {
     assert!(stderr(&output).contains("stale lock"), "stderr: {}", stderr(&output));
     assert!(!lock.exists(), "the lock was not released");
     assert_eq!(names(&out.join("cases")).len(), 2);
+}
+
+/// A lock whose owner cannot be checked (another host's, or one naming no owner) counts as
+/// held: refused, with the advice to delete it if that process is gone; nothing touched.
+#[test]
+fn a_lock_of_another_host_or_without_owner_is_held() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "sweep.toml", SWEEP);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    let lock = out.join(".adhesim-lock");
+    for (text, fragment) in [
+        ("pid = 1\nhost = some-other-host\n", "held by pid 1 on some-other-host"),
+        ("garbage", "names no owner"),
+    ] {
+        write(&out, ".adhesim-lock", text);
+        let output = adhesim(&[
+            "sweep",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_fails_with(&output, &[lock.to_str().unwrap(), fragment, "delete the lock file if"]);
+        assert_eq!(std::fs::read_to_string(&lock).unwrap(), text, "the lock was changed");
+        assert!(!out.join("cases").exists(), "the refused sweep touched the folder");
+    }
+}
+
+/// `--out` naming a file is an error naming it; the file is left as it was.
+#[test]
+fn out_naming_a_file_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = write(dir.path(), "s.toml", SMALL);
+    let notes = write(dir.path(), "notes.txt", "mine");
+    assert_fails_with(&run(&scenario, &notes, &[]), &[notes.to_str().unwrap()]);
+    assert_fails_with(&run(&scenario, &notes, &["--force"]), &[notes.to_str().unwrap()]);
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine");
 }
 
 #[cfg(target_os = "linux")]

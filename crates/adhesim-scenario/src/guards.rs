@@ -76,7 +76,9 @@ impl ScenarioFile {
         ];
         for (name, value, keys) in scales {
             if let Some(value) = value {
-                if !usable(value) {
+                // α = 0 without adhesion is a legitimate value (a non-adhesive wavy contact).
+                let zero_without_adhesion = value == 0.0 && self.adhesion.work_of_adhesion == 0.0;
+                if !usable(value) && !zero_without_adhesion {
                     bail!(
                         "{name} = {value:e} is not a usable number (finite, magnitude in 1e-150..1e150); it comes from {keys}: bring these inputs to commensurate units"
                     );
@@ -88,6 +90,38 @@ impl ScenarioFile {
                 "the element size grid.size/grid.n = {:e} is not a usable number (magnitude in 1e-150..1e150); {element}",
                 derived.element_size
             );
+        }
+        self.check_single_precision(derived)
+    }
+
+    /// The scales the single-precision engines hold (see [`SINGLE_PRECISION_MAGNITUDE`]):
+    /// the stiffness E*/Δ of the preconditioner (its reciprocal is the compliance), σ_c,
+    /// the element size and the JKR lengths.
+    fn check_single_precision(&self, derived: &Derived) -> Result<()> {
+        let material = material_keys(&self.material);
+        let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
+        let radius = format!("indenter.radius = {}", show(self.indenter.radius.unwrap_or(f64::NAN)));
+        let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
+        let delta = derived.element_size;
+        let scales = [
+            (
+                "the stiffness E*/Δ",
+                Some(contact_modulus(&self.material) / delta),
+                format!("{material}, {element}"),
+            ),
+            ("the element size Δ", Some(delta), element.clone()),
+            (
+                "the critical stress σ_c",
+                derived.critical_stress,
+                format!("{material}, {gamma}, {element}"),
+            ),
+            ("d_JKR", derived.d_jkr, format!("{material}, {gamma}, {radius}")),
+            ("a_JKR", derived.a_jkr, format!("{material}, {gamma}, {radius}")),
+        ];
+        for (name, value, keys) in scales {
+            if let Some(value) = value {
+                single_precision_scale(name, value, &keys)?;
+            }
         }
         Ok(())
     }
@@ -102,11 +136,55 @@ impl ScenarioFile {
                 "the depth step {depth_step:e} (from {keys}) does not move the depth between {start_depth:e} and {end_depth:e}: choose fewer steps or commensurate units"
             );
         }
+        // The largest pressure of the run is at most that of one element pushed through the
+        // whole depth range, E*·(range)/Δ.
+        let range = (end_depth - start_depth).abs();
+        let element_size = self.grid.size / self.grid.n as f64;
+        let depth_keys = format!("{keys}, {}", material_keys(&self.material));
+        single_precision_scale("the depth range", range, keys)?;
+        single_precision_scale(
+            "the pressure bound E*·(depth range)/Δ",
+            contact_modulus(&self.material) * range / element_size,
+            &format!(
+                "{depth_keys}, grid.size = {}, grid.n = {}",
+                show(self.grid.size),
+                self.grid.n
+            ),
+        )?;
         let steps = ((end_depth - start_depth) / depth_step).ceil();
         if steps.is_nan() || steps > MAX_STEPS as f64 {
             bail!("{keys} imply {steps:e} approach steps, more than the cap of {MAX_STEPS}");
         }
         Ok(steps as usize)
+    }
+}
+
+/// The FFT engines of the CG directions and of the preconditioner work in single precision
+/// (docs/fast-step.md): the pressures, displacements, the stiffness E*/Δ and the compliance
+/// Δ/E* they hold must stay well inside f32's range (1.2e-38 .. 3.4e38), or they overflow
+/// to ∞ and the run fails mid-way with "solver produced a non-finite value". Magnitudes in
+/// [1e-30, 1e30] leave a factor 1e8 for the sums of a transform over up to 16384² elements
+/// and its 1/N² normalisation; every physical unit system (SI, nm–GPa, cgs) lies far inside.
+pub const SINGLE_PRECISION_MAGNITUDE: f64 = 1e30;
+
+/// Refuses a scale outside ±[1/[`SINGLE_PRECISION_MAGNITUDE`], [`SINGLE_PRECISION_MAGNITUDE`]],
+/// naming the keys it comes from.
+fn single_precision_scale(name: &str, value: f64, keys: &str) -> Result<()> {
+    let magnitude = value.abs();
+    if !(1.0 / SINGLE_PRECISION_MAGNITUDE..=SINGLE_PRECISION_MAGNITUDE).contains(&magnitude) {
+        bail!(
+            "{name} = {value:e} is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {keys}: bring these inputs to commensurate units"
+        );
+    }
+    Ok(())
+}
+
+/// E* of `[material]` (E/(1 − ν²) from Young's modulus), NaN where validation refuses it.
+fn contact_modulus(m: &MaterialSection) -> f64 {
+    match (m.contact_modulus, m.youngs_modulus, m.poisson_ratio) {
+        (Some(e), _, _) => e,
+        (None, Some(e), Some(nu)) => e / (1.0 - nu * nu),
+        _ => f64::NAN,
     }
 }
 

@@ -136,6 +136,28 @@ fn coarse_grids_give_resolution_warnings() {
         "{:?}",
         valid.warnings
     );
+    // Features smaller than one element (issue #16: these ran without a warning): a punch
+    // of diameter 0.01 = 0.16 Δ (the grid makes it one element) and a wavelength of 0.16 Δ.
+    let tiny_punch = punch.replace("radius = 0.05", "radius = 0.005");
+    let valid = load(&tiny_punch, "test", Path::new("."), &[]).unwrap();
+    assert!(
+        valid
+            .warnings
+            .iter()
+            .any(|w| w.contains("punch diameter") && w.contains("0.16 elements")),
+        "{:?}",
+        valid.warnings
+    );
+    let fine_waves = wavy.replace("wavelength = 0.1", "wavelength = 0.01");
+    let valid = load(&fine_waves, "test", Path::new("."), &[]).unwrap();
+    assert!(
+        valid
+            .warnings
+            .iter()
+            .any(|w| w.contains("indenter.wavelength") && w.contains("0.16 elements")),
+        "{:?}",
+        valid.warnings
+    );
 }
 
 #[test]
@@ -160,4 +182,115 @@ fn a_grid_beyond_the_available_memory_is_refused_before_allocation() {
     assert!(error.contains("grid.n = 8192 needs about"), "{error}");
     assert!(error.contains("1.0 GiB of memory available"), "{error}");
     assert!(load_within(SPHERE, "test", Path::new("."), &[], Some(1 << 30)).is_ok());
+}
+
+/// Issue #16: E*, γ0 beyond about 1e±30 passed validation and failed mid-run with "solver
+/// produced a non-finite value" (the single-precision FFTs overflow); now refused first.
+#[test]
+fn units_beyond_single_precision_are_refused_before_the_run() {
+    // Both cases ran into "solver produced a non-finite value at iteration 1" before.
+    for (modulus, gamma) in [("1e60", "1e60"), ("1e-100", "1e-100")] {
+        let overrides = [
+            format!("material.contact_modulus={modulus}"),
+            format!("adhesion.work_of_adhesion={gamma}"),
+        ];
+        let overrides: Vec<&str> = overrides.iter().map(String::as_str).collect();
+        let error = error_of(SPHERE, &overrides);
+        assert!(error.contains("single-precision"), "{error}");
+        assert!(
+            error.contains(&format!("material.contact_modulus = {modulus}")),
+            "{error}"
+        );
+        assert!(error.contains("grid.size = 1"), "{error}");
+    }
+    // A large pressure bound from the depth alone (E*·d/Δ = 1e31 without adhesion).
+    let error = error_of(
+        SPHERE,
+        &[
+            "adhesion.work_of_adhesion=0",
+            "protocol.depth_unit=\"length\"",
+            "protocol.max_depth=1e29",
+        ],
+    );
+    assert!(error.contains("pressure bound"), "{error}");
+    assert!(error.contains("protocol.max_depth"), "{error}");
+    // SI-like units far from 1 are fine: E* = 1e11 Pa, γ = 1 J/m², R = 1 m, L = 2 mm give
+    // the same F/|F_JKR| as E* = 1, γ = 1e-11 (JKR depends on γ/(E*R) and L/R only).
+    let pull_off = |modulus: &str, gamma: &str| {
+        let overrides = [
+            "grid.n=32".to_string(),
+            "grid.size=2e-3".to_string(),
+            format!("material.contact_modulus={modulus}"),
+            format!("adhesion.work_of_adhesion={gamma}"),
+        ];
+        let valid = load(SPHERE, "test", Path::new("."), &overrides).unwrap();
+        let outcome = run(&valid, &mut ()).unwrap();
+        assert!(outcome.records.iter().all(|r| r.force_normal.is_finite()));
+        let RunResults::Indentation(results) = &outcome.results else {
+            panic!("not an indentation")
+        };
+        results.max_adhesive_force / valid.derived.f_jkr.unwrap().abs()
+    };
+    let (si, unit) = (pull_off("1e11", "1"), pull_off("1", "1e-11"));
+    assert!((si / unit - 1.0).abs() < 1e-6, "F/|F_JKR| = {si} (SI), {unit} (E* = 1)");
+}
+
+const ROLL: &str = r#"
+[grid]
+n = 32
+size = 0.4
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 2e-5
+[indenter]
+shape = "wavy_sphere"
+radius = 1.0
+amplitude = 5.627e-4
+wavelength = 0.05
+[protocol]
+kind = "roll"
+depth = 5.0
+depth_unit = "jkr"
+approach_steps = 10
+distance = 2.0
+distance_unit = "wavelength"
+steps = 20
+"#;
+
+/// Issue #16: rolling far beyond the domain exited 0 with zero force and no warning.
+/// At 5|d_JKR| the JKR contact radius is a = 0.0772 (R = E* = 1, γ = 2e-5), the domain's
+/// half-width 0.2: the travel may reach X = 0.2 − 0.0772 = 0.1228 (2.46 λ).
+#[test]
+fn a_travel_beyond_the_domain_is_refused() {
+    for kind in ["roll", "slide", "translate"] {
+        let text = ROLL.replace("kind = \"roll\"", &format!("kind = \"{kind}\""));
+        assert!(load(&text, "test", Path::new("."), &[]).is_ok(), "{kind}: 2λ fits");
+        let error = error_of(&text, &["protocol.distance=50"]);
+        assert!(
+            error.contains("protocol.distance = 50 carries the contact off the grid"),
+            "{error}"
+        );
+        assert!(error.contains("X = 2.5000e0"), "{error}");
+        assert!(error.contains("a ≈ 7.72"), "{error}");
+        assert!(error.contains("grid.size/2 = 2.0000e-1"), "{error}");
+        assert!(error.contains("protocol.distance at most 2.455"), "{error}");
+    }
+    // Just inside and just outside the limit of 2.46 λ.
+    assert!(load(ROLL, "test", Path::new("."), &["protocol.distance=2.4".into()]).is_ok());
+    let error = error_of(ROLL, &["protocol.distance=2.5"]);
+    assert!(error.contains("off the grid"), "{error}");
+    // Without adhesion the Hertz radius √(R d) is used: d = 0.005 gives a = 0.0707. (A
+    // wavy sphere without adhesion has the Johnson parameter 0, a legitimate value that
+    // the check of the derived scales refused before.)
+    let hertz = ROLL
+        .replace("work_of_adhesion = 2e-5", "work_of_adhesion = 0.0")
+        .replace("depth_unit = \"jkr\"", "depth_unit = \"length\"")
+        .replace("depth = 5.0", "depth = 0.005")
+        .replace("distance_unit = \"wavelength\"", "distance_unit = \"length\"");
+    assert!(load(&hertz, "test", Path::new("."), &["protocol.distance=0.12".into()]).is_ok());
+    let error = error_of(&hertz, &["protocol.distance=0.13"]);
+    assert!(error.contains("Hertz contact radius"), "{error}");
+    assert!(error.contains("a ≈ 7.07"), "{error}");
+    assert!(error.contains("protocol.distance at most 1.29"), "{error}");
 }

@@ -5,6 +5,7 @@
 use crate::model::{Derived, ScenarioFile, ValidScenario};
 use crate::pipeline::{Counters, RunOutcome};
 use crate::results::RunResults;
+use adhesim::{Phase, StepRecord};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -97,6 +98,7 @@ impl<'a> Summary<'a> {
         if outcome.report.counters().touches_border && run_warnings.is_empty() {
             warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
         }
+        warnings.extend(lost_contact_warning(&outcome.records));
         Self {
             adhesim_version: env!("CARGO_PKG_VERSION"),
             inputs: &scenario.file,
@@ -120,4 +122,23 @@ pub fn border_warning(step: usize, depth: f64) -> String {
     format!(
         "contact reached the domain border at step {step} (d = {depth:.6e}): the domain is too small, enlarge grid.size"
     )
+}
+
+/// A roll, slide or translation whose contact is lost during the travel (it left the grid
+/// or came off): the zero forces of those steps are not those of a rolling contact, and
+/// the means of `summary.json` include them (docs/reliability.md).
+pub fn lost_contact_warning(records: &[StepRecord]) -> Option<String> {
+    let travel: Vec<&StepRecord> = records
+        .iter()
+        .filter(|r| matches!(r.phase, Some(Phase::Roll | Phase::Slide)))
+        .collect();
+    let lost: Vec<&&StepRecord> = travel.iter().filter(|r| r.contact_elements == 0).collect();
+    let first = lost.first()?;
+    Some(format!(
+        "the contact was lost in {} of {} travel steps (first at step {}, X = {:.4e}): those steps have zero force and the means in summary.json include them; lower protocol.distance, raise protocol.depth, or enlarge grid.size",
+        lost.len(),
+        travel.len(),
+        first.step,
+        first.offset
+    ))
 }

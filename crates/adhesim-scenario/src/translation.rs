@@ -95,6 +95,7 @@ impl ScenarioFile {
             })?,
         };
         let distance = positive("protocol.distance", raw_distance)? * distance_scale;
+        check_travel_inside(&grid, &wavy, jkr.as_ref(), depth, (raw_distance, distance_scale))?;
         let steps = p
             .steps
             .ok_or_else(|| anyhow!("missing key `protocol.steps` (steps of the travel, protocol.kind = \"{name}\")"))?;
@@ -153,6 +154,56 @@ impl ScenarioFile {
             warnings: Vec::new(),
         })
     }
+}
+
+/// The contact must stay on the grid over the whole travel: the indenter's axis goes from
+/// X = 0 to X = `distance` (and back with a return stroke), so the front of a contact of
+/// radius a reaches X + a. The radius is estimated for the smooth sphere at the held
+/// depth: on the stable JKR branch (`Jkr::radius_at_depth`, Johnson, Kendall & Roberts
+/// 1971) with adhesion, Hertz's √(Rd) without. Beyond the domain's half-width L/2 the
+/// contact is cut by the domain edge or lost (zero force, a frictionless "result"): an
+/// error naming `protocol.distance` and the numbers (`distance_scale`: the length of one
+/// `protocol.distance_unit`). A contact that comes within an element
+/// of the border is caught during the run (the border warning of `summary.json`).
+fn check_travel_inside(
+    grid: &Grid,
+    indenter: &WavySphere,
+    jkr: Option<&Jkr>,
+    depth: f64,
+    (raw_distance, distance_scale): (f64, f64),
+) -> Result<()> {
+    let distance = raw_distance * distance_scale;
+    let radius = indenter.sphere().radius();
+    let (contact_radius, how) = match jkr {
+        Some(jkr) => (
+            jkr.radius_at_depth(depth).unwrap_or_else(|| jkr.critical_radius()),
+            "the JKR contact radius at protocol.depth",
+        ),
+        None => (
+            (radius * depth.max(0.0)).sqrt(),
+            "the Hertz contact radius √(R·d) at protocol.depth",
+        ),
+    };
+    let half_width = 0.5 * grid.size();
+    let front = distance + contact_radius;
+    let inside = front.is_finite() && front <= half_width;
+    if !inside {
+        let room = half_width - contact_radius;
+        let advice = if room > 0.0 {
+            let unit = if distance_scale == 1.0 {
+                "length units"
+            } else {
+                "wavelengths"
+            };
+            format!("protocol.distance at most {:.4e} ({unit})", room / distance_scale)
+        } else {
+            "a smaller protocol.depth".to_string()
+        };
+        bail!(
+            "protocol.distance = {raw_distance} carries the contact off the grid: the indenter travels to X = {distance:.4e} and {how} is a ≈ {contact_radius:.4e}, so the contact's front reaches X + a = {front:.4e}, beyond the domain's half-width grid.size/2 = {half_width:.4e} (the contact would be cut by the edge or lost, with zero force); choose {advice}, or a larger grid.size"
+        );
+    }
+    Ok(())
 }
 
 /// Keys of `[protocol]` that a translation of this kind does not use.

@@ -10,7 +10,8 @@
 //! The seed is fixed so that a failure reproduces; `PROPTEST_CASES` sets the case count
 //! (default [`DEFAULT_CASES`], about 16 s in `cargo test --release`). A longer run:
 //! `PROPTEST_CASES=20000 cargo test --release -p adhesim-scenario --test fuzz`.
-//! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s (with `-- --nocapture`).
+//! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s and
+//! `FUZZ_ERRORS=1` the errors of runs (with `-- --nocapture`).
 
 use adhesim_scenario::{load_within, run, RunResults, ValidScenario};
 use proptest::prelude::*;
@@ -200,7 +201,12 @@ fn check_finite(valid: &ValidScenario) -> Result<bool, String> {
         Ok(Err(error)) if error.to_string().trim().is_empty() => {
             return Err("run failed with an empty message".to_string())
         }
-        Ok(Err(_)) => return Ok(false),
+        Ok(Err(error)) => {
+            if std::env::var_os("FUZZ_ERRORS").is_some() {
+                eprintln!("run error: {error}");
+            }
+            return Ok(false);
+        }
         Ok(Ok(outcome)) => outcome,
     };
     for r in &outcome.records {

@@ -134,10 +134,12 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             return Err(cause.context(format!("run stopped at step {step}")));
         }
         Err(error) => {
-            return Err(anyhow!(error).context(format!(
+            // One message, not an error chain: `ProtocolError::Solve` shows its source in its
+            // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
+            return Err(anyhow!(crate::error_line(anyhow::Chain::new(&error))).context(format!(
                 "run failed; {} holds the steps done",
                 out.join("curve.csv").display()
-            )))
+            )));
         }
     };
     let plot_files = match (&outcome.report, scenario.protocol_setup()) {
@@ -155,6 +157,9 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     let counters = outcome.report.counters();
     let performance = summary::performance(wall_seconds, &counters, &observer);
     let summary = adhesim_scenario::Summary::new(&scenario, &outcome, performance, &observer.warnings);
+    if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
+        eprintln!("warning: {warning}");
+    }
     summary::write(&out.join("summary.json"), &summary)?;
     if !options.quiet {
         match &outcome.report {
@@ -316,4 +321,37 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
         "  half-width a = {:.4e}, compactness A/(πa²) = {:.3}, jumps = {}",
         results.contact_half_width, results.compactness, results.jumps
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn travel_step(step: usize, offset: f64, contact_elements: usize) -> StepRecord {
+        StepRecord {
+            step,
+            phase: Some(Phase::Roll),
+            offset,
+            contact_elements,
+            ..StepRecord::default()
+        }
+    }
+
+    /// Issue #16: a roll whose contact left the grid exited 0 with zero force, no warning.
+    #[test]
+    fn a_travel_that_loses_the_contact_is_reported() {
+        let approach = StepRecord {
+            phase: Some(Phase::Approach),
+            contact_elements: 0,
+            ..StepRecord::default()
+        };
+        let mut records = vec![approach, travel_step(1, 0.1, 12), travel_step(2, 0.2, 3)];
+        assert_eq!(lost_contact_warning(&records), None);
+        records.extend([travel_step(3, 0.3, 0), travel_step(4, 0.4, 0)]);
+        let warning = lost_contact_warning(&records).unwrap();
+        assert!(
+            warning.starts_with("the contact was lost in 2 of 4 travel steps (first at step 3, X = 3.0000e-1)"),
+            "{warning}"
+        );
+    }
 }

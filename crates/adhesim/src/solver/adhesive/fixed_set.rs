@@ -164,7 +164,12 @@ impl AdhesiveSolver {
                 self.residual[k] = 0.0;
             }
         }
-        if target_norm == 0.0 && residual_norm == 0.0 {
+        if target_norm == 0.0 {
+            // d − z = 0 on all of C (a flat face exactly at the depth, e.g. a punch retracted
+            // to d = 0): K_CC p_C = 0 has the exact solution p = 0 (K is positive definite),
+            // so u = K p = 0; CG could never meet ‖r‖ ≤ ε‖b‖ = 0 on the rounding of p.
+            state.pressure.iter_mut().for_each(|p| *p = 0.0);
+            state.displacement.iter_mut().for_each(|u| *u = 0.0);
             (self.pressure_error_bound, self.gap_error_bound) = (0.0, 0.0);
             return Ok(0);
         }
