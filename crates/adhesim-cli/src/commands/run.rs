@@ -322,36 +322,3 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
         results.contact_half_width, results.compactness, results.jumps
     );
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn travel_step(step: usize, offset: f64, contact_elements: usize) -> StepRecord {
-        StepRecord {
-            step,
-            phase: Some(Phase::Roll),
-            offset,
-            contact_elements,
-            ..StepRecord::default()
-        }
-    }
-
-    /// Issue #16: a roll whose contact left the grid exited 0 with zero force, no warning.
-    #[test]
-    fn a_travel_that_loses_the_contact_is_reported() {
-        let approach = StepRecord {
-            phase: Some(Phase::Approach),
-            contact_elements: 0,
-            ..StepRecord::default()
-        };
-        let mut records = vec![approach, travel_step(1, 0.1, 12), travel_step(2, 0.2, 3)];
-        assert_eq!(lost_contact_warning(&records), None);
-        records.extend([travel_step(3, 0.3, 0), travel_step(4, 0.4, 0)]);
-        let warning = lost_contact_warning(&records).unwrap();
-        assert!(
-            warning.starts_with("the contact was lost in 2 of 4 travel steps (first at step 3, X = 3.0000e-1)"),
-            "{warning}"
-        );
-    }
-}
