@@ -356,13 +356,14 @@ fn tiny_studies_write_tables_and_figures() {
     for file in ["fig7.png", "fig7_work.svg", "fig8.png"] {
         assert!(out.join("plots").join(file).is_file(), "{file}");
     }
-    // Resuming: every finished run is cached (4 rolls + 2 normal runs); a re-run reuses
-    // them all (nothing is recomputed) and writes the same table. Removing one cached
-    // run (as if the study had been killed before it finished) recomputes only that one.
-    let cached: Vec<PathBuf> = std::fs::read_dir(out.join("cache"))
+    // Resuming: every finished run is a case folder with its `done` marker (4 rolls + 2
+    // normal runs); a re-run reuses them all (nothing is recomputed) and writes the same
+    // table. Removing one case folder (as if the study had been killed before it
+    // finished) recomputes only that one.
+    let cached: Vec<PathBuf> = std::fs::read_dir(out.join("cases"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .filter(|p| p.join("done").is_file() && p.join("record.json").is_file())
         .collect();
     assert_eq!(cached.len(), 6, "{cached:?}");
     let table = std::fs::read_to_string(out.join("table.csv")).unwrap();
@@ -370,7 +371,7 @@ fn tiny_studies_write_tables_and_figures() {
         .iter()
         .find(|p| p.to_string_lossy().contains("case-1-1"))
         .unwrap();
-    std::fs::remove_file(victim).unwrap();
+    std::fs::remove_dir_all(victim).unwrap();
     let output = adhesim(&[
         "study",
         "rolling",
