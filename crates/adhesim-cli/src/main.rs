@@ -2,7 +2,6 @@
 //! Parses the command line and dispatches to `commands/`; nothing else lives here.
 
 mod commands;
-mod experiment;
 mod figure;
 mod master_plots;
 mod output;
@@ -12,7 +11,7 @@ mod summary;
 mod tangential_plots;
 
 use clap::{Parser, Subcommand};
-use commands::{reference, run, study, sweep};
+use commands::{experiment, reference, run, study, sweep};
 use std::process::ExitCode;
 
 /// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
