@@ -3,31 +3,10 @@
 //! fault, the frictionless controls of the paper's Sect. 3, and tiny studies.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    assert_eq!(output.status.code(), Some(1), "stderr: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
-}
+mod common;
+use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
 
 /// Runs a scenario file of the repository with overrides; returns (out dir, summary).
 fn run_scenario(dir: &Path, name: &str, sets: &[&str]) -> (PathBuf, serde_json::Value) {
@@ -47,26 +26,8 @@ fn run_scenario(dir: &Path, name: &str, sets: &[&str]) -> (PathBuf, serde_json::
     let refs: Vec<&str> = args.iter().map(String::as_str).collect();
     let output = adhesim(&refs);
     assert!(output.status.success(), "{name}: {}", stderr(&output));
-    let summary = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = read_json(&out.join("summary.json"));
     (out, summary)
-}
-
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| r.unwrap().iter().map(String::from).collect())
-        .collect();
-    (header, rows)
-}
-
-fn column(header: &[String], rows: &[Vec<String>], name: &str) -> Vec<String> {
-    let i = header
-        .iter()
-        .position(|h| h == name)
-        .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
-    rows.iter().map(|r| r[i].clone()).collect()
 }
 
 #[test]
@@ -305,12 +266,6 @@ fn frictionless_controls_through_the_cli() {
     let (_, roll) = run_scenario(&rough_dir, "fig6.toml", &rough);
     let ratio = per_step_over_scale(&roll);
     assert!(ratio > 0.05, "rough roll: F_T/(2aγ0) = {ratio:.4}");
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 #[test]
