@@ -218,7 +218,10 @@ impl BatchCase for SweepCase<'_> {
             "series": plan.series,
             "values": values.map(|(k, v)| (k.clone(), serde_json::Value::String(v.clone()))).collect::<serde_json::Map<_, _>>(),
         });
-        std::fs::write(folder.join("case.json"), serde_json::to_string_pretty(&case_info)? + "\n")?;
+        std::fs::write(
+            folder.join("case.json"),
+            serde_json::to_string_pretty(&case_info)? + "\n",
+        )?;
         Ok(())
     }
 

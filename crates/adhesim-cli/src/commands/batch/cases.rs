@@ -65,7 +65,10 @@ pub(super) fn run_case<C: BatchCase>(dir: &Path, case: &C) -> Result<Option<Stri
         std::fs::write(temp.join("error.txt"), format!("{message}\n"))?;
     }
     let status = if failure.is_none() { "ok" } else { "error" };
-    std::fs::write(temp.join("done"), format!("hash = {}\nstatus = {status}\n", case.hash()))?;
+    std::fs::write(
+        temp.join("done"),
+        format!("hash = {}\nstatus = {status}\n", case.hash()),
+    )?;
     let target = dir.join("cases").join(id);
     if target.exists() {
         if matches!(case_state(dir, id, case.hash()), CaseState::Finished { .. }) {

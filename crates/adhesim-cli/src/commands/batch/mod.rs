@@ -104,8 +104,7 @@ impl Batch {
                 }
                 CaseState::Broken | CaseState::Finished { .. } => {
                     let folder = self.dir.join("cases").join(case.id());
-                    std::fs::remove_dir_all(&folder)
-                        .with_context(|| format!("cannot remove {}", folder.display()))?;
+                    std::fs::remove_dir_all(&folder).with_context(|| format!("cannot remove {}", folder.display()))?;
                     pending.todo.push(case);
                 }
                 CaseState::Missing => pending.todo.push(case),

@@ -8,7 +8,12 @@ use std::sync::Mutex;
 /// Calls `work` on every item from `jobs` worker threads, each inside its own rayon pool of
 /// `threads` threads (the parallel FFTs of its item). The first error `work` returns stops
 /// the workers from taking more items and is returned.
-pub fn for_each<T: Sync>(items: &[T], jobs: usize, threads: usize, work: impl Fn(&T) -> Result<()> + Sync) -> Result<()> {
+pub fn for_each<T: Sync>(
+    items: &[T],
+    jobs: usize,
+    threads: usize,
+    work: impl Fn(&T) -> Result<()> + Sync,
+) -> Result<()> {
     let next = AtomicUsize::new(0);
     let fatal: Mutex<Option<anyhow::Error>> = Mutex::new(None);
     std::thread::scope(|scope| {

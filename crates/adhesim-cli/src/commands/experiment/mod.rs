@@ -172,7 +172,6 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         eprintln!("warning: {w}");
     }
 
-    let bar = progress(files.len(), quiet, "frames");
     let decoded_at = Instant::now();
     let context = FrameContext {
         size: &size,
@@ -181,24 +180,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         track: track.as_ref(),
         pixel_size: settings.pixel_size,
     };
-    // Outer error: a frame of another size stops the run; inner: an unreadable frame is skipped.
-    let results: Vec<Result<Option<FrameRow>>> = files
-        .par_iter()
-        .enumerate()
-        .map(|(i, path)| {
-            let row = context.analyse_frame(i, path, times[i]);
-            bar.inc(1);
-            Ok(match row? {
-                Ok(r) => Some(r),
-                Err(e) => {
-                    bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
-                    None
-                }
-            })
-        })
-        .collect();
-    bar.finish_and_clear();
-    let results: Vec<Option<FrameRow>> = results.into_iter().collect::<Result<_>>()?;
+    let results = context.analyse_frames(&files, &times, quiet)?;
     let analysis_seconds = decoded_at.elapsed().as_secs_f64();
     let skipped: Vec<String> = files
         .iter()
@@ -218,17 +200,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
             );
         }
     }
-    // Sequence-level analysis: jumps and stick/slip phases over the readable frames.
-    let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
-    let jumps = detect_jumps(&areas, settings.phases.jump_threshold)?;
-    let xs: Vec<f64> = rows.iter().map(|r| r.stage_x.unwrap_or(f64::NAN)).collect();
-    let fxs: Vec<f64> = rows.iter().map(|r| r.force_tangential.unwrap_or(f64::NAN)).collect();
-    let has_motion = xs.iter().any(|v| v.is_finite()) && fxs.iter().any(|v| v.is_finite());
-    let phases = classify_phases(&areas, has_motion.then_some((&xs[..], &fxs[..])), &settings.phases)?;
-    for ((r, j), p) in rows.iter_mut().zip(jumps).zip(phases) {
-        r.jump = j;
-        r.phase = p;
-    }
+    mark_jumps_and_phases(&mut rows, &settings)?;
 
     std::fs::create_dir_all(out_dir.join("plots")).with_context(|| format!("cannot create {}", out_dir.display()))?;
     std::fs::create_dir_all(out_dir.join("changes"))?;
@@ -264,6 +236,21 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     Ok(())
 }
 
+/// Sequence-level analysis: the jumps and stick/slip phases over the readable frames.
+fn mark_jumps_and_phases(rows: &mut [FrameRow], settings: &Settings) -> Result<()> {
+    let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
+    let jumps = detect_jumps(&areas, settings.phases.jump_threshold)?;
+    let xs: Vec<f64> = rows.iter().map(|r| r.stage_x.unwrap_or(f64::NAN)).collect();
+    let fxs: Vec<f64> = rows.iter().map(|r| r.force_tangential.unwrap_or(f64::NAN)).collect();
+    let has_motion = xs.iter().any(|v| v.is_finite()) && fxs.iter().any(|v| v.is_finite());
+    let phases = classify_phases(&areas, has_motion.then_some((&xs[..], &fxs[..])), &settings.phases)?;
+    for ((r, j), p) in rows.iter_mut().zip(jumps).zip(phases) {
+        r.jump = j;
+        r.phase = p;
+    }
+    Ok(())
+}
+
 /// What every frame's analysis shares.
 struct FrameContext<'a> {
     size: &'a FrameSize,
@@ -274,6 +261,30 @@ struct FrameContext<'a> {
 }
 
 impl FrameContext<'_> {
+    /// Analyses every frame in parallel: `None` for an unreadable frame (named on stderr and
+    /// skipped); an error (a frame of another size) stops the run.
+    fn analyse_frames(&self, files: &[PathBuf], times: &[f64], quiet: bool) -> Result<Vec<Option<FrameRow>>> {
+        let bar = progress(files.len(), quiet, "frames");
+        // Outer error: a frame of another size stops the run; inner: an unreadable frame is skipped.
+        let results: Vec<Result<Option<FrameRow>>> = files
+            .par_iter()
+            .enumerate()
+            .map(|(i, path)| {
+                let row = self.analyse_frame(i, path, times[i]);
+                bar.inc(1);
+                Ok(match row? {
+                    Ok(r) => Some(r),
+                    Err(e) => {
+                        bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
+                        None
+                    }
+                })
+            })
+            .collect();
+        bar.finish_and_clear();
+        results.into_iter().collect()
+    }
+
     /// One frame: `Err` for a frame of another size (the run stops), `Ok(Err)` for a frame
     /// that cannot be decoded or segmented (it is skipped and reported).
     fn analyse_frame(&self, index: usize, path: &Path, time: f64) -> Result<Result<FrameRow>> {

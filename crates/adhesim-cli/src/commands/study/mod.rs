@@ -228,7 +228,8 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
         let normal = normal_table(&table, &study.normal);
         for (i, &h) in amplitudes.iter().enumerate() {
             let changes = [format!("indenter.amplitude={h:e}")];
-            let scenario = build(&normal, &base_dir, &changes).context("the normal (indent_pulloff) run of the study")?;
+            let scenario =
+                build(&normal, &base_dir, &changes).context("the normal (indent_pulloff) run of the study")?;
             let mut run = StudyRun::new(&format!("normal-{i}"), &normal, &changes, scenario, RunKind::Normal);
             run.what = format!("normal run α = {}", study.alphas[i]);
             run.alpha_index = i;
@@ -256,7 +257,12 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
                 }
                 let mut run = StudyRun::new(&name, &table, &key, scenario, RunKind::Translation);
                 let shown_angle = angle.filter(|_| angles.len() > 1);
-                run.what = format!("{} α = {}, d = {d}·|d_JKR|{}", wanted.name(), study.alphas[i], theta_label(shown_angle));
+                run.what = format!(
+                    "{} α = {}, d = {d}·|d_JKR|{}",
+                    wanted.name(),
+                    study.alphas[i],
+                    theta_label(shown_angle)
+                );
                 (run.alpha_index, run.depth, run.angle) = (i, d, angle);
                 runs.push(run);
             }
@@ -382,12 +388,7 @@ fn show(v: Option<f64>) -> String {
 
 /// The study's report on stdout.
 fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: &[String], start: Instant) {
-    let StudyPlan {
-        study,
-        wanted,
-        out,
-        ..
-    } = plan;
+    let StudyPlan { study, wanted, out, .. } = plan;
     println!(
         "adhesim study {}: {} cases + {} normal runs in {:.0} s",
         wanted.name(),
