@@ -269,7 +269,7 @@ fn frictionless_controls_through_the_cli() {
 }
 
 #[test]
-fn tiny_studies_write_tables_and_figures() {
+fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let scenarios = repo().join("scenarios");
     let rolling = write(
@@ -345,7 +345,12 @@ fn tiny_studies_write_tables_and_figures() {
     };
     let again = std::fs::read_to_string(out.join("table.csv")).unwrap();
     assert_eq!(strip_wall(&table), strip_wall(&again));
+}
 
+#[test]
+fn tiny_sliding_studies_average_over_angles_and_bad_studies_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenarios = repo().join("scenarios");
     let sliding = write(
         dir.path(),
         "sliding.toml",

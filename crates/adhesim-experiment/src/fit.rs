@@ -46,7 +46,9 @@ pub fn linear_fit(x: &[f64], y: &[f64]) -> Result<LinearFit, ExperimentError> {
     // Abscissae equal to round-off would give a slope of noise, not a line.
     let (low, high) = pairs
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, _)| (lo.min(*a), hi.max(*a)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, _)| {
+            (lo.min(*a), hi.max(*a))
+        });
     let degenerate = Err(ExperimentError::Degenerate("linear", "all abscissae are equal"));
     if high - low <= 1e-12 * low.abs().max(high.abs()) {
         return degenerate;

@@ -14,7 +14,7 @@ mod pool;
 
 use crate::commands::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
-pub use cases::{case_state, CaseState};
+pub use cases::{case_state, fnv1a, results_hash, CaseState};
 use std::path::{Path, PathBuf};
 
 /// One case of a batch.
