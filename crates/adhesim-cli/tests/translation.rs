@@ -345,6 +345,27 @@ fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
     };
     let again = std::fs::read_to_string(out.join("table.csv")).unwrap();
     assert_eq!(strip_wall(&table), strip_wall(&again));
+    // A study folder in the layout from before the batch engine (`cache/<id>.json`, no case
+    // folders) resumes as well: its runs move into case folders and none is recomputed.
+    std::fs::create_dir(out.join("cache")).unwrap();
+    for entry in std::fs::read_dir(out.join("cases")).unwrap() {
+        let folder = entry.unwrap().path();
+        let id = folder.file_name().unwrap().to_string_lossy().into_owned();
+        std::fs::rename(folder.join("record.json"), out.join("cache").join(format!("{id}.json"))).unwrap();
+    }
+    std::fs::remove_dir_all(out.join("cases")).unwrap();
+    let output = adhesim(&[
+        "study",
+        "rolling",
+        rolling.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let log = stderr(&output);
+    assert!(log.contains("6 finished runs of"), "{log}");
+    assert_eq!(log.matches("(finished earlier)").count(), 6, "{log}");
+    assert_eq!(std::fs::read_to_string(out.join("table.csv")).unwrap(), again);
 }
 
 #[test]

@@ -336,6 +336,13 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
     let batch = Batch::open(&plan.out, Shard::ALL)?;
+    let adopted = runs::adopt_old_cache(&plan.out, &plan.runs, &batch)?;
+    if adopted > 0 && !args.quiet {
+        eprintln!(
+            "{adopted} finished runs of {}/cache/ (an older adhesim's layout) moved into case folders",
+            plan.out.display()
+        );
+    }
     execute(&plan, args, &batch, start)?;
     let (gammas, case_keys, case_results) = read_runs(&plan, &batch)?;
     let StudyPlan {

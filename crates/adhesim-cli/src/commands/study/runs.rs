@@ -4,7 +4,7 @@
 //! a killed study resumes where it stopped. The hash covers the exact scenario it ran (base
 //! after `set`, plus the run's overrides) and the library's results revision.
 
-use crate::commands::batch::{results_hash, BatchCase};
+use crate::commands::batch::{results_hash, Batch, BatchCase};
 use adhesim_scenario::{RunResults, TranslationResults, ValidScenario};
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
@@ -89,6 +89,53 @@ impl BatchCase for StudyRun {
         let path = folder.join(RECORD);
         std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
     }
+}
+
+/// A run finished by an adhesim older than the batch engine, kept as `<out>/cache/<id>.json`
+/// (the same id: the same scenario and results revision).
+struct CachedRun<'a> {
+    run: &'a StudyRun,
+    record: String,
+}
+
+impl BatchCase for CachedRun<'_> {
+    fn id(&self) -> &str {
+        &self.run.id
+    }
+
+    fn hash(&self) -> &str {
+        &self.run.hash
+    }
+
+    fn run(&self, folder: &Path) -> Result<()> {
+        let path = folder.join(RECORD);
+        std::fs::write(&path, &self.record).with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+/// Moves the readable runs of an old `<out>/cache/` into case folders (atomically, by the
+/// batch engine), so that a study begun before the batch engine resumes instead of
+/// recomputing them; returns how many. The old files are left in place.
+pub fn adopt_old_cache(out: &Path, runs: &[StudyRun], batch: &Batch) -> Result<usize> {
+    let cache = out.join("cache");
+    if !cache.is_dir() {
+        return Ok(0);
+    }
+    let cached: Vec<CachedRun> = runs
+        .iter()
+        .filter_map(|run| {
+            let record = std::fs::read_to_string(cache.join(format!("{}.json", run.id))).ok()?;
+            let readable = match run.kind {
+                RunKind::Normal => serde_json::from_str::<NormalRecord>(&record).is_ok(),
+                RunKind::Translation => serde_json::from_str::<CaseRecord>(&record).is_ok(),
+            };
+            readable.then_some(CachedRun { run, record })
+        })
+        .collect();
+    let pending = batch.pending(&cached, true)?;
+    let adopted = pending.todo.len();
+    batch.execute(pending, 1, 1, &|_, _| {})?;
+    Ok(adopted)
 }
 
 /// The record of a finished run in its case folder.
