@@ -268,6 +268,13 @@ fn frictionless_controls_through_the_cli() {
     assert!(ratio > 0.05, "rough roll: F_T/(2aγ0) = {ratio:.4}");
 }
 
+/// `adhesim study KIND FILE --out OUT EXTRA...`.
+fn study(kind: &str, file: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["study", kind, file.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    adhesim(&args)
+}
+
 #[test]
 fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
@@ -283,16 +290,7 @@ fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
         ),
     );
     let out = dir.path().join("r");
-    let output = adhesim(&[
-        "study",
-        "rolling",
-        rolling.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-        "--quiet",
-    ]);
+    let output = study("rolling", &rolling, &out, &["--jobs", "2", "--quiet"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let (header, rows) = read_csv(&out.join("table.csv"));
     assert_eq!(rows.len(), 4);
@@ -327,13 +325,7 @@ fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
         .find(|p| p.to_string_lossy().contains("case-1-1"))
         .unwrap();
     std::fs::remove_dir_all(victim).unwrap();
-    let output = adhesim(&[
-        "study",
-        "rolling",
-        rolling.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = study("rolling", &rolling, &out, &[]);
     assert!(output.status.success(), "{}", stderr(&output));
     let log = stderr(&output);
     assert_eq!(log.matches("(finished earlier)").count(), 5, "{log}");
@@ -354,13 +346,7 @@ fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
         std::fs::rename(folder.join("record.json"), out.join("cache").join(format!("{id}.json"))).unwrap();
     }
     std::fs::remove_dir_all(out.join("cases")).unwrap();
-    let output = adhesim(&[
-        "study",
-        "rolling",
-        rolling.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = study("rolling", &rolling, &out, &[]);
     assert!(output.status.success(), "{}", stderr(&output));
     let log = stderr(&output);
     assert!(log.contains("6 finished runs of"), "{log}");
@@ -382,14 +368,7 @@ fn tiny_sliding_studies_average_over_angles_and_bad_studies_fail() {
         ),
     );
     let out = dir.path().join("s");
-    let output = adhesim(&[
-        "study",
-        "sliding",
-        sliding.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let output = study("sliding", &sliding, &out, &["--quiet"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let (_, rows) = read_csv(&out.join("table.csv"));
     assert_eq!(rows.len(), 2);
@@ -408,13 +387,7 @@ fn tiny_sliding_studies_average_over_angles_and_bad_studies_fail() {
             scenarios.join("fig9.toml").display()
         ),
     );
-    let output = adhesim(&[
-        "study",
-        "sliding",
-        angled.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = study("sliding", &angled, &out, &[]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert_eq!(
         stderr(&output).matches("(finished earlier)").count(),
