@@ -352,6 +352,16 @@ fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
     assert!(log.contains("6 finished runs of"), "{log}");
     assert_eq!(log.matches("(finished earlier)").count(), 6, "{log}");
     assert_eq!(std::fs::read_to_string(out.join("table.csv")).unwrap(), again);
+    // Shards: each runs its share of the runs; the one that finds all finished writes the
+    // same table.
+    let sharded = dir.path().join("sharded");
+    for shard in ["0/2", "1/2"] {
+        assert!(!sharded.join("table.csv").exists(), "a table before shard {shard}");
+        let output = study("rolling", &rolling, &sharded, &["--shard", shard, "--quiet"]);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let table = std::fs::read_to_string(sharded.join("table.csv")).unwrap();
+    assert_eq!(strip_wall(&table), strip_wall(&again));
 }
 
 #[test]

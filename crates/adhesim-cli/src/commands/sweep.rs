@@ -10,7 +10,7 @@
 pub mod plan;
 pub mod table;
 
-use crate::commands::batch::{write_atomically, Batch, BatchCase};
+use crate::commands::batch::{self, write_atomically, Batch, BatchCase};
 use crate::commands::folder::{FolderLock, Shard};
 use crate::commands::run::{run, RunOptions};
 use crate::resources;
@@ -93,7 +93,7 @@ pub fn command(args: &SweepArgs) -> Result<()> {
     if args.merge_only {
         return merge(&out, args.quiet);
     }
-    let shard = parse_shard(args.shard.as_deref())?;
+    let shard = batch::parse_shard(args.shard.as_deref())?;
     let plan = plan::load(file)?;
     if args.list {
         use std::io::Write;
@@ -137,19 +137,6 @@ fn check_memory(plan: &Plan, jobs: usize, available: u64) -> Result<()> {
     let runs = jobs.min(plan.cases.len()) as u64;
     file.check_memory(available, runs)
         .with_context(|| format!("case {} (pass --allow-large to run anyway, or lower --jobs)", case.id))
-}
-
-/// Parses `I/N` with 0 <= I < N.
-pub fn parse_shard(text: Option<&str>) -> Result<(usize, usize)> {
-    let Some(text) = text else { return Ok((0, 1)) };
-    let bad = || anyhow!("--shard expects I/N with 0 <= I < N (e.g. 0/4), got `{text}`");
-    let (i, n) = text.split_once('/').ok_or_else(bad)?;
-    let i: usize = i.trim().parse().map_err(|_| bad())?;
-    let n: usize = n.trim().parse().map_err(|_| bad())?;
-    if n == 0 || i >= n {
-        return Err(bad());
-    }
-    Ok((i, n))
 }
 
 /// Writes `DIR/sweep.json` (the plan), refusing a folder that holds another sweep.
@@ -239,19 +226,13 @@ impl BatchCase for SweepCase<'_> {
 fn execute(
     plan: &Plan,
     dir: &Path,
-    (shard, shards): (usize, usize),
+    shard: Shard,
     jobs: usize,
     threads: usize,
     quiet: bool,
     retry_failed: bool,
 ) -> Result<()> {
-    let batch = Batch::open(
-        dir,
-        Shard {
-            index: shard,
-            count: shards,
-        },
-    )?;
+    let batch = Batch::open(dir, shard)?;
     write_plan(dir, plan)?;
     let cases: Vec<SweepCase> = plan.cases.iter().map(|case| SweepCase { plan, case }).collect();
     let pending = batch.pending(&cases, retry_failed)?;
@@ -288,8 +269,10 @@ fn execute(
     let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
     if !quiet {
         println!(
-            "adhesim sweep: {} cases in the plan, shard {shard}/{shards}: {} run now, {} already finished, {} failed",
+            "adhesim sweep: {} cases in the plan, shard {}/{}: {} run now, {} already finished, {} failed",
             plan.cases.len(),
+            shard.index,
+            shard.count,
             outcome.ran,
             outcome.skipped,
             outcome.failed_now.len()

@@ -183,6 +183,19 @@ impl Outcome {
     }
 }
 
+/// Parses `--shard I/N` with 0 <= I < N (no option: all cases).
+pub fn parse_shard(text: Option<&str>) -> Result<Shard> {
+    let Some(text) = text else { return Ok(Shard::ALL) };
+    let bad = || anyhow!("--shard expects I/N with 0 <= I < N (e.g. 0/4), got `{text}`");
+    let (i, n) = text.split_once('/').ok_or_else(bad)?;
+    let i: usize = i.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok(Shard { index: i, count: n })
+}
+
 /// Writes a file through a temporary sibling and a rename, so readers never see half of it
 /// (a full disk leaves the previous file or none, and an error naming the path).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {

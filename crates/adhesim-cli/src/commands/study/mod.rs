@@ -12,8 +12,7 @@ mod plots;
 mod runs;
 mod tables;
 
-use crate::commands::batch::{self, Batch};
-use crate::commands::folder::Shard;
+use crate::commands::batch::{self, Batch, BatchCase, CaseState};
 use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
 use adhesim::analysis::reference::Jkr;
 use adhesim_scenario::{self as scenario, ProtocolKind, ValidScenario};
@@ -51,6 +50,11 @@ pub struct StudyArgs {
     /// No progress lines.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only the runs whose index modulo N is I (0-based; normal runs first, then the
+    /// cases), e.g. one task of a cluster array job; the command that finds every run
+    /// finished writes the tables and figures.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
 }
 
 /// The study file.
@@ -335,7 +339,8 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let start = Instant::now();
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
-    let batch = Batch::open(&plan.out, Shard::ALL)?;
+    let shard = batch::parse_shard(args.shard.as_deref())?;
+    let batch = Batch::open(&plan.out, shard)?;
     let adopted = runs::adopt_old_cache(&plan.out, &plan.runs, &batch)?;
     if adopted > 0 && !args.quiet {
         eprintln!(
@@ -344,6 +349,24 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         );
     }
     execute(&plan, args, &batch, start)?;
+    let unfinished = plan
+        .runs
+        .iter()
+        .filter(|run| batch::case_state(&plan.out, run.id(), run.hash()) != CaseState::Finished { ok: true })
+        .count();
+    if unfinished > 0 {
+        // Only a shard ran: the tables need the other shards' runs.
+        if !args.quiet {
+            println!(
+                "adhesim study: shard {}/{} done; {unfinished} of {} runs are not finished yet: the command that \
+                 finds them all finished (another shard, or the study without --shard) writes the tables",
+                shard.index,
+                shard.count,
+                plan.runs.len()
+            );
+        }
+        return Ok(());
+    }
     let (gammas, case_keys, case_results) = read_runs(&plan, &batch)?;
     let StudyPlan {
         study,
