@@ -11,6 +11,8 @@
 
 mod cases;
 mod pool;
+#[cfg(test)]
+mod tests;
 
 use crate::commands::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
