@@ -1,10 +1,10 @@
 //! `adhesim sweep`: parameter studies of many scenarios (docs/sweeps.md).
 //!
-//! A sweep file names a base scenario and the keys to vary; the cases run in parallel
-//! (`--jobs`), each into `DIR/cases/<id>/`, written atomically (a temporary folder under
-//! `DIR/tmp/` renamed when the case is finished, with a `done` marker holding the case's
-//! hash). A re-run skips finished cases and redoes broken ones; `--shard I/N` runs the
-//! cases whose index modulo N is I. Every run (and `sweep merge DIR`) rebuilds
+//! A sweep file names a base scenario and the keys to vary; the cases run on the batch
+//! engine ([`crate::commands::batch`]) in parallel (`--jobs`), each into `DIR/cases/<id>/`,
+//! written atomically (a temporary folder under `DIR/tmp/` renamed when the case is
+//! finished, with a `done` marker holding the case's hash). A re-run skips finished cases
+//! and redoes broken ones; `--shard I/N` runs the cases whose index modulo N is I. Every run (and `sweep merge DIR`) rebuilds
 //! `DIR/table.csv` and the master-curve plots from all finished case folders.
 
 pub mod plan;
