@@ -15,8 +15,6 @@ use adhesim_experiment::{
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
-use plots::{Panel, Series};
-use plotters::style::RGBColor;
 use rayon::prelude::*;
 use serde_json::json;
 use spec::{BackgroundChoice, Reference, Settings};
@@ -206,7 +204,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     std::fs::create_dir_all(out_dir.join("changes"))?;
     write_frames_csv(&out_dir.join("frames.csv"), &rows)?;
     let changes_written = write_change_maps(&settings, &files, &rows, &segmenter, &out_dir.join("changes"))?;
-    write_plots(&out_dir.join("plots"), &rows)?;
+    plots::write_plots(&out_dir.join("plots"), &rows)?;
     let results = fit_results(&settings, &rows)?;
     let summary = json!({
         "inputs": {
@@ -478,64 +476,6 @@ fn crop_box(
         (x1 + margin).min(w),
         (y1 + margin).min(h),
     )
-}
-
-const RED: RGBColor = RGBColor(214, 39, 40);
-const BLUE: RGBColor = RGBColor(31, 119, 180);
-const BLACK: RGBColor = RGBColor(0, 0, 0);
-
-fn series(rows: &[FrameRow], label: &'static str, color: RGBColor, value: impl Fn(&FrameRow) -> Option<f64>) -> Series {
-    Series {
-        label,
-        color,
-        points: rows
-            .iter()
-            .filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.time, v)))
-            .collect(),
-    }
-}
-
-fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
-    let area_panel = || Panel {
-        y_label: "area",
-        series: vec![
-            series(rows, "total", BLACK, |r| Some(r.m.area)),
-            series(rows, "front", RED, |r| Some(r.m.area_front)),
-            series(rows, "rear", BLUE, |r| Some(r.m.area_rear)),
-        ],
-    };
-    plots::write_panels(dir, "areas", "Contact area", &[area_panel()])?;
-    let fx = || Panel {
-        y_label: "F_x",
-        series: vec![series(rows, "F_x", BLACK, |r| r.force_tangential)],
-    };
-    let tau = || Panel {
-        y_label: "tau = F_x/A",
-        series: vec![series(rows, "tau", BLACK, |r| ratio(r.force_tangential, r.m.area))],
-    };
-    // Paper Fig. 19: F_x, areas (total/front/rear), τ.
-    plots::write_panels(
-        dir,
-        "sliding",
-        "Tangential force, contact areas, tangential stress",
-        &[fx(), area_panel(), tau()],
-    )?;
-    // Paper Fig. 22: F_N, F_x, p, τ.
-    let fn_panel = Panel {
-        y_label: "F_N",
-        series: vec![series(rows, "F_N", BLACK, |r| r.force_normal)],
-    };
-    let p_panel = Panel {
-        y_label: "p = F_N/A",
-        series: vec![series(rows, "p", BLACK, |r| ratio(r.force_normal, r.m.area))],
-    };
-    plots::write_panels(
-        dir,
-        "forces",
-        "Normal force, tangential force, pressure, tangential stress",
-        &[fn_panel, fx(), p_panel, tau()],
-    )?;
-    Ok(())
 }
 
 fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Value> {
