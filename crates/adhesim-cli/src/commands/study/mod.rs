@@ -287,7 +287,7 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
 /// the next command.
 fn execute(plan: &StudyPlan, args: &StudyArgs, batch: &Batch, start: Instant) -> Result<()> {
     let pending = batch.pending(&plan.runs, true)?;
-    let total = plan.runs.len();
+    let total = pending.selected;
     let done = std::sync::atomic::AtomicUsize::new(0);
     let report = |what: &str| {
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
