@@ -2,33 +2,11 @@
 //! named, runs write the contract's files (docs/output.md), every scenario in
 //! `scenarios/` runs on a coarse grid, and `reference jkr` reproduces F_JKR.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
+use std::process::Output;
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
-
-fn scenarios_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
-}
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-/// Fails with a non-zero exit, no panic, and a message containing every fragment.
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    assert_eq!(output.status.code(), Some(1), "stderr: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
-}
+mod common;
+use common::{adhesim, assert_fails_with, column_values, read_csv, read_json, scenarios_dir, stderr, write};
 
 const HERTZ: &str = r#"
 [grid]
@@ -51,15 +29,9 @@ max_depth = 0.01
 steps = 10
 "#;
 
-fn write_scenario(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 fn run_text(text: &str, extra: &[&str]) -> (tempfile::TempDir, Output) {
     let dir = tempfile::tempdir().unwrap();
-    let path = write_scenario(dir.path(), "s.toml", text);
+    let path = write(dir.path(), "s.toml", text);
     let out = dir.path().join("out");
     let mut args = vec!["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
     args.extend_from_slice(extra);
@@ -145,24 +117,6 @@ steps = 5
     assert_fails_with(&output, &["indenter.file", "missing.npy"]);
 }
 
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| r.unwrap().iter().map(String::from).collect())
-        .collect();
-    (header, rows)
-}
-
-fn column(header: &[String], rows: &[Vec<String>], name: &str) -> Vec<f64> {
-    let i = header
-        .iter()
-        .position(|h| h == name)
-        .unwrap_or_else(|| panic!("no column {name}"));
-    rows.iter().map(|r| r[i].parse::<f64>().unwrap()).collect()
-}
-
 #[test]
 fn hertz_run_writes_the_contract() {
     let dir = tempfile::tempdir().unwrap();
@@ -213,8 +167,8 @@ fn hertz_run_writes_the_contract() {
     assert_eq!(rows.last().unwrap()[phase], "retract");
     // At the deepest step the force matches Hertz within the discretisation error
     // (a = 0.1 = 21 elements: a few per cent).
-    let d = column(&header, &rows, "d");
-    let force = column(&header, &rows, "force_normal");
+    let d = column_values(&header, &rows, "d");
+    let force = column_values(&header, &rows, "force_normal");
     let deepest = d
         .iter()
         .cloned()
@@ -228,8 +182,7 @@ fn hertz_run_writes_the_contract() {
         force[deepest]
     );
 
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out.join("summary.json"));
     for key in [
         "f_jkr",
         "d_jkr",
@@ -289,13 +242,12 @@ fn hertz_run_writes_the_contract() {
 fn contact_at_the_border_is_a_warning() {
     // a = 0.1 at d = 0.01, but the domain is only 0.16 wide.
     let dir = tempfile::tempdir().unwrap();
-    let path = write_scenario(dir.path(), "small.toml", &HERTZ.replace("size = 0.3", "size = 0.16"));
+    let path = write(dir.path(), "small.toml", &HERTZ.replace("size = 0.3", "size = 0.16"));
     let out = dir.path().join("out");
     let output = adhesim(&["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(stderr(&output).contains("warning: contact reached the domain border"));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out.join("summary.json"));
     assert_eq!(summary["results"]["border_contact"], true);
     let warnings = summary["warnings"].as_array().unwrap();
     assert!(warnings.iter().any(|w| w.as_str().unwrap().contains("border")));
@@ -326,8 +278,7 @@ fn every_scenario_runs_on_a_coarse_grid() {
             "protocol.steps=12",
         ]);
         assert!(output.status.success(), "{stem}: {}", stderr(&output));
-        let summary: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let summary: serde_json::Value = read_json(&out.join("summary.json"));
         assert_eq!(summary["inputs"]["grid"]["n"], 32, "{stem}");
         assert!(summary["performance"]["steps"].as_u64().unwrap() > 12, "{stem}");
         if stem == "fig1" || stem.starts_with("fig2") || stem.starts_with("fig4") {
@@ -360,7 +311,7 @@ fn reference_jkr_minimum_is_f_jkr() {
         .records()
         .map(|r| r.unwrap().iter().map(String::from).collect())
         .collect();
-    let force = column(&header, &rows, "force");
+    let force = column_values(&header, &rows, "force");
     let minimum = force.iter().cloned().fold(f64::INFINITY, f64::min);
     let expected = -1.5 * std::f64::consts::PI * gamma * radius;
     assert!((minimum / expected - 1.0).abs() < 1e-9, "{minimum} vs {expected}");

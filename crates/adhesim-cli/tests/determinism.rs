@@ -5,7 +5,8 @@
 use std::path::Path;
 use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+mod common;
+use common::{scenarios_dir, BIN};
 
 fn run(scenario: &Path, out: &Path, threads: &str) -> Vec<u8> {
     let status = Command::new(BIN)
@@ -25,7 +26,7 @@ fn run(scenario: &Path, out: &Path, threads: &str) -> Vec<u8> {
 
 #[test]
 fn curve_is_identical_on_one_and_two_threads() {
-    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig1.toml");
+    let scenario = scenarios_dir().join("fig1.toml");
     let folder = tempfile::tempdir().unwrap();
     let single = run(&scenario, &folder.path().join("one"), "1");
     let double = run(&scenario, &folder.path().join("two"), "2");

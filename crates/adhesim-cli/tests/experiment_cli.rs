@@ -1,52 +1,14 @@
 //! Integration tests of `adhesim experiment` on small synthetic sequences.
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_adhesim"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn synth(dir: &Path, frames: &str) {
-    let out = adhesim(&[
-        "experiment",
-        "synth",
-        "--out",
-        dir.to_str().unwrap(),
-        "--frames",
-        frames,
-        "--width",
-        "320",
-        "--height",
-        "240",
-        "--quiet",
-    ]);
-    assert!(
-        out.status.success(),
-        "synth failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(String::from).collect();
-    (
-        header,
-        lines.map(|l| l.split(',').map(String::from).collect()).collect(),
-    )
-}
+mod common;
+use common::{adhesim, read_csv, read_json, synth_experiment as synth};
 
 /// A corrupt frame (text with a .png name) and an empty .tif among 8 good frames: the run
 /// succeeds, names both on stderr, and frames.csv has exactly the 8 good frames (exact count).
 #[test]
 fn unreadable_frames_reported_and_skipped() {
     let dir = tempfile::tempdir().unwrap();
-    synth(dir.path(), "8");
+    synth(dir.path(), 8);
     std::fs::write(dir.path().join("frames/frame_00003b.png"), b"not an image").unwrap();
     std::fs::write(dir.path().join("frames/frame_00005b.tif"), b"").unwrap();
     let out_dir = dir.path().join("out");
@@ -73,7 +35,7 @@ fn unreadable_frames_reported_and_skipped() {
 #[test]
 fn outputs_follow_contract() {
     let dir = tempfile::tempdir().unwrap();
-    synth(dir.path(), "30");
+    synth(dir.path(), 30);
     let out_dir = dir.path().join("out");
     let out = adhesim(&[
         "experiment",
@@ -130,7 +92,7 @@ fn outputs_follow_contract() {
 #[test]
 fn spec_errors_name_key_and_value() {
     let dir = tempfile::tempdir().unwrap();
-    synth(dir.path(), "2");
+    synth(dir.path(), 2);
     let spec = std::fs::read_to_string(dir.path().join("experiment.toml")).unwrap();
     let cases = [
         (
@@ -256,8 +218,7 @@ fn normal_curve_jkr_fits_and_pinned_phase() {
         "--quiet",
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out_dir.join("summary.json"));
     let results = &summary["results"];
     let g1 = results["gamma_approach"].as_f64().unwrap();
     let g2 = results["gamma_pulloff"].as_f64().unwrap();

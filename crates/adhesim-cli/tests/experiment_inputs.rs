@@ -4,36 +4,14 @@
 //! log sampled at the frame times t = 0 … 5, the header on line 1 and frame k on line k + 2).
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_adhesim"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+mod common;
+use common::{adhesim, synth_experiment};
 
 /// A synthetic sequence of `frames` frames in a fresh folder.
 fn synth(frames: usize) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    let out = adhesim(&[
-        "experiment",
-        "synth",
-        "--out",
-        dir.path().to_str().unwrap(),
-        "--frames",
-        &frames.to_string(),
-        "--width",
-        "320",
-        "--height",
-        "240",
-        "--quiet",
-    ]);
-    assert!(
-        out.status.success(),
-        "synth failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    synth_experiment(dir.path(), frames);
     dir
 }
 

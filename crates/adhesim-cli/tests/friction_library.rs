@@ -16,6 +16,9 @@ use adhesim::{
     TranslatingContact, Translation,
 };
 
+mod common;
+use common::{read_json, scenarios_dir};
+
 fn reduced_fig6() -> TranslationResults {
     let grid = Grid::new(32, 0.4, Boundary::Free).unwrap();
     let material = ElasticMaterial::new(1.0).unwrap();
@@ -74,7 +77,7 @@ fn reduced_fig6() -> TranslationResults {
 
 /// `results` of the reduced fig6 run of the command line.
 fn cli_results(dir: &Path) -> serde_json::Value {
-    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let scenario = scenarios_dir().join("fig6.toml");
     let out = dir.join("fig6");
     let output = Command::new(env!("CARGO_BIN_EXE_adhesim"))
         .args([
@@ -95,8 +98,7 @@ fn cli_results(dir: &Path) -> serde_json::Value {
         .output()
         .expect("binary runs");
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out.join("summary.json"));
     summary["results"].clone()
 }
 

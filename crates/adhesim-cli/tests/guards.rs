@@ -2,10 +2,11 @@
 //! (`docs/reliability.md`, "Scenario inputs and resources"). Each case ran into the OOM
 //! killer, aborted, ran for hours or was accepted silently before those guards.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+mod common;
+use common::{assert_fails_with, read_json, stderr, write, BIN};
 
 fn adhesim(args: &[&str], memory: Option<&str>) -> Output {
     let mut command = Command::new(BIN);
@@ -15,20 +16,6 @@ fn adhesim(args: &[&str], memory: Option<&str>) -> Output {
         None => command.env_remove("ADHESIM_MEMORY_AVAILABLE"),
     };
     command.output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    assert_eq!(output.status.code(), Some(1), "stderr: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
 }
 
 const JKR: &str = r#"
@@ -49,15 +36,9 @@ depth_unit = "jkr"
 steps = 10
 "#;
 
-fn scenario(dir: &Path, text: &str) -> PathBuf {
-    let path = dir.join("scenario.toml");
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 fn run(text: &str, extra: &[&str], memory: Option<&str>) -> (tempfile::TempDir, Output) {
     let temp = tempfile::tempdir().unwrap();
-    let path = scenario(temp.path(), text);
+    let path = write(temp.path(), "scenario.toml", text);
     let out = temp.path().join("out");
     let mut args = vec!["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
     args.extend_from_slice(extra);
@@ -157,8 +138,7 @@ fn resolution_warnings_reach_stderr_and_the_summary() {
         "{}",
         stderr(&output)
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(temp.path().join("out/summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&temp.path().join("out/summary.json"));
     let warnings = summary["warnings"].as_array().unwrap();
     assert!(
         warnings.iter().any(|w| w.as_str().unwrap().contains("1.28 elements")),
@@ -279,7 +259,7 @@ steps = 8
 "#;
 
 fn run_in(dir: &Path, text: &str, out: &str) -> Output {
-    let path = scenario(dir, text);
+    let path = write(dir, "scenario.toml", text);
     let out = dir.join(out);
     adhesim(
         &["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"],

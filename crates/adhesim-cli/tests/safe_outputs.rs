@@ -3,32 +3,12 @@
 //! run's outputs, `curve.csv` only ever appears whole, a sweep folder is locked against a
 //! second command, and a sweep with failed cases exits non-zero with their count.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn assert_ok(output: &Output) {
-    assert!(output.status.success(), "failed: {}", stderr(output));
-}
-
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
-}
+mod common;
+use common::{adhesim, assert_fails_with, assert_ok, read_json, scenarios_dir, stderr, write, BIN};
 
 /// A Hertz indentation of a few milliseconds (16×16 grid).
 const SMALL: &str = r#"
@@ -38,12 +18,6 @@ adhesion = { work_of_adhesion = 0.0 }
 indenter = { shape = "sphere", radius = 1.0 }
 protocol = { kind = "indent_pulloff", max_depth = 0.01, steps = 6 }
 "#;
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 fn run(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
     let mut args = vec![
@@ -155,8 +129,7 @@ fn rerun_clears_the_previous_outputs_and_leaves_no_temporary_file() {
     );
     assert!(!out.join("plots/stale.png").exists());
     let rows = std::fs::read_to_string(out.join("curve.csv")).unwrap().lines().count();
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out.join("summary.json"));
     assert_eq!(rows - 1, summary["performance"]["steps"].as_u64().unwrap() as usize);
     let leftovers: Vec<String> = names(&out)
         .into_iter()
@@ -427,7 +400,7 @@ fn a_case_failing_in_its_run_is_counted() {
 #[test]
 fn a_locked_study_folder_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let base = scenarios_dir().join("fig6.toml");
     let study = write(
         dir.path(),
         "rolling.toml",

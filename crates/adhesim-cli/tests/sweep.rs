@@ -1,36 +1,12 @@
 //! End-to-end tests of `adhesim sweep`: resuming after SIGKILL, shards + merge, bad sweep
 //! files, and the JKR fits of a smooth-sphere run.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::path::Path;
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
-
-fn sweeps_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps")
-}
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn assert_ok(output: &Output) {
-    assert!(output.status.success(), "failed: {}", stderr(output));
-}
-
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
-}
+mod common;
+use common::{adhesim, assert_fails_with, assert_ok, read_json, scenarios_dir, sweeps_dir, write, BIN};
 
 /// Eight cases of a few tenths of a second each (64×64 grid).
 const SLOW_SWEEP: &str = r#"
@@ -46,12 +22,6 @@ protocol = { kind = "indent_pulloff", max_depth = 8.0, depth_unit = "jkr", steps
 [vary]
 alpha = [0.4, 0.6, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0]
 "#;
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 fn finished_cases(dir: &Path) -> Vec<String> {
     let mut ids: Vec<String> = std::fs::read_dir(dir.join("cases"))
@@ -280,7 +250,7 @@ fn bad_sweep_files_name_the_key() {
 #[test]
 fn smooth_sphere_fits_recover_the_work_of_adhesion() {
     let temp = tempfile::tempdir().unwrap();
-    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/jkr.toml");
+    let scenario = scenarios_dir().join("jkr.toml");
     let out = temp.path().join("jkr");
     assert_ok(&adhesim(&[
         "run",
@@ -293,8 +263,7 @@ fn smooth_sphere_fits_recover_the_work_of_adhesion() {
         "--set",
         "protocol.steps=40",
     ]));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary: serde_json::Value = read_json(&out.join("summary.json"));
     let results = &summary["results"];
     for key in ["gamma_approach_norm", "gamma_pulloff_norm"] {
         let value = results[key].as_f64().unwrap();

@@ -3,31 +3,10 @@
 //! fault, the frictionless controls of the paper's Sect. 3, and tiny studies.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn adhesim(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-fn assert_fails_with(output: &Output, fragments: &[&str]) {
-    let message = stderr(output);
-    assert!(!output.status.success(), "expected failure, stderr: {message}");
-    assert!(!message.contains("panicked"), "panic: {message}");
-    assert_eq!(output.status.code(), Some(1), "stderr: {message}");
-    for fragment in fragments {
-        assert!(message.contains(fragment), "`{fragment}` missing from: {message}");
-    }
-}
+mod common;
+use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
 
 /// Runs a scenario file of the repository with overrides; returns (out dir, summary).
 fn run_scenario(dir: &Path, name: &str, sets: &[&str]) -> (PathBuf, serde_json::Value) {
@@ -47,26 +26,8 @@ fn run_scenario(dir: &Path, name: &str, sets: &[&str]) -> (PathBuf, serde_json::
     let refs: Vec<&str> = args.iter().map(String::as_str).collect();
     let output = adhesim(&refs);
     assert!(output.status.success(), "{name}: {}", stderr(&output));
-    let summary = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = read_json(&out.join("summary.json"));
     (out, summary)
-}
-
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut reader = csv::Reader::from_path(path).unwrap();
-    let header = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows = reader
-        .records()
-        .map(|r| r.unwrap().iter().map(String::from).collect())
-        .collect();
-    (header, rows)
-}
-
-fn column(header: &[String], rows: &[Vec<String>], name: &str) -> Vec<String> {
-    let i = header
-        .iter()
-        .position(|h| h == name)
-        .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
-    rows.iter().map(|r| r[i].clone()).collect()
 }
 
 #[test]
@@ -307,14 +268,15 @@ fn frictionless_controls_through_the_cli() {
     assert!(ratio > 0.05, "rough roll: F_T/(2aγ0) = {ratio:.4}");
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
+/// `adhesim study KIND FILE --out OUT EXTRA...`.
+fn study(kind: &str, file: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["study", kind, file.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    adhesim(&args)
 }
 
 #[test]
-fn tiny_studies_write_tables_and_figures() {
+fn tiny_rolling_study_writes_tables_and_figures_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let scenarios = repo().join("scenarios");
     let rolling = write(
@@ -328,16 +290,7 @@ fn tiny_studies_write_tables_and_figures() {
         ),
     );
     let out = dir.path().join("r");
-    let output = adhesim(&[
-        "study",
-        "rolling",
-        rolling.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--jobs",
-        "2",
-        "--quiet",
-    ]);
+    let output = study("rolling", &rolling, &out, &["--jobs", "2", "--quiet"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let (header, rows) = read_csv(&out.join("table.csv"));
     assert_eq!(rows.len(), 4);
@@ -356,13 +309,14 @@ fn tiny_studies_write_tables_and_figures() {
     for file in ["fig7.png", "fig7_work.svg", "fig8.png"] {
         assert!(out.join("plots").join(file).is_file(), "{file}");
     }
-    // Resuming: every finished run is cached (4 rolls + 2 normal runs); a re-run reuses
-    // them all (nothing is recomputed) and writes the same table. Removing one cached
-    // run (as if the study had been killed before it finished) recomputes only that one.
-    let cached: Vec<PathBuf> = std::fs::read_dir(out.join("cache"))
+    // Resuming: every finished run is a case folder with its `done` marker (4 rolls + 2
+    // normal runs); a re-run reuses them all (nothing is recomputed) and writes the same
+    // table. Removing one case folder (as if the study had been killed before it
+    // finished) recomputes only that one.
+    let cached: Vec<PathBuf> = std::fs::read_dir(out.join("cases"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .filter(|p| p.join("done").is_file() && p.join("record.json").is_file())
         .collect();
     assert_eq!(cached.len(), 6, "{cached:?}");
     let table = std::fs::read_to_string(out.join("table.csv")).unwrap();
@@ -370,14 +324,8 @@ fn tiny_studies_write_tables_and_figures() {
         .iter()
         .find(|p| p.to_string_lossy().contains("case-1-1"))
         .unwrap();
-    std::fs::remove_file(victim).unwrap();
-    let output = adhesim(&[
-        "study",
-        "rolling",
-        rolling.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    std::fs::remove_dir_all(victim).unwrap();
+    let output = study("rolling", &rolling, &out, &[]);
     assert!(output.status.success(), "{}", stderr(&output));
     let log = stderr(&output);
     assert_eq!(log.matches("(finished earlier)").count(), 5, "{log}");
@@ -389,7 +337,37 @@ fn tiny_studies_write_tables_and_figures() {
     };
     let again = std::fs::read_to_string(out.join("table.csv")).unwrap();
     assert_eq!(strip_wall(&table), strip_wall(&again));
+    // A study folder in the layout from before the batch engine (`cache/<id>.json`, no case
+    // folders) resumes as well: its runs move into case folders and none is recomputed.
+    std::fs::create_dir(out.join("cache")).unwrap();
+    for entry in std::fs::read_dir(out.join("cases")).unwrap() {
+        let folder = entry.unwrap().path();
+        let id = folder.file_name().unwrap().to_string_lossy().into_owned();
+        std::fs::rename(folder.join("record.json"), out.join("cache").join(format!("{id}.json"))).unwrap();
+    }
+    std::fs::remove_dir_all(out.join("cases")).unwrap();
+    let output = study("rolling", &rolling, &out, &[]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let log = stderr(&output);
+    assert!(log.contains("6 finished runs of"), "{log}");
+    assert_eq!(log.matches("(finished earlier)").count(), 6, "{log}");
+    assert_eq!(std::fs::read_to_string(out.join("table.csv")).unwrap(), again);
+    // Shards: each runs its share of the runs; the one that finds all finished writes the
+    // same table.
+    let sharded = dir.path().join("sharded");
+    for shard in ["0/2", "1/2"] {
+        assert!(!sharded.join("table.csv").exists(), "a table before shard {shard}");
+        let output = study("rolling", &rolling, &sharded, &["--shard", shard, "--quiet"]);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let table = std::fs::read_to_string(sharded.join("table.csv")).unwrap();
+    assert_eq!(strip_wall(&table), strip_wall(&again));
+}
 
+#[test]
+fn tiny_sliding_studies_average_over_angles_and_bad_studies_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenarios = repo().join("scenarios");
     let sliding = write(
         dir.path(),
         "sliding.toml",
@@ -400,14 +378,7 @@ fn tiny_studies_write_tables_and_figures() {
         ),
     );
     let out = dir.path().join("s");
-    let output = adhesim(&[
-        "study",
-        "sliding",
-        sliding.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let output = study("sliding", &sliding, &out, &["--quiet"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let (_, rows) = read_csv(&out.join("table.csv"));
     assert_eq!(rows.len(), 2);
@@ -426,13 +397,7 @@ fn tiny_studies_write_tables_and_figures() {
             scenarios.join("fig9.toml").display()
         ),
     );
-    let output = adhesim(&[
-        "study",
-        "sliding",
-        angled.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = study("sliding", &angled, &out, &[]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert_eq!(
         stderr(&output).matches("(finished earlier)").count(),

@@ -1,10 +1,13 @@
 //! Fits of experiment series: straight lines, the power law of Eq. 15, the friction law of
-//! Eq. 18 and the pinned phase after reversal. The JKR work of adhesion on a branch of F(a)
+//! Eq. 18 and the pinned phase after reversal. Every line (the power law and the friction
+//! law are lines after a change of variables) is the library's one least-squares line,
+//! [`adhesim::analysis::fit::fit_line`]. The JKR work of adhesion on a branch of F(a)
 //! is the library's one fit, [`adhesim::analysis::fit::fit_jkr_work_of_adhesion`]
 //! (docs/physics.md §5), re-exported here so that all fits of an experiment are found in one
 //! place.
 
 use crate::{invalid, ExperimentError};
+use adhesim::analysis::fit::fit_line;
 pub use adhesim::analysis::fit::{fit_jkr_work_of_adhesion, JkrFit};
 use std::f64::consts::PI;
 
@@ -21,7 +24,8 @@ pub struct LinearFit {
     pub points: usize,
 }
 
-/// Ordinary least squares on finite pairs; non-finite pairs are skipped.
+/// Ordinary least squares on finite pairs (non-finite pairs are skipped): the library's one
+/// line fit, [`adhesim::analysis::fit::fit_line`], with R² and the point count on top.
 pub fn linear_fit(x: &[f64], y: &[f64]) -> Result<LinearFit, ExperimentError> {
     if x.len() != y.len() {
         return Err(ExperimentError::LengthMismatch(x.len(), y.len()));
@@ -39,23 +43,24 @@ pub fn linear_fit(x: &[f64], y: &[f64]) -> Result<LinearFit, ExperimentError> {
             got: pairs.len(),
         });
     }
-    let n = pairs.len() as f64;
-    let (mx, my) = pairs
+    // Abscissae equal to round-off would give a slope of noise, not a line.
+    let (low, high) = pairs
         .iter()
-        .fold((0.0, 0.0), |(sx, sy), (a, b)| (sx + a / n, sy + b / n));
-    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for (a, b) in &pairs {
-        sxx += (a - mx) * (a - mx);
-        sxy += (a - mx) * (b - my);
-        syy += (b - my) * (b - my);
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, _)| {
+            (lo.min(*a), hi.max(*a))
+        });
+    let degenerate = Err(ExperimentError::Degenerate("linear", "all abscissae are equal"));
+    if high - low <= 1e-12 * low.abs().max(high.abs()) {
+        return degenerate;
     }
-    if sxx <= n * (1e-12 * mx.abs()).powi(2) {
-        return Err(ExperimentError::Degenerate("linear", "all abscissae are equal"));
-    }
-    let slope = sxy / sxx;
-    let intercept = my - slope * mx;
-    let residual = (syy - slope * sxy).max(0.0);
-    let r2 = if syy > 0.0 { 1.0 - residual / syy } else { 1.0 };
+    let Some((slope, intercept)) = fit_line(&pairs) else {
+        return degenerate;
+    };
+    let n = pairs.len() as f64;
+    let mean_y = pairs.iter().map(|p| p.1).sum::<f64>() / n;
+    let total: f64 = pairs.iter().map(|p| (p.1 - mean_y).powi(2)).sum();
+    let residual: f64 = pairs.iter().map(|p| (p.1 - slope * p.0 - intercept).powi(2)).sum();
+    let r2 = if total > 0.0 { 1.0 - residual / total } else { 1.0 };
     Ok(LinearFit {
         slope,
         intercept,

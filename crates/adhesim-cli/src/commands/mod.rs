@@ -1,6 +1,7 @@
 //! One module per subcommand; `main.rs` parses the command line and calls them.
 
 pub mod batch;
+pub mod experiment;
 pub mod folder;
 pub mod reference;
 pub mod run;

@@ -136,10 +136,12 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         Err(error) => {
             // One message, not an error chain: `ProtocolError::Solve` shows its source in its
             // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
-            return Err(anyhow!(crate::error_line(anyhow::Chain::new(&error))).context(format!(
-                "run failed; {} holds the steps done",
-                out.join("curve.csv").display()
-            )));
+            return Err(
+                anyhow!(crate::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
+                    "run failed; {} holds the steps done",
+                    out.join("curve.csv").display()
+                )),
+            );
         }
     };
     let plot_files = match (&outcome.report, scenario.protocol_setup()) {

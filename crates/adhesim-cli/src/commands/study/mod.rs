@@ -8,20 +8,18 @@
 //! rolling/sliding case), `alphas.csv` (one row per α), `study.json` and the figures in
 //! `plots/`.
 
-mod cache;
 mod plots;
+mod runs;
 mod tables;
 
-use crate::commands::batch;
-use crate::commands::folder::{FolderLock, Shard};
+use crate::commands::batch::{self, Batch, BatchCase, CaseState};
 use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
 use adhesim::analysis::reference::Jkr;
-use adhesim_scenario::{self as scenario, ProtocolKind, RunResults, TranslationResults, ValidScenario};
+use adhesim_scenario::{self as scenario, ProtocolKind, ValidScenario};
 use anyhow::{anyhow, bail, Context, Result};
-use cache::{CaseRecord, NormalRecord, RunCache, ROLLING_ANALYSIS};
 use clap::{Args, ValueEnum};
 use plots::{rolling_plots, sliding_plots};
-use rayon::prelude::*;
+use runs::{CaseRecord, NormalRecord, RunKind, StudyRun, ROLLING_ANALYSIS};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -52,6 +50,11 @@ pub struct StudyArgs {
     /// No progress lines.
     #[arg(long)]
     pub quiet: bool,
+    /// Run only the runs whose index modulo N is I (0-based; normal runs first, then the
+    /// cases), e.g. one task of a cluster array job; the command that finds every run
+    /// finished writes the tables and figures.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
 }
 
 /// The study file.
@@ -118,40 +121,14 @@ fn normal_table(table: &toml::Table, normal: &NormalRun) -> toml::Table {
     table
 }
 
-/// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
-fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
-    match adhesim_scenario::run(scenario, &mut ())
-        .map_err(|e| anyhow!(e))?
-        .results
-    {
-        RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
-        RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
-    }
-}
-
-/// The analysed results of a roll / slide run, without writing anything.
-fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
-    match adhesim_scenario::run(scenario, &mut ())
-        .map_err(|e| anyhow!(e))?
-        .results
-    {
-        RunResults::Translation(results) => Ok(results),
-        RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
-    }
-}
-
 /// A study ready to run: the base, the scales and every case, validated.
 struct StudyPlan {
     study: StudyFile,
     wanted: ProtocolKind,
     jkr: Jkr,
     amplitudes: Vec<f64>,
-    /// Substrate angles visited (one `None` for rolling).
-    angles: Vec<Option<f64>>,
-    /// (α index, depth, substrate angle, scenario, cache file) of each translation case.
-    cases: Vec<(usize, f64, Option<f64>, ValidScenario, PathBuf)>,
-    /// (α index, scenario, cache file) of each normal run (rolling only).
-    normals: Vec<(usize, ValidScenario, PathBuf)>,
+    /// The normal runs (rolling only), then the translation cases.
+    runs: Vec<StudyRun>,
     out: PathBuf,
 }
 
@@ -238,7 +215,7 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
         .map(|&a| amplitude_for_johnson_parameter(a, wavelength, gamma0, jkr.contact_modulus))
         .collect();
     // Sliding cases carry their substrate angle; the base's angle is not written as an
-    // override, so its cache entries are those of a study without `substrate_angles`.
+    // override, so its runs are those of a study without `substrate_angles`.
     let base_angle = (study.kind == StudyKind::Sliding).then(|| {
         base.file
             .protocol
@@ -249,9 +226,20 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
         Some(_) if !study.substrate_angles.is_empty() => study.substrate_angles.iter().map(|&a| Some(a)).collect(),
         other => vec![other],
     };
-    let cache = RunCache::new(&out)?;
     // Validate every case before running any.
-    let mut cases = Vec::new();
+    let mut runs = Vec::new();
+    if study.kind == StudyKind::Rolling {
+        let normal = normal_table(&table, &study.normal);
+        for (i, &h) in amplitudes.iter().enumerate() {
+            let changes = [format!("indenter.amplitude={h:e}")];
+            let scenario =
+                build(&normal, &base_dir, &changes).context("the normal (indent_pulloff) run of the study")?;
+            let mut run = StudyRun::new(&format!("normal-{i}"), &normal, &changes, scenario, RunKind::Normal);
+            run.what = format!("normal run α = {}", study.alphas[i]);
+            run.alpha_index = i;
+            runs.push(run);
+        }
+    }
     for (i, &h) in amplitudes.iter().enumerate() {
         for (j, &d) in depths.iter().enumerate() {
             for &angle in &angles {
@@ -271,116 +259,79 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
                 if study.kind == StudyKind::Rolling {
                     key.push(ROLLING_ANALYSIS.to_string());
                 }
-                let path = cache.path(&name, &table, &key);
-                cases.push((i, d, angle, scenario, path));
+                let mut run = StudyRun::new(&name, &table, &key, scenario, RunKind::Translation);
+                let shown_angle = angle.filter(|_| angles.len() > 1);
+                run.what = format!(
+                    "{} α = {}, d = {d}·|d_JKR|{}",
+                    wanted.name(),
+                    study.alphas[i],
+                    theta_label(shown_angle)
+                );
+                (run.alpha_index, run.depth, run.angle) = (i, d, angle);
+                runs.push(run);
             }
         }
     }
-    let normals: Vec<(usize, ValidScenario, PathBuf)> = if study.kind == StudyKind::Rolling {
-        let normal = normal_table(&table, &study.normal);
-        amplitudes
-            .iter()
-            .enumerate()
-            .map(|(i, &h)| {
-                let changes = [format!("indenter.amplitude={h:e}")];
-                let path = cache.path(&format!("normal-{i}"), &normal, &changes);
-                Ok((i, build(&normal, &base_dir, &changes)?, path))
-            })
-            .collect::<Result<_>>()
-            .context("the normal (indent_pulloff) run of the study")?
-    } else {
-        Vec::new()
-    };
     Ok(StudyPlan {
         study,
         wanted,
         jkr,
         amplitudes,
-        angles,
-        cases,
-        normals,
+        runs,
         out,
     })
 }
 
-/// The results of a study's runs, in the order of the plan: ((γ1, γ2), wall time) of each
-/// normal run, (results, wall time) of each case.
-type Executed = (
-    Vec<Result<((Option<f64>, Option<f64>), f64)>>,
-    Vec<Result<(TranslationResults, f64)>>,
-);
-
-/// Runs the normal runs and the cases on `--jobs` workers, each at most once: a cached
-/// run is reused, a panicking one is an error of its case.
-fn execute(plan: &StudyPlan, args: &StudyArgs, start: Instant) -> Result<Executed> {
-    let StudyPlan {
-        study,
-        wanted,
-        angles,
-        cases,
-        normals,
-        ..
-    } = plan;
-    let pool = batch::worker_pool(args.jobs)?;
-    let total = cases.len() + normals.len();
+/// Runs the study's runs that are not finished in its folder on `--jobs` workers (one
+/// thread each, as `--jobs` is the study's whole thread budget); a failed run is redone by
+/// the next command.
+fn execute(plan: &StudyPlan, args: &StudyArgs, batch: &Batch, start: Instant) -> Result<()> {
+    let pending = batch.pending(&plan.runs, true)?;
+    let total = pending.selected;
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let report = |what: String| {
+    let report = |what: &str| {
         let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         if !args.quiet {
             eprintln!("[{k}/{total}] {what} ({:.0} s)", start.elapsed().as_secs_f64());
         }
     };
-    Ok(pool.install(|| {
-        rayon::join(
-            || {
-                normals
-                    .par_iter()
-                    .map(|(i, s, path)| {
-                        if let Some(record) = RunCache::load::<NormalRecord>(path) {
-                            report(format!("normal run α = {} (finished earlier)", study.alphas[*i]));
-                            return Ok(((record.gamma_approach, record.gamma_pulloff), record.wall_seconds));
-                        }
-                        let t = Instant::now();
-                        let (g1, g2) = batch::catch_panic(|| normal_gammas(s))?;
-                        let record = NormalRecord {
-                            gamma_approach: g1,
-                            gamma_pulloff: g2,
-                            wall_seconds: t.elapsed().as_secs_f64(),
-                        };
-                        RunCache::store(path, &record)?;
-                        report(format!("normal run α = {}", study.alphas[*i]));
-                        Ok(((g1, g2), record.wall_seconds))
-                    })
-                    .collect::<Vec<Result<_>>>()
-            },
-            || {
-                cases
-                    .par_iter()
-                    .map(|(i, d, angle, s, path)| {
-                        let what = format!(
-                            "{} α = {}, d = {d}·|d_JKR|{}",
-                            wanted.name(),
-                            study.alphas[*i],
-                            theta_label(angle.filter(|_| angles.len() > 1))
-                        );
-                        if let Some(record) = RunCache::load::<CaseRecord>(path) {
-                            report(format!("{what} (finished earlier)"));
-                            return Ok((record.results, record.wall_seconds));
-                        }
-                        let t = Instant::now();
-                        let results = batch::catch_panic(|| translation_results(s))?;
-                        let record = CaseRecord {
-                            results,
-                            wall_seconds: t.elapsed().as_secs_f64(),
-                        };
-                        RunCache::store(path, &record)?;
-                        report(what);
-                        Ok((record.results, record.wall_seconds))
-                    })
-                    .collect::<Vec<Result<_>>>()
-            },
-        )
-    }))
+    for run in &pending.finished {
+        report(&format!("{} (finished earlier)", run.what));
+    }
+    let finished = |run: &StudyRun, failure: Option<&str>| match failure {
+        None => report(&run.what),
+        Some(message) => eprintln!("{} failed: {message}", run.what),
+    };
+    let outcome = batch.execute(pending, args.jobs, 1, &finished)?;
+    outcome.failure_status(&plan.out, "study runs")
+}
+
+/// The results of every run, read from the case folders: (γ1, γ2, wall time) of each α's
+/// normal run, the (α index, depth, angle) and (results, wall time) of each case.
+type Finished = (
+    Vec<(Option<f64>, Option<f64>, Option<f64>)>,
+    Vec<(usize, f64, Option<f64>)>,
+    Vec<(adhesim_scenario::TranslationResults, f64)>,
+);
+
+fn read_runs(plan: &StudyPlan, batch: &Batch) -> Result<Finished> {
+    let mut gammas = vec![(None, None, None); plan.amplitudes.len()];
+    let (mut keys, mut results) = (Vec::new(), Vec::new());
+    for run in &plan.runs {
+        let folder = batch.case_folder(&run.id);
+        match run.kind {
+            RunKind::Normal => {
+                let record: NormalRecord = runs::load(&folder)?;
+                gammas[run.alpha_index] = (record.gamma_approach, record.gamma_pulloff, Some(record.wall_seconds));
+            }
+            RunKind::Translation => {
+                let record: CaseRecord = runs::load(&folder)?;
+                keys.push((run.alpha_index, run.depth, run.angle));
+                results.push((record.results, record.wall_seconds));
+            }
+        }
+    }
+    Ok((gammas, keys, results))
 }
 
 /// Runs a study.
@@ -388,27 +339,44 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let start = Instant::now();
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
-    // Held until the end: a second study on the same folder is refused, not interleaved.
-    let _lock = FolderLock::acquire(&plan.out, Shard::ALL)?;
-    let (normal_results, case_results) = execute(&plan, args, start)?;
-    failure_status(&plan, &normal_results, &case_results)?;
+    let shard = batch::parse_shard(args.shard.as_deref())?;
+    let batch = Batch::open(&plan.out, shard)?;
+    let adopted = runs::adopt_old_cache(&plan.out, &plan.runs, &batch)?;
+    if adopted > 0 && !args.quiet {
+        eprintln!(
+            "{adopted} finished runs of {}/cache/ (an older adhesim's layout) moved into case folders",
+            plan.out.display()
+        );
+    }
+    execute(&plan, args, &batch, start)?;
+    let unfinished = plan
+        .runs
+        .iter()
+        .filter(|run| batch::case_state(&plan.out, run.id(), run.hash()) != CaseState::Finished { ok: true })
+        .count();
+    if unfinished > 0 {
+        // Only a shard ran: the tables need the other shards' runs.
+        if !args.quiet {
+            println!(
+                "adhesim study: shard {}/{} done; {unfinished} of {} runs are not finished yet: the command that \
+                 finds them all finished (another shard, or the study without --shard) writes the tables",
+                shard.index,
+                shard.count,
+                plan.runs.len()
+            );
+        }
+        return Ok(());
+    }
+    let (gammas, case_keys, case_results) = read_runs(&plan, &batch)?;
     let StudyPlan {
         study,
         jkr,
         amplitudes,
-        cases,
-        normals,
         out,
         ..
     } = &plan;
     let jkr = *jkr;
-    let mut gammas: Vec<(Option<f64>, Option<f64>, Option<f64>)> = vec![(None, None, None); amplitudes.len()];
-    for ((i, _, _), result) in normals.iter().zip(normal_results) {
-        let ((g1, g2), seconds) = result.with_context(|| format!("normal run α = {}", study.alphas[*i]))?;
-        gammas[*i] = (g1, g2, Some(seconds));
-    }
-    let case_keys: Vec<(usize, f64, Option<f64>)> = cases.iter().map(|(i, d, angle, _, _)| (*i, *d, *angle)).collect();
-    let (rows, per_case) = tables::case_rows(&case_keys, case_results, study, amplitudes, &gammas, &jkr)?;
+    let (rows, per_case) = tables::case_rows(&case_keys, case_results, study, amplitudes, &gammas, &jkr);
     let alpha_rows = tables::alpha_rows(study, amplitudes, &gammas, &rows, &per_case, &jkr);
     let a_jkr = jkr.critical_radius();
     write_csv(&out.join("table.csv"), &rows)?;
@@ -423,7 +391,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         "d_jkr": jkr.critical_depth(),
         "a_jkr": a_jkr,
         "cases": rows.len(),
-        "normal_runs": normals.len(),
+        "normal_runs": plan.normal_runs(),
         "wall_seconds": start.elapsed().as_secs_f64(),
         "jobs": args.jobs,
         "alphas": alpha_rows,
@@ -438,35 +406,10 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     Ok(())
 }
 
-/// An error counting the failed runs (each printed to stderr), so that a script notices;
-/// the finished runs are cached and a re-run does only the failed ones.
-fn failure_status(plan: &StudyPlan, normals: &[Result<impl Sized>], cases: &[Result<impl Sized>]) -> Result<()> {
-    let alphas = &plan.study.alphas;
-    let mut failed = 0;
-    for ((i, _, _), result) in plan.normals.iter().zip(normals) {
-        if let Err(error) = result {
-            failed += 1;
-            eprintln!("normal run α = {} failed: {error:#}", alphas[*i]);
-        }
+impl StudyPlan {
+    fn normal_runs(&self) -> usize {
+        self.runs.iter().filter(|r| r.kind == RunKind::Normal).count()
     }
-    for ((i, d, angle, _, _), result) in plan.cases.iter().zip(cases) {
-        if let Err(error) = result {
-            failed += 1;
-            eprintln!(
-                "case α = {}, d = {d}·|d_JKR|{} failed: {error:#}",
-                alphas[*i],
-                theta_label(*angle)
-            );
-        }
-    }
-    if failed > 0 {
-        bail!(
-            "{failed} of {} study runs failed (listed above); the finished runs are kept in {} and a re-run redoes only the failed ones",
-            plan.normals.len() + plan.cases.len(),
-            plan.out.display()
-        );
-    }
-    Ok(())
 }
 
 fn show(v: Option<f64>) -> String {
@@ -475,18 +418,12 @@ fn show(v: Option<f64>) -> String {
 
 /// The study's report on stdout.
 fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: &[String], start: Instant) {
-    let StudyPlan {
-        study,
-        wanted,
-        normals,
-        out,
-        ..
-    } = plan;
+    let StudyPlan { study, wanted, out, .. } = plan;
     println!(
         "adhesim study {}: {} cases + {} normal runs in {:.0} s",
         wanted.name(),
         rows.len(),
-        normals.len(),
+        plan.normal_runs(),
         start.elapsed().as_secs_f64()
     );
     for a in alpha_rows {

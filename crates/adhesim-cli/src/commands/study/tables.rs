@@ -108,20 +108,18 @@ pub type CaseResults = (usize, TranslationResults);
 /// holds (γ1, γ2, wall time) of each α's normal run.
 pub fn case_rows(
     cases: &[(usize, f64, Option<f64>)],
-    results: Vec<Result<(TranslationResults, f64)>>,
+    results: Vec<(TranslationResults, f64)>,
     study: &StudyFile,
     amplitudes: &[f64],
     gammas: &[(Option<f64>, Option<f64>, Option<f64>)],
     jkr: &Jkr,
-) -> Result<(Vec<Row>, Vec<CaseResults>)> {
+) -> (Vec<Row>, Vec<CaseResults>) {
     let gamma0 = jkr.work_of_adhesion;
     let f_jkr = jkr.critical_force().abs();
     let a_jkr = jkr.critical_radius();
     let mut rows = Vec::new();
     let mut per_case: Vec<(usize, TranslationResults)> = Vec::new();
-    for ((i, d, angle), result) in cases.iter().zip(results) {
-        let (r, seconds) =
-            result.with_context(|| format!("case α = {}, d = {d}·|d_JKR|{}", study.alphas[*i], theta_label(*angle)))?;
+    for ((i, d, angle), (r, seconds)) in cases.iter().zip(results) {
         let (g1, g2, _) = gammas[*i];
         let prediction = match (g1, g2) {
             (Some(g1), Some(g2)) => Some(eq12_rolling_resistance(r.contact_half_width, g1, g2)),
@@ -161,7 +159,7 @@ pub fn case_rows(
         });
         per_case.push((*i, r));
     }
-    Ok((rows, per_case))
+    (rows, per_case)
 }
 
 /// The row of each α (`alphas.csv`): means over its cases, their standard errors and the

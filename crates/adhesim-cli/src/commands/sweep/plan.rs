@@ -2,6 +2,7 @@
 //! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
 //! the deterministic case list.
 
+use crate::commands::batch::{fnv1a, results_hash};
 use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
 use adhesim::rng::SplitMix64;
@@ -52,25 +53,6 @@ pub struct Plan {
     pub cases: Vec<Case>,
     /// Folder that relative file paths in the scenario are resolved against.
     pub base_dir: PathBuf,
-}
-
-/// Hash of the results a scenario gives: its text and the library's
-/// [`adhesim::RESULTS_REVISION`] (a cached case from an older algorithm is redone).
-pub fn results_hash(scenario_text: &str) -> u64 {
-    fnv1a(&format!(
-        "{scenario_text}\nresults revision {}",
-        adhesim::RESULTS_REVISION
-    ))
-}
-
-/// 64-bit FNV-1a (stable across platforms and Rust versions, unlike `DefaultHasher`).
-pub fn fnv1a(text: &str) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    hash
 }
 
 /// A value as a table cell: numbers in Rust's shortest round-trip form, strings bare.
@@ -551,25 +533,4 @@ fn case_list(inputs: &CaseInputs<'_>) -> Result<Vec<Case>> {
         }
     }
     Ok(cases)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn splitmix64_matches_the_reference_sequence() {
-        // Reference values of splitmix64 seeded with 1234567 (Vigna's C code).
-        let mut rng = SplitMix64::new(1_234_567);
-        assert_eq!(rng.next_u64(), 6_457_827_717_110_365_317);
-        assert_eq!(rng.next_u64(), 3_203_168_211_198_807_973);
-        let u = rng.next_f64();
-        assert!((0.0..1.0).contains(&u));
-    }
-
-    #[test]
-    fn fnv1a_is_the_standard_hash() {
-        assert_eq!(fnv1a(""), 0xcbf2_9ce4_8422_2325);
-        assert_eq!(fnv1a("a"), 0xaf63_dc4c_8601_ec8c);
-    }
 }

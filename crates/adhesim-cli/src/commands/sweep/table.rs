@@ -7,8 +7,8 @@
 //! sharded sweep is byte-identical to an uninterrupted one.
 
 use super::plan::Plan;
-use super::{case_state, CaseState};
 use crate::commands::batch::write_atomically;
+use crate::commands::batch::{case_state, CaseState};
 use anyhow::{Context, Result};
 use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
@@ -71,7 +71,7 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
     let mut rows = Vec::new();
     let mut result_keys: Vec<String> = Vec::new();
     for case in &plan.cases {
-        let CaseState::Finished { ok } = case_state(dir, case) else {
+        let CaseState::Finished { ok } = case_state(dir, &case.id, &case.hash) else {
             continue;
         };
         let folder = dir.join("cases").join(&case.id);

@@ -289,6 +289,66 @@ fn check_fit_keys(fits: &FitsSpec, forces: Option<&ForcesSpec>) -> Result<()> {
     Ok(())
 }
 
+/// The indenter's centre, stage origin and motion, checked.
+fn indenter_settings(spec: &Spec) -> Result<Option<(f64, f64, f64, Motion)>> {
+    Ok(match &spec.indenter {
+        Some(ind) => {
+            let motion = Motion::parse(&ind.motion)
+                .with_context(|| format!("indenter.motion must be one of +x, -x, +y, -y, got \"{}\"", ind.motion))?;
+            if !ind.centre_px.iter().all(|v| v.is_finite()) {
+                bail!("indenter.centre_px must be finite, got {:?}", ind.centre_px);
+            }
+            let stage_x0 = ind.stage_x0.unwrap_or(0.0);
+            if !stage_x0.is_finite() {
+                bail!("indenter.stage_x0 must be finite, got {stage_x0}");
+            }
+            if ind.stage_x0.is_some() && spec.forces.as_ref().is_none_or(|f| f.stage_x.is_none()) {
+                bail!("indenter.stage_x0 is unused without forces.stage_x (the centre does not move): remove it or map the stage column");
+            }
+            Some((ind.centre_px[0], ind.centre_px[1], stage_x0, motion))
+        }
+        None => None,
+    })
+}
+
+/// The phase-classification parameters of `[analysis]`, checked.
+fn phase_params(a: &AnalysisSpec) -> Result<PhaseParams> {
+    positive("analysis.jump_threshold", a.jump_threshold)?;
+    if !(a.area_tolerance.is_finite() && a.area_tolerance >= 0.0) {
+        bail!("analysis.area_tolerance must be >= 0, got {}", a.area_tolerance);
+    }
+    if !(a.min_r2.is_finite() && (0.0..=1.0).contains(&a.min_r2)) {
+        bail!("analysis.min_r2 must be in 0..1, got {}", a.min_r2);
+    }
+    Ok(PhaseParams {
+        jump_threshold: a.jump_threshold,
+        area_tolerance: a.area_tolerance,
+        min_r2: a.min_r2,
+        min_frames: a.min_stick_frames,
+    })
+}
+
+/// The values of `[fits]`, checked.
+fn check_fit_values(fits: &FitsSpec) -> Result<()> {
+    if let Some(e) = fits.contact_modulus {
+        positive("fits.contact_modulus", e)?;
+    }
+    if let Some(r) = fits.indenter_radius {
+        positive("fits.indenter_radius", r)?;
+    }
+    if let Some(t) = fits.pinned_tolerance {
+        if !(t.is_finite() && t >= 0.0) {
+            bail!("fits.pinned_tolerance must be >= 0, got {t}");
+        }
+    }
+    if let Some([t0, t1]) = fits.friction_window {
+        if !(t0.is_finite() && t1.is_finite() && t1 > t0) {
+            bail!("fits.friction_window must be [t0, t1] with t1 > t0, got [{t0}, {t1}]");
+        }
+    }
+    Ok(())
+}
+
 /// Reads and validates a spec; relative paths are resolved against the spec's folder.
 pub fn load(spec_path: &Path) -> Result<Settings> {
     let text = std::fs::read_to_string(spec_path).with_context(|| format!("cannot read {}", spec_path.display()))?;
@@ -344,24 +404,7 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         }
         None => None,
     };
-    let indenter = match &spec.indenter {
-        Some(ind) => {
-            let motion = Motion::parse(&ind.motion)
-                .with_context(|| format!("indenter.motion must be one of +x, -x, +y, -y, got \"{}\"", ind.motion))?;
-            if !ind.centre_px.iter().all(|v| v.is_finite()) {
-                bail!("indenter.centre_px must be finite, got {:?}", ind.centre_px);
-            }
-            let stage_x0 = ind.stage_x0.unwrap_or(0.0);
-            if !stage_x0.is_finite() {
-                bail!("indenter.stage_x0 must be finite, got {stage_x0}");
-            }
-            if ind.stage_x0.is_some() && spec.forces.as_ref().is_none_or(|f| f.stage_x.is_none()) {
-                bail!("indenter.stage_x0 is unused without forces.stage_x (the centre does not move): remove it or map the stage column");
-            }
-            Some((ind.centre_px[0], ind.centre_px[1], stage_x0, motion))
-        }
-        None => None,
-    };
+    let indenter = indenter_settings(&spec)?;
     let reference = match &spec.changes.reference {
         ReferenceSpec::Name(n) if n == "first" => Reference::First,
         ReferenceSpec::Name(n) if n == "previous" => Reference::Previous,
@@ -371,37 +414,9 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         ReferenceSpec::Frame(i) if *i >= 0 => Reference::Frame(*i as usize),
         ReferenceSpec::Frame(i) => bail!("changes.reference must be >= 0, got {i}"),
     };
-    let a = &spec.analysis;
-    positive("analysis.jump_threshold", a.jump_threshold)?;
-    if !(a.area_tolerance.is_finite() && a.area_tolerance >= 0.0) {
-        bail!("analysis.area_tolerance must be >= 0, got {}", a.area_tolerance);
-    }
-    if !(a.min_r2.is_finite() && (0.0..=1.0).contains(&a.min_r2)) {
-        bail!("analysis.min_r2 must be in 0..1, got {}", a.min_r2);
-    }
-    let phases = PhaseParams {
-        jump_threshold: a.jump_threshold,
-        area_tolerance: a.area_tolerance,
-        min_r2: a.min_r2,
-        min_frames: a.min_stick_frames,
-    };
+    let phases = phase_params(&spec.analysis)?;
     let mut fits = spec.fits;
-    if let Some(e) = fits.contact_modulus {
-        positive("fits.contact_modulus", e)?;
-    }
-    if let Some(r) = fits.indenter_radius {
-        positive("fits.indenter_radius", r)?;
-    }
-    if let Some(t) = fits.pinned_tolerance {
-        if !(t.is_finite() && t >= 0.0) {
-            bail!("fits.pinned_tolerance must be >= 0, got {t}");
-        }
-    }
-    if let Some([t0, t1]) = fits.friction_window {
-        if !(t0.is_finite() && t1.is_finite() && t1 > t0) {
-            bail!("fits.friction_window must be [t0, t1] with t1 > t0, got [{t0}, {t1}]");
-        }
-    }
+    check_fit_values(&fits)?;
     check_fit_keys(&fits, spec.forces.as_ref())?;
     if let Some(p) = fits.power_law.as_mut() {
         p.path = resolve(&p.path);

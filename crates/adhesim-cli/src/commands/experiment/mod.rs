@@ -15,8 +15,6 @@ use adhesim_experiment::{
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
-use plots::{Panel, Series};
-use plotters::style::RGBColor;
 use rayon::prelude::*;
 use serde_json::json;
 use spec::{BackgroundChoice, Reference, Settings};
@@ -172,7 +170,6 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         eprintln!("warning: {w}");
     }
 
-    let bar = progress(files.len(), quiet, "frames");
     let decoded_at = Instant::now();
     let context = FrameContext {
         size: &size,
@@ -181,24 +178,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
         track: track.as_ref(),
         pixel_size: settings.pixel_size,
     };
-    // Outer error: a frame of another size stops the run; inner: an unreadable frame is skipped.
-    let results: Vec<Result<Option<FrameRow>>> = files
-        .par_iter()
-        .enumerate()
-        .map(|(i, path)| {
-            let row = context.analyse_frame(i, path, times[i]);
-            bar.inc(1);
-            Ok(match row? {
-                Ok(r) => Some(r),
-                Err(e) => {
-                    bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
-                    None
-                }
-            })
-        })
-        .collect();
-    bar.finish_and_clear();
-    let results: Vec<Option<FrameRow>> = results.into_iter().collect::<Result<_>>()?;
+    let results = context.analyse_frames(&files, &times, quiet)?;
     let analysis_seconds = decoded_at.elapsed().as_secs_f64();
     let skipped: Vec<String> = files
         .iter()
@@ -218,23 +198,13 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
             );
         }
     }
-    // Sequence-level analysis: jumps and stick/slip phases over the readable frames.
-    let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
-    let jumps = detect_jumps(&areas, settings.phases.jump_threshold)?;
-    let xs: Vec<f64> = rows.iter().map(|r| r.stage_x.unwrap_or(f64::NAN)).collect();
-    let fxs: Vec<f64> = rows.iter().map(|r| r.force_tangential.unwrap_or(f64::NAN)).collect();
-    let has_motion = xs.iter().any(|v| v.is_finite()) && fxs.iter().any(|v| v.is_finite());
-    let phases = classify_phases(&areas, has_motion.then_some((&xs[..], &fxs[..])), &settings.phases)?;
-    for ((r, j), p) in rows.iter_mut().zip(jumps).zip(phases) {
-        r.jump = j;
-        r.phase = p;
-    }
+    mark_jumps_and_phases(&mut rows, &settings)?;
 
     std::fs::create_dir_all(out_dir.join("plots")).with_context(|| format!("cannot create {}", out_dir.display()))?;
     std::fs::create_dir_all(out_dir.join("changes"))?;
     write_frames_csv(&out_dir.join("frames.csv"), &rows)?;
     let changes_written = write_change_maps(&settings, &files, &rows, &segmenter, &out_dir.join("changes"))?;
-    write_plots(&out_dir.join("plots"), &rows)?;
+    plots::write_plots(&out_dir.join("plots"), &rows)?;
     let results = fit_results(&settings, &rows)?;
     let summary = json!({
         "inputs": {
@@ -264,6 +234,21 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     Ok(())
 }
 
+/// Sequence-level analysis: the jumps and stick/slip phases over the readable frames.
+fn mark_jumps_and_phases(rows: &mut [FrameRow], settings: &Settings) -> Result<()> {
+    let areas: Vec<f64> = rows.iter().map(|r| r.m.area).collect();
+    let jumps = detect_jumps(&areas, settings.phases.jump_threshold)?;
+    let xs: Vec<f64> = rows.iter().map(|r| r.stage_x.unwrap_or(f64::NAN)).collect();
+    let fxs: Vec<f64> = rows.iter().map(|r| r.force_tangential.unwrap_or(f64::NAN)).collect();
+    let has_motion = xs.iter().any(|v| v.is_finite()) && fxs.iter().any(|v| v.is_finite());
+    let phases = classify_phases(&areas, has_motion.then_some((&xs[..], &fxs[..])), &settings.phases)?;
+    for ((r, j), p) in rows.iter_mut().zip(jumps).zip(phases) {
+        r.jump = j;
+        r.phase = p;
+    }
+    Ok(())
+}
+
 /// What every frame's analysis shares.
 struct FrameContext<'a> {
     size: &'a FrameSize,
@@ -274,6 +259,30 @@ struct FrameContext<'a> {
 }
 
 impl FrameContext<'_> {
+    /// Analyses every frame in parallel: `None` for an unreadable frame (named on stderr and
+    /// skipped); an error (a frame of another size) stops the run.
+    fn analyse_frames(&self, files: &[PathBuf], times: &[f64], quiet: bool) -> Result<Vec<Option<FrameRow>>> {
+        let bar = progress(files.len(), quiet, "frames");
+        // Outer error: a frame of another size stops the run; inner: an unreadable frame is skipped.
+        let results: Vec<Result<Option<FrameRow>>> = files
+            .par_iter()
+            .enumerate()
+            .map(|(i, path)| {
+                let row = self.analyse_frame(i, path, times[i]);
+                bar.inc(1);
+                Ok(match row? {
+                    Ok(r) => Some(r),
+                    Err(e) => {
+                        bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
+                        None
+                    }
+                })
+            })
+            .collect();
+        bar.finish_and_clear();
+        results.into_iter().collect()
+    }
+
     /// One frame: `Err` for a frame of another size (the run stops), `Ok(Err)` for a frame
     /// that cannot be decoded or segmented (it is skipped and reported).
     fn analyse_frame(&self, index: usize, path: &Path, time: f64) -> Result<Result<FrameRow>> {
@@ -467,64 +476,6 @@ fn crop_box(
         (x1 + margin).min(w),
         (y1 + margin).min(h),
     )
-}
-
-const RED: RGBColor = RGBColor(214, 39, 40);
-const BLUE: RGBColor = RGBColor(31, 119, 180);
-const BLACK: RGBColor = RGBColor(0, 0, 0);
-
-fn series(rows: &[FrameRow], label: &'static str, color: RGBColor, value: impl Fn(&FrameRow) -> Option<f64>) -> Series {
-    Series {
-        label,
-        color,
-        points: rows
-            .iter()
-            .filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.time, v)))
-            .collect(),
-    }
-}
-
-fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
-    let area_panel = || Panel {
-        y_label: "area",
-        series: vec![
-            series(rows, "total", BLACK, |r| Some(r.m.area)),
-            series(rows, "front", RED, |r| Some(r.m.area_front)),
-            series(rows, "rear", BLUE, |r| Some(r.m.area_rear)),
-        ],
-    };
-    plots::write_panels(dir, "areas", "Contact area", &[area_panel()])?;
-    let fx = || Panel {
-        y_label: "F_x",
-        series: vec![series(rows, "F_x", BLACK, |r| r.force_tangential)],
-    };
-    let tau = || Panel {
-        y_label: "tau = F_x/A",
-        series: vec![series(rows, "tau", BLACK, |r| ratio(r.force_tangential, r.m.area))],
-    };
-    // Paper Fig. 19: F_x, areas (total/front/rear), τ.
-    plots::write_panels(
-        dir,
-        "sliding",
-        "Tangential force, contact areas, tangential stress",
-        &[fx(), area_panel(), tau()],
-    )?;
-    // Paper Fig. 22: F_N, F_x, p, τ.
-    let fn_panel = Panel {
-        y_label: "F_N",
-        series: vec![series(rows, "F_N", BLACK, |r| r.force_normal)],
-    };
-    let p_panel = Panel {
-        y_label: "p = F_N/A",
-        series: vec![series(rows, "p", BLACK, |r| ratio(r.force_normal, r.m.area))],
-    };
-    plots::write_panels(
-        dir,
-        "forces",
-        "Normal force, tangential force, pressure, tangential stress",
-        &[fn_panel, fx(), p_panel, tau()],
-    )?;
-    Ok(())
 }
 
 fn fit_results(settings: &Settings, rows: &[FrameRow]) -> Result<serde_json::Value> {

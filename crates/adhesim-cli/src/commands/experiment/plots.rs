@@ -1,5 +1,6 @@
 //! Time-series figures (SVG and PNG) with plotters.
 
+use super::{ratio, FrameRow};
 use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -102,4 +103,63 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
     let pad = 0.05 * (hi - lo);
     (lo - pad, hi + pad)
+}
+
+const RED: RGBColor = RGBColor(214, 39, 40);
+const BLUE: RGBColor = RGBColor(31, 119, 180);
+const BLACK: RGBColor = RGBColor(0, 0, 0);
+
+fn series(rows: &[FrameRow], label: &'static str, color: RGBColor, value: impl Fn(&FrameRow) -> Option<f64>) -> Series {
+    Series {
+        label,
+        color,
+        points: rows
+            .iter()
+            .filter_map(|r| value(r).filter(|v| v.is_finite()).map(|v| (r.time, v)))
+            .collect(),
+    }
+}
+
+/// The experiment's figures: areas, sliding (paper Fig. 19) and forces (Fig. 22).
+pub(super) fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
+    let area_panel = || Panel {
+        y_label: "area",
+        series: vec![
+            series(rows, "total", BLACK, |r| Some(r.m.area)),
+            series(rows, "front", RED, |r| Some(r.m.area_front)),
+            series(rows, "rear", BLUE, |r| Some(r.m.area_rear)),
+        ],
+    };
+    write_panels(dir, "areas", "Contact area", &[area_panel()])?;
+    let fx = || Panel {
+        y_label: "F_x",
+        series: vec![series(rows, "F_x", BLACK, |r| r.force_tangential)],
+    };
+    let tau = || Panel {
+        y_label: "tau = F_x/A",
+        series: vec![series(rows, "tau", BLACK, |r| ratio(r.force_tangential, r.m.area))],
+    };
+    // Paper Fig. 19: F_x, areas (total/front/rear), τ.
+    write_panels(
+        dir,
+        "sliding",
+        "Tangential force, contact areas, tangential stress",
+        &[fx(), area_panel(), tau()],
+    )?;
+    // Paper Fig. 22: F_N, F_x, p, τ.
+    let fn_panel = Panel {
+        y_label: "F_N",
+        series: vec![series(rows, "F_N", BLACK, |r| r.force_normal)],
+    };
+    let p_panel = Panel {
+        y_label: "p = F_N/A",
+        series: vec![series(rows, "p", BLACK, |r| ratio(r.force_normal, r.m.area))],
+    };
+    write_panels(
+        dir,
+        "forces",
+        "Normal force, tangential force, pressure, tangential stress",
+        &[fn_panel, fx(), p_panel, tau()],
+    )?;
+    Ok(())
 }

@@ -1,0 +1,188 @@
+//! The runs of a study (one indent_pulloff run per α for rolling, and the roll / slide
+//! cases) as cases of the batch engine: each finished run is the folder
+//! `<out>/cases/<name>-<hash>/` holding `record.json` (its results and wall time), so that
+//! a killed study resumes where it stopped. The hash covers the exact scenario it ran (base
+//! after `set`, plus the run's overrides) and the library's results revision.
+
+use crate::commands::batch::{results_hash, Batch, BatchCase};
+use adhesim_scenario::{RunResults, TranslationResults, ValidScenario};
+use anyhow::{anyhow, bail, Context, Result};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::time::Instant;
+
+/// The file of a finished run's results in its case folder.
+const RECORD: &str = "record.json";
+
+/// Part of a rolling case's hash: rolls from before γ3 was fitted against the contact
+/// radius (they hold the half-width fit under `gamma3`) are redone, not misread.
+pub const ROLLING_ANALYSIS: &str = "gamma3 against the contact radius, gamma3_half_width";
+
+/// What a run computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunKind {
+    /// The indent_pulloff run of an α: γ1, γ2 for Eq. 12.
+    Normal,
+    /// A roll or slide case.
+    Translation,
+}
+
+/// One run of a study.
+pub struct StudyRun {
+    pub id: String,
+    hash: String,
+    /// How progress lines and failures name the run.
+    pub what: String,
+    pub kind: RunKind,
+    /// Index of its α in the study file.
+    pub alpha_index: usize,
+    /// d/|d_JKR| (translation runs).
+    pub depth: f64,
+    /// Substrate angle (sliding runs).
+    pub angle: Option<f64>,
+    scenario: ValidScenario,
+}
+
+impl StudyRun {
+    /// The run `name` of the scenario `table` with `changes` applied (`key`: the changes and
+    /// anything else its results depend on).
+    pub fn new(name: &str, table: &toml::Table, key: &[String], scenario: ValidScenario, kind: RunKind) -> Self {
+        let hash = format!("{:016x}", results_hash(&format!("{table}\n{}", key.join("\n"))));
+        Self {
+            id: format!("{name}-{hash}"),
+            hash,
+            what: String::new(),
+            kind,
+            alpha_index: 0,
+            depth: 0.0,
+            angle: None,
+            scenario,
+        }
+    }
+}
+
+impl BatchCase for StudyRun {
+    fn id(&self) -> &str {
+        &self.id
+    }
+
+    fn hash(&self) -> &str {
+        &self.hash
+    }
+
+    fn run(&self, folder: &Path) -> Result<()> {
+        let start = Instant::now();
+        let text = match self.kind {
+            RunKind::Normal => {
+                let (gamma_approach, gamma_pulloff) = normal_gammas(&self.scenario)?;
+                serde_json::to_string_pretty(&NormalRecord {
+                    gamma_approach,
+                    gamma_pulloff,
+                    wall_seconds: start.elapsed().as_secs_f64(),
+                })?
+            }
+            RunKind::Translation => serde_json::to_string_pretty(&CaseRecord {
+                results: translation_results(&self.scenario)?,
+                wall_seconds: start.elapsed().as_secs_f64(),
+            })?,
+        };
+        let path = folder.join(RECORD);
+        std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+/// A run finished by an adhesim older than the batch engine, kept as `<out>/cache/<id>.json`
+/// (the same id: the same scenario and results revision).
+struct CachedRun<'a> {
+    run: &'a StudyRun,
+    record: String,
+}
+
+impl BatchCase for CachedRun<'_> {
+    fn id(&self) -> &str {
+        &self.run.id
+    }
+
+    fn hash(&self) -> &str {
+        &self.run.hash
+    }
+
+    fn run(&self, folder: &Path) -> Result<()> {
+        let path = folder.join(RECORD);
+        std::fs::write(&path, &self.record).with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+/// Moves the readable runs of an old `<out>/cache/` into case folders (atomically, by the
+/// batch engine), so that a study begun before the batch engine resumes instead of
+/// recomputing them; returns how many. The old files are left in place.
+pub fn adopt_old_cache(out: &Path, runs: &[StudyRun], batch: &Batch) -> Result<usize> {
+    let cache = out.join("cache");
+    if !cache.is_dir() {
+        return Ok(0);
+    }
+    let cached: Vec<CachedRun> = runs
+        .iter()
+        .filter_map(|run| {
+            let record = std::fs::read_to_string(cache.join(format!("{}.json", run.id))).ok()?;
+            let readable = match run.kind {
+                RunKind::Normal => serde_json::from_str::<NormalRecord>(&record).is_ok(),
+                RunKind::Translation => serde_json::from_str::<CaseRecord>(&record).is_ok(),
+            };
+            readable.then_some(CachedRun { run, record })
+        })
+        .collect();
+    let pending = batch.pending(&cached, true)?;
+    let adopted = pending.todo.len();
+    batch.execute(pending, 1, 1, &|_, _| {})?;
+    Ok(adopted)
+}
+
+/// The record of a finished run in its case folder.
+pub fn load<T: for<'de> Deserialize<'de>>(folder: &Path) -> Result<T> {
+    let path = folder.join(RECORD);
+    let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+    serde_json::from_str(&text).with_context(|| {
+        format!(
+            "{} is not a study run's record (delete its folder to redo the run)",
+            path.display()
+        )
+    })
+}
+
+/// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
+fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
+        RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
+        RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
+    }
+}
+
+/// The analysed results of a roll / slide run, without writing anything.
+fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
+    match adhesim_scenario::run(scenario, &mut ())
+        .map_err(|e| anyhow!(e))?
+        .results
+    {
+        RunResults::Translation(results) => Ok(results),
+        RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
+    }
+}
+
+/// A normal run's record: γ1, γ2 and its wall time.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct NormalRecord {
+    pub gamma_approach: Option<f64>,
+    pub gamma_pulloff: Option<f64>,
+    pub wall_seconds: f64,
+}
+
+/// A translation run's record.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct CaseRecord {
+    pub results: TranslationResults,
+    pub wall_seconds: f64,
+}
