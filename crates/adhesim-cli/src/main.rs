@@ -3,6 +3,7 @@
 
 mod commands;
 mod experiment;
+mod fields;
 mod figure;
 mod master_plots;
 mod output;
