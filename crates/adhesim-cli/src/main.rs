@@ -13,7 +13,7 @@ mod summary;
 mod tangential_plots;
 
 use clap::{Parser, Subcommand};
-use commands::{reference, run, study, sweep};
+use commands::{reference, run, study, sweep, topography};
 use std::process::ExitCode;
 
 /// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
@@ -43,6 +43,8 @@ enum Command {
     /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
     /// generate a synthetic one (`adhesim experiment synth`).
     Experiment(experiment::ExperimentArgs),
+    /// Statistics, PSD plot and height map of an instrument file or a scenario's roughness.
+    Topography(topography::TopographyArgs),
 }
 
 fn main() -> ExitCode {
@@ -65,6 +67,7 @@ fn main() -> ExitCode {
         Some(Command::Plot(args)) => master_plots::command(&args),
         Some(Command::Study(args)) => study::run(&args),
         Some(Command::Experiment(args)) => experiment::main(args),
+        Some(Command::Topography(args)) => topography::command(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
