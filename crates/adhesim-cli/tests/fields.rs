@@ -223,3 +223,52 @@ fn fields_npz_loads_with_numpy_when_python_has_it() {
         .unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
 }
+
+#[test]
+fn a_translation_reports_the_gap_of_the_moved_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let overrides = [
+        "grid.n=32",
+        "protocol.steps=6",
+        "protocol.approach_steps=6",
+        "output.snapshot_steps=[8, 11]",
+    ];
+    let out = dir.path().join("out");
+    let mut command = Command::new(BIN);
+    command.args([
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    for item in overrides {
+        command.args(["--set", item]);
+    }
+    let output = command.output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let text = std::fs::read_to_string(&scenario).unwrap();
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let valid = adhesim_scenario::load(&text, "fig6.toml", scenario.parent().unwrap(), &overrides).unwrap();
+    let setup = valid.translation.as_ref().unwrap();
+    let arrays = read_npz(&out.join("fields.npz"));
+    for step in [8usize, 11] {
+        let index = arrays["steps"].values.iter().position(|&s| s as usize == step).unwrap();
+        let (depth, offset) = (arrays["depths"].values[index], arrays["offsets"].values[index]);
+        assert!(step < 11 || offset > 0.0, "the indenter has moved by step 11");
+        let mut z = vec![0.0; valid.grid.len()];
+        setup.contact.fill_heights(&valid.grid, offset, &mut z);
+        let field = |kind: &str| &arrays[&format!("{kind}_{step:06}")].values;
+        let (mut residual, mut target) = (0.0, 0.0);
+        for k in 0..z.len() {
+            assert_eq!(field("gap")[k], field("displacement")[k] + z[k] - depth);
+            if field("contact")[k] == 1.0 {
+                residual += field("gap")[k].powi(2);
+                target += (depth - z[k]).powi(2);
+            }
+        }
+        // The adhesive solver's stop, ‖r‖_C ≤ 1e-6·‖d − z‖_C, with room for rounding.
+        assert!(target > 0.0 && residual.sqrt() <= 2e-6 * target.sqrt(), "step {step}");
+    }
+}
