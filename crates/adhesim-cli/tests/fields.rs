@@ -261,11 +261,11 @@ fn a_translation_reports_the_gap_of_the_moved_profile() {
         setup.contact.fill_heights(&valid.grid, offset, &mut z);
         let field = |kind: &str| &arrays[&format!("{kind}_{step:06}")].values;
         let (mut residual, mut target) = (0.0, 0.0);
-        for k in 0..z.len() {
-            assert_eq!(field("gap")[k], field("displacement")[k] + z[k] - depth);
+        for (k, &height) in z.iter().enumerate() {
+            assert_eq!(field("gap")[k], field("displacement")[k] + height - depth);
             if field("contact")[k] == 1.0 {
                 residual += field("gap")[k].powi(2);
-                target += (depth - z[k]).powi(2);
+                target += (depth - height).powi(2);
             }
         }
         // The adhesive solver's stop, ‖r‖_C ≤ 1e-6·‖d − z‖_C, with room for rounding.
