@@ -3,6 +3,7 @@
 
 mod commands;
 mod error_text;
+mod fields;
 mod figure;
 mod master_plots;
 mod output;
@@ -12,7 +13,7 @@ mod summary;
 mod tangential_plots;
 
 use clap::{Parser, Subcommand};
-use commands::{experiment, reference, run, study, sweep};
+use commands::{experiment, reference, run, study, sweep, topography};
 use error_text::error_line;
 use std::process::ExitCode;
 
@@ -43,6 +44,8 @@ enum Command {
     /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
     /// generate a synthetic one (`adhesim experiment synth`).
     Experiment(experiment::ExperimentArgs),
+    /// Statistics, PSD plot and height map of an instrument file or a scenario's roughness.
+    Topography(topography::TopographyArgs),
 }
 
 fn main() -> ExitCode {
@@ -65,6 +68,7 @@ fn main() -> ExitCode {
         Some(Command::Plot(args)) => master_plots::command(&args),
         Some(Command::Study(args)) => study::run(&args),
         Some(Command::Experiment(args)) => experiment::main(args),
+        Some(Command::Topography(args)) => topography::command(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -193,6 +193,8 @@ pub struct RunObserver {
     pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
     /// Solver and output wall time per phase.
     pub timings: PhaseTimings,
+    /// `fields.npz` of the snapshot steps (crate::fields), when set.
+    pub fields: Option<crate::fields::FieldsRecorder>,
 }
 
 impl RunObserver {
@@ -225,6 +227,7 @@ impl RunObserver {
             capture_steps: BTreeSet::new(),
             captured: Vec::new(),
             timings: PhaseTimings::new(),
+            fields: None,
         })
     }
 
@@ -251,6 +254,9 @@ impl RunObserver {
         if chosen {
             let name = format!("step_{step:06}");
             self.snapshot(&name, &view.state.contact, view.previous_contact)?;
+            if let Some(fields) = &mut self.fields {
+                fields.take(view);
+            }
             write_field(
                 &self.snapshots.join(format!("{name}_pressure.npy")),
                 n,
@@ -268,6 +274,12 @@ impl RunObserver {
         }
         if step == self.plan.max_depth_step {
             self.snapshot("max_depth", &view.state.contact, view.previous_contact)?;
+            if let Some(fields) = &mut self.fields {
+                fields.take(view);
+            }
+        }
+        if let Some(fields) = &mut self.fields {
+            fields.observe(view);
         }
         if self.capture_steps.contains(&step) {
             self.captured
@@ -314,6 +326,9 @@ impl RunObserver {
         }
         if let Some((_, contact, previous)) = self.last_in_contact.take() {
             self.snapshot("pull_off", &contact, &previous)?;
+        }
+        if let (Some(fields), Some(out)) = (&mut self.fields, self.snapshots.parent()) {
+            fields.write(out)?;
         }
         Ok(())
     }

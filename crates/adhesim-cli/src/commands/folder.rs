@@ -10,7 +10,17 @@ pub const RUN_MARKER: &str = ".adhesim-run";
 
 /// What a run writes into its folder: cleared before a new run, so that no output of the
 /// previous run (e.g. its snapshots) is mixed with the new one.
-const RUN_OUTPUTS: [&str; 5] = ["curve.csv", "curve.csv.partial", "summary.json", "plots", "snapshots"];
+const RUN_OUTPUTS: [&str; 9] = [
+    "curve.csv",
+    "curve.csv.partial",
+    "summary.json",
+    "plots",
+    "snapshots",
+    "fields.npz",
+    "fields.npz.partial",
+    "fields.nc",
+    "fields.nc.partial",
+];
 
 /// Makes `out` ready for a run: creates it, or, when it exists and is not empty, requires
 /// the run marker (or `force`) and removes the previous run's outputs; then writes the

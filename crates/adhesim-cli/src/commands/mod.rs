@@ -7,3 +7,4 @@ pub mod reference;
 pub mod run;
 pub mod study;
 pub mod sweep;
+pub mod topography;

@@ -49,6 +49,16 @@ pub struct RunOptions {
     /// VALUE is a TOML value).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Also write the snapshot fields as NetCDF-3 (`fields.nc`) besides `fields.npz`.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub fields: Option<FieldsFormat>,
+}
+
+/// Extra formats of the snapshot fields (`fields.npz` is always written).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FieldsFormat {
+    /// `fields.nc`, NetCDF classic, for xarray.
+    Netcdf,
 }
 
 /// `adhesim` without a subcommand: the built-in scenario into ./out/default/.
@@ -125,6 +135,14 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         options.quiet,
     )?;
     observer.capture(strip);
+    observer.fields = Some(crate::fields::FieldsRecorder::new(
+        scenario.grid,
+        match scenario.protocol_setup() {
+            ProtocolSetup::Translation(setup) => crate::fields::FieldProfile::Moving(setup.contact.clone()),
+            ProtocolSetup::Indentation(_) => crate::fields::FieldProfile::Fixed(scenario.heights.clone()),
+        },
+        options.fields == Some(FieldsFormat::Netcdf),
+    ));
     let outcome = adhesim_scenario::run(&scenario, &mut observer);
     observer.finish()?;
     let outcome = match outcome {
@@ -169,7 +187,10 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             ProtocolReport::Translation(summary) => print_translation(&scenario, summary, &outcome, wall_seconds),
         }
         println!("outputs in {}/", out.display());
-        println!("  summary.json, curve.csv");
+        println!(
+            "  summary.json, curve.csv, fields.npz{}",
+            if options.fields.is_some() { ", fields.nc" } else { "" }
+        );
         println!("  {}", plot_files.join(", "));
         if matches!(outcome.report, ProtocolReport::Indentation(_)) {
             println!(

@@ -1,0 +1,274 @@
+//! `fields.npz` (issue #18 item 4): a run of the default scenario (Fig. 1, on a coarse grid)
+//! writes the documented arrays with the documented shapes and dtypes, read back by a
+//! small numpy-free reader (zip + `.npy` header); the fields agree with `curve.csv` and the
+//! `.npy` snapshot files; `--fields netcdf` adds `fields.nc`; one check with Python's numpy
+//! where python3 and numpy are installed (skipped with the reason otherwise).
+
+use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+
+/// One array of an `.npz`: dtype descr, shape and values (bools as 0/1).
+#[derive(Debug)]
+struct Array {
+    descr: String,
+    shape: Vec<usize>,
+    values: Vec<f64>,
+}
+
+/// Reads every member of an `.npz` archive (only `<f8` and `|b1`, C order: what adhesim writes).
+fn read_npz(path: &Path) -> BTreeMap<String, Array> {
+    let file = std::fs::File::open(path).unwrap();
+    let mut archive = zip::ZipArchive::new(file).unwrap();
+    let mut arrays = BTreeMap::new();
+    for index in 0..archive.len() {
+        let mut member = archive.by_index(index).unwrap();
+        assert_eq!(member.compression(), zip::CompressionMethod::Deflated, "compressed");
+        let name = member
+            .name()
+            .unwrap()
+            .strip_suffix(".npy")
+            .expect("members are .npy")
+            .to_string();
+        let mut bytes = Vec::new();
+        member.read_to_end(&mut bytes).unwrap();
+        arrays.insert(name, parse_npy(&bytes));
+    }
+    arrays
+}
+
+fn parse_npy(bytes: &[u8]) -> Array {
+    assert_eq!(&bytes[..6], b"\x93NUMPY");
+    assert_eq!(bytes[6], 1, "format version 1.0");
+    let header_length = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let header = std::str::from_utf8(&bytes[10..10 + header_length]).unwrap();
+    assert_eq!((10 + header_length) % 64, 0, "data aligned to 64 bytes");
+    assert!(header.contains("'fortran_order': False"), "{header}");
+    let field = |key: &str| {
+        let start = header.find(key).unwrap() + key.len();
+        header[start..].trim_start().to_string()
+    };
+    let descr = field("'descr':")[1..4].to_string();
+    let shape_text = field("'shape':");
+    let shape: Vec<usize> = shape_text[1..shape_text.find(')').unwrap()]
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| s.trim().parse().unwrap())
+        .collect();
+    let data = &bytes[10 + header_length..];
+    let values: Vec<f64> = match descr.as_str() {
+        "<f8" => data
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect(),
+        "|b1" => data.iter().map(|&b| f64::from(b)).collect(),
+        other => panic!("unexpected dtype {other}"),
+    };
+    assert_eq!(values.len(), shape.iter().product::<usize>(), "{header}");
+    Array { descr, shape, values }
+}
+
+fn curve(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let header = reader.headers().unwrap().iter().map(str::to_string).collect();
+    let rows = reader
+        .records()
+        .map(|r| r.unwrap().iter().map(str::to_string).collect())
+        .collect();
+    (header, rows)
+}
+
+/// The default scenario on a 32² grid with 30 steps, snapshot of step 3, NetCDF too.
+fn run_default_like(dir: &Path) -> PathBuf {
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig1.toml");
+    let out = dir.join("out");
+    let output = Command::new(BIN)
+        .args([
+            "run",
+            scenario.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .args(["--set", "grid.n=32", "--set", "protocol.steps=30"])
+        .args(["--set", "output.snapshot_steps=[3]", "--fields", "netcdf"])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    out
+}
+
+#[test]
+fn fields_npz_holds_the_documented_arrays_and_agrees_with_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_default_like(dir.path());
+    let arrays = read_npz(&out.join("fields.npz"));
+    let n = 32;
+    for name in ["x", "y"] {
+        assert_eq!(arrays[name].shape, vec![n], "{name}");
+    }
+    // Element centres relative to the axis: x_j = (j − N/2)·Δ with Δ = 0.8/32.
+    let spacing = 0.8 / 32.0;
+    assert!((arrays["x"].values[0] + 16.0 * spacing).abs() < 1e-15);
+    assert_eq!(arrays["heights"].shape, vec![n, n]);
+    assert_eq!(arrays["heights"].descr, "<f8");
+    assert_eq!(arrays["surface"].descr, "|b1");
+    assert!(
+        arrays["surface"].values.iter().all(|&v| v == 1.0),
+        "a sphere has a surface everywhere"
+    );
+    let steps: Vec<usize> = arrays["steps"].values.iter().map(|&s| s as usize).collect();
+    let count = steps.len();
+    for name in ["steps", "depths", "offsets"] {
+        assert_eq!(arrays[name].shape, vec![count], "{name}");
+    }
+    // The chosen step, the deepest step (approach steps − 1 = 29) and the pull-off step.
+    let (header, rows) = curve(&out.join("curve.csv"));
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let last_in_contact = rows
+        .iter()
+        .rposition(|r| r[column("n_contact")].parse::<usize>().unwrap() > 0)
+        .unwrap();
+    for step in [3, 29, last_in_contact] {
+        assert!(steps.contains(&step), "step {step} in {steps:?}");
+    }
+    assert_eq!(arrays.len(), 7 + 4 * count, "{:?}", arrays.keys().collect::<Vec<_>>());
+    for (index, &step) in steps.iter().enumerate() {
+        let field = |kind: &str| &arrays[&format!("{kind}_{step:06}")];
+        for (kind, descr) in [
+            ("pressure", "<f8"),
+            ("displacement", "<f8"),
+            ("gap", "<f8"),
+            ("contact", "|b1"),
+        ] {
+            assert_eq!(field(kind).shape, vec![n, n], "{kind} {step}");
+            assert_eq!(field(kind).descr, descr, "{kind} {step}");
+        }
+        let row = &rows[step];
+        let depth: f64 = row[column("d")].parse().unwrap();
+        assert_eq!(arrays["depths"].values[index], depth);
+        // F = Δ²·Σp (the curve's force_normal), to rounding of the sum.
+        let force: f64 = row[column("force_normal")].parse().unwrap();
+        let sum = field("pressure").values.iter().sum::<f64>() * spacing * spacing;
+        assert!(
+            (sum - force).abs() <= 1e-12 * force.abs().max(1e-12),
+            "step {step}: {sum} vs {force}"
+        );
+        let contact = &field("contact").values;
+        assert_eq!(
+            contact.iter().filter(|&&c| c == 1.0).count(),
+            row[column("n_contact")].parse::<usize>().unwrap()
+        );
+        // gap = u + z − d; in contact it is the CG residual, which the adhesive solver
+        // stops at ‖r‖_C ≤ 1e-6·‖d − z‖_C (AdhesiveParams::relative_tolerance): checked
+        // at 2e-6 to leave room for the rounding of u + z − d.
+        let gap = &field("gap").values;
+        let (mut residual, mut target) = (0.0, 0.0);
+        for k in 0..n * n {
+            let z = arrays["heights"].values[k];
+            let expected = field("displacement").values[k] + z - depth;
+            assert_eq!(gap[k], expected, "gap = u + z − d");
+            if contact[k] == 1.0 {
+                residual += gap[k] * gap[k];
+                target += (depth - z) * (depth - z);
+            }
+        }
+        assert!(
+            residual.sqrt() <= 2e-6 * target.sqrt(),
+            "step {step}: ‖gap‖_C = {:e}, ‖d − z‖_C = {:e}",
+            residual.sqrt(),
+            target.sqrt()
+        );
+    }
+    // The chosen step's pressure is the same as its .npy snapshot.
+    let npy = parse_npy(&std::fs::read(out.join("snapshots/step_000003_pressure.npy")).unwrap());
+    assert_eq!(npy.values, arrays["pressure_000003"].values);
+    let netcdf = std::fs::read(out.join("fields.nc")).unwrap();
+    assert_eq!(&netcdf[..3], b"CDF");
+    assert!(!out.join("fields.npz.partial").exists());
+}
+
+#[test]
+fn fields_npz_loads_with_numpy_when_python_has_it() {
+    let probe = Command::new("python3").args(["-c", "import numpy"]).output();
+    match probe {
+        Err(_) => {
+            eprintln!("skipped: python3 is not installed");
+            return;
+        }
+        Ok(output) if !output.status.success() => {
+            eprintln!("skipped: python3 has no numpy");
+            return;
+        }
+        Ok(_) => {}
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_default_like(dir.path());
+    let script = "import numpy, sys\n\
+        d = numpy.load(sys.argv[1])\n\
+        s = [int(v) for v in d['steps']]\n\
+        assert d['heights'].shape == (32, 32) and d['heights'].dtype == numpy.float64\n\
+        assert d['surface'].dtype == numpy.bool_ and d['x'].shape == (32,)\n\
+        for step in s:\n\
+        \x20   for kind in ('pressure', 'displacement', 'gap'):\n\
+        \x20       assert d['%s_%06d' % (kind, step)].shape == (32, 32)\n\
+        \x20   assert d['contact_%06d' % step].dtype == numpy.bool_\n\
+        print(len(s))\n";
+    let output = Command::new("python3")
+        .args(["-c", script, out.join("fields.npz").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn a_translation_reports_the_gap_of_the_moved_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig6.toml");
+    let overrides = [
+        "grid.n=32",
+        "protocol.steps=6",
+        "protocol.approach_steps=6",
+        "output.snapshot_steps=[8, 11]",
+    ];
+    let out = dir.path().join("out");
+    let mut command = Command::new(BIN);
+    command.args([
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    for item in overrides {
+        command.args(["--set", item]);
+    }
+    let output = command.output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let text = std::fs::read_to_string(&scenario).unwrap();
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let valid = adhesim_scenario::load(&text, "fig6.toml", scenario.parent().unwrap(), &overrides).unwrap();
+    let setup = valid.translation.as_ref().unwrap();
+    let arrays = read_npz(&out.join("fields.npz"));
+    for step in [8usize, 11] {
+        let index = arrays["steps"].values.iter().position(|&s| s as usize == step).unwrap();
+        let (depth, offset) = (arrays["depths"].values[index], arrays["offsets"].values[index]);
+        assert!(step < 11 || offset > 0.0, "the indenter has moved by step 11");
+        let mut z = vec![0.0; valid.grid.len()];
+        setup.contact.fill_heights(&valid.grid, offset, &mut z);
+        let field = |kind: &str| &arrays[&format!("{kind}_{step:06}")].values;
+        let (mut residual, mut target) = (0.0, 0.0);
+        for (k, &height) in z.iter().enumerate() {
+            assert_eq!(field("gap")[k], field("displacement")[k] + height - depth);
+            if field("contact")[k] == 1.0 {
+                residual += field("gap")[k].powi(2);
+                target += (depth - height).powi(2);
+            }
+        }
+        // The adhesive solver's stop, ‖r‖_C ≤ 1e-6·‖d − z‖_C, with room for rounding.
+        assert!(target > 0.0 && residual.sqrt() <= 2e-6 * target.sqrt(), "step {step}");
+    }
+}
