@@ -4,11 +4,13 @@
 //!
 //! ```text
 //! cargo run --release -p adhesim --example rough_sphere_study -- study  OUT.csv [n] [threads] [steps]
+//! cargo run --release -p adhesim --example rough_sphere_study -- wide   OUT.csv [n] [threads] [steps]
 //! cargo run --release -p adhesim --example rough_sphere_study -- refine OUT.csv [n] [threads] [steps]
 //! cargo run --release -p adhesim --example rough_sphere_study -- case   n hurst rms_slope seed [steps]
 //! ```
 //! (defaults n = 128, threads = 2, steps = 300). `study` runs hurst ∈ {0.3, 0.5, 0.8} ×
-//! rms slope ∈ {0.05, 0.1, 0.2, 0.3} × seeds 1–3 at n; `refine` runs three representative
+//! rms slope ∈ {0.05, 0.1, 0.2, 0.3} × seeds 1–3 at n; `wide` hurst ∈ {0.3, 0.8} × rms slope
+//! ∈ {0.1, 0.2} × seeds 1–3 with the roll-off at λ_r = 0.8 (a 16-fold band); `refine` runs three representative
 //! cases at n and at 2n; `case` prints one row. Rows are appended to OUT.csv as cases finish
 //! (the header is written when the file is new), so an interrupted run keeps what it did.
 //!
@@ -41,13 +43,14 @@ use std::io::Write;
 use std::process::ExitCode;
 use std::sync::Mutex;
 
-const USAGE: &str = "usage: rough_sphere_study study|refine OUT.csv [n] [threads] [steps]\n       rough_sphere_study case n hurst rms_slope seed [steps]";
+const USAGE: &str = "usage: rough_sphere_study study|wide|refine OUT.csv [n] [threads] [steps]\n       rough_sphere_study case n hurst rms_slope seed [steps]";
 const RADIUS: f64 = 1.0;
 const MODULUS: f64 = 1.0;
 const WORK_OF_ADHESION: f64 = 6.168_502_750_680_85e-4;
 const SIDE: f64 = 0.8;
 const ROLLOFF_WAVELENGTH: f64 = 0.2;
 const CUTOFF_WAVELENGTH: f64 = 0.05;
+const WIDE_ROLLOFF_WAVELENGTH: f64 = 0.8;
 const HEADER: &str = "case,series,n,hurst,rms_slope_target,seed,radius,contact_modulus,work_of_adhesion,rms_height,rms_slope,rough_sphere_parameter,roughness_depth_ratio,adhesive_force_ratio,gamma_approach_norm,gamma_pulloff_norm,gamma_approach_area_norm,gamma_pulloff_area_norm,touches_border,steps,wall_s,status";
 
 /// One cycle to run.
@@ -60,11 +63,18 @@ struct Case {
     steps: usize,
     /// The surface is drawn on a grid of `n * fine_factor` elements and block-averaged to n.
     fine_factor: usize,
+    /// Roll-off wavelength λ_r of the spectrum.
+    rolloff: f64,
 }
 
 impl Case {
     fn name(&self) -> String {
-        format!("h{}_s{}_seed{}_n{}", self.hurst, self.slope, self.seed, self.n)
+        let band = if self.rolloff == ROLLOFF_WAVELENGTH {
+            String::new()
+        } else {
+            format!("_r{}", self.rolloff)
+        };
+        format!("h{}_s{}_seed{}_n{}{band}", self.hurst, self.slope, self.seed, self.n)
     }
 }
 
@@ -99,11 +109,12 @@ fn run() -> Result<(), String> {
             seed: parse(&values, 4, "seed", None)?,
             steps: parse(&values, 5, "steps", Some(300))?,
             fine_factor: 2,
+            rolloff: ROLLOFF_WAVELENGTH,
         };
         println!("{HEADER}\n{}", row(&case));
         return Ok(());
     }
-    if mode != "study" && mode != "refine" {
+    if !["study", "wide", "refine"].contains(&mode) {
         return Err(format!("unknown mode {mode:?}\n{USAGE}"));
     }
     let out: String = parse(&values, 1, "OUT.csv", None)?;
@@ -121,12 +132,26 @@ fn run() -> Result<(), String> {
         seed,
         steps,
         fine_factor,
+        rolloff: ROLLOFF_WAVELENGTH,
     };
     if mode == "study" {
         for slope in [0.05, 0.1, 0.2, 0.3] {
             for hurst in [0.3, 0.5, 0.8] {
                 for seed in 1..=3 {
                     cases.push(case(n, hurst, slope, seed, 2));
+                }
+            }
+        }
+    } else if mode == "wide" {
+        // A 16-fold band (λ_r = 0.8, the domain's side), where h_rms/h'_rms grows by a
+        // factor 1.75 from H = 0.3 to 0.8 (1.17 in the 4-fold band of `study`).
+        for slope in [0.1, 0.2] {
+            for hurst in [0.3, 0.8] {
+                for seed in 1..=3 {
+                    cases.push(Case {
+                        rolloff: WIDE_ROLLOFF_WAVELENGTH,
+                        ..case(n, hurst, slope, seed, 2)
+                    });
                 }
             }
         }
@@ -166,7 +191,11 @@ fn run() -> Result<(), String> {
 
 /// One table row: the case's inputs and results, or its error in the status column.
 fn row(case: &Case) -> String {
-    let series = format!("H = {}", case.hurst);
+    let series = if case.rolloff == ROLLOFF_WAVELENGTH {
+        format!("H = {}", case.hurst)
+    } else {
+        format!("H = {}, λ_r = {}", case.hurst, case.rolloff)
+    };
     let inputs = format!(
         "{},{series},{},{},{},{},{RADIUS},{MODULUS},{WORK_OF_ADHESION:e}",
         case.name(),
@@ -186,7 +215,7 @@ fn roughness(case: &Case, grid: &Grid) -> Result<Vec<f64>, String> {
     let factor = case.fine_factor;
     let fine_grid = Grid::new(case.n * factor, SIDE, Boundary::Free).map_err(|e| e.to_string())?;
     let fine = SelfAffine::new(case.hurst, RmsTarget::Slope(case.slope))
-        .with_rolloff_wavelength(ROLLOFF_WAVELENGTH)
+        .with_rolloff_wavelength(case.rolloff)
         .with_cutoff_wavelength(CUTOFF_WAVELENGTH)
         .with_amplitudes(Amplitudes::RandomPhase)
         .generate(&fine_grid, case.seed)
