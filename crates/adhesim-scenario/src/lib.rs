@@ -42,6 +42,7 @@ mod model;
 mod parse;
 mod pipeline;
 mod results;
+mod roughness;
 mod translation;
 mod validate;
 
@@ -50,6 +51,7 @@ pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
+pub use roughness::{roughness_on_grid, RoughnessMap};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 
 pub use adhesim::analysis::friction::TranslationResults;

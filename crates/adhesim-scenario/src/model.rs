@@ -20,6 +20,62 @@ pub struct ScenarioFile {
     /// Inputs of the analysis of a run (roll/slide: γ1, γ2 for Eq. 12, τ0 for Eq. 16).
     #[serde(default, skip_serializing_if = "AnalysisSection::is_empty")]
     pub analysis: AnalysisSection,
+    /// Roughness added to the indenter's heights (any shape; required by `rough_sphere`
+    /// and `rough_flat`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<RoughnessSection>,
+    /// Roughness of the substrate of a `slide` (fixed to the half-space).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substrate_roughness: Option<RoughnessSection>,
+}
+
+/// `[roughness]` and `[substrate_roughness]`: a random self-affine surface (generator keys)
+/// or a measured one (`file` keys), never both.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughnessSection {
+    /// Hurst exponent H ∈ (0, 1] of C(q) ∝ q^(−2−2H).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hurst: Option<f64>,
+    /// rms height about the mean plane (exactly one of rms_height, rms_slope).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_height: Option<f64>,
+    /// rms slope ⟨|∇h|²⟩^½.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_slope: Option<f64>,
+    /// Roll-off wavelength λ_r (plateau of the spectrum beyond it; default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rolloff_wavelength: Option<f64>,
+    /// Short-wavelength cutoff λ_s (default: the grid's Nyquist wavelength 2Δ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutoff_wavelength: Option<f64>,
+    /// Seed of the random phases (an integer >= 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<i64>,
+    /// Exact amplitudes (`random_phase`, default) or Gaussian ones (`filtered`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode: Option<RoughnessMode>,
+    /// A measured height map in any format `adhesim_topography` reads.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Subtract the least-squares mean plane of the file's map (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub detrend: Option<bool>,
+    /// Spacing of a file that records none (npy, npz, bare ASCII), in length units.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spacing: Option<f64>,
+    /// Channel of a multi-channel file (Gwyddion title, npz member, ASCII "Channel").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channel: Option<String>,
+}
+
+/// How the generator draws its Fourier amplitudes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RoughnessMode {
+    #[default]
+    RandomPhase,
+    Filtered,
 }
 
 /// `[analysis]`: numbers the analysis of a run needs but the run does not produce.
@@ -112,6 +168,10 @@ pub enum ShapeName {
     FlatPunch,
     EllipticPunch,
     Topography,
+    /// A paraboloid of `radius` carrying the `[roughness]`.
+    RoughSphere,
+    /// A plane carrying the `[roughness]`.
+    RoughFlat,
 }
 
 impl ShapeName {
@@ -122,6 +182,8 @@ impl ShapeName {
             Self::FlatPunch => "flat_punch",
             Self::EllipticPunch => "elliptic_punch",
             Self::Topography => "topography",
+            Self::RoughSphere => "rough_sphere",
+            Self::RoughFlat => "rough_flat",
         }
     }
 }
@@ -308,10 +370,12 @@ pub struct ValidScenario {
     /// Resolution warnings (elements per wavelength, across a punch, per a_JKR), for
     /// stderr and `summary.json`.
     pub warnings: Vec<String>,
+    /// The `[roughness]` as sampled on the grid (peaks positive, row-major), if any.
+    pub roughness: Option<Vec<f64>>,
 }
 
 /// A validated roll / slide / translate protocol.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct TranslationSetup {
     pub kind: ProtocolKind,
     pub contact: TranslatingContact,
@@ -334,4 +398,19 @@ pub struct Derived {
     pub johnson_parameter: Option<f64>,
     pub element_size: f64,
     pub critical_stress: Option<f64>,
+    /// Statistics of the `[roughness]` as sampled on the grid (absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<RoughnessStatistics>,
+    /// Statistics of the `[substrate_roughness]` on the grid (absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub substrate_roughness: Option<RoughnessStatistics>,
+}
+
+/// rms height, slope and curvature of a roughness as sampled on the grid (spectral on a
+/// periodic grid, finite differences on a free one: `adhesim::surface::statistics`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RoughnessStatistics {
+    pub rms_height: f64,
+    pub rms_slope: f64,
+    pub rms_curvature: f64,
 }

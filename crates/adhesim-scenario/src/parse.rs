@@ -52,8 +52,16 @@ pub fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> Result<(
     Ok(())
 }
 
-const SECTIONS: [&str; 7] = [
-    "grid", "material", "adhesion", "indenter", "protocol", "output", "analysis",
+const SECTIONS: [&str; 9] = [
+    "grid",
+    "material",
+    "adhesion",
+    "indenter",
+    "protocol",
+    "output",
+    "analysis",
+    "roughness",
+    "substrate_roughness",
 ];
 
 /// Deserialises the table section by section so that every message names the dotted key.
@@ -87,6 +95,8 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
     let protocol = section(table, "protocol", true)?.expect("required");
     let output = section(table, "output", false)?.unwrap_or_default();
     let analysis = section(table, "analysis", false)?.unwrap_or_default();
+    let roughness = section(table, "roughness", false)?;
+    let substrate_roughness = section(table, "substrate_roughness", false)?;
     Ok(ScenarioFile {
         grid,
         material,
@@ -95,6 +105,8 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
         protocol,
         output,
         analysis,
+        roughness,
+        substrate_roughness,
     })
 }
 
@@ -185,7 +197,7 @@ pub fn read_npy_2d(path: &Path, key: &str) -> Result<(Vec<f64>, usize, usize)> {
 
 /// Errors where the file marks points invalid (NaN, a mask): the reader fills them with the
 /// mean height, which would be a silent change of the input.
-fn refuse_invalid_points(map: &Topography, path: &Path, key: &str) -> Result<()> {
+pub(crate) fn refuse_invalid_points(map: &Topography, path: &Path, key: &str) -> Result<()> {
     if let Some(mask) = &map.mask {
         let invalid = mask.iter().filter(|valid| !**valid).count();
         if invalid > 0 {

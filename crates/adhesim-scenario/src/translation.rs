@@ -21,6 +21,8 @@ pub(crate) struct ValidatedSections {
     pub(crate) unit: f64,
     pub(crate) jkr: Option<Jkr>,
     pub(crate) derived: Derived,
+    /// `[substrate_roughness]` on the grid (slide only).
+    pub(crate) substrate_roughness: Option<Vec<f64>>,
 }
 
 /// Default approach steps of roll / slide / translate.
@@ -42,6 +44,7 @@ impl ScenarioFile {
             unit,
             jkr,
             derived,
+            substrate_roughness,
         } = inputs;
         let p = &self.protocol;
         let kind = p.kind;
@@ -69,7 +72,12 @@ impl ScenarioFile {
                 }
             }
         };
-        let contact = TranslatingContact::new(wavy, kinematics);
+        let mut contact = TranslatingContact::new(wavy, kinematics);
+        if let Some(roughness) = substrate_roughness {
+            contact = contact
+                .with_substrate_roughness(roughness, &grid)
+                .map_err(|e| anyhow!("[substrate_roughness]: {e}"))?;
+        }
         let mut heights = vec![0.0; grid.len()];
         contact.fill_heights(&grid, 0.0, &mut heights);
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
@@ -150,6 +158,7 @@ impl ScenarioFile {
                 tau0,
                 wavelength,
             }),
+            roughness: None,
             warnings: Vec::new(),
         })
     }

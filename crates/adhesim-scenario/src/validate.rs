@@ -5,10 +5,11 @@
 use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::{read_height_map, read_npy_2d};
+use crate::roughness::{roughness_on_grid, RoughnessMap};
 use crate::translation::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
-use adhesim::geometry::{EllipticPunch, FlatPunch, Sphere, Topography, WavySphere};
+use adhesim::geometry::{EllipticPunch, FlatPunch, RoughProfile, Sphere, Topography, WavySphere};
 use adhesim::solver::critical_stress;
 use adhesim::{Axis, Boundary, ElasticMaterial, Grid, Indenter, Profile, WorkOfAdhesion};
 use anyhow::{anyhow, bail, Result};
@@ -48,12 +49,18 @@ impl ScenarioFile {
     pub fn validate(self, base: &Path) -> Result<ValidScenario> {
         let grid = validate_grid(&self.grid)?;
         let material = validate_material(&self.material)?;
-        let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base)?;
+        let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
+        let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base, roughness.as_ref())?;
         let shape = self.indenter.shape;
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
-        let (jkr, derived) = derived_scales(&grid, &material, &indenter, gamma0);
+        let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
         self.check_derived(&derived)?;
-        let warnings = resolution_warnings(&grid, &indenter, &derived);
+        let mut warnings = resolution_warnings(&grid, &indenter, &derived);
+        for map in roughness.iter().chain(&substrate_roughness) {
+            warnings.extend(map.warnings.iter().cloned());
+        }
+        derived.roughness = roughness.as_ref().map(|map| map.statistics);
+        derived.substrate_roughness = substrate_roughness.as_ref().map(|map| map.statistics);
         let unit = depth_unit(&self.protocol, shape, jkr.as_ref(), gamma0)?;
         if !(unit.is_finite() && unit > 0.0) {
             bail!("protocol.depth_unit = \"jkr\": the unit |d_JKR| = {unit:e} is not a positive number");
@@ -67,6 +74,7 @@ impl ScenarioFile {
             unit,
             jkr,
             derived,
+            substrate_roughness: substrate_roughness.map(|map| map.heights),
         };
         let mut valid = if self.protocol.kind.is_translation() {
             self.validate_translation(inputs)?
@@ -74,7 +82,36 @@ impl ScenarioFile {
             self.validate_indentation(inputs, heights, start_depth)?
         };
         valid.warnings = warnings;
+        valid.roughness = roughness.map(|map| map.heights);
         Ok(valid)
+    }
+
+    /// `[roughness]` (indent_pulloff only) and `[substrate_roughness]` (slide only) on the grid.
+    fn roughness_maps(&self, grid: &Grid, base: &Path) -> Result<(Option<RoughnessMap>, Option<RoughnessMap>)> {
+        let kind = self.protocol.kind;
+        if self.roughness.is_some() && kind.is_translation() {
+            bail!(
+                "[roughness] roughens the indenter of protocol.kind = \"indent_pulloff\" only, got \"{}\" (a slide's substrate takes [substrate_roughness])",
+                kind.name()
+            );
+        }
+        if self.substrate_roughness.is_some() && kind != ProtocolKind::Slide {
+            bail!(
+                "[substrate_roughness] is the substrate of protocol.kind = \"slide\" only, got \"{}\" (an indenter takes [roughness])",
+                kind.name()
+            );
+        }
+        let roughness = self
+            .roughness
+            .as_ref()
+            .map(|section| roughness_on_grid(section, "roughness", grid, base))
+            .transpose()?;
+        let substrate = self
+            .substrate_roughness
+            .as_ref()
+            .map(|section| roughness_on_grid(section, "substrate_roughness", grid, base))
+            .transpose()?;
+        Ok((roughness, substrate))
     }
 
     /// `[protocol]` of kind indent_pulloff (and `[output]`).
@@ -93,6 +130,7 @@ impl ScenarioFile {
             unit,
             jkr,
             derived,
+            ..
         } = inputs;
         let contact_modulus = material.contact_modulus();
         let p = &self.protocol;
@@ -169,6 +207,7 @@ impl ScenarioFile {
             jump_force_threshold,
             translation: None,
             warnings: Vec::new(),
+            roughness: None,
         })
     }
 
@@ -249,8 +288,14 @@ fn validate_material(section: &MaterialSection) -> Result<ElasticMaterial> {
     Ok(material)
 }
 
-/// `[indenter]`: the profile, its heights on the grid and the depth of first contact.
-fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Result<(Indenter, Vec<f64>, f64)> {
+/// `[indenter]` (with the `[roughness]` on the grid, if any): the profile, its heights on
+/// the grid and the depth of first contact.
+fn validate_indenter(
+    section: &IndenterSection,
+    grid: &Grid,
+    base: &Path,
+    roughness: Option<&RoughnessMap>,
+) -> Result<(Indenter, Vec<f64>, f64)> {
     let ind = section;
     let shape = ind.shape;
     let allowed: &[&str] = match shape {
@@ -259,6 +304,8 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
         ShapeName::FlatPunch => &["radius"],
         ShapeName::EllipticPunch => &["semi_axes", "angle"],
         ShapeName::Topography => &["file", "spacing"],
+        ShapeName::RoughSphere => &["radius"],
+        ShapeName::RoughFlat => &[],
     };
     let present = [
         ("radius", ind.radius.is_some()),
@@ -271,10 +318,14 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
     ];
     for (key, is_set) in present {
         if is_set && !allowed.contains(&key) {
-            bail!(
-                "indenter.{key} is not used by indenter.shape = \"{}\" (its keys: {})",
-                shape.name(),
+            let keys = if allowed.is_empty() {
+                "none".to_string()
+            } else {
                 allowed.join(", ")
+            };
+            bail!(
+                "indenter.{key} is not used by indenter.shape = \"{}\" (its keys: {keys})",
+                shape.name()
             );
         }
     }
@@ -325,8 +376,9 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
                     .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
             )
         }
+        ShapeName::RoughSphere | ShapeName::RoughFlat => rough_indenter(ind, grid, roughness)?,
     };
-    let heights = indenter.heights(grid);
+    let (indenter, heights) = with_roughness(indenter, grid, roughness)?;
     let start_depth = heights
         .iter()
         .copied()
@@ -341,6 +393,53 @@ fn validate_indenter(section: &IndenterSection, grid: &Grid, base: &Path) -> Res
         );
     }
     Ok((indenter, heights, start_depth))
+}
+
+/// `rough_sphere` (radius + the `[roughness]`) and `rough_flat`.
+fn rough_indenter(section: &IndenterSection, grid: &Grid, roughness: Option<&RoughnessMap>) -> Result<Indenter> {
+    let shape = section.shape;
+    let Some(map) = roughness else {
+        bail!(
+            "indenter.shape = \"{}\" needs a [roughness] section (roughness.file, or roughness.hurst, roughness.seed and roughness.rms_height or roughness.rms_slope)",
+            shape.name()
+        );
+    };
+    let profile = if shape == ShapeName::RoughFlat {
+        RoughProfile::rough_flat(map.heights.clone(), grid)
+    } else {
+        let radius = positive("indenter.radius", required("indenter.radius", section.radius, shape)?)?;
+        RoughProfile::rough_sphere(radius, map.heights.clone(), grid)
+    };
+    Ok(Indenter::Rough(profile.map_err(|e| anyhow!("[roughness]: {e}"))?))
+}
+
+/// The indenter and its heights on the grid with the `[roughness]`: a sphere with one is a
+/// `rough_sphere`; on the other shapes the roughness is subtracted from the finite heights
+/// (peaks towards the half-space) and the heights are shifted to first contact at zero,
+/// while the smooth shape keeps giving the scales (JKR, force scale, resolution warnings).
+fn with_roughness(indenter: Indenter, grid: &Grid, roughness: Option<&RoughnessMap>) -> Result<(Indenter, Vec<f64>)> {
+    let indenter = match (indenter, roughness) {
+        (Indenter::Sphere(sphere), Some(map)) => Indenter::Rough(
+            RoughProfile::rough_sphere(sphere.radius(), map.heights.clone(), grid)
+                .map_err(|e| anyhow!("[roughness]: {e}"))?,
+        ),
+        (other, _) => other,
+    };
+    let mut heights = indenter.heights(grid);
+    if let (Some(map), false) = (roughness, matches!(indenter, Indenter::Rough(_))) {
+        for (z, h) in heights.iter_mut().zip(&map.heights) {
+            *z -= h;
+        }
+        let lowest = heights
+            .iter()
+            .copied()
+            .filter(|z| z.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        if lowest.is_finite() {
+            heights.iter_mut().for_each(|z| *z -= lowest);
+        }
+    }
+    Ok((indenter, heights))
 }
 
 /// `[adhesion]`: the reference γ0 and γ per element.
@@ -442,6 +541,8 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
         johnson_parameter: johnson,
         element_size: delta,
         critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, delta)),
+        roughness: None,
+        substrate_roughness: None,
     };
     (jkr, derived)
 }

@@ -29,7 +29,7 @@ const RUN_MAX_STEPS: usize = 60;
 /// Memory allowed to a scenario, so that a mutated `grid.n` is refused before it allocates.
 const AVAILABLE_MEMORY: u64 = 1 << 30;
 
-const SCENARIOS: [(&str, &str); 14] = [
+const SCENARIOS: [(&str, &str); 15] = [
     ("fig1.toml", include_str!("../../../scenarios/fig1.toml")),
     (
         "fig12_homogeneous.toml",
@@ -56,10 +56,14 @@ const SCENARIOS: [(&str, &str); 14] = [
     ("fig9.toml", include_str!("../../../scenarios/fig9.toml")),
     ("hertz.toml", include_str!("../../../scenarios/hertz.toml")),
     ("jkr.toml", include_str!("../../../scenarios/jkr.toml")),
+    (
+        "rough_sphere.toml",
+        include_str!("../../../scenarios/rough_sphere.toml"),
+    ),
 ];
 
 /// Every key of the scenario format (`docs/cli.md`), plus two that do not exist.
-const KEYS: [&str; 45] = [
+const KEYS: [&str; 67] = [
     "grid.n",
     "grid.size",
     "grid.boundary",
@@ -103,12 +107,34 @@ const KEYS: [&str; 45] = [
     "analysis.gamma_approach",
     "analysis.gamma_pulloff",
     "analysis.tau0",
+    "roughness.hurst",
+    "roughness.rms_height",
+    "roughness.rms_slope",
+    "roughness.rolloff_wavelength",
+    "roughness.cutoff_wavelength",
+    "roughness.seed",
+    "roughness.mode",
+    "roughness.file",
+    "roughness.detrend",
+    "roughness.spacing",
+    "roughness.channel",
+    "substrate_roughness.hurst",
+    "substrate_roughness.rms_height",
+    "substrate_roughness.rms_slope",
+    "substrate_roughness.rolloff_wavelength",
+    "substrate_roughness.cutoff_wavelength",
+    "substrate_roughness.seed",
+    "substrate_roughness.mode",
+    "substrate_roughness.file",
+    "substrate_roughness.detrend",
+    "substrate_roughness.spacing",
+    "substrate_roughness.channel",
     "grid.no_such_key",
     "no_such_section.key",
 ];
 
 /// Values of every class a hostile user tries, as `--set` text.
-const VALUES: [&str; 40] = [
+const VALUES: [&str; 45] = [
     "nan",
     "+nan",
     "inf",
@@ -149,6 +175,11 @@ const VALUES: [&str; 40] = [
     "\"translate\"",
     "\"jkr\"",
     "\"wavelength\"",
+    "\"rough_sphere\"",
+    "\"rough_flat\"",
+    "\"filtered\"",
+    "\"slide\"",
+    "{ hurst = 0.5, rms_slope = 0.1, seed = 2 }",
 ];
 
 /// One override: a key (sometimes garbage) and a value (sometimes garbage or a scaled
@@ -184,8 +215,17 @@ fn small_run_overrides(text: &str, n: usize, steps: usize) -> Vec<String> {
 }
 
 fn dotted_key_in(message: &str) -> bool {
-    const SECTIONS: [&str; 8] = [
-        "grid", "material", "adhesion", "indenter", "protocol", "output", "analysis", "--set",
+    const SECTIONS: [&str; 10] = [
+        "grid",
+        "material",
+        "adhesion",
+        "indenter",
+        "protocol",
+        "output",
+        "analysis",
+        "roughness",
+        "substrate_roughness",
+        "--set",
     ];
     message.contains("key")
         || SECTIONS

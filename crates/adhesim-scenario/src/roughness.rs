@@ -1,0 +1,201 @@
+//! `[roughness]` and `[substrate_roughness]`: a random self-affine surface drawn by
+//! `adhesim::surface::SelfAffine` (generator keys) or a measured map read by
+//! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
+//! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
+
+use crate::model::{RoughnessMode, RoughnessSection, RoughnessStatistics};
+use crate::parse::refuse_invalid_points;
+use crate::validate::positive;
+use adhesim::surface::{statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
+use adhesim::Grid;
+use adhesim_topography::{read_topography, ReadOptions};
+use anyhow::{anyhow, bail, Result};
+use std::path::Path;
+
+/// Keys of the generator form.
+const GENERATOR_KEYS: [&str; 7] = [
+    "hurst",
+    "rms_height",
+    "rms_slope",
+    "rolloff_wavelength",
+    "cutoff_wavelength",
+    "seed",
+    "mode",
+];
+/// Keys of the file form.
+const FILE_KEYS: [&str; 4] = ["file", "detrend", "spacing", "channel"];
+
+/// A roughness sampled on the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoughnessMap {
+    /// Heights at the element centres, row-major, peaks positive (towards the other body).
+    pub heights: Vec<f64>,
+    /// rms height, slope and curvature of `heights` on the grid.
+    pub statistics: RoughnessStatistics,
+    /// Warnings (a grid that undersamples a measured map), for stderr and `summary.json`.
+    pub warnings: Vec<String>,
+}
+
+/// Which keys of the section are set, in the order of the two lists above.
+fn present(section: &RoughnessSection) -> (Vec<&'static str>, Vec<&'static str>) {
+    let s = section;
+    let generator = [
+        s.hurst.is_some(),
+        s.rms_height.is_some(),
+        s.rms_slope.is_some(),
+        s.rolloff_wavelength.is_some(),
+        s.cutoff_wavelength.is_some(),
+        s.seed.is_some(),
+        s.mode.is_some(),
+    ];
+    let file = [
+        s.file.is_some(),
+        s.detrend.is_some(),
+        s.spacing.is_some(),
+        s.channel.is_some(),
+    ];
+    let pick = |keys: &[&'static str], set: &[bool]| -> Vec<&'static str> {
+        keys.iter().zip(set).filter(|(_, &on)| on).map(|(k, _)| *k).collect()
+    };
+    (pick(&GENERATOR_KEYS, &generator), pick(&FILE_KEYS, &file))
+}
+
+/// Samples the section named `name` (`roughness` or `substrate_roughness`) on `grid`;
+/// relative file paths are resolved against `base`.
+pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<RoughnessMap> {
+    let (generator, file) = present(section);
+    let (heights, warnings) = match (generator.is_empty(), file.is_empty()) {
+        (true, true) => bail!(
+            "[{name}] is empty: give {name}.file, or the generator keys {name}.hurst, {name}.seed and one of {name}.rms_height / {name}.rms_slope"
+        ),
+        (false, false) => bail!(
+            "[{name}] mixes the generator key {name}.{} with the file key {name}.{}: give a random surface ({}) or a measured one ({}), not both",
+            generator[0],
+            file[0],
+            GENERATOR_KEYS.join(", "),
+            FILE_KEYS.join(", ")
+        ),
+        (false, true) => (generate(section, name, grid)?, Vec::new()),
+        (true, false) => from_file(section, name, grid, base)?,
+    };
+    let stats = statistics(grid, &heights).map_err(|e| anyhow!("[{name}]: the statistics of the map: {e}"))?;
+    Ok(RoughnessMap {
+        heights,
+        statistics: RoughnessStatistics {
+            rms_height: stats.rms_height,
+            rms_slope: stats.rms_slope,
+            rms_curvature: stats.rms_curvature,
+        },
+        warnings,
+    })
+}
+
+/// The generator form: `adhesim::surface::SelfAffine` on the grid.
+fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f64>> {
+    let s = section;
+    let hurst = s
+        .hurst
+        .ok_or_else(|| anyhow!("missing key `{name}.hurst` (the Hurst exponent of a random surface)"))?;
+    if !(hurst.is_finite() && hurst > 0.0 && hurst <= 1.0) {
+        bail!("{name}.hurst must lie in (0, 1], got {hurst}");
+    }
+    let target = match (s.rms_height, s.rms_slope) {
+        (Some(h), None) => RmsTarget::Height(positive(&format!("{name}.rms_height"), h)?),
+        (None, Some(slope)) => RmsTarget::Slope(positive(&format!("{name}.rms_slope"), slope)?),
+        (Some(h), Some(slope)) => bail!(
+            "give exactly one of {name}.rms_height and {name}.rms_slope, got both ({name}.rms_height = {h}, {name}.rms_slope = {slope})"
+        ),
+        (None, None) => bail!("give exactly one of {name}.rms_height and {name}.rms_slope, got neither"),
+    };
+    let seed = s
+        .seed
+        .ok_or_else(|| anyhow!("missing key `{name}.seed` (an integer >= 0 that fixes the random surface)"))?;
+    if seed < 0 {
+        bail!("{name}.seed must be >= 0, got {seed}");
+    }
+    let mut generator = SelfAffine::new(hurst, target).with_amplitudes(match s.mode.unwrap_or_default() {
+        RoughnessMode::RandomPhase => Amplitudes::RandomPhase,
+        RoughnessMode::Filtered => Amplitudes::Filtered,
+    });
+    if let Some(wavelength) = s.rolloff_wavelength {
+        generator = generator.with_rolloff_wavelength(positive(&format!("{name}.rolloff_wavelength"), wavelength)?);
+    }
+    if let Some(wavelength) = s.cutoff_wavelength {
+        generator = generator.with_cutoff_wavelength(positive(&format!("{name}.cutoff_wavelength"), wavelength)?);
+    }
+    let surface = generator.generate(grid, seed as u64).map_err(|e| match e {
+        SurfaceError::RolloffNotBelowCutoff { rolloff, cutoff } => anyhow!(
+            "{name}.rolloff_wavelength must be longer than the cutoff wavelength {cutoff:e} ({name}.cutoff_wavelength, default 2·grid element), got {rolloff}"
+        ),
+        SurfaceError::CutoffBelowNyquist { cutoff, nyquist } => anyhow!(
+            "{name}.cutoff_wavelength must be at least two elements ({nyquist:e}: grid.size / grid.n × 2), got {cutoff}"
+        ),
+        SurfaceError::EmptyBand { cutoff, patch } => anyhow!(
+            "{name}.cutoff_wavelength = {cutoff}: no Fourier mode of the {patch:e}-wide patch lies below it; shorten it or enlarge grid.size"
+        ),
+        other => anyhow!("[{name}]: {other}"),
+    })?;
+    Ok(surface.heights)
+}
+
+/// The file form: read, detrend on request, resample onto the grid (bilinear, or spectral
+/// when the grid is finer), warn when the grid undersamples the measurement.
+fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<(Vec<f64>, Vec<String>)> {
+    let s = section;
+    let file = s.file.as_ref().ok_or_else(|| {
+        anyhow!("missing key `{name}.file` (the file keys {name}.detrend, {name}.spacing, {name}.channel need a file)")
+    })?;
+    let key = format!("{name}.file");
+    let spacing = s
+        .spacing
+        .map(|value| positive(&format!("{name}.spacing"), value))
+        .transpose()?;
+    let options = ReadOptions {
+        channel: s.channel.clone(),
+        spacing: spacing.map(|value| (value, value)),
+        height_unit: Some("m".to_string()),
+        lateral_unit: Some("m".to_string()),
+    };
+    let path = base.join(file);
+    let mut map = read_topography(&path, &options).map_err(|e| {
+        let hint = if spacing.is_none() {
+            format!(" (files that record no spacing need {name}.spacing)")
+        } else {
+            String::new()
+        };
+        anyhow!("{key}: {e}{hint}")
+    })?;
+    refuse_invalid_points(&map, &path, &key)?;
+    if let Some(given) = spacing {
+        if (given - map.dx).abs() > 1e-9 * given || (given - map.dy).abs() > 1e-9 * given {
+            bail!(
+                "{name}.spacing = {given} but {key} = {} records a spacing of {:e} × {:e} m: leave {name}.spacing out",
+                file.display(),
+                map.dx,
+                map.dy
+            );
+        }
+    }
+    if s.detrend.unwrap_or(false) {
+        map.detrend_mean_plane()
+            .map_err(|e| anyhow!("{key} = {}: detrending: {e}", file.display()))?;
+    }
+    let (n, spacing) = (grid.n(), grid.element_size());
+    let resampled = map.resample_to(n, n, spacing, spacing).map_err(|e| {
+        anyhow!(
+            "{key} = {}: the grid (grid.n = {n}, grid.size = {}) does not fit in the {}×{} map of spacing {:e} × {:e}: {e}",
+            file.display(),
+            grid.size(),
+            map.nx,
+            map.ny,
+            map.dx,
+            map.dy
+        )
+    })?;
+    let warnings = resampled
+        .undersampling
+        .map(|u| format!("{key} = {}: {u}", file.display()))
+        .into_iter()
+        .collect();
+    Ok((resampled.topography.heights, warnings))
+}
