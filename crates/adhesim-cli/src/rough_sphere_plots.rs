@@ -1,7 +1,9 @@
 //! Master plots of the rough-sphere study (docs/rough-spheres.md), drawn by
 //! `adhesim plot master` next to the wavy-sphere ones when a table carries the roughness
 //! statistics of its cases (`rms_height`, `rms_slope`, `work_of_adhesion`,
-//! `contact_modulus`, `radius`):
+//! `contact_modulus`, `radius`: the study example's table) or a sweep's case folders hold
+//! them (`summary.json`: `derived.roughness` and the inputs); seeds are grouped by
+//! `rms_slope_target` or the sweep's `roughness.rms_slope`, series by `roughness.hurst`:
 //! - `rough_sphere_master`: γ1/γ0, γ2/γ0 and |F_ad|/|F_JKR| vs the rough-sphere parameter
 //!   α_r = √(2γ0/(πE*h_rms h'_rms)) (`adhesim::analysis::johnson::rough_sphere_parameter`,
 //!   computed here from the table's input columns); seeds as points, the seed mean of each
@@ -62,12 +64,13 @@ fn read(path: &Path, cases: &mut Vec<Case>, reference: &mut Reference) -> Result
         "gamma_pulloff_area_norm",
     ]
     .map(find);
-    let (alpha, series, group, status) = (
-        find("johnson_parameter"),
-        find("series"),
-        find("rms_slope_target"),
-        find("status"),
+    let (alpha, series, status, case_col) = (find("johnson_parameter"), find("series"), find("status"), find("case"));
+    // The study example writes `rms_slope_target`; a sweep its varied keys.
+    let (group, hurst) = (
+        find("rms_slope_target").or_else(|| find("roughness.rms_slope")),
+        find("roughness.hurst"),
     );
+    let cases_dir = path.parent().unwrap_or(Path::new(".")).join("cases");
     for record in reader.records() {
         let record = record.with_context(|| format!("{}: malformed row", path.display()))?;
         if status.and_then(|c| record.get(c)).is_some_and(|s| s != "ok") {
@@ -79,17 +82,27 @@ fn read(path: &Path, cases: &mut Vec<Case>, reference: &mut Reference) -> Result
                 .filter(|v| v.is_finite())
         };
         let values = quantities.map(number);
-        if let [Some(h), Some(slope), Some(gamma), Some(modulus), Some(radius)] = columns.map(number) {
+        let text = |col: Option<usize>| col.and_then(|c| record.get(c)).unwrap_or_default().to_string();
+        let statistics = match columns.map(number) {
+            [Some(h), Some(slope), Some(gamma), Some(modulus), Some(radius)] => {
+                Some([h, slope, gamma, modulus, radius])
+            }
+            _ => case_col.and_then(|_| summary_statistics(&cases_dir.join(text(case_col)).join("summary.json"))),
+        };
+        if let Some([h, slope, gamma, modulus, radius]) = statistics {
             let (Some(parameter), Some(depth_ratio)) = (
                 rough_sphere_parameter(h, slope, gamma, modulus),
                 roughness_depth_ratio(h, radius, gamma, modulus),
             ) else {
                 continue;
             };
-            let text = |col: Option<usize>| col.and_then(|c| record.get(c)).unwrap_or_default().to_string();
+            let series = match hurst {
+                Some(_) => format!("H = {}", text(hurst)),
+                None => text(series),
+            };
             cases.push(Case {
-                series: text(series),
-                group: format!("{} {}", text(series), text(group)),
+                group: format!("{series} {}", text(group)),
+                series,
                 parameter,
                 depth_ratio,
                 values,
@@ -99,6 +112,21 @@ fn read(path: &Path, cases: &mut Vec<Case>, reference: &mut Reference) -> Result
         }
     }
     Ok(())
+}
+
+/// [h_rms, h'_rms, γ0, E*, R] of a sweep case from its summary.json (`derived.roughness`
+/// and the scenario inputs); `None` when the file or a value is missing.
+fn summary_statistics(path: &Path) -> Option<[f64; 5]> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let json: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let get = |pointer: &str| json.pointer(pointer).and_then(serde_json::Value::as_f64);
+    Some([
+        get("/derived/roughness/rms_height")?,
+        get("/derived/roughness/rms_slope")?,
+        get("/inputs/adhesion/work_of_adhesion")?,
+        get("/inputs/material/contact_modulus")?,
+        get("/inputs/indenter/radius")?,
+    ])
 }
 
 /// Seed means per group, as (series, points sorted by x) for quantity `q`.

@@ -4,13 +4,15 @@
 //!
 //! ```text
 //! cargo run --release -p adhesim --example rough_sphere_study -- study  OUT.csv [n] [threads] [steps]
+//! cargo run --release -p adhesim --example rough_sphere_study -- strong OUT.csv [n] [threads] [steps]
 //! cargo run --release -p adhesim --example rough_sphere_study -- wide   OUT.csv [n] [threads] [steps]
 //! cargo run --release -p adhesim --example rough_sphere_study -- refine OUT.csv [n] [threads] [steps]
 //! cargo run --release -p adhesim --example rough_sphere_study -- case   n hurst rms_slope seed [steps]
 //! ```
 //! (defaults n = 128, threads = 2, steps = 300). `study` runs hurst ∈ {0.3, 0.5, 0.8} ×
-//! rms slope ∈ {0.05, 0.1, 0.2, 0.3} × seeds 1–3 at n; `wide` hurst ∈ {0.3, 0.8} × rms slope
-//! ∈ {0.1, 0.2} × seeds 1–3 with the roll-off at λ_r = 0.8 (a 16-fold band); `refine` runs three representative
+//! rms slope ∈ {0.05, 0.1, 0.2, 0.3} × seeds 1–3 at n, `strong` the same at rms slope 0.5;
+//! `wide` hurst ∈ {0.3, 0.8} × rms slope ∈ {0.1, 0.2} × seeds 1–3 with the roll-off at
+//! λ_r = 0.8 (a 16-fold band); `refine` runs three representative
 //! cases at n and at 2n; `case` prints one row. Rows are appended to OUT.csv as cases finish
 //! (the header is written when the file is new), so an interrupted run keeps what it did.
 //!
@@ -43,7 +45,7 @@ use std::io::Write;
 use std::process::ExitCode;
 use std::sync::Mutex;
 
-const USAGE: &str = "usage: rough_sphere_study study|wide|refine OUT.csv [n] [threads] [steps]\n       rough_sphere_study case n hurst rms_slope seed [steps]";
+const USAGE: &str = "usage: rough_sphere_study study|strong|wide|refine OUT.csv [n] [threads] [steps]\n       rough_sphere_study case n hurst rms_slope seed [steps]";
 const RADIUS: f64 = 1.0;
 const MODULUS: f64 = 1.0;
 const WORK_OF_ADHESION: f64 = 6.168_502_750_680_85e-4;
@@ -114,7 +116,7 @@ fn run() -> Result<(), String> {
         println!("{HEADER}\n{}", row(&case));
         return Ok(());
     }
-    if !["study", "wide", "refine"].contains(&mode) {
+    if !["study", "strong", "wide", "refine"].contains(&mode) {
         return Err(format!("unknown mode {mode:?}\n{USAGE}"));
     }
     let out: String = parse(&values, 1, "OUT.csv", None)?;
@@ -134,8 +136,13 @@ fn run() -> Result<(), String> {
         fine_factor,
         rolloff: ROLLOFF_WAVELENGTH,
     };
-    if mode == "study" {
-        for slope in [0.05, 0.1, 0.2, 0.3] {
+    if mode == "study" || mode == "strong" {
+        let slopes: &[f64] = if mode == "study" {
+            &[0.05, 0.1, 0.2, 0.3]
+        } else {
+            &[0.5]
+        };
+        for &slope in slopes {
             for hurst in [0.3, 0.5, 0.8] {
                 for seed in 1..=3 {
                     cases.push(case(n, hurst, slope, seed, 2));
@@ -194,7 +201,7 @@ fn row(case: &Case) -> String {
     let series = if case.rolloff == ROLLOFF_WAVELENGTH {
         format!("H = {}", case.hurst)
     } else {
-        format!("H = {}, λ_r = {}", case.hurst, case.rolloff)
+        format!("H = {} (λ_r = {})", case.hurst, case.rolloff)
     };
     let inputs = format!(
         "{},{series},{},{},{},{},{RADIUS},{MODULUS},{WORK_OF_ADHESION:e}",
