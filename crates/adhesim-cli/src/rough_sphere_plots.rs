@@ -30,6 +30,9 @@ struct Case {
     values: [Option<f64>; 5],
 }
 
+/// Points (x, value) of one line.
+type Line = Vec<(f64, f64)>;
+
 /// The wavy-sphere master curve: (α_r, [γ1, γ2, F]) per α, sorted.
 type Reference = Vec<(f64, [Option<f64>; 3])>;
 
@@ -130,8 +133,8 @@ fn summary_statistics(path: &Path) -> Option<[f64; 5]> {
 }
 
 /// Seed means per group, as (series, points sorted by x) for quantity `q`.
-fn means(cases: &[Case], x: impl Fn(&Case) -> f64, q: usize) -> Vec<(String, Vec<(f64, f64)>)> {
-    let mut groups: Vec<(String, String, Vec<(f64, f64)>)> = Vec::new();
+fn means(cases: &[Case], x: impl Fn(&Case) -> f64, q: usize) -> Vec<(String, Line)> {
+    let mut groups: Vec<(String, String, Line)> = Vec::new();
     for case in cases {
         let Some(value) = case.values[q] else { continue };
         match groups.iter_mut().find(|(g, _, _)| *g == case.group) {
@@ -139,7 +142,7 @@ fn means(cases: &[Case], x: impl Fn(&Case) -> f64, q: usize) -> Vec<(String, Vec
             None => groups.push((case.group.clone(), case.series.clone(), vec![(x(case), value)])),
         }
     }
-    let mut out: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut out: Vec<(String, Line)> = Vec::new();
     for (_, series, points) in groups {
         let count = points.len() as f64;
         let mean = (
@@ -329,4 +332,43 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         written.extend(save_svg_png(out, name, (1500, 480), &figure)?);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two seeds of one (H, slope) group and a wavy-sphere row: the parameter is computed
+    /// from the rms columns through the library (hand value: h = 1e-3, h' = 0.05, γ = 6e-4,
+    /// E* = 1 give α_r = 2.763953), the seed mean is the mean of both, the wavy row lands
+    /// at 2^{1/4}·α, and both figures are written.
+    #[test]
+    fn table_rows_give_parameters_means_and_figures() {
+        let dir = tempfile::tempdir().unwrap();
+        let table = dir.path().join("table.csv");
+        std::fs::write(
+            &table,
+            "case,series,rms_slope_target,radius,contact_modulus,work_of_adhesion,rms_height,rms_slope,johnson_parameter,adhesive_force_ratio,gamma_approach_norm,gamma_pulloff_norm,status\n\
+             a,H = 0.8,0.05,1,1,6e-4,1e-3,0.05,,1.0,1.1,1.2,ok\n\
+             b,H = 0.8,0.05,1,1,6e-4,1e-3,0.05,,0.8,0.9,1.0,ok\n\
+             c,H = 0.8,0.05,1,1,6e-4,1e-3,0.05,,9.0,9.0,9.0,error\n\
+             w,wavy,,,,,,,0.5,0.7,0.8,0.9,ok\n",
+        )
+        .unwrap();
+        let (mut cases, mut reference) = (Vec::new(), Vec::new());
+        read(&table, &mut cases, &mut reference).unwrap();
+        assert_eq!(cases.len(), 2, "the error row is skipped");
+        assert!((cases[0].parameter - 2.763_953_196).abs() < 1e-8);
+        let line = means(&cases, |c| c.parameter, 0);
+        assert_eq!(line.len(), 1);
+        assert_eq!(line[0].1.len(), 1);
+        assert!((line[0].1[0].1 - 1.0).abs() < 1e-12, "{:?}", line);
+        assert_eq!(reference.len(), 1);
+        assert!((reference[0].0 - 0.5 * 2f64.powf(0.25)).abs() < 1e-12);
+        let written = write(&[table], dir.path()).unwrap();
+        for name in ["rough_sphere_master.png", "rough_sphere_depth.png"] {
+            assert!(written.iter().any(|w| w == name), "{written:?}");
+            assert!(dir.path().join(name).is_file());
+        }
+    }
 }
