@@ -9,6 +9,7 @@ mod master_plots;
 mod output;
 mod plots;
 mod resources;
+mod rough_sphere_plots;
 mod summary;
 mod tangential_plots;
 

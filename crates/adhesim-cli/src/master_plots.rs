@@ -4,6 +4,8 @@
 //! - `fig5_master`: (γ1+γ2)/(2γ0) and (γ1−γ2)/(2γ0) vs α;
 //! - `force_radius_cases`: F/|F_JKR| vs a/a_JKR of up to eight cases (from their curve.csv),
 //!   and `contact_shapes.png`: their contact maps at the deepest indentation.
+//! - `rough_sphere_master`, `rough_sphere_depth`: the rough-sphere study's master plots, when
+//!   a table carries roughness statistics (`crate::rough_sphere_plots`).
 
 use crate::figure::{grey_first, save_svg_png, Drawing};
 use anyhow::{anyhow, bail, Context, Result};
@@ -479,6 +481,7 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
             written.push("contact_shapes.png".into());
         }
     }
+    written.extend(crate::rough_sphere_plots::write(tables, out)?);
     Ok(written)
 }
 
