@@ -9,10 +9,10 @@
 //! the labelled series.
 
 use anyhow::{anyhow, Result};
+use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
-use plotters::chart::SeriesAnno;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::Path;
@@ -181,9 +181,7 @@ impl Panel {
 
     fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let ranged = || self.series.iter().filter(|s| !s.clipped).flat_map(|s| s.points.iter());
-        let x = self
-            .x_range
-            .unwrap_or_else(|| padded_range(ranged().map(|p| p.0)));
+        let x = self.x_range.unwrap_or_else(|| padded_range(ranged().map(|p| p.0)));
         let y = padded_range(ranged().map(|p| p.1).chain(self.include_y.iter().copied()));
         (x, y)
     }

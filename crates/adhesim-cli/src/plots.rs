@@ -172,10 +172,12 @@ pub fn write_all_with_overlays(
             .iter()
             .filter(|(target, _)| target == name)
             .flat_map(|(_, curves)| curves);
-        let fits = curves.zip(OVERLAY_COLOURS.iter().cycle()).map(|((label, curve), &colour)| {
-            // Only the part inside the figure's range: fits can run far off at large radii.
-            Series::new(label.as_str(), colour, Mark::Dashed, curve.clone()).clipped()
-        });
+        let fits = curves
+            .zip(OVERLAY_COLOURS.iter().cycle())
+            .map(|((label, curve), &colour)| {
+                // Only the part inside the figure's range: fits can run far off at large radii.
+                Series::new(label.as_str(), colour, Mark::Dashed, curve.clone()).clipped()
+            });
         let mut panel = panel.clone();
         // The fits go under the jump crosses, which stay on top.
         let jumps_at = panel
