@@ -49,12 +49,13 @@ fn phase_panel(
         ])
 }
 
+/// The unit and label of an axis and the closed-form curve in those units.
+type Axis = (f64, &'static str, Option<(String, Points)>);
+
 /// Builds the force–depth and force–radius figures.
 pub fn figures(records: &[StepRecord], context: &PlotContext) -> Vec<(&'static str, Panel)> {
     let max_radius = records.iter().map(|r| r.radius).fold(0.0, f64::max);
-    let depth_titles = ("Force vs indentation depth", "d", "F");
-    let radius_titles = ("Force vs contact radius", "contact radius a", "F");
-    if let Some(jkr) = context.jkr {
+    let (force_unit, force_label, depth_axis, radius_axis): (f64, &str, Axis, Axis) = if let Some(jkr) = context.jkr {
         let (f, d, a) = (
             jkr.critical_force().abs(),
             jkr.critical_depth().abs(),
@@ -73,26 +74,13 @@ pub fn figures(records: &[StepRecord], context: &PlotContext) -> Vec<(&'static s
             .map(|i| a_top * i as f64 / 400.0)
             .map(|x| (x / a, jkr.force(x) / f))
             .collect();
-        vec![
-            (
-                "force_depth",
-                phase_panel(
-                    (depth_titles.0, "d / |d_JKR|", "F / |F_JKR|"),
-                    records,
-                    |r| (r.depth / d, r.force_normal / f),
-                    Some(("JKR (γ0)".into(), depth_curve)),
-                ),
-            ),
-            (
-                "force_radius",
-                phase_panel(
-                    (radius_titles.0, "a / a_JKR", "F / |F_JKR|"),
-                    records,
-                    |r| (r.radius / a, r.force_normal / f),
-                    Some(("JKR (γ0)".into(), radius_curve)),
-                ),
-            ),
-        ]
+        let jkr_curve = |curve| Some(("JKR (γ0)".to_string(), curve));
+        (
+            f,
+            "F / |F_JKR|",
+            (d, "d / |d_JKR|", jkr_curve(depth_curve)),
+            (a, "a / a_JKR", jkr_curve(radius_curve)),
+        )
     } else {
         let max_depth = context.max_depth.max(0.0);
         let depth_reference = context.hertz.map(|h| {
@@ -110,17 +98,28 @@ pub fn figures(records: &[StepRecord], context: &PlotContext) -> Vec<(&'static s
                 .collect();
             ("Hertz".to_string(), curve)
         });
-        vec![
-            (
-                "force_depth",
-                phase_panel(depth_titles, records, |r| (r.depth, r.force_normal), depth_reference),
-            ),
-            (
-                "force_radius",
-                phase_panel(radius_titles, records, |r| (r.radius, r.force_normal), radius_reference),
-            ),
-        ]
-    }
+        (
+            1.0,
+            "F",
+            (1.0, "d", depth_reference),
+            (1.0, "contact radius a", radius_reference),
+        )
+    };
+    let depth_of: fn(&StepRecord) -> f64 = |r| r.depth;
+    let radius_of: fn(&StepRecord) -> f64 = |r| r.radius;
+    [
+        ("force_depth", "Force vs indentation depth", depth_of, depth_axis),
+        ("force_radius", "Force vs contact radius", radius_of, radius_axis),
+    ]
+    .into_iter()
+    .map(|(name, title, x_of, (x_unit, x_label, reference))| {
+        let point = |r: &StepRecord| (x_of(r) / x_unit, r.force_normal / force_unit);
+        (
+            name,
+            phase_panel((title, x_label, force_label), records, point, reference),
+        )
+    })
+    .collect()
 }
 
 /// The overlays of the figure with this name.

@@ -4,11 +4,31 @@ use super::tables::{AlphaRow, Row};
 use crate::figure::{Mark, Panel, Series, INK, PALETTE};
 use crate::tangential_plots::write_panels;
 use anyhow::Result;
+use plotters::style::RGBColor;
 use std::path::Path;
 
 fn by_alpha(alphas: &[AlphaRow], f: impl Fn(&AlphaRow) -> Option<f64>) -> Vec<(f64, f64)> {
     alphas.iter().filter_map(|a| f(a).map(|y| (a.alpha, y))).collect()
 }
+
+/// The works of adhesion of Fig. 8: label, colour, mark and value of an α.
+type GammaSeries = (&'static str, RGBColor, Mark, fn(&AlphaRow) -> Option<f64>);
+
+const GAMMAS: [GammaSeries; 4] = [
+    (
+        "γ3 (rolling, F_N vs contact radius)",
+        PALETTE[0],
+        Mark::LinePoints,
+        |a| a.gamma3_norm,
+    ),
+    ("γ3 (F_N vs half-width)", PALETTE[3], Mark::Dashed, |a| {
+        a.gamma3_half_width_norm
+    }),
+    ("γ1 (approach)", PALETTE[2], Mark::LinePoints, |a| {
+        a.gamma_approach_norm
+    }),
+    ("γ2 (pull-off)", PALETTE[1], Mark::LinePoints, |a| a.gamma_pulloff_norm),
+];
 
 pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Vec<String>> {
     let mut files = Vec::new();
@@ -69,33 +89,17 @@ pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Ve
             "γ / γ0",
         )
         .include_y(0.0)
-        .with(vec![
-            Series::new(
-                "γ3 (rolling, F_N vs contact radius)",
-                PALETTE[0],
-                Mark::LinePoints,
-                by_alpha(alphas, |a| a.gamma3_norm),
-            ),
-            Series::new(
-                "γ3 (F_N vs half-width)",
-                PALETTE[3],
-                Mark::Dashed,
-                by_alpha(alphas, |a| a.gamma3_half_width_norm),
-            ),
-            Series::new(
-                "γ1 (approach)",
-                PALETTE[2],
-                Mark::LinePoints,
-                by_alpha(alphas, |a| a.gamma_approach_norm),
-            ),
-            Series::new(
-                "γ2 (pull-off)",
-                PALETTE[1],
-                Mark::LinePoints,
-                by_alpha(alphas, |a| a.gamma_pulloff_norm),
-            ),
-            Series::new("1.15 (paper)", INK, Mark::Dashed, vec![(lo, 1.15), (hi, 1.15)]),
-        ])],
+        .with(
+            GAMMAS
+                .iter()
+                .map(|&(label, colour, mark, value)| Series::new(label, colour, mark, by_alpha(alphas, value))),
+        )
+        .with([Series::new(
+            "1.15 (paper)",
+            INK,
+            Mark::Dashed,
+            vec![(lo, 1.15), (hi, 1.15)],
+        )])],
     )?);
     Ok(files)
 }
