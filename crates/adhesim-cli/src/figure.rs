@@ -440,3 +440,60 @@ pub fn save_svg_png(dir: &Path, name: &str, size: (u32, u32), drawing: &impl Dra
     drawing.draw(&BitMapBackend::new(&dir.join(&png), size).into_drawing_area())?;
     Ok([svg, png])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_cover_the_series_with_margins_and_leave_clipped_ones_out() {
+        let far_fit = Series::new("fit", PALETTE[1], Mark::Dashed, vec![(0.0, 0.0), (100.0, 1e6)]).clipped();
+        let data = Series::new(
+            "data",
+            PALETTE[0],
+            Mark::Trace,
+            vec![(1.0, -2.0), (3.0, 2.0), (f64::NAN, 9.0)],
+        );
+        let panel = Panel::new("", "x", "y").with([data, far_fit]).include_y(4.0);
+        // x over [1, 3], y over [-2, 4] (include_y), each widened by 5 % of its span; the
+        // non-finite point is dropped and the clipped fit does not stretch the axes.
+        let ((x0, x1), (y0, y1)) = panel.ranges();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert!(close(x0, 0.9) && close(x1, 3.1), "{x0} {x1}");
+        assert!(close(y0, -2.3) && close(y1, 4.3), "{y0} {y1}");
+        let given = Panel::new("", "α", "y").log_x().x_range(0.1, 10.0).ranges().0;
+        assert_eq!(given, (0.1, 10.0));
+    }
+
+    #[test]
+    fn degenerate_ranges_stay_drawable() {
+        assert_eq!(padded_range(std::iter::empty()), (0.0, 1.0));
+        assert_eq!(padded_range([f64::NAN, f64::INFINITY].into_iter()), (0.0, 1.0));
+        assert_eq!(padded_range([0.0, 0.0].into_iter()), (-0.05, 0.05));
+        let (low, high) = padded_range([2e-9].into_iter());
+        assert!(low < 2e-9 && high > 2e-9 && high - low < 1e-9, "{low} {high}");
+    }
+
+    #[test]
+    fn a_figure_writes_svg_and_png() {
+        let dir = tempfile::tempdir().unwrap();
+        let panel = Panel::new("t", "x", "y")
+            .with([Series::new(
+                "a",
+                PALETTE[0],
+                Mark::Marker(2),
+                vec![(1.0, 1.0), (2.0, 3.0)],
+            )])
+            .guide_y(1.0);
+        let files = Figure::side_by_side(vec![panel.clone(), panel.log_x().x_range(0.5, 4.0)])
+            .titled("two")
+            .save(dir.path(), "f", (600, 300))
+            .unwrap();
+        assert_eq!(files, ["f.svg".to_string(), "f.png".to_string()]);
+        let svg = std::fs::read_to_string(dir.path().join("f.svg")).unwrap();
+        // The title once and each panel's legend row of "a".
+        let texts = |t: &str| svg.lines().filter(|line| line.trim() == t).count();
+        assert!(texts("two") == 1 && texts("a") == 2, "{svg}");
+        assert!(image::open(dir.path().join("f.png")).is_ok());
+    }
+}
