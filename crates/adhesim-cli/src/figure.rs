@@ -1,7 +1,17 @@
-//! What every figure of the command line shares: the bundled font (registered once), the
-//! palette, and writing a drawing as `NAME.svg` and `NAME.png` in one call.
+//! The one figure builder of the command line: every chart (a run's force curves, the
+//! tangential and study plots, the sweep master curves, the experiment's time series) is a
+//! [`Figure`] of [`Panel`]s holding labelled [`Series`], drawn with one bundled font, one
+//! palette and one set of sizes, and written as `NAME.svg` and `NAME.png` by
+//! [`save_svg_png`].
+//!
+//! A panel's axes cover its series with a 5 % margin (or a given x range, linear or
+//! logarithmic); a horizontal line marks y = 0 where the range crosses it; the legend lists
+//! the labelled series.
 
 use anyhow::{anyhow, Result};
+use plotters::chart::SeriesAnno;
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
@@ -9,6 +19,8 @@ use std::path::Path;
 use std::sync::OnceLock;
 
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+/// The family name the bundled font is registered under.
+const FAMILY: &str = "sans-serif";
 
 /// Colours of the series, in order.
 pub const PALETTE: [RGBColor; 8] = [
@@ -22,6 +34,11 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(127, 127, 127),
 ];
 
+/// Closed-form reference curves (Hertz, JKR) under the data.
+pub const REFERENCE_GREY: RGBColor = RGBColor(120, 120, 120);
+/// Guide lines of a study (slope 1, the paper's values), darker than the references.
+pub const INK: RGBColor = RGBColor(60, 60, 60);
+
 /// The colour of the `k`-th series where series 0 is a neutral grey (the reference case
 /// of the master-curve figures) and the others follow [`PALETTE`].
 pub fn grey_first(k: usize) -> RGBColor {
@@ -31,11 +48,377 @@ pub fn grey_first(k: usize) -> RGBColor {
 /// Registers the bundled font as "sans-serif" (there are no system fonts to rely on).
 pub fn register_font() -> Result<()> {
     static DONE: OnceLock<bool> = OnceLock::new();
-    let ok = *DONE.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
+    let ok = *DONE.get_or_init(|| plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
     if ok {
         Ok(())
     } else {
         Err(anyhow!("the bundled font could not be loaded"))
+    }
+}
+
+/// A plotters drawing error as an error of this crate.
+pub fn plot_error(error: impl std::fmt::Display) -> anyhow::Error {
+    anyhow!("plot: {error}")
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// A 2-pixel line (closed forms).
+    Line,
+    /// A dashed 2-pixel line (references, means, fitted curves).
+    Dashed,
+    /// Dots only.
+    Points,
+    /// Dots joined by a 2-pixel line (a few points per series: study results).
+    LinePoints,
+    /// Small dots joined by a thin line (many points: the steps of a run).
+    Trace,
+    /// Crosses (events such as jumps).
+    Crosses,
+    /// Outline marker number `k` (square, triangle, octagon, diamond, inverted triangle):
+    /// series told apart in black-and-white print.
+    Marker(usize),
+}
+
+/// One labelled series of a panel; an empty label gives no legend row.
+#[derive(Clone)]
+pub struct Series {
+    pub label: String,
+    pub colour: RGBColor,
+    pub mark: Mark,
+    pub points: Vec<(f64, f64)>,
+    /// Left out of the panel's range and drawn only inside it (fits that run far off).
+    pub clipped: bool,
+}
+
+impl Series {
+    /// A series of the finite points of `points`.
+    pub fn new(label: impl Into<String>, colour: RGBColor, mark: Mark, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            label: label.into(),
+            colour,
+            mark,
+            points: points
+                .into_iter()
+                .filter(|p| p.0.is_finite() && p.1.is_finite())
+                .collect(),
+            clipped: false,
+        }
+    }
+
+    /// The same series, left out of the panel's range and drawn only inside it.
+    pub fn clipped(self) -> Self {
+        Self { clipped: true, ..self }
+    }
+}
+
+/// One chart: title, axis labels, series and how its axes are chosen.
+#[derive(Clone)]
+pub struct Panel {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    log_x: bool,
+    x_range: Option<(f64, f64)>,
+    include_y: Vec<f64>,
+    guides_y: Vec<f64>,
+    legend: SeriesLabelPosition,
+}
+
+impl Panel {
+    /// An empty panel; an empty title draws none.
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Self {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series: Vec::new(),
+            log_x: false,
+            x_range: None,
+            include_y: Vec::new(),
+            guides_y: Vec::new(),
+            legend: SeriesLabelPosition::UpperLeft,
+        }
+    }
+
+    /// Adds the series.
+    pub fn with(mut self, series: impl IntoIterator<Item = Series>) -> Self {
+        self.series.extend(series);
+        self
+    }
+
+    /// A logarithmic x axis (give its range with [`Panel::x_range`]).
+    pub fn log_x(mut self) -> Self {
+        self.log_x = true;
+        self
+    }
+
+    /// This x range, as it is (no margin), instead of the series' one.
+    pub fn x_range(mut self, low: f64, high: f64) -> Self {
+        self.x_range = Some((low, high));
+        self
+    }
+
+    /// Stretches the y range to contain `y` (before the margin).
+    pub fn include_y(mut self, y: f64) -> Self {
+        self.include_y.push(y);
+        self
+    }
+
+    /// A faint horizontal guide line at `y` across the panel.
+    pub fn guide_y(mut self, y: f64) -> Self {
+        self.guides_y.push(y);
+        self
+    }
+
+    /// Where the legend goes [default: upper left].
+    pub fn legend_at(mut self, position: SeriesLabelPosition) -> Self {
+        self.legend = position;
+        self
+    }
+
+    fn ranges(&self) -> ((f64, f64), (f64, f64)) {
+        let ranged = || self.series.iter().filter(|s| !s.clipped).flat_map(|s| s.points.iter());
+        let x = self.x_range.unwrap_or_else(|| padded_range(ranged().map(|p| p.0)));
+        let y = padded_range(ranged().map(|p| p.1).chain(self.include_y.iter().copied()));
+        (x, y)
+    }
+}
+
+/// The finite hull of `values` with a 5 % margin each side; a 5 % margin around a constant
+/// and (0, 1) where there is nothing to show.
+pub fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (low, high) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !low.is_finite() {
+        return (0.0, 1.0);
+    }
+    let span = if high > low {
+        high - low
+    } else if low != 0.0 {
+        low.abs()
+    } else {
+        1.0
+    };
+    (low - 0.05 * span, high + 0.05 * span)
+}
+
+/// Panels on a grid of `columns` columns (filled row by row), under an optional title.
+pub struct Figure {
+    title: Option<String>,
+    panels: Vec<Panel>,
+    columns: usize,
+}
+
+impl Figure {
+    /// The panels stacked vertically.
+    pub fn stacked(panels: Vec<Panel>) -> Self {
+        Self {
+            title: None,
+            panels,
+            columns: 1,
+        }
+    }
+
+    /// The panels side by side.
+    pub fn side_by_side(panels: Vec<Panel>) -> Self {
+        let columns = panels.len().max(1);
+        Self {
+            title: None,
+            panels,
+            columns,
+        }
+    }
+
+    /// A title over all the panels.
+    pub fn titled(self, title: impl Into<String>) -> Self {
+        Self {
+            title: Some(title.into()),
+            ..self
+        }
+    }
+
+    /// Writes `dir/NAME.svg` and `dir/NAME.png` of `size` pixels; see [`save_svg_png`].
+    pub fn save(&self, dir: &Path, name: &str, size: (u32, u32)) -> Result<[String; 2]> {
+        save_svg_png(dir, name, size, self)
+    }
+}
+
+impl Drawing for Figure {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
+    where
+        DB::ErrorType: 'static,
+    {
+        area.fill(&WHITE).map_err(plot_error)?;
+        let inner = match &self.title {
+            Some(title) => area.titled(title, (FAMILY, 22)).map_err(plot_error)?,
+            None => area.clone(),
+        };
+        let rows = self.panels.len().div_ceil(self.columns).max(1);
+        for (cell, panel) in inner.split_evenly((rows, self.columns)).iter().zip(&self.panels) {
+            draw_panel(cell, panel)?;
+        }
+        area.present().map_err(plot_error)?;
+        Ok(())
+    }
+}
+
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let ((x0, x1), (y0, y1)) = panel.ranges();
+    let mut builder = ChartBuilder::on(area);
+    builder.margin(12).x_label_area_size(44).y_label_area_size(70);
+    if !panel.title.is_empty() {
+        builder.caption(&panel.title, (FAMILY, 20));
+    }
+    if panel.log_x {
+        let chart = builder
+            .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+            .map_err(plot_error)?;
+        draw_contents(chart, panel, (x0, x1), (y0, y1))
+    } else {
+        let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(plot_error)?;
+        draw_contents(chart, panel, (x0, x1), (y0, y1))
+    }
+}
+
+/// Mesh, guide lines, series and legend of a panel whose axes are built (linear or log x).
+fn draw_contents<'a, DB, X>(
+    mut chart: ChartContext<'a, DB, Cartesian2d<X, RangedCoordf64>>,
+    panel: &Panel,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(&panel.x_label)
+        .y_desc(&panel.y_label)
+        .label_style((FAMILY, 14))
+        .axis_desc_style((FAMILY, 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(plot_error)?;
+    let zero = (y0 < 0.0 && y1 > 0.0).then_some((0.0, 0.4));
+    for (y, opacity) in zero.into_iter().chain(panel.guides_y.iter().map(|&y| (y, 0.25))) {
+        chart
+            .draw_series(LineSeries::new([(x0, y), (x1, y)], BLACK.mix(opacity)))
+            .map_err(plot_error)?;
+    }
+    let inside = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
+    for series in panel.series.iter().filter(|s| !s.points.is_empty()) {
+        let points: Vec<(f64, f64)> = if series.clipped {
+            series.points.iter().copied().filter(inside).collect()
+        } else {
+            series.points.clone()
+        };
+        let drawn = draw_marks(&mut chart, series.mark, series.colour, &points)?;
+        if !series.label.is_empty() {
+            add_legend(drawn, &series.label, series.mark, series.colour);
+        }
+    }
+    if panel.series.iter().any(|s| !s.label.is_empty() && !s.points.is_empty()) {
+        chart
+            .configure_series_labels()
+            .position(panel.legend.clone())
+            .label_font((FAMILY, 13))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.3))
+            .draw()
+            .map_err(plot_error)?;
+    }
+    Ok(())
+}
+
+/// Draws the points with their mark; returns the annotation of the part the legend shows.
+fn draw_marks<'c, 'a: 'c, DB, X>(
+    chart: &'c mut ChartContext<'a, DB, Cartesian2d<X, RangedCoordf64>>,
+    mark: Mark,
+    colour: RGBColor,
+    points: &[(f64, f64)],
+) -> Result<&'c mut SeriesAnno<'a, DB>>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let line = |width: u32| LineSeries::new(points.iter().copied(), colour.stroke_width(width));
+    let dots = |radius: u32| points.iter().map(move |&p| Circle::new(p, radius, colour.filled()));
+    let drawn = match mark {
+        Mark::Line => chart.draw_series(line(2)),
+        Mark::Dashed => chart.draw_series(DashedLineSeries::new(
+            points.iter().copied(),
+            6,
+            4,
+            colour.stroke_width(2),
+        )),
+        Mark::Points => chart.draw_series(dots(3)),
+        Mark::LinePoints => {
+            chart.draw_series(line(2)).map_err(plot_error)?;
+            chart.draw_series(dots(3))
+        }
+        Mark::Trace => {
+            chart.draw_series(line(1)).map_err(plot_error)?;
+            chart.draw_series(dots(2))
+        }
+        Mark::Crosses => chart.draw_series(points.iter().map(|&p| Cross::new(p, 4, colour.stroke_width(1)))),
+        Mark::Marker(k) => {
+            let shape = marker_shape(k);
+            chart.draw_series(
+                points
+                    .iter()
+                    .map(|&p| EmptyElement::at(p) + PathElement::new(shape.clone(), colour.stroke_width(2))),
+            )
+        }
+    };
+    drawn.map_err(plot_error)
+}
+
+/// Gives the series its legend row: a sample of its mark, centred 9 pixels right of the
+/// row's anchor.
+fn add_legend<'a, DB: DrawingBackend + 'a>(anno: &mut SeriesAnno<'a, DB>, label: &str, mark: Mark, colour: RGBColor) {
+    anno.label(label);
+    let style = colour.stroke_width(2);
+    match mark {
+        Mark::Line | Mark::Dashed => anno.legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style)),
+        Mark::Points | Mark::LinePoints | Mark::Trace => {
+            anno.legend(move |(x, y)| Circle::new((x + 9, y), 3, colour.filled()))
+        }
+        Mark::Crosses => anno.legend(move |(x, y)| Cross::new((x + 9, y), 4, colour.stroke_width(1))),
+        Mark::Marker(k) => {
+            anno.legend(move |(x, y)| EmptyElement::at((x + 9, y)) + PathElement::new(marker_shape(k), style))
+        }
+    };
+}
+
+/// Outline (pixel offsets) of marker `k`: square, triangle, octagon, diamond, inverted
+/// triangle, then again.
+fn marker_shape(k: usize) -> Vec<(i32, i32)> {
+    match k % 5 {
+        0 => vec![(-4, -4), (4, -4), (4, 4), (-4, 4), (-4, -4)],
+        1 => vec![(0, -5), (5, 4), (-5, 4), (0, -5)],
+        2 => vec![
+            (-2, -4),
+            (2, -4),
+            (4, -2),
+            (4, 2),
+            (2, 4),
+            (-2, 4),
+            (-4, 2),
+            (-4, -2),
+            (-2, -4),
+        ],
+        3 => vec![(0, -5), (5, 0), (0, 5), (-5, 0), (0, -5)],
+        _ => vec![(0, 5), (5, -4), (-5, -4), (0, 5)],
     }
 }
 
@@ -56,4 +439,61 @@ pub fn save_svg_png(dir: &Path, name: &str, size: (u32, u32), drawing: &impl Dra
     let png = format!("{name}.png");
     drawing.draw(&BitMapBackend::new(&dir.join(&png), size).into_drawing_area())?;
     Ok([svg, png])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_cover_the_series_with_margins_and_leave_clipped_ones_out() {
+        let far_fit = Series::new("fit", PALETTE[1], Mark::Dashed, vec![(0.0, 0.0), (100.0, 1e6)]).clipped();
+        let data = Series::new(
+            "data",
+            PALETTE[0],
+            Mark::Trace,
+            vec![(1.0, -2.0), (3.0, 2.0), (f64::NAN, 9.0)],
+        );
+        let panel = Panel::new("", "x", "y").with([data, far_fit]).include_y(4.0);
+        // x over [1, 3], y over [-2, 4] (include_y), each widened by 5 % of its span; the
+        // non-finite point is dropped and the clipped fit does not stretch the axes.
+        let ((x0, x1), (y0, y1)) = panel.ranges();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert!(close(x0, 0.9) && close(x1, 3.1), "{x0} {x1}");
+        assert!(close(y0, -2.3) && close(y1, 4.3), "{y0} {y1}");
+        let given = Panel::new("", "α", "y").log_x().x_range(0.1, 10.0).ranges().0;
+        assert_eq!(given, (0.1, 10.0));
+    }
+
+    #[test]
+    fn degenerate_ranges_stay_drawable() {
+        assert_eq!(padded_range(std::iter::empty()), (0.0, 1.0));
+        assert_eq!(padded_range([f64::NAN, f64::INFINITY].into_iter()), (0.0, 1.0));
+        assert_eq!(padded_range([0.0, 0.0].into_iter()), (-0.05, 0.05));
+        let (low, high) = padded_range([2e-9].into_iter());
+        assert!(low < 2e-9 && high > 2e-9 && high - low < 1e-9, "{low} {high}");
+    }
+
+    #[test]
+    fn a_figure_writes_svg_and_png() {
+        let dir = tempfile::tempdir().unwrap();
+        let panel = Panel::new("t", "x", "y")
+            .with([Series::new(
+                "a",
+                PALETTE[0],
+                Mark::Marker(2),
+                vec![(1.0, 1.0), (2.0, 3.0)],
+            )])
+            .guide_y(1.0);
+        let files = Figure::side_by_side(vec![panel.clone(), panel.log_x().x_range(0.5, 4.0)])
+            .titled("two")
+            .save(dir.path(), "f", (600, 300))
+            .unwrap();
+        assert_eq!(files, ["f.svg".to_string(), "f.png".to_string()]);
+        let svg = std::fs::read_to_string(dir.path().join("f.svg")).unwrap();
+        // The title once and each panel's legend row of "a".
+        let texts = |t: &str| svg.lines().filter(|line| line.trim() == t).count();
+        assert!(texts("two") == 1 && texts("a") == 2, "{svg}");
+        assert!(image::open(dir.path().join("f.png")).is_ok());
+    }
 }

@@ -7,10 +7,9 @@
 //! - `rough_sphere_master`, `rough_sphere_depth`: the rough-sphere study's master plots, when
 //!   a table carries roughness statistics (`crate::rough_sphere_plots`).
 
-use crate::figure::{grey_first, save_svg_png, Drawing};
+use crate::figure::{grey_first, plot_error, register_font, Figure, Mark, Panel, Series as Drawn};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -113,28 +112,6 @@ fn read_table(path: &Path) -> Result<Vec<Row>> {
     Ok(rows)
 }
 
-/// Marker outline (pixel offsets) of series k: square, triangle, circle-ish octagon,
-/// diamond, inverted triangle, ...
-fn marker_shape(k: usize) -> Vec<(i32, i32)> {
-    match k % 5 {
-        0 => vec![(-4, -4), (4, -4), (4, 4), (-4, 4), (-4, -4)],
-        1 => vec![(0, -5), (5, 4), (-5, 4), (0, -5)],
-        2 => vec![
-            (-2, -4),
-            (2, -4),
-            (4, -2),
-            (4, 2),
-            (2, 4),
-            (-2, 4),
-            (-4, 2),
-            (-4, -2),
-            (-2, -4),
-        ],
-        3 => vec![(0, -5), (5, 0), (0, 5), (-5, 0), (0, -5)],
-        _ => vec![(0, 5), (5, -4), (-5, -4), (0, 5)],
-    }
-}
-
 type Series = Vec<(String, Vec<(f64, f64)>)>;
 
 /// Points (α, value) grouped by series, in order of first appearance.
@@ -155,57 +132,15 @@ fn group(rows: &[Row], value: impl Fn(&Row) -> Option<f64>) -> Series {
     out
 }
 
-fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("plot: {e:?}")
-}
-
 /// A scatter panel with a log α axis; `styles` maps a series name to its marker index.
-fn scatter<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    title: &str,
-    y_label: &str,
-    data: &[(String, Series)],
-    styles: &[String],
-    alpha_range: (f64, f64),
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    let values = data
-        .iter()
-        .flat_map(|(_, s)| s.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
-    let (lo, hi) = values.fold((0.0f64, 1.2f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
-    let pad = 0.05 * (hi - lo);
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 18))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
-        .build_cartesian_2d((alpha_range.0..alpha_range.1).log_scale(), (lo - pad)..(hi + pad))
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc("Johnson parameter α")
-        .y_desc(y_label)
-        .label_style(("sans-serif", 13))
-        .axis_desc_style(("sans-serif", 15))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(err)?;
-    chart
-        .draw_series(LineSeries::new(
-            [(alpha_range.0, 1.0), (alpha_range.1, 1.0)],
-            BLACK.mix(0.25),
-        ))
-        .map_err(err)?;
-    if lo < 0.0 {
-        chart
-            .draw_series(LineSeries::new(
-                [(alpha_range.0, 0.0), (alpha_range.1, 0.0)],
-                BLACK.mix(0.4),
-            ))
-            .map_err(err)?;
-    }
+fn scatter(title: &str, y_label: &str, data: &[(String, Series)], styles: &[String], alpha_range: (f64, f64)) -> Panel {
+    let mut panel = Panel::new(title, "Johnson parameter α", y_label)
+        .log_x()
+        .x_range(alpha_range.0, alpha_range.1)
+        .include_y(0.0)
+        .include_y(1.2)
+        .guide_y(1.0)
+        .legend_at(SeriesLabelPosition::LowerRight);
     for (q, (quantity, series)) in data.iter().enumerate() {
         for (name, points) in series {
             let k = styles.iter().position(|s| s == name).unwrap_or(0);
@@ -214,34 +149,15 @@ where
             } else {
                 grey_first(k)
             };
-            let shape = marker_shape(k);
-            let style = colour.stroke_width(2);
-            let legend_shape = shape.clone();
             let label = if quantity.is_empty() {
                 name.clone()
             } else {
                 format!("{quantity}: {name}")
             };
-            chart
-                .draw_series(
-                    points
-                        .iter()
-                        .map(|&p| EmptyElement::at(p) + PathElement::new(shape.clone(), style)),
-                )
-                .map_err(err)?
-                .label(label)
-                .legend(move |(x, y)| EmptyElement::at((x + 9, y)) + PathElement::new(legend_shape.clone(), style));
+            panel = panel.with([Drawn::new(label, colour, Mark::Marker(k), points.clone())]);
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .label_font(("sans-serif", 13))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
-        .map_err(err)?;
-    Ok(())
+    panel
 }
 
 /// A case's (a/a_JKR, F/|F_JKR|) from its curve.csv.
@@ -270,57 +186,32 @@ fn case_curve(folder: &Path) -> Result<Vec<(f64, f64)>> {
     Ok(points)
 }
 
-fn force_radius<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, curves: &[(String, Vec<(f64, f64)>)]) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    area.fill(&WHITE).map_err(err)?;
-    let all = curves.iter().flat_map(|(_, c)| c.iter());
-    let (x1, y0, y1) = all.fold((1.0f64, -1.0f64, 1.0f64), |(x1, y0, y1), p| {
-        (x1.max(p.0), y0.min(p.1), y1.max(p.1))
-    });
-    let mut chart = ChartBuilder::on(area)
-        .caption("Force vs contact radius (cf. paper Fig. 2a)", ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..x1 * 1.05, (y0 - 0.05 * (y1 - y0))..(y1 + 0.05 * (y1 - y0)))
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc("a / a_JKR")
-        .y_desc("F / |F_JKR|")
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(err)?;
-    for (k, (label, points)) in curves.iter().enumerate() {
-        let colour = grey_first(k + 1);
-        chart
-            .draw_series(LineSeries::new(points.iter().copied(), colour.stroke_width(1)))
-            .map_err(err)?
-            .label(label.as_str())
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], colour.stroke_width(2)));
-        chart
-            .draw_series(points.iter().map(|&p| Circle::new(p, 1, colour.filled())))
-            .map_err(err)?;
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
-        .map_err(err)?;
-    area.present().map_err(err)?;
-    Ok(())
+/// Paper Fig. 2a: F/|F_JKR| vs a/a_JKR of the chosen cases, from a = 0.
+fn force_radius(curves: &[(String, Vec<(f64, f64)>)]) -> Figure {
+    let x_top = curves
+        .iter()
+        .flat_map(|(_, c)| c.iter())
+        .fold(1.0f64, |top, p| top.max(p.0));
+    let series = curves
+        .iter()
+        .enumerate()
+        .map(|(k, (label, points))| Drawn::new(label.as_str(), grey_first(k + 1), Mark::Trace, points.clone()));
+    let panel = Panel::new(
+        "Force vs contact radius (cf. paper Fig. 2a)",
+        "a / a_JKR",
+        "F / |F_JKR|",
+    )
+    .x_range(0.0, x_top * 1.05)
+    .include_y(-1.0)
+    .include_y(1.0)
+    .with(series);
+    Figure::stacked(vec![panel])
 }
 
 /// Thumbnails of `snapshots/max_depth.png` of each case with a caption, as one PNG.
 fn contact_shapes(path: &Path, cases: &[(String, PathBuf)]) -> Result<bool> {
     const TILE: u32 = 200;
+    register_font()?;
     let mut tiles = Vec::new();
     for (label, folder) in cases {
         let Ok(image) = image::open(folder.join("snapshots/max_depth.png")) else {
@@ -337,20 +228,20 @@ fn contact_shapes(path: &Path, cases: &[(String, PathBuf)]) -> Result<bool> {
     let mut buffer = vec![255u8; (width * height * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buffer, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+        root.fill(&WHITE).map_err(plot_error)?;
         for (k, (label, tile)) in tiles.iter().enumerate() {
             let x = 10 + k as i32 * (TILE as i32 + 10);
             let element = BitMapElement::with_owned_buffer((x, 10), (TILE, TILE), tile.as_raw().clone())
                 .ok_or_else(|| anyhow!("thumbnail buffer size"))?;
-            root.draw(&element).map_err(err)?;
+            root.draw(&element).map_err(plot_error)?;
             root.draw(&Text::new(
                 label.clone(),
                 (x + 4, TILE as i32 + 18),
                 ("sans-serif", 15).into_font().color(&BLACK),
             ))
-            .map_err(err)?;
+            .map_err(plot_error)?;
         }
-        root.present().map_err(err)?;
+        root.present().map_err(plot_error)?;
     }
     image::RgbImage::from_raw(width, height, buffer)
         .ok_or_else(|| anyhow!("image buffer size"))?
@@ -366,50 +257,20 @@ fn alpha_label(row: &Row) -> String {
     }
 }
 
-fn draw_fig3<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    data: &[Series; 3],
-    styles: &[String],
-    range: (f64, f64),
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE).map_err(err)?;
-    let panels = root.split_evenly((1, 3));
+/// Paper Fig. 3: γ1/γ0, γ2/γ0 and |F_ad|/|F_JKR| vs α, side by side.
+fn fig3(data: &[Series; 3], styles: &[String], range: (f64, f64)) -> Figure {
     let one = |s: &Series| vec![(String::new(), s.clone())];
-    scatter(&panels[0], "(a) approach", "γ1 / γ0", &one(&data[0]), styles, range)?;
-    scatter(&panels[1], "(b) detachment", "γ2 / γ0", &one(&data[1]), styles, range)?;
-    scatter(
-        &panels[2],
-        "(c) adhesive force",
-        "|F_ad| / |F_JKR|",
-        &one(&data[2]),
-        styles,
-        range,
-    )?;
-    root.present().map_err(err)
+    Figure::side_by_side(vec![
+        scatter("(a) approach", "γ1 / γ0", &one(&data[0]), styles, range),
+        scatter("(b) detachment", "γ2 / γ0", &one(&data[1]), styles, range),
+        scatter("(c) adhesive force", "|F_ad| / |F_JKR|", &one(&data[2]), styles, range),
+    ])
 }
 
-fn draw_fig5<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    data: &[(String, Series)],
-    styles: &[String],
-    range: (f64, f64),
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE).map_err(err)?;
-    scatter(
-        &root,
-        "Mean and half difference (cf. paper Fig. 5)",
-        "",
-        data,
-        styles,
-        range,
-    )?;
-    root.present().map_err(err)
+/// Paper Fig. 5: the mean and half difference of γ1 and γ2 vs α.
+fn fig5(data: &[(String, Series)], styles: &[String], range: (f64, f64)) -> Figure {
+    let title = "Mean and half difference (cf. paper Fig. 5)";
+    Figure::stacked(vec![scatter(title, "", data, styles, range)])
 }
 
 /// Draws every plot the tables allow into `out`; returns the file names written.
@@ -436,22 +297,13 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         let force = group(&rows, |r| r.force);
         let mean = group(&rows, |r| Some((r.gamma1? + r.gamma2?) / 2.0));
         let half_difference = group(&rows, |r| Some((r.gamma1? - r.gamma2?) / 2.0));
-        let fig3 = [g1, g2, force];
-        let fig5 = vec![
+        let gammas_force = [g1, g2, force];
+        let mean_difference = vec![
             ("(γ1+γ2)/(2γ0)".to_string(), mean),
             ("(γ1−γ2)/(2γ0)".to_string(), half_difference),
         ];
-        for (name, size, figure) in [
-            ("fig3_master", (1500, 480), MasterFigure::Fig3(&fig3)),
-            ("fig5_master", (800, 560), MasterFigure::Fig5(&fig5)),
-        ] {
-            let drawing = Master {
-                figure,
-                styles: &styles,
-                range,
-            };
-            written.extend(save_svg_png(out, name, size, &drawing)?);
-        }
+        written.extend(fig3(&gammas_force, &styles, range).save(out, "fig3_master", (1500, 480))?);
+        written.extend(fig5(&mean_difference, &styles, range).save(out, "fig5_master", (800, 560))?);
     }
     // Fig. 2: up to eight cases with folders, spread over the α range.
     let mut with_folders: Vec<&Row> = rows.iter().filter(|r| r.folder.is_some()).collect();
@@ -471,53 +323,11 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         }
     }
     if !curves.is_empty() {
-        written.extend(save_svg_png(
-            out,
-            "force_radius_cases",
-            (900, 640),
-            &CaseCurves(&curves),
-        )?);
+        written.extend(force_radius(&curves).save(out, "force_radius_cases", (900, 640))?);
         if contact_shapes(&out.join("contact_shapes.png"), &thumbnails)? {
             written.push("contact_shapes.png".into());
         }
     }
     written.extend(crate::rough_sphere_plots::write(tables, out)?);
     Ok(written)
-}
-
-/// Fig. 3 (γ1, γ2, force vs α) or Fig. 5 (mean and half difference) of the master curves.
-enum MasterFigure<'a> {
-    Fig3(&'a [Series; 3]),
-    Fig5(&'a [(String, Series)]),
-}
-
-/// A master-curve figure with its series styles and α range, as a [`Drawing`].
-struct Master<'a> {
-    figure: MasterFigure<'a>,
-    styles: &'a [String],
-    range: (f64, f64),
-}
-
-impl Drawing for Master<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        match self.figure {
-            MasterFigure::Fig3(data) => draw_fig3(area.clone(), data, self.styles, self.range),
-            MasterFigure::Fig5(data) => draw_fig5(area.clone(), data, self.styles, self.range),
-        }
-    }
-}
-
-/// The force–radius curves of chosen cases, as a [`Drawing`].
-struct CaseCurves<'a>(&'a [(String, Vec<(f64, f64)>)]);
-
-impl Drawing for CaseCurves<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        force_radius(area, self.0)
-    }
 }

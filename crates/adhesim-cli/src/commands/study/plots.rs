@@ -1,13 +1,34 @@
 //! The figures of a study: Figs. 7 and 8 (rolling), Fig. 10 (sliding).
 
 use super::tables::{AlphaRow, Row};
-use crate::tangential_plots::{write_panels, Chart, Series, Style, PALETTE};
+use crate::figure::{Mark, Panel, Series, INK, PALETTE};
+use crate::tangential_plots::write_panels;
 use anyhow::Result;
+use plotters::style::RGBColor;
 use std::path::Path;
 
 fn by_alpha(alphas: &[AlphaRow], f: impl Fn(&AlphaRow) -> Option<f64>) -> Vec<(f64, f64)> {
     alphas.iter().filter_map(|a| f(a).map(|y| (a.alpha, y))).collect()
 }
+
+/// The works of adhesion of Fig. 8: label, colour, mark and value of an α.
+type GammaSeries = (&'static str, RGBColor, Mark, fn(&AlphaRow) -> Option<f64>);
+
+const GAMMAS: [GammaSeries; 4] = [
+    (
+        "γ3 (rolling, F_N vs contact radius)",
+        PALETTE[0],
+        Mark::LinePoints,
+        |a| a.gamma3_norm,
+    ),
+    ("γ3 (F_N vs half-width)", PALETTE[3], Mark::Dashed, |a| {
+        a.gamma3_half_width_norm
+    }),
+    ("γ1 (approach)", PALETTE[2], Mark::LinePoints, |a| {
+        a.gamma_approach_norm
+    }),
+    ("γ2 (pull-off)", PALETTE[1], Mark::LinePoints, |a| a.gamma_pulloff_norm),
+];
 
 pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Vec<String>> {
     let mut files = Vec::new();
@@ -31,27 +52,27 @@ pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Ve
             series.push(Series::new(
                 format!("α = {:.2}", a.alpha),
                 PALETTE[k % PALETTE.len()],
-                Style::Points,
+                Mark::Points,
                 points,
             ));
         }
         series.push(Series::new(
             "slope 1 (Eq. 12)",
-            BLACKISH,
-            Style::Dashed,
+            INK,
+            Mark::Dashed,
             vec![(0.0, 0.0), (top, top)],
         ));
         let which = if work { "work-based mean" } else { "per-step mean" };
         files.extend(write_panels(
             dir,
             name,
-            &[Chart {
-                title: format!("Rolling friction vs Eq. 12 ({which})"),
-                x_label: "2a(γ2 − γ1) / |F_JKR|".into(),
-                y_label: "F_T / |F_JKR|".into(),
-                series,
-                include_zero: true,
-            }],
+            &[Panel::new(
+                format!("Rolling friction vs Eq. 12 ({which})"),
+                "2a(γ2 − γ1) / |F_JKR|",
+                "F_T / |F_JKR|",
+            )
+            .include_y(0.0)
+            .with(series)],
         )?);
     }
     let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
@@ -62,39 +83,23 @@ pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Ve
     files.extend(write_panels(
         dir,
         "fig8",
-        &[Chart {
-            title: "Rolling contact: effective work of adhesion γ3".into(),
-            x_label: "Johnson parameter α".into(),
-            y_label: "γ / γ0".into(),
-            series: vec![
-                Series::new(
-                    "γ3 (rolling, F_N vs contact radius)",
-                    PALETTE[0],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| a.gamma3_norm),
-                ),
-                Series::new(
-                    "γ3 (F_N vs half-width)",
-                    PALETTE[3],
-                    Style::Dashed,
-                    by_alpha(alphas, |a| a.gamma3_half_width_norm),
-                ),
-                Series::new(
-                    "γ1 (approach)",
-                    PALETTE[2],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| a.gamma_approach_norm),
-                ),
-                Series::new(
-                    "γ2 (pull-off)",
-                    PALETTE[1],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| a.gamma_pulloff_norm),
-                ),
-                Series::new("1.15 (paper)", BLACKISH, Style::Dashed, vec![(lo, 1.15), (hi, 1.15)]),
-            ],
-            include_zero: true,
-        }],
+        &[Panel::new(
+            "Rolling contact: effective work of adhesion γ3",
+            "Johnson parameter α",
+            "γ / γ0",
+        )
+        .include_y(0.0)
+        .with(
+            GAMMAS
+                .iter()
+                .map(|&(label, colour, mark, value)| Series::new(label, colour, mark, by_alpha(alphas, value))),
+        )
+        .with([Series::new(
+            "1.15 (paper)",
+            INK,
+            Mark::Dashed,
+            vec![(lo, 1.15), (hi, 1.15)],
+        )])],
     )?);
     Ok(files)
 }
@@ -111,7 +116,7 @@ fn error_band(alphas: &[AlphaRow]) -> Vec<Series> {
             Series::new(
                 if sign > 0.0 { "± standard error" } else { "" },
                 PALETTE[0],
-                Style::Dashed,
+                Mark::Dashed,
                 by_alpha(alphas, |a| {
                     Some(a.mean_tangential_force_norm? + sign * a.mean_tangential_force_sem?)
                 }),
@@ -119,8 +124,6 @@ fn error_band(alphas: &[AlphaRow]) -> Vec<Series> {
         })
         .collect()
 }
-
-const BLACKISH: plotters::style::RGBColor = plotters::style::RGBColor(60, 60, 60);
 
 pub fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
     let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
@@ -134,7 +137,7 @@ pub fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
         Series::new(
             "per-step mean",
             PALETTE[0],
-            Style::LinePoints,
+            Mark::LinePoints,
             by_alpha(alphas, |a| a.mean_tangential_force_norm),
         )
     };
@@ -142,48 +145,44 @@ pub fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
         dir,
         "fig10a",
         &[
-            Chart {
-                title: "Sliding: boundary contribution to friction (per-step mean)".into(),
-                x_label: "Johnson parameter α".into(),
-                y_label: "F_B / |F_JKR|".into(),
-                series: std::iter::once(per_step()).chain(error_band(alphas)).collect(),
-                include_zero: true,
-            },
-            Chart {
-                title: "Per-step and work-based means".into(),
-                x_label: "Johnson parameter α".into(),
-                y_label: "F_B / |F_JKR|".into(),
-                series: vec![
+            Panel::new(
+                "Sliding: boundary contribution to friction (per-step mean)",
+                "Johnson parameter α",
+                "F_B / |F_JKR|",
+            )
+            .include_y(0.0)
+            .with(std::iter::once(per_step()).chain(error_band(alphas))),
+            Panel::new("Per-step and work-based means", "Johnson parameter α", "F_B / |F_JKR|")
+                .include_y(0.0)
+                .with(vec![
                     per_step(),
                     Series::new(
                         "work-based mean",
                         PALETTE[4],
-                        Style::LinePoints,
+                        Mark::LinePoints,
                         by_alpha(alphas, |a| a.mean_tangential_force_work_norm),
                     ),
-                ],
-                include_zero: true,
-            },
+                ]),
         ],
     )?;
     files.extend(write_panels(
         dir,
         "fig10b",
-        &[Chart {
-            title: "Sliding: compactness of the contact".into(),
-            x_label: "Johnson parameter α".into(),
-            y_label: "A_real / (π a²)".into(),
-            series: vec![
-                Series::new(
-                    "A_real/(πa²)",
-                    PALETTE[0],
-                    Style::LinePoints,
-                    by_alpha(alphas, |a| Some(a.compactness)),
-                ),
-                Series::new("1", BLACKISH, Style::Dashed, vec![(lo, 1.0), (hi, 1.0)]),
-            ],
-            include_zero: true,
-        }],
+        &[Panel::new(
+            "Sliding: compactness of the contact",
+            "Johnson parameter α",
+            "A_real / (π a²)",
+        )
+        .include_y(0.0)
+        .with(vec![
+            Series::new(
+                "A_real/(πa²)",
+                PALETTE[0],
+                Mark::LinePoints,
+                by_alpha(alphas, |a| Some(a.compactness)),
+            ),
+            Series::new("1", INK, Mark::Dashed, vec![(lo, 1.0), (hi, 1.0)]),
+        ])],
     )?);
     Ok(files)
 }
