@@ -7,7 +7,8 @@
 //! given, writes depth, force and contact size per step (to compare solver options).
 //! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
-//! no certified early stops; docs/fast-step.md) to compare work and results.
+//! no certified early stops; docs/fast-step.md) to compare work and results;
+//! `ADHESIM_PREDICTED_GROWTH=0` turns predicted-subset growth off (docs/fast-step.md §3).
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
 use adhesim::Phase;
@@ -59,6 +60,7 @@ fn main() {
                     v.parse().expect("ADHESIM_RELATIVE_TOLERANCE as a number")
                 }),
             reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
+            predicted_growth: std::env::var("ADHESIM_PREDICTED_GROWTH").map_or(true, |v| v != "0"),
             ..AdhesiveParams::default()
         },
     )));
@@ -119,10 +121,12 @@ fn main() {
         );
     }
     if let NormalSolver::Adhesive(adhesive) = &solver {
+        let (predicted, fallbacks) = adhesive.predicted_growth();
         println!(
-            "  certified early stops: {} of {} solves; CPU {cpu:.1} s ({:.2} cores)",
+            "  certified early stops: {} of {} solves; rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
             adhesive.certified_stops(),
             summary.solves,
+            1e3 * adhesive.prediction_seconds() / summary.steps as f64,
             cpu / wall
         );
     }

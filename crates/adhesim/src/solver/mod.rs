@@ -10,6 +10,7 @@ mod ccg;
 mod certificate;
 mod local_peel;
 mod nested;
+mod peel_predictor;
 mod state;
 
 pub use adhesive::{

@@ -99,6 +99,11 @@ pub struct AdhesiveParams {
     /// (docs/fast-step.md) stops early; contact sets are the same, the reference mode is
     /// kept to show it.
     pub reference_rule: bool,
+    /// Predicted-subset growth on the approach (default true; docs/fast-step.md §3): after
+    /// the solve with a full trial ring, attach only the members a local replay of the peel
+    /// predicts to hold. Same contact sets, fewer solves; off in the reference rule and the
+    /// other release orders, and on periodic grids.
+    pub predicted_growth: bool,
     /// Test aid (default false): after every certified early stop, converge the solve
     /// fully on a copy and panic if a pressure moved by more than the certified bound or a
     /// release decision changed. Costs a full solve per early stop.
@@ -118,6 +123,7 @@ impl Default for AdhesiveParams {
             carry_bans_when_retracting: true,
             retry_after_growth: true,
             reference_rule: false,
+            predicted_growth: true,
             check_certificates: false,
         }
     }
