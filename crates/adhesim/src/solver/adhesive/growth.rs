@@ -9,7 +9,7 @@
 //! completely, the solved state on X ∪ R is restored and R is peeled exactly, as in the
 //! reference rule, so the step still ends on the same fixed point.
 
-use super::{AdhesiveSolver, Attachment, Flow, Growth, RingAttempt, Round};
+use super::{AdhesiveSolver, Attachment, Flow, Growth, Round};
 use crate::elastic::ElasticOperator;
 use crate::solver::{ContactState, SolveError};
 
@@ -43,9 +43,9 @@ impl AdhesiveSolver {
         if !pure_ring || self.current_ring.is_some() {
             // A ring that partly held (or penetration) breaks the chain of identical
             // failed rings the prediction needs.
-            self.ring_history.clear();
+            self.clear_ring_history();
         }
-        self.current_ring = None;
+        self.drop_current_ring();
         round.ring_restorable = pure_ring;
         if pure_ring {
             if self.predict_failed_ring(depth, state) {
@@ -61,11 +61,7 @@ impl AdhesiveSolver {
             self.saved_certified = self.last_solve_certified;
             self.saved_pressure.copy_from_slice(&state.pressure);
             self.saved_displacement.copy_from_slice(&state.displacement);
-            self.current_ring = Some(RingAttempt {
-                depth,
-                contact: state.contact.clone(),
-                rounds: Vec::new(),
-            });
+            self.current_ring = Some(self.ring_pool.attempt(depth, &state.contact));
             if self.prediction_allowed(round) {
                 round.growth = Growth::FullRing;
                 self.ring_members.clear();

@@ -7,6 +7,7 @@ mod fixed_set;
 mod growth;
 mod params;
 mod release;
+mod ring;
 
 pub use params::{critical_stress, AdhesiveParams, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR};
 
@@ -15,6 +16,7 @@ use super::peel_predictor::PeelPredictor;
 use super::{ContactState, SolveError};
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::{Boundary, Grid};
+use ring::{RingAttempt, RingPool};
 
 /// Solves per step after which u is recomputed in double precision (besides the first).
 const EXACT_DISPLACEMENT_PERIOD: usize = 32;
@@ -59,6 +61,8 @@ pub struct AdhesiveSolver {
     ring_history: Vec<RingAttempt>,
     /// The ring being tried in this step.
     current_ring: Option<RingAttempt>,
+    /// Recycled buffers of ring records (no allocation per ring round).
+    ring_pool: RingPool,
     /// State of the xorshift generator of [`Detachment::RandomHalf`].
     random_state: u64,
     /// Bound on the pressure error of the last solve (docs/fast-step.md).
@@ -107,24 +111,6 @@ enum StopRule {
     ReleasesOrAttachments,
 }
 
-/// One round of a trial-ring peel: the trial elements present, their pressures after the
-/// solve, and which of them failed.
-#[derive(Debug, Clone, PartialEq)]
-struct RingRound {
-    members: Vec<usize>,
-    pressures: Vec<f64>,
-    failed: Vec<bool>,
-    /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
-    error_bound: f64,
-}
-
-/// A trial ring tried on contact set `contact` at `depth` that failed completely.
-#[derive(Debug, Clone, PartialEq)]
-struct RingAttempt {
-    depth: f64,
-    contact: Vec<bool>,
-    rounds: Vec<RingRound>,
-}
 impl AdhesiveSolver {
     /// A solver for `grid` with the work of adhesion γ per element (row-major) and the
     /// half-space's contact modulus.
@@ -166,6 +152,7 @@ impl AdhesiveSolver {
             history: Vec::with_capacity(2),
             ring_history: Vec::with_capacity(2),
             current_ring: None,
+            ring_pool: RingPool::default(),
             random_state: match params.detachment {
                 Detachment::RandomHalf { seed } => seed | 1,
                 _ => 1,
@@ -239,8 +226,8 @@ impl AdhesiveSolver {
     /// call before driving a new, unrelated load path with the same solver.
     pub fn reset(&mut self) {
         self.history.clear();
-        self.ring_history.clear();
-        self.current_ring = None;
+        self.clear_ring_history();
+        self.drop_current_ring();
         self.banned.iter_mut().for_each(|b| *b = false);
     }
 
@@ -402,8 +389,8 @@ impl AdhesiveSolver {
         if self.release_with_local_rounds(state, any_failed_trial) > 0 {
             // Rounds released without a solve are not the recorded rounds that the
             // failed-ring prediction extrapolates.
-            self.current_ring = None;
-            self.ring_history.clear();
+            self.drop_current_ring();
+            self.clear_ring_history();
             if self.params.check_certificates {
                 self.check_local_bounds(operator, heights, depth, state, any_failed_trial)?;
             }
@@ -420,10 +407,7 @@ impl AdhesiveSolver {
             self.converge_final(operator, heights, depth, state, &mut round.report)?;
         }
         if let Some(ring) = self.current_ring.take() {
-            if self.ring_history.len() == 2 {
-                self.ring_history.remove(0);
-            }
-            self.ring_history.push(ring);
+            self.push_ring_history(ring);
         }
         Ok(Flow::Stop)
     }
@@ -469,28 +453,6 @@ impl AdhesiveSolver {
         report.dissipated_energy = report.energy_before_change - report.energy;
         report.operator_applications = operator.applications() - applications_before;
         report
-    }
-
-    /// Records the trial members' pressures and failures of this solve in the ring being
-    /// tried (for the failed-ring prediction).
-    fn record_ring_round(&mut self, state: &ContactState) {
-        let Some(ring) = self.current_ring.as_mut() else {
-            return;
-        };
-        let members: Vec<usize> = (0..self.grid.len()).filter(|&k| self.trial[k]).collect();
-        let pressures = members.iter().map(|&k| state.pressure[k]).collect();
-        let mut failed = vec![false; members.len()];
-        for &k in &self.violators {
-            if let Ok(position) = members.binary_search(&k) {
-                failed[position] = true;
-            }
-        }
-        ring.rounds.push(RingRound {
-            members,
-            pressures,
-            failed,
-            error_bound: self.pressure_error_bound,
-        });
     }
 }
 
