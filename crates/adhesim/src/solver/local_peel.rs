@@ -153,7 +153,7 @@ impl LocalPeel {
 }
 
 /// Lower-triangular Cholesky factor of the SPD size×size row-major `a`, in place.
-pub(crate) fn cholesky_in_place(a: &mut [f64], size: usize) {
+fn cholesky_in_place(a: &mut [f64], size: usize) {
     for j in 0..size {
         let mut diagonal = a[j * size + j];
         for k in 0..j {
@@ -172,7 +172,7 @@ pub(crate) fn cholesky_in_place(a: &mut [f64], size: usize) {
 }
 
 /// Solves L Lᵀ x = b for the factor from [`cholesky_in_place`]; `x` holds b on entry.
-pub(crate) fn cholesky_solve(factor: &[f64], size: usize, x: &mut [f64]) {
+fn cholesky_solve(factor: &[f64], size: usize, x: &mut [f64]) {
     for i in 0..size {
         let mut value = x[i];
         for k in 0..i {

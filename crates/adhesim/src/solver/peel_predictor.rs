@@ -9,7 +9,7 @@
 //! enter). It is a prediction, not a bound: the solver verifies every predicted subset with
 //! a solve, so the window's size and shape decide the work, never the result.
 
-use super::local_peel::{cholesky_in_place, cholesky_solve};
+use super::dot;
 use crate::elastic::influence::love_coefficient;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
@@ -113,15 +113,17 @@ impl PeelPredictor {
         let size = self.window.len();
         self.matrix.clear();
         self.rises.clear();
-        for &(ri, ci) in &self.window {
-            for &(rj, cj) in &self.window {
-                self.matrix.push(self.kernel(ri - rj, ci - cj));
+        self.matrix.resize(size * size, 0.0);
+        for (i, &(ri, ci)) in self.window.iter().enumerate() {
+            // Lower triangle only: the factorisation reads nothing else.
+            for (j, &(rj, cj)) in self.window[..=i].iter().enumerate() {
+                self.matrix[i * size + j] = self.kernel(ri - rj, ci - cj);
             }
             self.rises.push(self.kernel(ri - centre.0, ci - centre.1));
         }
         if size > 0 {
-            cholesky_in_place(&mut self.matrix, size);
-            cholesky_solve(&self.matrix, size, &mut self.rises);
+            factorise(&mut self.matrix, size);
+            substitute(&self.matrix, size, &mut self.rises);
         }
     }
 
@@ -136,6 +138,34 @@ impl PeelPredictor {
             self.near_free[k] = 0;
         }
         self.touched.clear();
+    }
+}
+
+/// Cholesky factor L (lower triangle, row-major, in place) of the SPD size×size `a`, whose
+/// lower triangle is read. Rows are contiguous, so every inner product is a slice `dot`.
+fn factorise(a: &mut [f64], size: usize) {
+    for j in 0..size {
+        let (row_j, below) = a[j * size..].split_at_mut(size);
+        let diagonal = (row_j[j] - dot(&row_j[..j], &row_j[..j])).sqrt();
+        row_j[j] = diagonal;
+        for row_i in below.chunks_exact_mut(size) {
+            row_i[j] = (row_i[j] - dot(&row_i[..j], &row_j[..j])) / diagonal;
+        }
+    }
+}
+
+/// Solves L Lᵀ x = b for the factor of [`factorise`]; `x` holds b on entry.
+fn substitute(factor: &[f64], size: usize, x: &mut [f64]) {
+    for i in 0..size {
+        let row = &factor[i * size..i * size + i];
+        x[i] = (x[i] - dot(row, &x[..i])) / factor[i * size + i];
+    }
+    for i in (0..size).rev() {
+        let mut value = x[i];
+        for k in i + 1..size {
+            value -= factor[k * size + i] * x[k];
+        }
+        x[i] = value / factor[i * size + i];
     }
 }
 
