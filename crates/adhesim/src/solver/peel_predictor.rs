@@ -9,7 +9,6 @@
 //! enter). It is a prediction, not a bound: the solver verifies every predicted subset with
 //! a solve, so the window's size and shape decide the work, never the result.
 
-use super::dot;
 use crate::elastic::influence::love_coefficient;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
@@ -26,6 +25,8 @@ const SPAN: i64 = 2 * RADIUS;
 pub(crate) struct PeelPredictor {
     /// Love's coefficient K(a, b) for |a|, |b| ≤ `SPAN`.
     kernel: Vec<f64>,
+    /// Offsets (a, b) ≠ 0 with a² + b² ≤ `RADIUS`², row by row.
+    disk: Vec<(i64, i64)>,
     /// Per element: 0 not yet known, 1 within `BAND` of a free element, 2 not.
     near_free: Vec<u8>,
     /// Elements whose `near_free` entry is set (reset by [`finish`](Self::finish)).
@@ -43,8 +44,13 @@ impl PeelPredictor {
         let kernel = (0..side * side)
             .map(|k| love_coefficient((k / side - SPAN) as f64, (k % side - SPAN) as f64, 1.0, 1.0))
             .collect();
+        let disk = (-RADIUS..=RADIUS)
+            .flat_map(|a| (-RADIUS..=RADIUS).map(move |b| (a, b)))
+            .filter(|&(a, b)| (a, b) != (0, 0) && a * a + b * b <= RADIUS * RADIUS)
+            .collect();
         Self {
             kernel,
+            disk,
             near_free: vec![0; len],
             touched: Vec::new(),
             window: Vec::new(),
@@ -98,16 +104,11 @@ impl PeelPredictor {
             }
         }
         self.window.clear();
-        for a in -RADIUS..=RADIUS {
-            for b in -RADIUS..=RADIUS {
-                let (row, column) = (centre.0 + a, centre.1 + b);
-                if (a, b) == (0, 0) || a * a + b * b > RADIUS * RADIUS {
-                    continue;
-                }
-                let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
-                if inside && contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact) {
-                    self.window.push((row, column));
-                }
+        for index in 0..self.disk.len() {
+            let (row, column) = (centre.0 + self.disk[index].0, centre.1 + self.disk[index].1);
+            let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
+            if inside && contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact) {
+                self.window.push((row, column));
             }
         }
         let size = self.window.len();
@@ -139,6 +140,25 @@ impl PeelPredictor {
         }
         self.touched.clear();
     }
+}
+
+/// Σ a_k b_k with four partial sums (short rows of the window solve; inlined).
+#[inline(always)]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut partial = [0.0; 4];
+    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = a_chunks
+        .remainder()
+        .iter()
+        .zip(b_chunks.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in a_chunks.zip(b_chunks) {
+        for lane in 0..4 {
+            partial[lane] += x[lane] * y[lane];
+        }
+    }
+    (partial[0] + partial[1]) + (partial[2] + partial[3]) + tail
 }
 
 /// Cholesky factor L (lower triangle, row-major, in place) of the SPD size×size `a`, whose
