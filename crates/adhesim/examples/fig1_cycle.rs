@@ -8,9 +8,11 @@
 //! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results;
-//! `ADHESIM_PREDICTED_GROWTH=0` turns predicted-subset growth off (docs/fast-step.md §3).
+//! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on (`auto`: from 256²;
+//! default off, docs/fast-step.md §3).
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
+use adhesim::solver::PredictedGrowth;
 use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
@@ -60,7 +62,11 @@ fn main() {
                     v.parse().expect("ADHESIM_RELATIVE_TOLERANCE as a number")
                 }),
             reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
-            predicted_growth: std::env::var("ADHESIM_PREDICTED_GROWTH").map_or(true, |v| v != "0"),
+            predicted_growth: match std::env::var("ADHESIM_PREDICTED_GROWTH").as_deref() {
+                Ok("1") => PredictedGrowth::On,
+                Ok("auto") => PredictedGrowth::Auto,
+                _ => PredictedGrowth::Off,
+            },
             ..AdhesiveParams::default()
         },
     )));

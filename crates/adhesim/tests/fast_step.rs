@@ -4,6 +4,7 @@
 //! violators per round), the independent oracle of the order-independence argument
 //! (docs/physics.md §2.4a). The full case list runs with
 //! `cargo run --release -p adhesim --example step_equivalence`.
+use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Attachment, Boundary, Detachment, ElasticMaterial, FreeOperator, Grid,
     IndentPulloff, NormalSolver, Profile, Sphere, WavySphere,
@@ -94,6 +95,7 @@ fn all_modes(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usi
     // check_certificates panics if a certified bound or decision is wrong.
     let fast = run(AdhesiveParams {
         check_certificates: true,
+        predicted_growth: PredictedGrowth::On,
         ..AdhesiveParams::default()
     });
     assert_same(&reference, &fast, "fast");

@@ -14,7 +14,8 @@ mod peel_predictor;
 mod state;
 
 pub use adhesive::{
-    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
+    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, PredictedGrowth, StepReport,
+    ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;

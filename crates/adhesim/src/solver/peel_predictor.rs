@@ -18,6 +18,10 @@ use crate::elastic::influence::love_coefficient;
 const RADIUS: i64 = 12;
 /// ... and within this distance (Chebyshev) of a free element: the edge strip.
 const BAND: i64 = 2;
+/// At most this many, the nearest first: on a contact broken into many small patches
+/// (Fig. 2 at h = 0.006) every element is near a free one, and the dense solve would grow
+/// to the whole disk (≈ 450 unknowns).
+const MAX_WINDOW: usize = 100;
 /// Largest offset between two window elements.
 const SPAN: i64 = 2 * RADIUS;
 
@@ -25,7 +29,7 @@ const SPAN: i64 = 2 * RADIUS;
 pub(crate) struct PeelPredictor {
     /// Love's coefficient K(a, b) for |a|, |b| ≤ `SPAN`.
     kernel: Vec<f64>,
-    /// Offsets (a, b) ≠ 0 with a² + b² ≤ `RADIUS`², row by row.
+    /// Offsets (a, b) ≠ 0 with a² + b² ≤ `RADIUS`², nearest first.
     disk: Vec<(i64, i64)>,
     /// Per element: 0 not yet known, 1 within `BAND` of a free element, 2 not.
     near_free: Vec<u8>,
@@ -44,10 +48,11 @@ impl PeelPredictor {
         let kernel = (0..side * side)
             .map(|k| love_coefficient((k / side - SPAN) as f64, (k % side - SPAN) as f64, 1.0, 1.0))
             .collect();
-        let disk = (-RADIUS..=RADIUS)
+        let mut disk: Vec<(i64, i64)> = (-RADIUS..=RADIUS)
             .flat_map(|a| (-RADIUS..=RADIUS).map(move |b| (a, b)))
             .filter(|&(a, b)| (a, b) != (0, 0) && a * a + b * b <= RADIUS * RADIUS)
             .collect();
+        disk.sort_by_key(|&(a, b)| a * a + b * b);
         Self {
             kernel,
             disk,
@@ -87,8 +92,8 @@ impl PeelPredictor {
 
     /// Releases the element at `centre` (row, column) of an n×n grid from the contact given
     /// by `contact(k)` (which must already exclude it): afterwards [`window`](Self::window)
-    /// holds the strip's contact elements within `RADIUS` and their tension rises per unit
-    /// tension released.
+    /// holds the strip's contact elements within `RADIUS` (at most `MAX_WINDOW`, the nearest)
+    /// and their tension rises per unit tension released.
     pub(crate) fn release(&mut self, n: usize, centre: (i64, i64), contact: impl Fn(usize) -> bool) {
         // The released element is free now: its strip neighbours are near a free element.
         for a in -BAND..=BAND {
@@ -109,6 +114,9 @@ impl PeelPredictor {
             let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
             if inside && contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact) {
                 self.window.push((row, column));
+                if self.window.len() == MAX_WINDOW {
+                    break;
+                }
             }
         }
         let size = self.window.len();

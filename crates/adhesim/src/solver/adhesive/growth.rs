@@ -9,7 +9,7 @@
 //! completely, the solved state on X ∪ R is restored and R is peeled exactly, as in the
 //! reference rule, so the step still ends on the same fixed point.
 
-use super::{AdhesiveSolver, Attachment, Flow, Growth, Round};
+use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
 use crate::solver::{ContactState, SolveError};
 
@@ -25,6 +25,12 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         round: &mut Round,
     ) -> Result<Flow, SolveError> {
+        if round.growth == Growth::Predicted && self.dropped_member_penetrates(heights, depth, state) {
+            // The argument needs every dropped member at a gap ≥ 0 (F2): peel the full
+            // ring exactly instead.
+            self.fall_back(state, round);
+            return self.release_violators(operator, heights, depth, state, round);
+        }
         self.trial.iter_mut().for_each(|t| *t = false);
         round.growth = Growth::Exact;
         if self.params.retry_after_growth {
@@ -110,7 +116,12 @@ impl AdhesiveSolver {
     /// its high-water mark, so the reference rule lifts every ban on any growth and the
     /// least-fixed-point argument applies; docs/fast-step.md §3).
     fn prediction_allowed(&self, round: &Round) -> bool {
-        self.params.predicted_growth
+        let wanted = match self.params.predicted_growth {
+            PredictedGrowth::Off => false,
+            PredictedGrowth::On => true,
+            PredictedGrowth::Auto => self.grid.len() >= PREDICTION_MIN_ELEMENTS,
+        };
+        wanted
             && !round.prediction_blocked
             && self.params.retry_after_growth
             && self.local_peel.is_some()
@@ -169,6 +180,16 @@ impl AdhesiveSolver {
         }
         round.growth = Growth::Predicted;
         Ok(Flow::Continue)
+    }
+
+    /// Whether a member of the full ring R left out of the stable predicted subset
+    /// penetrates (or lies within the gap error bound of 0). Attaching the subset lowers the
+    /// free gaps (F2); a dropped member at g < 0 would be attached by penetration, which
+    /// lowers pressures, so the subset is no longer certainly part of the full ring's peel.
+    fn dropped_member_penetrates(&self, heights: &[f64], depth: f64, state: &ContactState) -> bool {
+        self.ring_members
+            .iter()
+            .any(|&k| !state.contact[k] && heights[k] - depth + state.displacement[k] <= self.gap_error_bound)
     }
 
     /// Restores the state solved on X ∪ R (the predicted subset failed completely) and

@@ -9,7 +9,10 @@ mod params;
 mod release;
 mod ring;
 
-pub use params::{critical_stress, AdhesiveParams, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR};
+pub use params::{
+    critical_stress, AdhesiveParams, Attachment, Detachment, PredictedGrowth, StepReport, ELEMENT_ENERGY_FACTOR,
+    PREDICTION_MIN_ELEMENTS,
+};
 
 use super::local_peel::LocalPeel;
 use super::peel_predictor::PeelPredictor;
