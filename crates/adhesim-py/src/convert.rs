@@ -20,7 +20,7 @@ pub fn solve_error(error: adhesim::SolveError) -> PyErr {
         E::SizeMismatch { .. } | E::InvalidLoad(_) | E::PeriodicUnsupported { .. } => {
             PyValueError::new_err(error.to_string())
         }
-        E::NotConverged { .. } | E::TooManyRounds { .. } | E::NonFinite { .. } => {
+        E::NotConverged { .. } | E::TooManyRounds { .. } | E::NonFinite { .. } | E::NotPositiveDefinite { .. } => {
             SolveError::new_err(error.to_string())
         }
     }

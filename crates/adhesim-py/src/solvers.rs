@@ -116,6 +116,7 @@ impl Ccg {
         let params = adhesim::CcgParams {
             tolerance: positive("tolerance", tolerance)?,
             max_iterations: count("max_iterations", max_iterations, 1)?,
+            ..adhesim::CcgParams::default()
         };
         let grid = operator.borrow(py).grid;
         Ok(Self {

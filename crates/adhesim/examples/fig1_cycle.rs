@@ -7,9 +7,12 @@
 //! given, writes depth, force and contact size per step (to compare solver options).
 //! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
-//! no certified early stops; docs/fast-step.md) to compare work and results.
+//! no certified early stops; docs/fast-step.md) to compare work and results;
+//! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on (`auto`: from 256²;
+//! default off, docs/fast-step.md §3).
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
+use adhesim::solver::PredictedGrowth;
 use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
@@ -59,6 +62,11 @@ fn main() {
                     v.parse().expect("ADHESIM_RELATIVE_TOLERANCE as a number")
                 }),
             reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
+            predicted_growth: match std::env::var("ADHESIM_PREDICTED_GROWTH").as_deref() {
+                Ok("1") => PredictedGrowth::On,
+                Ok("auto") => PredictedGrowth::Auto,
+                _ => PredictedGrowth::Off,
+            },
             ..AdhesiveParams::default()
         },
     )));
@@ -119,10 +127,12 @@ fn main() {
         );
     }
     if let NormalSolver::Adhesive(adhesive) = &solver {
+        let (predicted, fallbacks) = adhesive.predicted_growth();
         println!(
-            "  certified early stops: {} of {} solves; CPU {cpu:.1} s ({:.2} cores)",
+            "  certified early stops: {} of {} solves; rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
             adhesive.certified_stops(),
             summary.solves,
+            1e3 * adhesive.prediction_seconds() / summary.steps as f64,
             cpu / wall
         );
     }

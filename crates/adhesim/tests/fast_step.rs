@@ -4,6 +4,7 @@
 //! violators per round), the independent oracle of the order-independence argument
 //! (docs/physics.md §2.4a). The full case list runs with
 //! `cargo run --release -p adhesim --example step_equivalence`.
+use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Attachment, Boundary, Detachment, ElasticMaterial, FreeOperator, Grid,
     IndentPulloff, NormalSolver, Profile, Sphere, WavySphere,
@@ -14,6 +15,8 @@ struct Cycle {
     sets: Vec<Vec<bool>>,
     forces: Vec<f64>,
     fft_pairs: u64,
+    /// Rings grown through a predicted subset, and predictions that fell back.
+    predicted_growth: (u64, u64),
 }
 
 impl adhesim::Observer for Cycle {
@@ -45,8 +48,12 @@ fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, 
         sets: Vec::new(),
         forces: Vec::new(),
         fft_pairs: 0,
+        predicted_growth: (0, 0),
     };
     protocol.run(&mut operator, heights, &mut solver, &mut record).unwrap();
+    if let NormalSolver::Adhesive(adhesive) = &solver {
+        record.predicted_growth = adhesive.predicted_growth();
+    }
     record
 }
 
@@ -88,9 +95,12 @@ fn all_modes(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usi
     // check_certificates panics if a certified bound or decision is wrong.
     let fast = run(AdhesiveParams {
         check_certificates: true,
+        predicted_growth: PredictedGrowth::On,
         ..AdhesiveParams::default()
     });
     assert_same(&reference, &fast, "fast");
+    // Predicted-subset growth (docs/fast-step.md §3) took part in the fast run.
+    assert!(fast.predicted_growth.0 > 0, "{:?}", fast.predicted_growth);
     let plain = run(AdhesiveParams::default());
     assert!(
         plain.fft_pairs < reference.fft_pairs,

@@ -9,6 +9,14 @@ pub struct CcgParams {
     pub tolerance: f64,
     /// Give up (with [`SolveError::NotConverged`]) after this many iterations (default 20 000).
     pub max_iterations: usize,
+    /// Periodic displacement control (a secant iteration on the load): stop when the
+    /// reached mean depth is within this times max(height range, |d|) of d (default 1e-10) ...
+    pub depth_tolerance: f64,
+    /// ... or when the load bracket has shrunk to this times the load (default 1e-14, a
+    /// few ulps: the depth cannot get closer) ...
+    pub load_bracket_tolerance: f64,
+    /// ... giving up after this many secant iterations (default 200).
+    pub max_depth_iterations: usize,
 }
 
 impl Default for CcgParams {
@@ -16,6 +24,9 @@ impl Default for CcgParams {
         Self {
             tolerance: 1e-10,
             max_iterations: 20_000,
+            depth_tolerance: 1e-10,
+            load_bracket_tolerance: 1e-14,
+            max_depth_iterations: 200,
         }
     }
 }
@@ -71,6 +82,8 @@ impl Ccg {
         }
     }
 
+    /// Periodic displacement control: the load-controlled solve whose mean depth is d,
+    /// found by bracketing and Illinois regula falsi (the depth is increasing in the load).
     fn solve_periodic_depth<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
@@ -95,34 +108,33 @@ impl Ccg {
                 ..SolveReport::default()
             });
         }
-        // Depth found by a load-controlled solve is increasing in the load: bracket, then
-        // Illinois regula falsi.
         let current = state.force(grid.element_area());
-        let modulus = operator.contact_modulus();
-        let mut total = SolveReport::default();
-        let mut low = (0.0, lowest - depth);
         // First guess: the stiffness of full contact is of order E*·L.
         let mut load = if current > 0.0 {
             current
         } else {
-            grid.size() * modulus * (depth - lowest)
+            grid.size() * operator.contact_modulus() * (depth - lowest)
         };
-        let mut report = {
-            let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
+        let mut total = SolveReport::default();
+        let mut solve_at = |ccg: &mut Self, load: f64, state: &mut ContactState| {
+            let report = ccg.solve_constrained(operator, heights, Control::Load(load), state)?;
             total.iterations += report.iterations;
             total.operator_applications += report.operator_applications;
-            report
+            Ok::<_, SolveError>((report, report.depth - depth))
         };
+        let done = |report: SolveReport, total: &SolveReport| SolveReport {
+            iterations: total.iterations,
+            operator_applications: total.operator_applications,
+            depth,
+            ..report
+        };
+        let tolerance = self.params.depth_tolerance * scale;
+        let mut low = (0.0, lowest - depth);
+        let (mut report, mut value) = solve_at(self, load, state)?;
         let mut high;
         loop {
-            let value = report.depth - depth;
-            if value.abs() <= 1e-10 * scale {
-                return Ok(SolveReport {
-                    iterations: total.iterations,
-                    operator_applications: total.operator_applications,
-                    depth,
-                    ..report
-                });
+            if value.abs() <= tolerance {
+                return Ok(done(report, &total));
             }
             if value > 0.0 {
                 high = (load, value);
@@ -130,30 +142,14 @@ impl Ccg {
             }
             low = (load, value);
             load *= 2.0;
-            report = {
-                let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
-                total.iterations += report.iterations;
-                total.operator_applications += report.operator_applications;
-                report
-            };
+            (report, value) = solve_at(self, load, state)?;
         }
         let mut side = 0i8;
-        for _ in 0..200 {
+        for _ in 0..self.params.max_depth_iterations {
             load = (low.0 * high.1 - high.0 * low.1) / (high.1 - low.1);
-            report = {
-                let report = self.solve_constrained(operator, heights, Control::Load(load), state)?;
-                total.iterations += report.iterations;
-                total.operator_applications += report.operator_applications;
-                report
-            };
-            let value = report.depth - depth;
-            if value.abs() <= 1e-10 * scale || (high.0 - low.0) <= 1e-14 * high.0 {
-                return Ok(SolveReport {
-                    iterations: total.iterations,
-                    operator_applications: total.operator_applications,
-                    depth,
-                    ..report
-                });
+            (report, value) = solve_at(self, load, state)?;
+            if value.abs() <= tolerance || (high.0 - low.0) <= self.params.load_bracket_tolerance * high.0 {
+                return Ok(done(report, &total));
             }
             if value > 0.0 {
                 high = (load, value);
@@ -169,13 +165,20 @@ impl Ccg {
                 side = -1;
             }
         }
+        // The gap residual on C is the depth mismatch on every element of C.
+        let (count, target) = (0..grid.len())
+            .filter(|&k| state.contact[k])
+            .fold((0usize, 0.0), |(c, t), k| (c + 1, t + (depth - heights[k]).powi(2)));
+        let absolute_residual = value.abs() * (count as f64).sqrt();
         Err(SolveError::NotConverged {
             iterations: total.iterations,
-            residual: (report.depth - depth).abs() / scale,
-            tolerance: 1e-10,
+            absolute_residual,
+            relative_residual: absolute_residual / target.sqrt().max(f64::MIN_POSITIVE),
+            tolerance: self.params.depth_tolerance,
         })
     }
 
+    /// The Polonsky–Keer iteration under `control`, from `state`.
     fn solve_constrained<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
@@ -191,14 +194,13 @@ impl Ccg {
                 got: heights.len(),
             });
         }
-        let element_area = grid.element_area();
         let (depth, load) = match control {
             Control::Displacement(depth) => (depth, None),
             Control::Load(load) => {
                 if !(load.is_finite() && load > 0.0) {
                     return Err(SolveError::InvalidLoad(load));
                 }
-                (0.0, Some(load / element_area))
+                (0.0, Some(load / grid.element_area()))
             }
         };
         for buffer in [
@@ -211,180 +213,191 @@ impl Ccg {
             buffer.resize(len, 0.0);
         }
         let applications_before = operator.applications();
-        let self_compliance = operator.self_compliance();
-        let pressure = &mut state.pressure;
-
-        // Cold start: a pressure that closes each penetrating element on its own.
-        if pressure.iter().all(|&p| p <= 0.0) {
-            let lowest = heights.iter().cloned().fold(f64::INFINITY, f64::min);
-            for (p, &z) in pressure.iter_mut().zip(heights) {
-                let reference = if load.is_some() { lowest } else { depth };
-                *p = if z < reference + f64::EPSILON * reference.abs() || z <= reference {
-                    (reference - z).max(0.0) / self_compliance
-                } else {
-                    0.0
-                };
-            }
-            if let Some(total) = load {
-                // Load control from nothing: Polonsky & Keer's uniform pressure on every
-                // element the indenter can touch; the iteration shrinks the set.
-                let reachable = heights.iter().filter(|z| z.is_finite()).count().max(1);
-                for (p, &z) in pressure.iter_mut().zip(heights) {
-                    *p = if z.is_finite() { total / reachable as f64 } else { 0.0 };
-                }
-            }
-        } else {
-            for p in pressure.iter_mut() {
-                *p = p.max(0.0);
-            }
-        }
-        if let Some(total) = load {
-            let sum: f64 = pressure.iter().sum();
-            if sum > 0.0 {
-                let scale = total / sum;
-                pressure.iter_mut().for_each(|p| *p *= scale);
-            }
-        }
-
-        let mut delta = 0.0;
-        let mut previous_norm = 1.0;
-        let mut residual = f64::INFINITY;
-        let mut found_depth = depth;
+        start_pressure(&mut state.pressure, heights, depth, load, operator.self_compliance());
+        let mut progress = Progress {
+            delta: 0.0,
+            previous_norm: 1.0,
+            residual: f64::INFINITY,
+            gap_norm: f64::INFINITY,
+            target_norm: 0.0,
+            found_depth: depth,
+        };
         for iteration in 1..=self.params.max_iterations {
-            operator.apply(pressure, &mut state.displacement);
-            // g = u + z − d (d = 0 under load control; the mean over I plays its role).
-            let mut mean_gap = 0.0;
-            let mut active = 0usize;
-            for k in 0..len {
-                self.gap[k] = state.displacement[k] + heights[k] - depth;
-                if pressure[k] > 0.0 {
-                    mean_gap += self.gap[k];
-                    active += 1;
+            match self.iterate(operator, heights, depth, load, state, &mut progress, iteration)? {
+                Outcome::Continue => {}
+                Outcome::Converged => {
+                    operator.apply(&state.pressure, &mut state.displacement);
+                    return Ok(self.finish(
+                        operator,
+                        heights,
+                        state,
+                        progress.found_depth,
+                        load,
+                        iteration,
+                        progress.residual,
+                        applications_before,
+                    ));
+                }
+                Outcome::NothingLoaded => {
+                    operator.apply(&state.pressure, &mut state.displacement);
+                    return Ok(self.finish(operator, heights, state, depth, load, 0, 0.0, applications_before));
                 }
             }
-            if active == 0 {
-                // Nothing carries load: done if nothing penetrates, else close the penetration.
-                let mut penetrating = false;
-                for k in 0..len {
-                    if self.gap[k] < 0.0 {
-                        pressure[k] = -self.gap[k] / self_compliance;
-                        penetrating = true;
-                    }
-                }
-                if !penetrating {
-                    residual = 0.0;
-                    break;
-                }
-                delta = 0.0;
-                continue;
-            }
-            if load.is_some() {
-                mean_gap /= active as f64;
-                found_depth = mean_gap;
-                self.gap.iter_mut().for_each(|g| *g -= mean_gap);
-            }
-            let mut norm = 0.0;
-            for k in 0..len {
-                if pressure[k] > 0.0 {
-                    norm += self.gap[k] * self.gap[k];
-                }
-            }
-            if !norm.is_finite() {
-                return Err(SolveError::NonFinite { iteration });
-            }
-            let ratio = delta * norm / previous_norm;
-            for k in 0..len {
-                self.direction[k] = if pressure[k] > 0.0 {
-                    self.gap[k] + ratio * self.direction[k]
-                } else {
-                    0.0
-                };
-            }
-            previous_norm = norm;
-            operator.apply(&self.direction, &mut self.response);
-            let mut mean_response = 0.0;
-            if load.is_some() {
-                for k in 0..len {
-                    if pressure[k] > 0.0 {
-                        mean_response += self.response[k];
-                    }
-                }
-                mean_response /= active as f64;
-            }
-            let (mut numerator, mut denominator) = (0.0, 0.0);
-            for k in 0..len {
-                if pressure[k] > 0.0 {
-                    numerator += self.gap[k] * self.direction[k];
-                    denominator += (self.response[k] - mean_response) * self.direction[k];
-                }
-            }
-            if !(numerator.is_finite() && denominator.is_finite()) {
-                return Err(SolveError::NonFinite { iteration });
-            }
-            let step = if denominator > 0.0 {
-                numerator / denominator
-            } else {
-                0.0
-            };
-            // With a single active element (or a vanishing direction) the CG step is zero;
-            // penetrating elements are then closed by the element's own compliance.
-            let overlap_step = if step > 0.0 { step } else { 1.0 / self_compliance };
-            self.previous.copy_from_slice(pressure);
-            let mut overlap = false;
-            for k in 0..len {
-                if self.previous[k] > 0.0 {
-                    pressure[k] = (pressure[k] - step * self.direction[k]).max(0.0);
-                } else if self.gap[k] < 0.0 {
-                    pressure[k] -= overlap_step * self.gap[k];
-                    overlap = true;
-                }
-            }
-            delta = if overlap { 0.0 } else { 1.0 };
-            if let Some(total) = load {
-                let sum: f64 = pressure.iter().sum();
-                if sum > 0.0 {
-                    let scale = total / sum;
-                    pressure.iter_mut().for_each(|p| *p *= scale);
-                }
-            }
-            let (mut change, mut magnitude) = (0.0, 0.0);
-            for k in 0..len {
-                change += (pressure[k] - self.previous[k]).abs();
-                magnitude += pressure[k].abs();
-            }
-            if !(change.is_finite() && magnitude.is_finite()) {
-                return Err(SolveError::NonFinite { iteration });
-            }
-            if magnitude == 0.0 {
-                // Everything was released: not a solution while anything penetrates. The
-                // next iteration closes the penetrating elements again from scratch.
-                residual = f64::INFINITY;
-                delta = 0.0;
-                continue;
-            }
-            residual = change / magnitude;
-            if residual < self.params.tolerance && !overlap {
-                operator.apply(pressure, &mut state.displacement);
-                return Ok(self.finish(
-                    operator,
-                    heights,
-                    state,
-                    found_depth,
-                    load,
-                    iteration,
-                    residual,
-                    applications_before,
-                ));
-            }
-        }
-        if residual == 0.0 {
-            operator.apply(&state.pressure, &mut state.displacement);
-            return Ok(self.finish(operator, heights, state, found_depth, load, 0, 0.0, applications_before));
         }
         Err(SolveError::NotConverged {
             iterations: self.params.max_iterations,
-            residual,
+            absolute_residual: progress.gap_norm,
+            relative_residual: progress.gap_norm / progress.target_norm.max(f64::MIN_POSITIVE),
             tolerance: self.params.tolerance,
+        })
+    }
+
+    /// One Polonsky–Keer iteration: gaps, conjugate direction and step on the active set,
+    /// projection onto p ≥ 0 with closure of penetrating elements, load rescaling.
+    #[allow(clippy::too_many_arguments)]
+    fn iterate<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        load: Option<f64>,
+        state: &mut ContactState,
+        progress: &mut Progress,
+        iteration: usize,
+    ) -> Result<Outcome, SolveError> {
+        let len = heights.len();
+        let self_compliance = operator.self_compliance();
+        operator.apply(&state.pressure, &mut state.displacement);
+        let pressure = &mut state.pressure;
+        // g = u + z − d (d = 0 under load control; the mean over I plays its role).
+        let mut mean_gap = 0.0;
+        let mut active = 0usize;
+        for k in 0..len {
+            self.gap[k] = state.displacement[k] + heights[k] - depth;
+            if pressure[k] > 0.0 {
+                mean_gap += self.gap[k];
+                active += 1;
+            }
+        }
+        if active == 0 {
+            // Nothing carries load: done if nothing penetrates, else close the penetration.
+            let mut penetrating = false;
+            for k in 0..len {
+                if self.gap[k] < 0.0 {
+                    pressure[k] = -self.gap[k] / self_compliance;
+                    penetrating = true;
+                }
+            }
+            if !penetrating {
+                return Ok(Outcome::NothingLoaded);
+            }
+            progress.delta = 0.0;
+            return Ok(Outcome::Continue);
+        }
+        if load.is_some() {
+            mean_gap /= active as f64;
+            progress.found_depth = mean_gap;
+            self.gap.iter_mut().for_each(|g| *g -= mean_gap);
+        }
+        let (mut norm, mut target) = (0.0, 0.0);
+        for k in 0..len {
+            if pressure[k] > 0.0 {
+                norm += self.gap[k] * self.gap[k];
+                target += (progress.found_depth - heights[k]).powi(2);
+            }
+        }
+        if !norm.is_finite() {
+            return Err(SolveError::NonFinite { iteration });
+        }
+        (progress.gap_norm, progress.target_norm) = (norm.sqrt(), target.sqrt());
+        let step = self.conjugate_step(operator, pressure, load, active, norm, progress, iteration)?;
+        // With a single active element (or a vanishing direction) the CG step is zero;
+        // penetrating elements are then closed by the element's own compliance.
+        let overlap_step = if step > 0.0 { step } else { 1.0 / self_compliance };
+        self.previous.copy_from_slice(pressure);
+        let mut overlap = false;
+        for k in 0..len {
+            if self.previous[k] > 0.0 {
+                pressure[k] = (pressure[k] - step * self.direction[k]).max(0.0);
+            } else if self.gap[k] < 0.0 {
+                pressure[k] -= overlap_step * self.gap[k];
+                overlap = true;
+            }
+        }
+        progress.delta = if overlap { 0.0 } else { 1.0 };
+        if let Some(total) = load {
+            rescale_to(pressure, total);
+        }
+        let (mut change, mut magnitude) = (0.0, 0.0);
+        for k in 0..len {
+            change += (pressure[k] - self.previous[k]).abs();
+            magnitude += pressure[k].abs();
+        }
+        if !(change.is_finite() && magnitude.is_finite()) {
+            return Err(SolveError::NonFinite { iteration });
+        }
+        if magnitude == 0.0 {
+            // Everything was released: not a solution while anything penetrates. The
+            // next iteration closes the penetrating elements again from scratch.
+            progress.residual = f64::INFINITY;
+            progress.delta = 0.0;
+            return Ok(Outcome::Continue);
+        }
+        progress.residual = change / magnitude;
+        Ok(if progress.residual < self.params.tolerance && !overlap {
+            Outcome::Converged
+        } else {
+            Outcome::Continue
+        })
+    }
+
+    /// The conjugate direction on the active set (p > 0) and its step length (0 when the
+    /// curvature vanishes).
+    #[allow(clippy::too_many_arguments)]
+    fn conjugate_step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        pressure: &[f64],
+        load: Option<f64>,
+        active: usize,
+        norm: f64,
+        progress: &mut Progress,
+        iteration: usize,
+    ) -> Result<f64, SolveError> {
+        let len = pressure.len();
+        let ratio = progress.delta * norm / progress.previous_norm;
+        for k in 0..len {
+            self.direction[k] = if pressure[k] > 0.0 {
+                self.gap[k] + ratio * self.direction[k]
+            } else {
+                0.0
+            };
+        }
+        progress.previous_norm = norm;
+        operator.apply(&self.direction, &mut self.response);
+        let mut mean_response = 0.0;
+        if load.is_some() {
+            for k in 0..len {
+                if pressure[k] > 0.0 {
+                    mean_response += self.response[k];
+                }
+            }
+            mean_response /= active as f64;
+        }
+        let (mut numerator, mut denominator) = (0.0, 0.0);
+        for k in 0..len {
+            if pressure[k] > 0.0 {
+                numerator += self.gap[k] * self.direction[k];
+                denominator += (self.response[k] - mean_response) * self.direction[k];
+            }
+        }
+        if !(numerator.is_finite() && denominator.is_finite()) {
+            return Err(SolveError::NonFinite { iteration });
+        }
+        Ok(if denominator > 0.0 {
+            numerator / denominator
+        } else {
+            0.0
         })
     }
 
@@ -431,5 +444,66 @@ impl Ccg {
             depth,
             operator_applications: operator.applications() - applications_before,
         }
+    }
+}
+
+/// Convergence state of the Polonsky–Keer iteration.
+struct Progress {
+    /// 0 after an overlap correction (restart the conjugation), else 1.
+    delta: f64,
+    previous_norm: f64,
+    /// Relative pressure change of the last iteration (the stopping measure).
+    residual: f64,
+    /// ‖g‖₂ and ‖d − z‖₂ over the active set (stated in [`SolveError::NotConverged`]).
+    gap_norm: f64,
+    target_norm: f64,
+    /// Depth found under load control (the mean of u + z over the active set).
+    found_depth: f64,
+}
+
+/// What an iteration concluded.
+enum Outcome {
+    Continue,
+    Converged,
+    /// No element carries load and none penetrates: p = 0 is the solution.
+    NothingLoaded,
+}
+
+/// Starting pressure: a cold start closes each penetrating element on its own (under load
+/// control, Polonsky & Keer's uniform pressure on every reachable element); a warm start is
+/// clipped to p ≥ 0; under load control the total is rescaled to the load.
+fn start_pressure(pressure: &mut [f64], heights: &[f64], depth: f64, load: Option<f64>, self_compliance: f64) {
+    if pressure.iter().all(|&p| p <= 0.0) {
+        let lowest = heights.iter().cloned().fold(f64::INFINITY, f64::min);
+        for (p, &z) in pressure.iter_mut().zip(heights) {
+            let reference = if load.is_some() { lowest } else { depth };
+            *p = if z < reference + f64::EPSILON * reference.abs() || z <= reference {
+                (reference - z).max(0.0) / self_compliance
+            } else {
+                0.0
+            };
+        }
+        if let Some(total) = load {
+            let reachable = heights.iter().filter(|z| z.is_finite()).count().max(1);
+            for (p, &z) in pressure.iter_mut().zip(heights) {
+                *p = if z.is_finite() { total / reachable as f64 } else { 0.0 };
+            }
+        }
+    } else {
+        for p in pressure.iter_mut() {
+            *p = p.max(0.0);
+        }
+    }
+    if let Some(total) = load {
+        rescale_to(pressure, total);
+    }
+}
+
+/// Scales p so that Σp = `total` (if Σp > 0).
+fn rescale_to(pressure: &mut [f64], total: f64) {
+    let sum: f64 = pressure.iter().sum();
+    if sum > 0.0 {
+        let scale = total / sum;
+        pressure.iter_mut().for_each(|p| *p *= scale);
     }
 }

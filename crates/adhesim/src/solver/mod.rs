@@ -10,10 +10,12 @@ mod ccg;
 mod certificate;
 mod local_peel;
 mod nested;
+mod peel_predictor;
 mod state;
 
 pub use adhesive::{
-    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR,
+    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, PredictedGrowth, StepReport,
+    ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;
@@ -54,15 +56,32 @@ pub struct SolveReport {
 /// Why a solve failed.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SolveError {
-    /// The iteration limit was reached before the tolerance.
-    #[error("solver did not converge in {iterations} iterations: residual {residual:.3e} > tolerance {tolerance:.1e}")]
+    /// The iteration limit was reached before the tolerance. Every solver states its
+    /// residual the same way: the displacement residual on the contact set C,
+    /// ‖d − z − u‖₂ over C (length units; for the adhesive and nested CG the residual of the
+    /// fixed-set system, for [`Ccg`] the gap on its active set, for its periodic depth
+    /// control the mismatch of the reached mean depth), absolute and relative to ‖d − z‖₂
+    /// over C. `tolerance` is the solver's own stopping tolerance (its parameters say on
+    /// which measure: [`Ccg`] stops on the relative pressure change).
+    #[error("solver did not converge in {iterations} iterations: displacement residual {absolute_residual:.3e} ({relative_residual:.3e} relative) with stopping tolerance {tolerance:.1e}")]
     NotConverged {
         /// Iterations done.
         iterations: usize,
-        /// Residual reached.
-        residual: f64,
-        /// Tolerance asked for.
+        /// ‖d − z − u‖₂ over the contact set when the solver stopped (length units).
+        absolute_residual: f64,
+        /// The same divided by ‖d − z‖₂ over the contact set.
+        relative_residual: f64,
+        /// The solver's stopping tolerance.
         tolerance: f64,
+    },
+    /// The fixed-set operator lost positive definiteness in CG (a direction with
+    /// non-positive curvature dᵀKd: a defective operator or rounding on a degenerate set).
+    #[error("CG lost positive definiteness at iteration {iteration}: curvature {curvature:e}")]
+    NotPositiveDefinite {
+        /// Iteration at which it was detected.
+        iteration: usize,
+        /// dᵀKd of the direction.
+        curvature: f64,
     },
     /// The attach/detach rounds of one adhesive step did not reach a stable contact set.
     #[error("no stable contact set after {rounds} attach/detach rounds in one step")]
@@ -105,13 +124,52 @@ struct PcgBuffers<'a> {
     mask: &'a [f64],
 }
 
+/// What [`masked_pcg`] did when its stopping test accepted.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PcgInfo {
+    /// Iterations done.
+    iterations: usize,
+}
+
+/// Why [`masked_pcg`] stopped without its stopping test accepting.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum PcgError {
+    /// The iteration limit was reached; ‖r‖₂ of the last residual (on the set).
+    NotConverged { iterations: usize, residual_norm: f64 },
+    /// A residual the stopping test rejected as non-finite, or a non-finite curvature.
+    NonFinite { iteration: usize },
+    /// A direction with dᵀKd ≤ 0.
+    NotPositiveDefinite { iteration: usize, curvature: f64 },
+}
+
+impl PcgError {
+    /// The [`SolveError`] of a solver whose right-hand side has ‖d − z‖₂ = `target_norm`
+    /// over the set and whose stopping tolerance is `tolerance`.
+    fn into_solve_error(self, target_norm: f64, tolerance: f64) -> SolveError {
+        match self {
+            PcgError::NotConverged {
+                iterations,
+                residual_norm,
+            } => SolveError::NotConverged {
+                iterations,
+                absolute_residual: residual_norm,
+                relative_residual: residual_norm / target_norm.max(f64::MIN_POSITIVE),
+                tolerance,
+            },
+            PcgError::NonFinite { iteration } => SolveError::NonFinite { iteration },
+            PcgError::NotPositiveDefinite { iteration, curvature } => {
+                SolveError::NotPositiveDefinite { iteration, curvature }
+            }
+        }
+    }
+}
+
 /// Preconditioned CG for K_CC p_C = r_C on the fixed set given by `buffers.mask`, starting
 /// from the residual in `buffers.residual` (zero outside the set); updates `pressure` p and
 /// `displacement` u = K p. Search directions are applied in single precision (`apply_single`): each
 /// caller restarts from an exact residual, so the rounding stays far below its goals.
 /// `precondition` writes M⁻¹r; `converged` sees ‖r‖², r, p and u after each iteration and
 /// answers `None` for a residual it rejects as non-finite.
-/// Returns `Ok(iterations)`, or `Err(‖r‖²)` if `max_iterations` did not suffice.
 /// Shared by the adhesive solver and the nested active set (their stopping rules differ).
 fn masked_pcg<O: ElasticOperator + ?Sized>(
     operator: &mut O,
@@ -121,7 +179,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     mut precondition: impl FnMut(&[f64], &mut [f64]),
     mut converged: impl FnMut(f64, &[f64], &[f64], &[f64]) -> Option<bool>,
     max_iterations: usize,
-) -> Result<Result<usize, f64>, SolveError> {
+) -> Result<PcgInfo, PcgError> {
     let PcgBuffers {
         residual,
         preconditioned,
@@ -143,8 +201,11 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     for iteration in 1..=max_iterations {
         operator.apply_single(direction, response);
         let curvature = dot(direction, response);
-        if !(curvature.is_finite() && curvature > 0.0) {
-            return Err(SolveError::NonFinite { iteration });
+        if !curvature.is_finite() {
+            return Err(PcgError::NonFinite { iteration });
+        }
+        if curvature <= 0.0 {
+            return Err(PcgError::NotPositiveDefinite { iteration, curvature });
         }
         let step = rho / curvature;
         for k in 0..len {
@@ -153,8 +214,8 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             residual[k] -= step * response[k] * mask[k];
         }
         norm2 = dot(residual, residual);
-        if converged(norm2, residual, pressure, displacement).ok_or(SolveError::NonFinite { iteration })? {
-            return Ok(Ok(iteration));
+        if converged(norm2, residual, pressure, displacement).ok_or(PcgError::NonFinite { iteration })? {
+            return Ok(PcgInfo { iterations: iteration });
         }
         let new_rho = apply_preconditioner(residual, preconditioned);
         let ratio = new_rho / rho;
@@ -163,7 +224,10 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             direction[k] = (preconditioned[k] + ratio * direction[k]) * mask[k];
         }
     }
-    Ok(Err(norm2))
+    Err(PcgError::NotConverged {
+        iterations: max_iterations,
+        residual_norm: norm2.sqrt(),
+    })
 }
 
 /// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).

@@ -334,7 +334,13 @@ fn solve_level<O: ElasticOperator + ?Sized>(
             // Single-precision directions limit one round to ≈ 1e-5 of its starting
             // residual; the next round restarts from the exact one.
             let goal = tolerance.max(1e-5 * initial);
-            iterations += conjugate_gradients(operator, state, work, goal, params.max_cg_iterations)?;
+            iterations += conjugate_gradients(
+                operator,
+                state,
+                work,
+                (goal, target_norm, relative_tolerance),
+                params.max_cg_iterations,
+            )?;
         }
         // Active-set update: tensile elements leave, penetrated ones join.
         let mut changed = false;
@@ -361,12 +367,14 @@ fn solve_level<O: ElasticOperator + ?Sized>(
 }
 
 /// Preconditioned CG on the set `work.mask` from the residual in `work.residual`, until
-/// ‖r‖ ≤ `goal`; updates p and u in `state`. Returns the iterations.
+/// ‖r‖ ≤ `goal`; updates p and u in `state`. Returns the iterations. `target_norm` =
+/// ‖d − z‖ on the set and the relative tolerance state the residual of a failure
+/// ([`SolveError::NotConverged`]).
 fn conjugate_gradients<O: ElasticOperator + ?Sized>(
     operator: &mut O,
     state: &mut ContactState,
     work: &mut Workspace,
-    goal: f64,
+    (goal, target_norm, relative_tolerance): (f64, f64, f64),
     max_iterations: usize,
 ) -> Result<usize, SolveError> {
     let preconditioner = &mut work.preconditioner;
@@ -377,7 +385,7 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
         response: &mut work.response,
         mask: &work.mask,
     };
-    let outcome = masked_pcg(
+    masked_pcg(
         operator,
         &mut state.pressure,
         &mut state.displacement,
@@ -388,10 +396,7 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
             norm.is_finite().then_some(norm <= goal)
         },
         max_iterations,
-    )?;
-    outcome.map_err(|norm2| SolveError::NotConverged {
-        iterations: max_iterations,
-        residual: norm2.sqrt(),
-        tolerance: goal,
-    })
+    )
+    .map(|info| info.iterations)
+    .map_err(|error| error.into_solve_error(target_norm, relative_tolerance))
 }

@@ -250,10 +250,8 @@ impl AdhesiveSolver {
         self.last_solve_certified = certified;
         self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
         self.gap_error_bound = gap_error_bound(&self.residual);
-        outcome?.map_err(|norm2| SolveError::NotConverged {
-            iterations: self.params.max_cg_iterations,
-            residual: norm2.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
-            tolerance: self.params.relative_tolerance,
-        })
+        outcome
+            .map(|info| info.iterations)
+            .map_err(|error| error.into_solve_error(target_norm.sqrt(), self.params.relative_tolerance))
     }
 }

@@ -1,17 +1,25 @@
 //! The adhesive step (docs/physics.md §2.4, docs/fast-step.md): [`AdhesiveSolver`], its
 //! parameters and the per-step loop; the fixed-set solve is in `fixed_set`, the release
-//! rules (violators, local rounds, failed-ring prediction) in `release`.
+//! rules (violators, local rounds, failed-ring prediction) in `release`, attachment and
+//! predicted-subset growth in `growth`.
 
 mod fixed_set;
+mod growth;
 mod params;
 mod release;
+mod ring;
 
-pub use params::{critical_stress, AdhesiveParams, Attachment, Detachment, StepReport, ELEMENT_ENERGY_FACTOR};
+pub use params::{
+    critical_stress, AdhesiveParams, Attachment, Detachment, PredictedGrowth, StepReport, ELEMENT_ENERGY_FACTOR,
+    PREDICTION_MIN_ELEMENTS,
+};
 
 use super::local_peel::LocalPeel;
+use super::peel_predictor::PeelPredictor;
 use super::{ContactState, SolveError};
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::{Boundary, Grid};
+use ring::{RingAttempt, RingPool};
 
 /// Solves per step after which u is recomputed in double precision (besides the first).
 const EXACT_DISPLACEMENT_PERIOD: usize = 32;
@@ -56,6 +64,8 @@ pub struct AdhesiveSolver {
     ring_history: Vec<RingAttempt>,
     /// The ring being tried in this step.
     current_ring: Option<RingAttempt>,
+    /// Recycled buffers of ring records (no allocation per ring round).
+    ring_pool: RingPool,
     /// State of the xorshift generator of [`Detachment::RandomHalf`].
     random_state: u64,
     /// Bound on the pressure error of the last solve (docs/fast-step.md).
@@ -72,6 +82,24 @@ pub struct AdhesiveSolver {
     local_peel: Option<LocalPeel>,
     /// Trial elements released by local certificates (without a solve), over the solver's life.
     local_releases: u64,
+    /// Predicted-subset growth (docs/fast-step.md §3): the full trial ring R being grown.
+    ring_members: Vec<usize>,
+    /// The state solved on X ∪ R (pressure, displacement), restored when a predicted subset
+    /// fails completely and R is peeled exactly.
+    ring_solved_pressure: Vec<f64>,
+    ring_solved_displacement: Vec<f64>,
+    /// Error bounds and certified flag of that solve.
+    ring_solved_bounds: (f64, f64, bool),
+    /// Trial members predicted to fail in the current round.
+    predicted_failures: Vec<usize>,
+    /// Local replay of a peel (with `local_peel`: free grids, fast rule).
+    peel_predictor: Option<PeelPredictor>,
+    /// Rings grown through a predicted subset, and predicted subsets that failed
+    /// completely (the exact peel of the full ring followed), over the solver's life.
+    predicted_rings: u64,
+    prediction_fallbacks: u64,
+    /// Time spent in the local replays of predicted-subset growth, over the solver's life.
+    prediction_seconds: f64,
 }
 
 /// When a fixed-set solve may stop (docs/fast-step.md).
@@ -86,24 +114,6 @@ enum StopRule {
     ReleasesOrAttachments,
 }
 
-/// One round of a trial-ring peel: the trial elements present, their pressures after the
-/// solve, and which of them failed.
-#[derive(Debug, Clone, PartialEq)]
-struct RingRound {
-    members: Vec<usize>,
-    pressures: Vec<f64>,
-    failed: Vec<bool>,
-    /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
-    error_bound: f64,
-}
-
-/// A trial ring tried on contact set `contact` at `depth` that failed completely.
-#[derive(Debug, Clone, PartialEq)]
-struct RingAttempt {
-    depth: f64,
-    contact: Vec<bool>,
-    rounds: Vec<RingRound>,
-}
 impl AdhesiveSolver {
     /// A solver for `grid` with the work of adhesion γ per element (row-major) and the
     /// half-space's contact modulus.
@@ -145,6 +155,7 @@ impl AdhesiveSolver {
             history: Vec::with_capacity(2),
             ring_history: Vec::with_capacity(2),
             current_ring: None,
+            ring_pool: RingPool::default(),
             random_state: match params.detachment {
                 Detachment::RandomHalf { seed } => seed | 1,
                 _ => 1,
@@ -159,7 +170,32 @@ impl AdhesiveSolver {
                 && params.detachment == Detachment::AllViolators)
                 .then(|| LocalPeel::new(len)),
             local_releases: 0,
+            ring_members: Vec::new(),
+            ring_solved_pressure: vec![0.0; len],
+            ring_solved_displacement: vec![0.0; len],
+            ring_solved_bounds: (0.0, 0.0, false),
+            predicted_failures: Vec::new(),
+            peel_predictor: (grid.boundary() == Boundary::Free
+                && !params.reference_rule
+                && params.detachment == Detachment::AllViolators)
+                .then(|| PeelPredictor::new(len)),
+            predicted_rings: 0,
+            prediction_fallbacks: 0,
+            prediction_seconds: 0.0,
         }
+    }
+
+    /// Trial rings grown through a predicted held subset (docs/fast-step.md §3), and how
+    /// many of those predictions failed completely (the full ring was then peeled exactly),
+    /// over the solver's life.
+    pub fn predicted_growth(&self) -> (u64, u64) {
+        (self.predicted_rings, self.prediction_fallbacks)
+    }
+
+    /// Wall time spent in the local replays that predict a ring's held subset (the local
+    /// work of predicted-subset growth), over the solver's life.
+    pub fn prediction_seconds(&self) -> f64 {
+        self.prediction_seconds
     }
 
     /// Trial elements released by certified local rounds (docs/fast-step.md) instead of
@@ -193,8 +229,8 @@ impl AdhesiveSolver {
     /// call before driving a new, unrelated load path with the same solver.
     pub fn reset(&mut self) {
         self.history.clear();
-        self.ring_history.clear();
-        self.current_ring = None;
+        self.clear_ring_history();
+        self.drop_current_ring();
         self.banned.iter_mut().for_each(|b| *b = false);
     }
 
@@ -266,6 +302,8 @@ impl AdhesiveSolver {
             report: StepReport::default(),
             retry_high_water: self.begin_step(heights, depth, state),
             ring_restorable: false,
+            growth: Growth::Exact,
+            prediction_blocked: false,
         };
         loop {
             round.report.solves += 1;
@@ -286,11 +324,13 @@ impl AdhesiveSolver {
                 before_change(state);
             }
             self.find_violators(state);
-            if round.ring_restorable {
+            if round.ring_restorable && round.growth != Growth::Predicted {
                 self.record_ring_round(state);
             }
             let flow = if self.violators.is_empty() {
                 self.attach(operator, heights, depth, state, &mut round)?
+            } else if round.growth != Growth::Exact {
+                self.release_predicted(operator, heights, depth, state, &mut round)?
             } else {
                 self.release_violators(operator, heights, depth, state, &mut round)?
             };
@@ -352,8 +392,8 @@ impl AdhesiveSolver {
         if self.release_with_local_rounds(state, any_failed_trial) > 0 {
             // Rounds released without a solve are not the recorded rounds that the
             // failed-ring prediction extrapolates.
-            self.current_ring = None;
-            self.ring_history.clear();
+            self.drop_current_ring();
+            self.clear_ring_history();
             if self.params.check_certificates {
                 self.check_local_bounds(operator, heights, depth, state, any_failed_trial)?;
             }
@@ -370,100 +410,9 @@ impl AdhesiveSolver {
             self.converge_final(operator, heights, depth, state, &mut round.report)?;
         }
         if let Some(ring) = self.current_ring.take() {
-            if self.ring_history.len() == 2 {
-                self.ring_history.remove(0);
-            }
-            self.ring_history.push(ring);
+            self.push_ring_history(ring);
         }
         Ok(Flow::Stop)
-    }
-
-    /// A round without violators: bans lifted after growth, then penetrating elements and
-    /// trial neighbours attach; the step ends when there is none (or the ring is known to
-    /// fail again).
-    fn attach<O: ElasticOperator + ?Sized>(
-        &mut self,
-        operator: &mut O,
-        heights: &[f64],
-        depth: f64,
-        state: &mut ContactState,
-        round: &mut Round,
-    ) -> Result<Flow, SolveError> {
-        self.trial.iter_mut().for_each(|t| *t = false);
-        if self.params.retry_after_growth {
-            let size = state.contact.iter().filter(|&&c| c).count();
-            if size > round.retry_high_water {
-                round.retry_high_water = size;
-                self.banned.iter_mut().for_each(|b| *b = false);
-            }
-        }
-        self.find_candidates(heights, depth, state);
-        if self.candidates.is_empty() {
-            return Ok(Flow::Stop);
-        }
-        let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
-        if !pure_ring || self.current_ring.is_some() {
-            // A ring that partly held (or penetration) breaks the chain of identical
-            // failed rings the prediction needs.
-            self.ring_history.clear();
-        }
-        self.current_ring = None;
-        round.ring_restorable = pure_ring;
-        if pure_ring {
-            if self.predict_failed_ring(depth, state) {
-                if self.last_solve_certified {
-                    self.converge_final(operator, heights, depth, state, &mut round.report)?;
-                }
-                for &k in &self.candidates {
-                    self.trial[k] = false;
-                    self.banned[k] = true;
-                }
-                return Ok(Flow::Stop);
-            }
-            self.saved_certified = self.last_solve_certified;
-            self.saved_pressure.copy_from_slice(&state.pressure);
-            self.saved_displacement.copy_from_slice(&state.displacement);
-            self.current_ring = Some(RingAttempt {
-                depth,
-                contact: state.contact.clone(),
-                rounds: Vec::new(),
-            });
-        }
-        for &k in &self.candidates {
-            state.contact[k] = true;
-        }
-        Ok(Flow::Continue)
-    }
-
-    /// Whether free element `k` may be tried as a trial neighbour: not banned, and adhesive.
-    /// An element with σ_c = 0 (γ = 0) attached at a positive gap carries tension (the
-    /// Schur complement of K_CC is positive) and would fail at once, so it attaches only
-    /// by penetration (docs/physics.md §2.2).
-    pub(super) fn may_try(&self, k: usize) -> bool {
-        !self.banned[k] && self.critical_stress[k] > 0.0
-    }
-
-    /// Attachment candidates: penetrating elements, then (trial attachment) free
-    /// unbanned adhesive edge-neighbours of the contact, marked as trial.
-    fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
-        self.candidates.clear();
-        for k in 0..self.grid.len() {
-            if state.contact[k] || !heights[k].is_finite() {
-                continue;
-            }
-            let gap = heights[k] - depth + state.displacement[k];
-            if gap < 0.0 {
-                self.candidates.push(k);
-            } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
-                let mut touches = false;
-                self.grid
-                    .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
-                if touches {
-                    self.candidates.push(k);
-                    self.trial[k] = true;
-                }
-            }
-        }
     }
 
     /// A state that ends the step after a certified early stop is converged first: the
@@ -508,28 +457,6 @@ impl AdhesiveSolver {
         report.operator_applications = operator.applications() - applications_before;
         report
     }
-
-    /// Records the trial members' pressures and failures of this solve in the ring being
-    /// tried (for the failed-ring prediction).
-    fn record_ring_round(&mut self, state: &ContactState) {
-        let Some(ring) = self.current_ring.as_mut() else {
-            return;
-        };
-        let members: Vec<usize> = (0..self.grid.len()).filter(|&k| self.trial[k]).collect();
-        let pressures = members.iter().map(|&k| state.pressure[k]).collect();
-        let mut failed = vec![false; members.len()];
-        for &k in &self.violators {
-            if let Ok(position) = members.binary_search(&k) {
-                failed[position] = true;
-            }
-        }
-        ring.rounds.push(RingRound {
-            members,
-            pressures,
-            failed,
-            error_bound: self.pressure_error_bound,
-        });
-    }
 }
 
 /// Ratio floor of [`front_critical_stress`]: γ contrasts up to 10⁶ keep the front
@@ -564,4 +491,20 @@ struct Round {
     retry_high_water: usize,
     /// The last attachment was a pure trial ring whose failure restores the saved state.
     ring_restorable: bool,
+    /// Where the current ring's growth stands (docs/fast-step.md §3).
+    growth: Growth,
+    /// A predicted subset of the current stable set's ring failed completely (or the whole
+    /// ring was predicted to fail): its ring is peeled exactly, no prediction until growth.
+    prediction_blocked: bool,
+}
+
+/// Predicted-subset growth of a trial ring R on a stable set X (docs/fast-step.md §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Growth {
+    /// The exact peel of the reference rule.
+    Exact,
+    /// R was attached and is being solved: its held subset will be predicted.
+    FullRing,
+    /// A predicted subset of R is attached and peeled.
+    Predicted,
 }

@@ -1,93 +1,13 @@
-//! Release rules of the adhesive step: violators (all, worst first, random half),
-//! certified local rounds (docs/fast-step.md) and the failed-ring prediction.
+//! Release rules of the adhesive step: violators (all, worst first, random half) and
+//! certified local rounds (docs/fast-step.md).
 
 use super::params::over_stress_ratio;
-use super::{AdhesiveSolver, Detachment, RingAttempt, RingRound, StopRule};
+use super::{AdhesiveSolver, Detachment, StopRule};
 use crate::elastic::ElasticOperator;
 use crate::solver::local_peel::REACH;
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
-    /// Exact shortcut for a quiet step: if the last two steps tried the same trial ring on
-    /// the same contact set and every round of its peel released the same elements, the
-    /// trial pressures of each round are linear in d (fixed sets), so this step's rounds
-    /// are known by extrapolation. When every extrapolated round releases exactly the
-    /// recorded elements, the ring fails again: record it and report `true` (no solve).
-    pub(super) fn predict_failed_ring(&mut self, depth: f64, state: &ContactState) -> bool {
-        if self.params.detachment != Detachment::AllViolators || self.ring_history.len() < 2 {
-            return false;
-        }
-        let (older, newer) = (&self.ring_history[0], &self.ring_history[1]);
-        if older.depth == newer.depth
-            || newer.depth == depth
-            || older.rounds.len() != newer.rounds.len()
-            || newer.contact != state.contact
-            || older.contact != state.contact
-        {
-            return false;
-        }
-        if newer.rounds.first().map(|r| &r.members) != Some(&self.candidates) {
-            return false;
-        }
-        let factor = (depth - newer.depth) / (newer.depth - older.depth);
-        let mut predicted = Vec::with_capacity(newer.rounds.len());
-        for (a, b) in older.rounds.iter().zip(&newer.rounds) {
-            if a.members != b.members || a.failed != b.failed {
-                return false;
-            }
-            let pressures: Vec<f64> = a
-                .pressures
-                .iter()
-                .zip(&b.pressures)
-                .map(|(p0, p1)| p1 + factor * (p1 - p0))
-                .collect();
-            // The same violator rule as find_violators, on the trial members.
-            let ratios: Vec<f64> = b
-                .members
-                .iter()
-                .zip(&pressures)
-                .map(|(&k, &p)| over_stress_ratio(p, self.critical_stress[k]))
-                .collect();
-            let any_violator = ratios.iter().any(|&r| r > 1.0);
-            let smallest = ratios
-                .iter()
-                .cloned()
-                .filter(|&r| r > 1.0)
-                .fold(f64::INFINITY, f64::min);
-            let failed: Vec<bool> = ratios
-                .iter()
-                .map(|&r| any_violator && r >= smallest * (1.0 - 1e-9))
-                .collect();
-            if failed != b.failed {
-                return false;
-            }
-            // Extrapolated from pressures known to ±error_bound: predict only decisions
-            // that bound cannot flip (the reference rule trusts converged pressures).
-            let error_bound = (1.0 + factor.abs()) * b.error_bound + factor.abs() * a.error_bound;
-            if !self.params.reference_rule
-                && b.members
-                    .iter()
-                    .zip(&pressures)
-                    .any(|(&k, p)| (-p - self.critical_stress[k]).abs() <= error_bound)
-            {
-                return false;
-            }
-            predicted.push(RingRound {
-                members: b.members.clone(),
-                pressures,
-                failed,
-                error_bound,
-            });
-        }
-        self.ring_history.remove(0);
-        self.ring_history.push(RingAttempt {
-            depth,
-            contact: state.contact.clone(),
-            rounds: predicted,
-        });
-        true
-    }
-
     /// Releases the violators (only the failed trial elements with `trial_only`), then,
     /// with local rounds, every element of the same kind whose tension a local lower bound
     /// certifies above σ_c, in a sequence of single releases (docs/fast-step.md). These are

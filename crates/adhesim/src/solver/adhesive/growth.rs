@@ -1,0 +1,277 @@
+//! Attachment and predicted-subset growth of the adhesive step (docs/fast-step.md §3).
+//!
+//! On the approach the step's result is the least fixed point of X ↦ peel(X ∪ ring(X))
+//! (docs/physics.md §2.4a): every stable subset Y with X ⊆ Y ⊆ X ∪ R of a trial ring R is a
+//! safe intermediate set. So after the solve on X ∪ R the solver predicts, with the local
+//! lattice-inverse release rounds, which members of R the peel will release, and attaches
+//! only the predicted holders H; the exact peel of X ∪ H (and of any later predicted subset)
+//! gives such a Y. A prediction that is wrong costs solves, never the result: if H fails
+//! completely, the solved state on X ∪ R is restored and R is peeled exactly, as in the
+//! reference rule, so the step still ends on the same fixed point.
+
+use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
+use crate::elastic::ElasticOperator;
+use crate::solver::{ContactState, SolveError};
+
+impl AdhesiveSolver {
+    /// A round without violators: bans lifted after growth, then penetrating elements and
+    /// trial neighbours attach; the step ends when there is none (or the ring is known to
+    /// fail again).
+    pub(super) fn attach<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        round: &mut Round,
+    ) -> Result<Flow, SolveError> {
+        if round.growth == Growth::Predicted && self.dropped_member_penetrates(heights, depth, state) {
+            // The argument needs every dropped member at a gap ≥ 0 (F2): peel the full
+            // ring exactly instead.
+            self.fall_back(state, round);
+            return self.release_violators(operator, heights, depth, state, round);
+        }
+        self.trial.iter_mut().for_each(|t| *t = false);
+        round.growth = Growth::Exact;
+        if self.params.retry_after_growth {
+            let size = state.contact.iter().filter(|&&c| c).count();
+            if size > round.retry_high_water {
+                round.retry_high_water = size;
+                self.banned.iter_mut().for_each(|b| *b = false);
+                round.prediction_blocked = false;
+            }
+        }
+        self.find_candidates(heights, depth, state);
+        if self.candidates.is_empty() {
+            return Ok(Flow::Stop);
+        }
+        let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
+        if !pure_ring || self.current_ring.is_some() {
+            // A ring that partly held (or penetration) breaks the chain of identical
+            // failed rings the prediction needs.
+            self.clear_ring_history();
+        }
+        self.drop_current_ring();
+        round.ring_restorable = pure_ring;
+        if pure_ring {
+            if self.predict_failed_ring(depth, state) {
+                if self.last_solve_certified {
+                    self.converge_final(operator, heights, depth, state, &mut round.report)?;
+                }
+                for &k in &self.candidates {
+                    self.trial[k] = false;
+                    self.banned[k] = true;
+                }
+                return Ok(Flow::Stop);
+            }
+            self.saved_certified = self.last_solve_certified;
+            self.saved_pressure.copy_from_slice(&state.pressure);
+            self.saved_displacement.copy_from_slice(&state.displacement);
+            self.current_ring = Some(self.ring_pool.attempt(depth, &state.contact));
+            if self.prediction_allowed(round) {
+                round.growth = Growth::FullRing;
+                self.ring_members.clear();
+                self.ring_members.extend_from_slice(&self.candidates);
+            }
+        }
+        for &k in &self.candidates {
+            state.contact[k] = true;
+        }
+        Ok(Flow::Continue)
+    }
+
+    /// Whether free element `k` may be tried as a trial neighbour: not banned, and adhesive.
+    /// An element with σ_c = 0 (γ = 0) attached at a positive gap carries tension (the
+    /// Schur complement of K_CC is positive) and would fail at once, so it attaches only
+    /// by penetration (docs/physics.md §2.2).
+    pub(super) fn may_try(&self, k: usize) -> bool {
+        !self.banned[k] && self.critical_stress[k] > 0.0
+    }
+
+    /// Attachment candidates: penetrating elements, then (trial attachment) free
+    /// unbanned adhesive edge-neighbours of the contact, marked as trial.
+    fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
+        self.candidates.clear();
+        for k in 0..self.grid.len() {
+            if state.contact[k] || !heights[k].is_finite() {
+                continue;
+            }
+            let gap = heights[k] - depth + state.displacement[k];
+            if gap < 0.0 {
+                self.candidates.push(k);
+            } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
+                let mut touches = false;
+                self.grid
+                    .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
+                if touches {
+                    self.candidates.push(k);
+                    self.trial[k] = true;
+                }
+            }
+        }
+    }
+
+    /// Whether the ring about to be attached may grow through a predicted subset: the fast
+    /// rule on a free grid with retries after growth, and no element banned (the step is at
+    /// its high-water mark, so the reference rule lifts every ban on any growth and the
+    /// least-fixed-point argument applies; docs/fast-step.md §3).
+    fn prediction_allowed(&self, round: &Round) -> bool {
+        let wanted = match self.params.predicted_growth {
+            PredictedGrowth::Off => false,
+            PredictedGrowth::On => true,
+            PredictedGrowth::Auto => self.grid.len() >= PREDICTION_MIN_ELEMENTS,
+        };
+        wanted
+            && !round.prediction_blocked
+            && self.params.retry_after_growth
+            && self.local_peel.is_some()
+            && !self.banned.iter().any(|&b| b)
+    }
+
+    /// A round with violators while a ring grows through prediction: after the solve on
+    /// X ∪ R, the predicted failures are released (all of R predicted to fail: the exact
+    /// peel); after a solve on a predicted subset, the members predicted to fail now are
+    /// released, and if that is all of them, the full ring's solved state is restored and
+    /// peeled exactly.
+    pub(super) fn release_predicted<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        round: &mut Round,
+    ) -> Result<Flow, SolveError> {
+        let any_failed_trial = self.violators.iter().any(|&k| self.trial[k]);
+        if round.growth == Growth::FullRing {
+            self.ring_solved_pressure.copy_from_slice(&state.pressure);
+            self.ring_solved_displacement.copy_from_slice(&state.displacement);
+            self.ring_solved_bounds = (
+                self.pressure_error_bound,
+                self.gap_error_bound,
+                self.last_solve_certified,
+            );
+        }
+        let members = self.ring_members.iter().filter(|&&k| self.trial[k]).count();
+        if any_failed_trial && round.ring_restorable {
+            self.predict_failures(state);
+        } else {
+            // An element of X fails: not a ring peel (possible only through a tie in finite
+            // precision): leave the prediction.
+            self.predicted_failures.clear();
+        }
+        let all_fail = self.predicted_failures.len() == members;
+        if round.growth == Growth::FullRing && (all_fail || self.predicted_failures.is_empty()) {
+            // The whole ring is predicted to fail (the step may end on this ring): its
+            // exact peel.
+            round.growth = Growth::Exact;
+            round.prediction_blocked = true;
+            return self.release_violators(operator, heights, depth, state, round);
+        }
+        if all_fail || self.predicted_failures.is_empty() {
+            self.fall_back(state, round);
+            return self.release_violators(operator, heights, depth, state, round);
+        }
+        if round.growth == Growth::FullRing {
+            self.predicted_rings += 1;
+        }
+        for index in 0..self.predicted_failures.len() {
+            let k = self.predicted_failures[index];
+            self.release(k, state);
+        }
+        round.growth = Growth::Predicted;
+        Ok(Flow::Continue)
+    }
+
+    /// Whether a member of the full ring R left out of the stable predicted subset
+    /// penetrates (or lies within the gap error bound of 0). Attaching the subset lowers the
+    /// free gaps (F2); a dropped member at g < 0 would be attached by penetration, which
+    /// lowers pressures, so the subset is no longer certainly part of the full ring's peel.
+    fn dropped_member_penetrates(&self, heights: &[f64], depth: f64, state: &ContactState) -> bool {
+        self.ring_members
+            .iter()
+            .any(|&k| !state.contact[k] && heights[k] - depth + state.displacement[k] <= self.gap_error_bound)
+    }
+
+    /// Restores the state solved on X ∪ R (the predicted subset failed completely) and
+    /// finds its violators again: R is then peeled exactly, without prediction.
+    fn fall_back(&mut self, state: &mut ContactState, round: &mut Round) {
+        self.prediction_fallbacks += 1;
+        for &k in &self.ring_members {
+            state.contact[k] = true;
+            self.trial[k] = true;
+        }
+        state.pressure.copy_from_slice(&self.ring_solved_pressure);
+        state.displacement.copy_from_slice(&self.ring_solved_displacement);
+        self.displacement_pressure.copy_from_slice(&self.ring_solved_pressure);
+        (
+            self.pressure_error_bound,
+            self.gap_error_bound,
+            self.last_solve_certified,
+        ) = self.ring_solved_bounds;
+        // Every ban of the step was set by the predicted attempt (prediction_allowed).
+        self.banned.iter_mut().for_each(|b| *b = false);
+        round.growth = Growth::Exact;
+        round.prediction_blocked = true;
+        self.find_violators(state);
+    }
+
+    /// Predicts which current trial members the exact peel releases: the violators, then,
+    /// in single local releases (docs/fast-step.md §3), every trial member whose estimated
+    /// tension −p + (local rises) exceeds σ_c. Leaves them in `predicted_failures`; the state
+    /// is unchanged.
+    fn predict_failures(&mut self, state: &mut ContactState) {
+        self.predicted_failures.clear();
+        let Some(mut peel) = self.local_peel.take() else {
+            return;
+        };
+        let n = self.grid.n();
+        for &k in &self.ring_members {
+            if self.trial[k] {
+                peel.lower[k] = -state.pressure[k];
+            }
+        }
+        peel.queue.clear();
+        for &k in &self.violators {
+            if self.trial[k] {
+                peel.queue.push(k);
+                peel.queued[k] = true;
+            }
+        }
+        let Some(mut predictor) = self.peel_predictor.take() else {
+            self.local_peel = Some(peel);
+            return;
+        };
+        let start = std::time::Instant::now();
+        let mut head = 0;
+        while head < peel.queue.len() {
+            let released = peel.queue[head];
+            head += 1;
+            let tension = peel.lower[released].max(0.0);
+            // Released for the window of the next ones; restored below.
+            state.contact[released] = false;
+            let centre = ((released / n) as i64, (released % n) as i64);
+            predictor.release(n, centre, |k| state.contact[k]);
+            for ((row, column), rise) in predictor.window() {
+                let k = row as usize * n + column as usize;
+                if !self.trial[k] {
+                    continue;
+                }
+                // Queued members keep collecting rises until they are released.
+                peel.lower[k] += rise * tension;
+                if !peel.queued[k] && peel.lower[k] > self.critical_stress[k] {
+                    peel.queue.push(k);
+                    peel.queued[k] = true;
+                }
+            }
+        }
+        predictor.finish();
+        self.peel_predictor = Some(predictor);
+        self.prediction_seconds += start.elapsed().as_secs_f64();
+        for &k in &peel.queue {
+            peel.queued[k] = false;
+            state.contact[k] = true;
+        }
+        self.predicted_failures.extend_from_slice(&peel.queue);
+        self.local_peel = Some(peel);
+    }
+}
