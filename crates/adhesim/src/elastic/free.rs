@@ -4,6 +4,7 @@ use super::ElasticOperator;
 use crate::grid::Grid;
 use crate::material::ElasticMaterial;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// K(±lΔ, ±mΔ) for 0 ≤ m, l < N, bit for bit what [`love_coefficient`] gives at each
 /// signed offset, with the four primitives Φ(lΔ ± s, mΔ ± s) evaluated once per pair
@@ -134,6 +135,17 @@ impl ElasticOperator for FreeOperator {
         self.single.convolve(pressure, displacement);
         self.applications += 1;
     }
+    fn apply_single_rows(
+        &mut self,
+        pressure: &[f64],
+        displacement: &mut [f64],
+        input_rows: Range<usize>,
+        output_rows: Range<usize>,
+    ) {
+        self.single
+            .convolve_rows(pressure, displacement, input_rows, output_rows);
+        self.applications += 1;
+    }
     fn self_compliance(&self) -> f64 {
         self.self_compliance
     }
@@ -145,6 +157,99 @@ impl ElasticOperator for FreeOperator {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Deterministic pseudo-random numbers in [0, 1) (64-bit LCG, top 53 bits).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn below(&mut self, bound: usize) -> usize {
+            ((self.next() * bound as f64) as usize).min(bound - 1)
+        }
+    }
+
+    /// A field that is random on a random set of the rows `rows` (some elements of it
+    /// zero, others −0.0 as a mask gives them) and zero (or −0.0) elsewhere.
+    fn field_on_rows(random: &mut Lcg, n: usize, rows: &Range<usize>) -> Vec<f64> {
+        (0..n * n)
+            .map(|k| {
+                let sign_of_zero = if random.next() < 0.5 { 0.0 } else { -0.0 };
+                if rows.contains(&(k / n)) && random.next() < 0.7 {
+                    random.next() - 0.3
+                } else {
+                    sign_of_zero
+                }
+            })
+            .collect()
+    }
+
+    fn random_rows(random: &mut Lcg, n: usize) -> Range<usize> {
+        let start = random.below(n);
+        start..start + 1 + random.below(n - start)
+    }
+
+    #[test]
+    fn row_windows_give_the_bits_of_the_full_transform() {
+        // Issue #14 item 5: inside the output window the row-pruned convolution must equal
+        // the full one bit for bit (f64 and f32, free and periodic), and leave the other
+        // output rows untouched. Tolerance: none (to_bits).
+        let mut random = Lcg(0x5eed_0014);
+        let material = ElasticMaterial::new(1.7).unwrap();
+        for n in [16, 17, 24, 31, 32, 48, 64] {
+            let free = Grid::new(n, 1.0, crate::grid::Boundary::Free).unwrap();
+            let periodic = Grid::new(n, 1.0, crate::grid::Boundary::Periodic).unwrap();
+            let mut free_operator = FreeOperator::new(free, material);
+            let mut periodic_operator = super::super::PeriodicOperator::new(
+                periodic,
+                material,
+                super::super::PeriodicKernel::ElementConsistent,
+            );
+            for case in 0..6 {
+                let input_rows = if case == 0 { 0..n } else { random_rows(&mut random, n) };
+                let output_rows = if case == 1 { 0..n } else { random_rows(&mut random, n) };
+                let input = field_on_rows(&mut random, n, &input_rows);
+                let sentinel = vec![f64::from_bits(0x7ff8_dead_beef_0001); n * n];
+                let check = |full: &[f64], windowed: &[f64], what: &str| {
+                    for k in 0..n * n {
+                        let expected = if output_rows.contains(&(k / n)) {
+                            full[k]
+                        } else {
+                            sentinel[k]
+                        };
+                        assert_eq!(
+                            windowed[k].to_bits(),
+                            expected.to_bits(),
+                            "{what} n = {n}, rows {input_rows:?} -> {output_rows:?}, element {k}"
+                        );
+                    }
+                };
+                // A dense field applied just before the windowed call leaves spectra in
+                // every buffer row: the skipped rows must not pick them up.
+                let dense = field_on_rows(&mut random, n, &(0..n));
+                let (mut full, mut windowed, mut scratch) = (vec![0.0; n * n], sentinel.clone(), vec![0.0; n * n]);
+                free_operator.engine.convolve(&input, &mut full);
+                free_operator.engine.convolve(&dense, &mut scratch);
+                free_operator
+                    .engine
+                    .convolve_rows(&input, &mut windowed, input_rows.clone(), output_rows.clone());
+                check(&full, &windowed, "free f64");
+                let operators: [&mut dyn ElasticOperator; 2] = [&mut free_operator, &mut periodic_operator];
+                for operator in operators {
+                    let (mut full, mut windowed) = (vec![0.0; n * n], sentinel.clone());
+                    operator.apply_single(&input, &mut full);
+                    operator.apply_single(&dense, &mut scratch);
+                    operator.apply_single_rows(&input, &mut windowed, input_rows.clone(), output_rows.clone());
+                    check(&full, &windowed, "f32");
+                    assert!(full.iter().any(|&u| u != 0.0), "the case must not be trivial");
+                }
+            }
+        }
+    }
 
     #[test]
     fn octant_images_have_the_bits_of_direct_evaluation() {

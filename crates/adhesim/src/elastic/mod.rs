@@ -16,6 +16,7 @@ pub use preconditioner::SpectralPreconditioner;
 
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
+use std::ops::Range;
 
 /// Matrix-free, symmetric positive (semi-)definite compliance operator u = K p.
 pub trait ElasticOperator: Send {
@@ -37,6 +38,28 @@ pub trait ElasticOperator: Send {
     /// residual from [`apply`](Self::apply). The default is the exact `apply`.
     fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
         self.apply(pressure, displacement);
+    }
+
+    /// [`apply_single`](Self::apply_single) for a pressure that is zero outside the grid
+    /// rows `input_rows` (its values there are not read), writing the displacement on the
+    /// rows `output_rows` only. On those rows the result is bit for bit what `apply_single`
+    /// gives: the transforms of rows that are zero are exactly zero and are skipped (issue
+    /// #14 item 5: a fixed-set CG's search direction lives on the set's bounding box).
+    /// Values outside `output_rows` are unspecified (the spectral operators leave them
+    /// untouched, this default writes them): callers must not read them. Counts as one
+    /// application.
+    ///
+    /// # Panics
+    /// If a slice length differs from the number of elements or a range exceeds the rows.
+    fn apply_single_rows(
+        &mut self,
+        pressure: &[f64],
+        displacement: &mut [f64],
+        input_rows: Range<usize>,
+        output_rows: Range<usize>,
+    ) {
+        let _ = (input_rows, output_rows);
+        self.apply_single(pressure, displacement);
     }
 
     /// Diagonal entry K(0,0): displacement of an element under its own unit pressure.
@@ -92,6 +115,18 @@ impl ElasticOperator for HalfSpace {
         match self {
             Self::Free(op) => op.apply_single(pressure, displacement),
             Self::Periodic(op) => op.apply_single(pressure, displacement),
+        }
+    }
+    fn apply_single_rows(
+        &mut self,
+        pressure: &[f64],
+        displacement: &mut [f64],
+        input_rows: Range<usize>,
+        output_rows: Range<usize>,
+    ) {
+        match self {
+            Self::Free(op) => op.apply_single_rows(pressure, displacement, input_rows, output_rows),
+            Self::Periodic(op) => op.apply_single_rows(pressure, displacement, input_rows, output_rows),
         }
     }
     fn self_compliance(&self) -> f64 {

@@ -3,6 +3,7 @@ use super::ElasticOperator;
 use crate::grid::Grid;
 use crate::material::ElasticMaterial;
 use std::f64::consts::TAU;
+use std::ops::Range;
 
 /// Number of aliases |m|, |n| ≤ this kept in the element-consistent kernel: reproduces
 /// Love's near-field coefficient differences to 1e-5 (docs/physics.md §1b).
@@ -135,6 +136,17 @@ impl ElasticOperator for PeriodicOperator {
     }
     fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
         self.single.convolve(pressure, displacement);
+        self.applications += 1;
+    }
+    fn apply_single_rows(
+        &mut self,
+        pressure: &[f64],
+        displacement: &mut [f64],
+        input_rows: Range<usize>,
+        output_rows: Range<usize>,
+    ) {
+        self.single
+            .convolve_rows(pressure, displacement, input_rows, output_rows);
         self.applications += 1;
     }
     fn self_compliance(&self) -> f64 {

@@ -16,6 +16,7 @@ use num_complex::Complex;
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftNum, FftPlanner};
+use std::ops::Range;
 use std::sync::Arc;
 
 /// Working precision of a [`SpectralConvolution`].
@@ -138,17 +139,48 @@ impl<T: Precision> SpectralConvolution<T> {
 
     /// output = kernel ∗ input on the N×N data window.
     pub(crate) fn convolve(&mut self, input: &[f64], output: &mut [f64]) {
+        let n = self.n;
+        self.convolve_rows(input, output, 0..n, 0..n);
+    }
+
+    /// output = kernel ∗ input on the output rows `output_rows`, for an input that is zero
+    /// outside the rows `input_rows` (its values there are not read). Output rows outside
+    /// `output_rows` are left untouched.
+    ///
+    /// Bit-identical to [`convolve`](Self::convolve) on the output rows: the forward row
+    /// transform of a zero row is exactly zero, so skipping it and zeroing its spectrum
+    /// changes no value (at most the sign of an exact zero, which no output inherits
+    /// unless the whole output is zero), and every row and column transform is computed
+    /// independently of which others are computed. The c2c column transforms are not
+    /// pruned: a column whose input is nonzero in few rows still needs a full-length
+    /// transform to stay bit-identical (a pruned FFT rounds differently).
+    pub(crate) fn convolve_rows(
+        &mut self,
+        input: &[f64],
+        output: &mut [f64],
+        input_rows: Range<usize>,
+        output_rows: Range<usize>,
+    ) {
         let (n, padded, columns) = (self.n, self.padded, self.spectrum_columns);
         assert_eq!(input.len(), n * n, "input field does not match the grid");
         assert_eq!(output.len(), n * n, "output field does not match the grid");
+        assert!(
+            input_rows.start <= input_rows.end && input_rows.end <= n,
+            "input rows {input_rows:?} outside 0..{n}"
+        );
+        assert!(
+            output_rows.start <= output_rows.end && output_rows.end <= n,
+            "output rows {output_rows:?} outside 0..{n}"
+        );
         let blocks = self.blocks.len();
-        let rows_per_block = block_len(n, blocks);
 
-        // 1. Row transforms of the N data rows (the padded rows are zero: skipped).
+        // 1. Row transforms of the input's rows (zero rows and the padded rows: skipped).
         let forward_rows = &self.forward_rows;
-        self.row_spectra[..n * columns]
+        let input_window = &input[input_rows.start * n..input_rows.end * n];
+        let rows_per_block = block_len(input_rows.len(), blocks);
+        self.row_spectra[input_rows.start * columns..input_rows.end * columns]
             .par_chunks_mut(rows_per_block * columns)
-            .zip(input.par_chunks(rows_per_block * n))
+            .zip(input_window.par_chunks(rows_per_block * n))
             .zip(self.blocks.par_iter_mut())
             .for_each(|((spectra, data), scratch)| {
                 for (spectrum, row) in spectra.chunks_mut(columns).zip(data.chunks(n)) {
@@ -167,6 +199,7 @@ impl<T: Precision> SpectralConvolution<T> {
         let row_spectra = &self.row_spectra;
         let kernel = &self.kernel;
         let (forward_columns, inverse_columns) = (&self.forward_columns, &self.inverse_columns);
+        let (first_row, end_row) = (input_rows.start, input_rows.end);
         self.columns
             .par_chunks_mut(columns_per_block * padded)
             .zip(kernel.par_chunks(columns_per_block * padded))
@@ -179,7 +212,7 @@ impl<T: Precision> SpectralConvolution<T> {
                 let count = data.len() / padded;
                 for tile in (0..count).step_by(TILE) {
                     let width = TILE.min(count - tile);
-                    for i in 0..n {
+                    for i in first_row..end_row {
                         let row = &row_spectra[i * columns + first + tile..][..width];
                         for (offset, &value) in row.iter().enumerate() {
                             data[(tile + offset) * padded + i] = value;
@@ -187,7 +220,8 @@ impl<T: Precision> SpectralConvolution<T> {
                     }
                 }
                 for (column, kernel) in data.chunks_mut(padded).zip(kernel.chunks(padded)) {
-                    column[n..].fill(Complex::default());
+                    column[..first_row].fill(Complex::default());
+                    column[end_row..].fill(Complex::default());
                     forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
                     for (value, &k) in column.iter_mut().zip(kernel) {
                         *value = value.scale(k);
@@ -196,17 +230,19 @@ impl<T: Precision> SpectralConvolution<T> {
                 }
             });
 
-        // 3. Transpose back the N kept rows and transform them to real space.
+        // 3. Transpose back the kept output rows and transform them to real space.
         let columns_data = &self.columns;
         let inverse_rows = &self.inverse_rows;
-        self.row_spectra[..n * columns]
+        let rows_per_block = block_len(output_rows.len(), blocks);
+        let first_output = output_rows.start;
+        self.row_spectra[output_rows.start * columns..output_rows.end * columns]
             .par_chunks_mut(rows_per_block * columns)
-            .zip(output.par_chunks_mut(rows_per_block * n))
+            .zip(output[output_rows.start * n..output_rows.end * n].par_chunks_mut(rows_per_block * n))
             .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(block, ((spectra, out), scratch))| {
                 // Gather the block's rows in tiles of TILE (contiguous reads per column).
-                let first = block * rows_per_block;
+                let first = first_output + block * rows_per_block;
                 let count = spectra.len() / columns;
                 for tile in (0..count).step_by(TILE) {
                     let height = TILE.min(count - tile);

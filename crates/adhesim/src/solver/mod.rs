@@ -188,6 +188,8 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
         mask,
     } = buffers;
     let len = pressure.len();
+    // The directions vanish outside the set's rows: their row transforms are skipped.
+    let (support, rows) = (mask_rows(mask, operator.grid().n()), 0..operator.grid().n());
     let mut apply_preconditioner = |residual: &[f64], preconditioned: &mut [f64]| -> f64 {
         precondition(residual, preconditioned);
         for k in 0..len {
@@ -199,7 +201,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     direction.copy_from_slice(preconditioned);
     let mut norm2 = f64::INFINITY;
     for iteration in 1..=max_iterations {
-        operator.apply_single(direction, response);
+        operator.apply_single_rows(direction, response, support.clone(), rows.clone());
         let curvature = dot(direction, response);
         if !curvature.is_finite() {
             return Err(PcgError::NonFinite { iteration });
@@ -228,6 +230,16 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
         iterations: max_iterations,
         residual_norm: norm2.sqrt(),
     })
+}
+
+/// The rows (of `row_length` elements) that hold a nonzero of `mask`, first to last.
+fn mask_rows(mask: &[f64], row_length: usize) -> std::ops::Range<usize> {
+    let first = mask.iter().position(|&m| m != 0.0);
+    let last = mask.iter().rposition(|&m| m != 0.0);
+    match (first, last) {
+        (Some(first), Some(last)) => first / row_length..last / row_length + 1,
+        _ => 0..0,
+    }
 }
 
 /// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).
