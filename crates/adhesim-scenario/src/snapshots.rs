@@ -309,3 +309,94 @@ pub struct FieldShapes {
     /// (K,): `steps`, `depths`, `offsets`.
     pub count: [usize; 1],
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use adhesim::{Observer, StepRecord};
+    use std::ops::ControlFlow;
+
+    /// The recorder and the records of every step.
+    struct Both(SnapshotRecorder, Vec<StepRecord>);
+
+    impl Observer for Both {
+        fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+            self.0.observe(&view);
+            self.1.push(view.record.clone());
+            ControlFlow::Continue(())
+        }
+    }
+
+    /// A JKR sphere (n = 32, 10 approach steps) with `[output]` choosing step 2.
+    fn scenario() -> ValidScenario {
+        let text = r#"
+            [grid]
+            n = 32
+            size = 0.25
+            [material]
+            contact_modulus = 1.0
+            [adhesion]
+            work_of_adhesion = 3.5e-5
+            [indenter]
+            shape = "sphere"
+            radius = 1.0
+            [protocol]
+            kind = "indent_pulloff"
+            max_depth = 3.0
+            depth_unit = "jkr"
+            steps = 10
+            [output]
+            snapshot_steps = [2]
+        "#;
+        crate::load(text, "test", std::path::Path::new("."), &[]).unwrap()
+    }
+
+    #[test]
+    fn plan_keeps_chosen_deepest_pull_off_and_largest_steps_once() {
+        let scenario = scenario();
+        let plan = SnapshotPlan::new(&scenario);
+        assert_eq!(plan.max_depth_step, 9);
+        assert!(plan.is_chosen(2) && !plan.is_chosen(9) && plan.keeps_fields(9));
+        let mut both = Both(SnapshotRecorder::new(plan), Vec::new());
+        crate::run(&scenario, &mut both).unwrap();
+        let Both(mut recorder, records) = both;
+        let last_in_contact = records.iter().rposition(|r| r.contact_elements > 0).unwrap();
+        let most = records.iter().map(|r| r.contact_elements).max().unwrap();
+        let largest = records.iter().position(|r| r.contact_elements == most).unwrap();
+        let mut expected: Vec<usize> = vec![2, 9, last_in_contact, largest];
+        expected.sort();
+        expected.dedup();
+        let fields = SnapshotFields::new(&scenario, recorder.take_snapshots());
+        let steps: Vec<usize> = fields.snapshots().iter().map(|s| s.step).collect();
+        assert_eq!(steps, expected);
+        assert!(last_in_contact > 9, "the pull-off is on the retraction");
+
+        // Each snapshot holds its own step's fields: Δ²Σp is that step's force (the
+        // same sum in another order: 1e-12 relative), the contact count is the record's,
+        // and the gap g = u + z − d closes in contact and is open outside, to 1e-5 of the
+        // largest depth: a shallow step's gap is not smaller in proportion to its own depth,
+        // and the pull-off step (27) of this case shows 2.5e-9 = 1.0e-6 of the largest
+        // depth in contact, more than the solvers' 1e-10 relative tolerance suggests (an
+        // open question, reported; not a property of the snapshot code, which copies u).
+        let area = scenario.grid.element_size().powi(2);
+        let length = 1e-5 * scenario.max_depth.abs();
+        for (index, s) in fields.snapshots().iter().enumerate() {
+            let record = &records[s.step];
+            let force: f64 = area * s.pressure.iter().sum::<f64>();
+            assert!((force - record.force_normal).abs() <= 1e-12 * record.force_normal.abs().max(1e-30));
+            assert_eq!(s.contact.iter().filter(|&&c| c).count(), record.contact_elements);
+            for (gap, &contact) in fields.gap(index).iter().zip(&s.contact) {
+                if contact {
+                    assert!(gap.abs() < length, "gap {gap} in contact at step {}", s.step);
+                } else {
+                    assert!(*gap > -length, "gap {gap} outside at step {}", s.step);
+                }
+            }
+        }
+        let shapes = fields.shapes();
+        let arrays = fields.npz_arrays(&shapes);
+        assert_eq!(arrays.len(), 7 + 4 * steps.len());
+        let names: Vec<&str> = arrays.iter().take(8).map(|a| a.name).collect();
+        assert_eq!(names, ["x", "y", "heights", "surface", "steps", "depths", "offsets", "pressure_000002"]);
+    }
+}
