@@ -322,7 +322,7 @@ mod tests {
     impl Observer for Both {
         fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
             self.0.observe(&view);
-            self.1.push(view.record.clone());
+            self.1.push(*view.record);
             ControlFlow::Continue(())
         }
     }
@@ -397,6 +397,18 @@ mod tests {
         let arrays = fields.npz_arrays(&shapes);
         assert_eq!(arrays.len(), 7 + 4 * steps.len());
         let names: Vec<&str> = arrays.iter().take(8).map(|a| a.name).collect();
-        assert_eq!(names, ["x", "y", "heights", "surface", "steps", "depths", "offsets", "pressure_000002"]);
+        assert_eq!(
+            names,
+            [
+                "x",
+                "y",
+                "heights",
+                "surface",
+                "steps",
+                "depths",
+                "offsets",
+                "pressure_000002"
+            ]
+        );
     }
 }
