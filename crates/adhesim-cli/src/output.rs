@@ -3,7 +3,7 @@
 
 use adhesim::analysis::reference::Jkr;
 use adhesim::{Grid, Observer, StepRecord, StepView};
-use adhesim_scenario::CurveColumns;
+use adhesim_scenario::{CurveColumns, SnapshotPlan, ValidScenario};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::{BTreeMap, BTreeSet};
@@ -156,20 +156,6 @@ impl PhaseTimings {
     }
 }
 
-/// Which snapshots to write.
-pub struct SnapshotPlan {
-    /// Steps that get a PNG and `.npy` fields.
-    pub chosen: BTreeSet<usize>,
-    /// Every k-th step also (0 = off).
-    pub every: usize,
-    /// Jump steps with at least this many attached + detached elements get a PNG.
-    pub jump_elements: usize,
-    /// At most this many jump PNGs.
-    pub max_jump_snapshots: usize,
-    /// Last approach step (the deepest indentation).
-    pub max_depth_step: usize,
-}
-
 /// Writes the outputs of each step.
 pub struct RunObserver {
     csv: CurveCsv,
@@ -250,13 +236,9 @@ impl RunObserver {
         let step = r.step;
         let n = self.grid.n();
         let changed = r.report.attached + r.report.detached;
-        let chosen = self.plan.chosen.contains(&step) || step.checked_rem(self.plan.every) == Some(0);
-        if chosen {
-            let name = format!("step_{step:06}");
+        if self.plan.is_chosen(step) {
+            let name = SnapshotPlan::step_name(step);
             self.snapshot(&name, &view.state.contact, view.previous_contact)?;
-            if let Some(fields) = &mut self.fields {
-                fields.take(view);
-            }
             write_field(
                 &self.snapshots.join(format!("{name}_pressure.npy")),
                 n,
@@ -274,9 +256,6 @@ impl RunObserver {
         }
         if step == self.plan.max_depth_step {
             self.snapshot("max_depth", &view.state.contact, view.previous_contact)?;
-            if let Some(fields) = &mut self.fields {
-                fields.take(view);
-            }
         }
         if let Some(fields) = &mut self.fields {
             fields.observe(view);
@@ -312,8 +291,9 @@ impl RunObserver {
 
     /// Writes the contact maps of the largest contact and of the last configuration before
     /// contact was lost, and closes the CSV and the progress bar.
+    /// Then `fields.npz` of the snapshot steps of `scenario` (the one run).
     /// After an I/O error (in `error`) the partial `curve.csv` is left as it is.
-    pub fn finish(&mut self) -> Result<()> {
+    pub fn finish(&mut self, scenario: &ValidScenario) -> Result<()> {
         self.progress.bar.finish_and_clear();
         if self.error.is_some() {
             return Ok(());
@@ -328,7 +308,7 @@ impl RunObserver {
             self.snapshot("pull_off", &contact, &previous)?;
         }
         if let (Some(fields), Some(out)) = (&mut self.fields, self.snapshots.parent()) {
-            fields.write(out)?;
+            fields.write(scenario, out)?;
         }
         Ok(())
     }

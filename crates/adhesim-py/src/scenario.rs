@@ -5,49 +5,24 @@
 
 use crate::convert::field;
 use adhesim::{Observer, StepView};
-use adhesim_scenario::{CurveCell, CurveColumns, CurveKind, PhaseTimes, ProtocolSetup, ValidScenario};
+use adhesim_scenario::{
+    CurveCell, CurveColumns, CurveKind, PhaseTimes, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
+};
 use numpy::PyArray1;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use std::collections::BTreeSet;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// The fields of one snapshot step, copied when the step is done.
-struct Snapshot {
-    step: usize,
-    depth: f64,
-    offset: f64,
-    pressure: Vec<f64>,
-    displacement: Vec<f64>,
-    contact: Vec<bool>,
-}
-
-/// Steps whose fields the scenario's `[output]` selects: `snapshot_steps` and every
-/// `snapshot_every`-th step; a translation without either gets the end of the forward
-/// stroke, as the command line's snapshots.
-fn snapshot_selection(scenario: &ValidScenario) -> (BTreeSet<usize>, usize) {
-    let output = &scenario.file.output;
-    let mut chosen: BTreeSet<usize> = output.snapshot_steps.iter().map(|&s| s as usize).collect();
-    let every = output.snapshot_every as usize;
-    if let ProtocolSetup::Translation(setup) = scenario.protocol_setup() {
-        if chosen.is_empty() && every == 0 {
-            chosen.insert(setup.protocol.approach_steps + setup.protocol.steps - 1);
-        }
-    }
-    (chosen, every)
-}
-
-/// The observer of a Python run: keeps the snapshot fields, raises the border warning,
+/// The observer of a Python run: keeps the snapshot fields (the scenario crate's
+/// [`SnapshotRecorder`], as the command line's `fields.npz`), raises the border warning,
 /// and between steps runs the signal handlers and the progress callback (with the GIL).
 struct PythonObserver {
     progress: Option<Py<PyAny>>,
     expected_steps: usize,
-    chosen: BTreeSet<usize>,
-    every: usize,
-    snapshots: Vec<Snapshot>,
+    recorder: SnapshotRecorder,
     warnings: Vec<String>,
     /// The Python exception (KeyboardInterrupt, or the callback's) that stopped the run.
     error: Option<PyErr>,
@@ -63,16 +38,7 @@ impl Observer for PythonObserver {
         *self.times.phase_steps.entry(phase).or_default() += 1;
         let output_start = Instant::now();
         let step = record.step;
-        if self.chosen.contains(&step) || step.checked_rem(self.every) == Some(0) {
-            self.snapshots.push(Snapshot {
-                step,
-                depth: record.depth,
-                offset: record.offset,
-                pressure: view.state.pressure.clone(),
-                displacement: view.state.displacement.clone(),
-                contact: view.state.contact.clone(),
-            });
-        }
+        self.recorder.observe(&view);
         if record.touches_border && self.warnings.is_empty() {
             self.warnings.push(adhesim_scenario::border_warning(step, record.depth));
         }
@@ -136,13 +102,10 @@ pub fn _run_scenario<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let scenario = load(text, origin, &base, &overrides, available_memory)?;
     let start = Instant::now();
-    let (chosen, every) = snapshot_selection(&scenario);
     let mut observer = PythonObserver {
         progress,
         expected_steps: scenario.expected_steps(),
-        chosen,
-        every,
-        snapshots: Vec::new(),
+        recorder: SnapshotRecorder::new(SnapshotPlan::new(&scenario)),
         warnings: Vec::new(),
         error: None,
         times: PhaseTimes::default(),
@@ -166,7 +129,9 @@ pub fn _run_scenario<'py>(
     result.set_item("columns", curve_arrays(py, &columns, &outcome.records)?)?;
     result.set_item("csv", curve_text(&columns, &outcome.records))?;
     result.set_item("summary", summary)?;
-    result.set_item("snapshots", snapshot_dicts(py, &scenario, &observer.snapshots)?)?;
+    let fields = SnapshotFields::new(&scenario, observer.recorder.take_snapshots());
+    result.set_item("snapshots", snapshot_dicts(py, observer.recorder.plan(), &fields)?)?;
+    result.set_item("fields", RunFields(fields))?;
     Ok(result)
 }
 
@@ -225,38 +190,39 @@ fn curve_text(columns: &CurveColumns, records: &[adhesim::StepRecord]) -> String
     text
 }
 
-/// The snapshots as dicts of numpy arrays: pressure, displacement, gap = z − d + u (+inf
-/// where the indenter has no surface), contact (bool).
-fn snapshot_dicts<'py>(
-    py: Python<'py>,
-    scenario: &ValidScenario,
-    snapshots: &[Snapshot],
-) -> PyResult<Bound<'py, PyList>> {
-    let n = scenario.grid.n();
+/// The snapshots as dicts of numpy arrays: pressure, displacement, gap = u + z − d (0
+/// where the indenter has no surface), contact (bool), and `chosen` (the step is one of
+/// `[output]`'s, with `.npy` files in `snapshots/`).
+fn snapshot_dicts<'py>(py: Python<'py>, plan: &SnapshotPlan, fields: &SnapshotFields) -> PyResult<Bound<'py, PyList>> {
+    let n = fields.n();
     let list = PyList::empty(py);
-    let mut heights = scenario.heights.clone();
-    for snapshot in snapshots {
-        if let ProtocolSetup::Translation(setup) = scenario.protocol_setup() {
-            setup
-                .contact
-                .fill_heights(&scenario.grid, snapshot.offset, &mut heights);
-        }
-        let gap: Vec<f64> = heights
-            .iter()
-            .zip(&snapshot.displacement)
-            .map(|(&z, &u)| z - snapshot.depth + u)
-            .collect();
+    for (index, snapshot) in fields.snapshots().iter().enumerate() {
         let dict = PyDict::new(py);
         dict.set_item("step", snapshot.step)?;
         dict.set_item("depth", snapshot.depth)?;
         dict.set_item("offset", snapshot.offset)?;
         dict.set_item("pressure", field(py, &snapshot.pressure, n)?)?;
         dict.set_item("displacement", field(py, &snapshot.displacement, n)?)?;
-        dict.set_item("gap", field(py, &gap, n)?)?;
+        dict.set_item("gap", field(py, fields.gap(index), n)?)?;
         dict.set_item("contact", field(py, &snapshot.contact, n)?)?;
+        dict.set_item("chosen", plan.is_chosen(snapshot.step))?;
         list.append(dict)?;
     }
     Ok(list)
+}
+
+/// The `fields.npz` arrays of a run (`adhesim.run` writes them into `out`).
+#[pyclass(frozen, name = "_RunFields", module = "adhesim._adhesim")]
+pub struct RunFields(SnapshotFields);
+
+#[pymethods]
+impl RunFields {
+    /// Writes `fields.npz` to `path` (the command line's bytes for the same run).
+    fn write_npz(&self, path: PathBuf) -> PyResult<()> {
+        let shapes = self.0.shapes();
+        adhesim_topography::write_npz(&path, &self.0.npz_arrays(&shapes))
+            .map_err(|e| PyValueError::new_err(format!("cannot write {}: {e}", path.display())))
+    }
 }
 
 /// Every column `curve.csv` can have, with its kind ("int", "float" or "str"), for

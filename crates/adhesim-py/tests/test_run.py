@@ -48,6 +48,17 @@ def same_bits(a, b):
     return a.shape == b.shape and np.array_equal(a, b)
 
 
+def snapshot_steps(curve, chosen, approach_steps):
+    """The snapshot steps of docs/output.md ("fields.npz") worked out from a curve: the
+    chosen steps, the deepest (last approach) step, the last step in contact and the first
+    step of the largest contact, each once, by step."""
+    n_contact = np.asarray(curve["n_contact"])
+    steps = set(chosen) | {approach_steps - 1}
+    if n_contact.max() > 0:
+        steps |= {int(np.flatnonzero(n_contact > 0)[-1]), int(np.argmax(n_contact))}
+    return sorted(steps)
+
+
 def without_performance(summary):
     """summary.json minus its timings and counters block (wall times differ run to run)."""
     return {k: v for k, v in summary.items() if k != "performance"}
@@ -186,8 +197,11 @@ def test_snapshots_and_load_round_trip(tmp_path):
     """Snapshot steps of [output] come back as 2-D fields; a run written with out= reads
     back with load() as the same curve, summary and pressure/displacement fields."""
     result = adhesim.run(JKR_TOML, out=tmp_path, **SMALL, **{"output.snapshot_steps": [3, 15]})
-    assert [s.step for s in result.snapshots] == [3, 15]
+    steps = snapshot_steps(result.curve_arrays, [3, 15], 20)
+    assert [s.step for s in result.snapshots] == steps
+    assert len(steps) >= 4  # the chosen two, the deepest, pull-off (the last in contact)
     snapshot = result.snapshots[1]
+    assert snapshot.step == 15
     n = 32
     assert snapshot.pressure.shape == (n, n) and snapshot.contact.dtype == bool
     assert snapshot.depth == result.curve_arrays["d"][15]
@@ -201,9 +215,16 @@ def test_snapshots_and_load_round_trip(tmp_path):
     for name, values in result.curve_arrays.items():
         assert same_bits(loaded.curve_arrays[name], values), name
     assert loaded.summary == result.summary
-    assert [s.step for s in loaded.snapshots] == [3, 15]
-    assert same_bits(loaded.snapshots[1].pressure, snapshot.pressure)
-    assert same_bits(loaded.snapshots[1].displacement, snapshot.displacement)
+    # load() gives the same snapshots, every field bit for bit (read from fields.npz)
+    assert [s.step for s in loaded.snapshots] == steps
+    for mine, theirs in zip(result.snapshots, loaded.snapshots):
+        assert (mine.depth, mine.offset) == (theirs.depth, theirs.offset)
+        for name in ("pressure", "displacement", "gap", "contact"):
+            assert same_bits(getattr(theirs, name), getattr(mine, name)), (mine.step, name)
+    # and the .npy files of the chosen steps, as the command line writes them
+    assert sorted(p.name for p in (tmp_path / "snapshots").iterdir()) == [
+        f"step_{step:06d}_{name}.npy" for step in (3, 15) for name in ("displacement", "pressure")
+    ]
     with pytest.raises(ValueError, match="curve.csv"):
         adhesim.load(tmp_path / "nothing")
 
@@ -298,10 +319,12 @@ def test_out_folder_is_kept_as_the_command_line_keeps_it(tmp_path):
     assert (foreign / "thesis.tex").read_text() == "keep me"
 
     folder = tmp_path / "run"
-    adhesim.run(JKR_TOML, out=folder, **SMALL, **{"output.snapshot_steps": [3]})
-    assert [s.step for s in adhesim.load(folder).snapshots] == [3]
-    adhesim.run(JKR_TOML, out=folder, **SMALL)
-    assert adhesim.load(folder).snapshots == []
+    first = adhesim.run(JKR_TOML, out=folder, **SMALL, **{"output.snapshot_steps": [3]})
+    assert [s.step for s in adhesim.load(folder).snapshots] == snapshot_steps(first.curve_arrays, [3], 20)
+    second = adhesim.run(JKR_TOML, out=folder, **SMALL)
+    assert [s.step for s in adhesim.load(folder).snapshots] == snapshot_steps(second.curve_arrays, [], 20)
+    assert 3 not in [s.step for s in adhesim.load(folder).snapshots]
+    assert not (folder / "snapshots").exists()
     assert (folder / ".adhesim-run").read_text().startswith("adhesim run folder\nresults_revision = ")
     if cli_binary() is not None:
         subprocess.run(
@@ -391,3 +414,84 @@ steps = 5
         }
     )
     assert same_bits(from_dict.curve_arrays["force_normal"], result.curve_arrays["force_normal"])
+
+
+@pytest.mark.skipif(cli_binary() is None, reason="ADHESIM_BIN is not set to a built `adhesim` binary")
+@pytest.mark.parametrize(
+    "name, overrides",
+    [
+        ("jkr.toml", {"grid.n": 32, "protocol.steps": 20, "output.snapshot_steps": [3, 15]}),
+        # a translation: the gap follows the moving profile, offsets are not 0
+        ("fig6.toml", {"grid.n": 32, "protocol.approach_steps": 20, "protocol.steps": 40}),
+    ],
+)
+def test_fields_npz_of_run_is_the_command_line_s(tmp_path, name, overrides):
+    """adhesim.run(out=...) writes fields.npz with the same bytes as `adhesim run` (both
+    through the scenario crate's SnapshotFields and adhesim_topography::write_npz), and
+    load() of either folder gives run()'s snapshots, bit for bit."""
+    cli_out = tmp_path / "cli"
+    sets = [arg for key, value in overrides.items() for arg in ("--set", f"{key}={_toml(value)}")]
+    subprocess.run(
+        [str(cli_binary()), "run", str(REPO / "scenarios" / name), "--out", str(cli_out), "--quiet", *sets],
+        check=True,
+    )
+    result = adhesim.run(REPO / "scenarios" / name, out=tmp_path / "py", overrides=overrides)
+    assert (tmp_path / "py" / "fields.npz").read_bytes() == (cli_out / "fields.npz").read_bytes()
+    loaded = adhesim.load(cli_out)
+    assert [s.step for s in loaded.snapshots] == [s.step for s in result.snapshots]
+    assert len(result.snapshots) >= 2
+    for mine, theirs in zip(result.snapshots, loaded.snapshots):
+        assert (mine.depth, mine.offset) == (theirs.depth, theirs.offset)
+        for field in ("pressure", "displacement", "gap", "contact"):
+            assert same_bits(getattr(theirs, field), getattr(mine, field)), (mine.step, field)
+
+
+def _toml(value):
+    """A --set value as TOML text."""
+    return "[" + ", ".join(map(str, value)) + "]" if isinstance(value, list) else str(value)
+
+
+@pytest.mark.skipif(cli_binary() is None, reason="ADHESIM_BIN is not set to a built `adhesim` binary")
+def test_cli_fields_npz_follows_the_documented_contract(tmp_path):
+    """Issue #18: the built-in default scenario (`adhesim` without a subcommand, the
+    paper's Fig. 1 case) at n = 32 through the binary; its fields.npz read with plain
+    numpy.load has the names, shapes and dtypes of docs/output.md, and each snapshot's
+    Δ²·Σ pressure is the step's force_normal in curve.csv. Tolerance: relative 1e-12 of
+    the largest |force_normal| (the CSV holds the force to 17 significant digits; the
+    sums differ only by the order of float additions)."""
+    out = tmp_path / "default"
+    default = REPO / "scenarios" / "fig1.toml"
+    subprocess.run(
+        [str(cli_binary()), "run", str(default), "--out", str(out), "--quiet", "--set", "grid.n=32"], check=True
+    )
+    curve = adhesim.load(out).curve_arrays
+    size = adhesim.load(out).summary["inputs"]["grid"]["size"]
+    n = 32
+    with np.load(out / "fields.npz") as npz:
+        names = set(npz.files)
+        for axis in ("x", "y"):
+            assert npz[axis].shape == (n,) and npz[axis].dtype == np.float64
+        assert npz["heights"].shape == (n, n) and npz["heights"].dtype == np.float64
+        assert npz["surface"].shape == (n, n) and npz["surface"].dtype == np.bool_
+        steps = npz["steps"]
+        assert steps.dtype == np.float64 and steps.ndim == 1 and len(steps) >= 3
+        assert np.all(np.diff(steps) > 0) and np.all(steps == np.round(steps))
+        for name in ("depths", "offsets"):
+            assert npz[name].shape == steps.shape and npz[name].dtype == np.float64
+        per_step = {f"{f}_{int(s):06d}" for s in steps for f in ("pressure", "displacement", "gap", "contact")}
+        assert names == {"x", "y", "heights", "surface", "steps", "depths", "offsets"} | per_step
+        dx = size / n
+        # element centres (j - N/2)·Δ, the same along y
+        assert np.allclose(npz["x"], (np.arange(n) - n // 2) * dx, rtol=0, atol=1e-12 * size)
+        assert np.array_equal(npz["y"], npz["x"])
+        scale = np.abs(curve["force_normal"]).max()
+        for k, step in enumerate(steps.astype(int)):
+            for field in ("pressure", "displacement", "gap"):
+                assert npz[f"{field}_{step:06d}"].shape == (n, n)
+                assert npz[f"{field}_{step:06d}"].dtype == np.float64
+            contact = npz[f"contact_{step:06d}"]
+            assert contact.dtype == np.bool_ and contact.shape == (n, n)
+            assert npz["depths"][k] == curve["d"][step]
+            force = dx * dx * npz[f"pressure_{step:06d}"].sum()
+            assert abs(force - curve["force_normal"][step]) <= 1e-12 * scale, (step, force)
+            assert contact.sum() == curve["n_contact"][step]

@@ -44,6 +44,7 @@ mod parse;
 mod pipeline;
 mod results;
 mod roughness;
+mod snapshots;
 mod summary;
 mod translation;
 mod validate;
@@ -55,6 +56,7 @@ pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_h
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
+pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder};
 pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes, Summary};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 

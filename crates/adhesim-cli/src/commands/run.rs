@@ -6,7 +6,10 @@ use crate::commands::folder;
 use crate::{output, plots, resources, summary, tangential_plots};
 use adhesim::analysis::reference::Hertz;
 use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
-use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
+use adhesim_scenario::{
+    ProtocolReport, ProtocolSetup, RunOutcome, RunResults, SnapshotPlan, SnapshotRecorder, TranslationSetup,
+    ValidScenario,
+};
 use anyhow::{anyhow, Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -125,7 +128,8 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         eprintln!("warning: {warning}");
     }
     let start = Instant::now();
-    let (plan, strip) = snapshot_plan(&scenario);
+    let plan = SnapshotPlan::new(&scenario);
+    let strip = strip_steps(&scenario);
     let mut observer = output::RunObserver::new(
         out,
         scenario.grid,
@@ -136,15 +140,11 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     )?;
     observer.capture(strip);
     observer.fields = Some(crate::fields::FieldsRecorder::new(
-        scenario.grid,
-        match scenario.protocol_setup() {
-            ProtocolSetup::Translation(setup) => crate::fields::FieldProfile::Moving(setup.contact.clone()),
-            ProtocolSetup::Indentation(_) => crate::fields::FieldProfile::Fixed(scenario.heights.clone()),
-        },
+        SnapshotRecorder::new(SnapshotPlan::new(&scenario)),
         options.fields == Some(FieldsFormat::Netcdf),
     ));
     let outcome = adhesim_scenario::run(&scenario, &mut observer);
-    observer.finish()?;
+    observer.finish(&scenario)?;
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(ProtocolError::Interrupted(step)) => {
@@ -202,38 +202,23 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     Ok(())
 }
 
-/// Which snapshots the observer writes, and the steps whose contact sets it keeps for the
-/// snapshot strip of a translation (paper Figs. 6b, 9).
-fn snapshot_plan(scenario: &ValidScenario) -> (output::SnapshotPlan, Vec<usize>) {
+/// The steps whose contact sets the observer keeps for the snapshot strip of a
+/// translation (paper Figs. 6b, 9): the chosen steps (at most 8), else consecutive steps
+/// in the middle of the stationary part.
+fn strip_steps(scenario: &ValidScenario) -> Vec<usize> {
     let o = &scenario.file.output;
-    let mut chosen: std::collections::BTreeSet<usize> = o.snapshot_steps.iter().map(|&s| s as usize).collect();
-    let mut plan = output::SnapshotPlan {
-        chosen: Default::default(),
-        every: o.snapshot_every as usize,
-        jump_elements: o.jump_snapshot_elements as usize,
-        max_jump_snapshots: o.max_snapshots as usize,
-        max_depth_step: scenario.approach_steps.saturating_sub(1),
-    };
     let ProtocolSetup::Translation(setup) = scenario.protocol_setup() else {
-        plan.chosen = chosen;
-        return (plan, Vec::new());
+        return Vec::new();
     };
     let protocol = &setup.protocol;
     let forward_end = protocol.approach_steps + protocol.steps;
-    if chosen.is_empty() && o.snapshot_every == 0 {
-        // The end of the forward stroke.
-        chosen.insert(forward_end - 1);
-    }
-    let strip: Vec<usize> = if o.snapshot_steps.is_empty() {
-        // Consecutive steps in the middle of the stationary part.
+    if o.snapshot_steps.is_empty() {
         let first = protocol.approach_steps
             + ((protocol.stationary_from + 0.5 * (1.0 - protocol.stationary_from)) * protocol.steps as f64) as usize;
         (first..first + STRIP_FRAMES).filter(|&s| s < forward_end).collect()
     } else {
         o.snapshot_steps.iter().map(|&s| s as usize).take(8).collect()
-    };
-    plan.chosen = chosen;
-    (plan, strip)
+    }
 }
 
 /// The force–depth and force–radius figures of an indentation (with Hertz or JKR

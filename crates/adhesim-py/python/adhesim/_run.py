@@ -30,20 +30,25 @@ ScenarioLike = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 class Snapshot:
     """The contact fields of one step, float64 (n, n) arrays indexed [row = y, column = x].
 
+    The fields are those of ``fields.npz`` (docs/output.md): ``run`` and ``load`` give the
+    same snapshots for the same run.
+
     Attributes:
         step: step number (0-based, as in curve.csv).
         depth: indentation depth d of the step (> 0 into the body).
+        offset: lateral position X of the indenter axis (0 for indentation).
         pressure: p (> 0 compressive, < 0 tensile).
         displacement: u (> 0 into the body).
-        gap: g = z - d + u (>= 0; +inf where the indenter has no surface); None when
-            read back from a run folder (the command line does not write it).
-        contact: bool (n, n) contact mask; None when read back from a run folder without
-            a contact field.
+        gap: g = u + z - d (0 in contact, > 0 outside; 0 where the indenter has no
+            surface); None only when read back from an old run folder without
+            ``fields.npz``.
+        contact: bool (n, n) contact mask; None as ``gap``.
     """
 
-    def __init__(self, step, depth, pressure, displacement, gap=None, contact=None):
+    def __init__(self, step, depth, pressure, displacement, gap=None, contact=None, offset=0.0):
         self.step = int(step)
         self.depth = float(depth)
+        self.offset = float(offset)
         self.pressure = pressure
         self.displacement = displacement
         self.gap = gap
@@ -64,8 +69,11 @@ class RunResult:
             ``curve_arrays``.
         summary: dict equal to the content of ``summary.json`` (inputs, derived, results,
             performance, warnings).
-        snapshots: list of ``Snapshot`` for the steps the scenario's ``[output]`` selects
-            (``snapshot_steps``, ``snapshot_every``).
+        snapshots: list of ``Snapshot`` of the snapshot steps, by step: the steps the
+            scenario's ``[output]`` chooses (``snapshot_steps``, ``snapshot_every``; for a
+            translation by default the end of the forward stroke), the deepest step, the
+            last step in contact and the step of the largest contact, each once (the
+            steps of ``fields.npz``, docs/output.md).
         out: the folder the files were written to, or None.
     """
 
@@ -189,7 +197,17 @@ def _available_memory():
 # (crates/adhesim-cli/src/commands/folder.rs): a folder that is not empty must hold the
 # marker, and the previous run's outputs are removed before the new ones are written.
 RUN_MARKER = ".adhesim-run"
-RUN_OUTPUTS = ("curve.csv", "curve.csv.partial", "summary.json", "plots", "snapshots")
+RUN_OUTPUTS = (
+    "curve.csv",
+    "curve.csv.partial",
+    "summary.json",
+    "plots",
+    "snapshots",
+    "fields.npz",
+    "fields.npz.partial",
+    "fields.nc",
+    "fields.nc.partial",
+)
 
 
 def _check_run_folder(out: Path, force: bool):
@@ -204,10 +222,11 @@ def _check_run_folder(out: Path, force: bool):
         )
 
 
-def _write_outputs(out: Path, columns_csv: str, summary_json: str, snapshots: List[Snapshot]):
-    """The run marker, curve.csv, summary.json and snapshots/step_*_{pressure,
-    displacement}.npy, each written to a temporary name and renamed (a file is always
-    whole), after removing the previous run's outputs."""
+def _write_outputs(out: Path, columns_csv: str, summary_json: str, raw_snapshots, fields):
+    """The run marker, curve.csv, summary.json, fields.npz (the command line's bytes) and
+    snapshots/step_*_{pressure,displacement}.npy of the chosen steps, each written to a
+    temporary name and renamed (a file is always whole), after removing the previous
+    run's outputs."""
     import shutil
 
     out.mkdir(parents=True, exist_ok=True)
@@ -230,13 +249,17 @@ def _write_outputs(out: Path, columns_csv: str, summary_json: str, snapshots: Li
 
     atomic(out / "curve.csv", lambda f: f.write(columns_csv), "w")
     atomic(out / "summary.json", lambda f: f.write(summary_json), "w")
-    if snapshots:
+    npz_partial = out / "fields.npz.partial"
+    fields.write_npz(str(npz_partial))
+    os.replace(npz_partial, out / "fields.npz")
+    chosen = [s for s in raw_snapshots if s["chosen"]]
+    if chosen:
         folder = out / "snapshots"
         folder.mkdir(exist_ok=True)
-        for s in snapshots:
+        for s in chosen:
             for name in ("pressure", "displacement"):
-                array = getattr(s, name)
-                atomic(folder / f"step_{s.step:06d}_{name}.npy", lambda f: np.save(f, array), "wb")
+                array = s[name]
+                atomic(folder / f"step_{s['step']:06d}_{name}.npy", lambda f: np.save(f, array), "wb")
 
 
 def run(
@@ -256,9 +279,10 @@ def run(
             file's keys (``{"grid": {"n": 64, ...}, ...}``; relative paths then resolve
             against the working directory).
         out: optional folder to write ``curve.csv`` and ``summary.json`` into (the same
-            bytes as the command line's, apart from the timings under ``performance``)
-            and the ``.npy`` fields of the snapshot steps
-            (``snapshots/step_NNNNNN_{pressure,displacement}.npy``). Figures and the
+            bytes as the command line's, apart from the timings under ``performance``),
+            ``fields.npz`` (the command line's bytes) and the ``.npy`` fields of the
+            chosen snapshot steps (``snapshots/step_NNNNNN_{pressure,displacement}.npy``).
+            ``fields.nc``, figures and the
             contact-map PNGs are the command line's only. As with ``adhesim run --out``,
             the folder must be new, empty or a run folder (it gets the ``.adhesim-run``
             marker; the previous run's outputs are removed first).
@@ -301,13 +325,13 @@ def run(
             bar.close()
     curve = {name: array for name, array in raw["columns"]}
     snapshots = [
-        Snapshot(s["step"], s["depth"], s["pressure"], s["displacement"], s["gap"], s["contact"])
+        Snapshot(s["step"], s["depth"], s["pressure"], s["displacement"], s["gap"], s["contact"], s["offset"])
         for s in raw["snapshots"]
     ]
     folder = None
     if out is not None:
         folder = Path(out)
-        _write_outputs(folder, raw["csv"], raw["summary"], snapshots)
+        _write_outputs(folder, raw["csv"], raw["summary"], raw["snapshots"], raw["fields"])
     return RunResult(curve, json.loads(raw["summary"]), snapshots, folder)
 
 
@@ -334,39 +358,44 @@ def _read_curve(path: Path) -> Dict[str, np.ndarray]:
     return curve
 
 
-_FIELD = re.compile(r"step_(\d+)_(pressure|displacement|gap|contact)(?:\.npy)?$")
+_NPY_FIELD = re.compile(r"step_(\d+)_(pressure|displacement)\.npy$")
+
+
+def _read_fields_npz(path: Path) -> List[Snapshot]:
+    """The snapshots of a ``fields.npz`` (docs/output.md): ``steps``, ``depths``,
+    ``offsets`` and per step ``{pressure,displacement,gap,contact}_SSSSSS``."""
+    snapshots = []
+    with np.load(path) as archive:
+        try:
+            steps, depths, offsets = (archive[name] for name in ("steps", "depths", "offsets"))
+            for step, depth, offset in zip(steps, depths, offsets):
+                step = int(step)
+                fields = [archive[f"{name}_{step:06d}"] for name in ("pressure", "displacement", "gap", "contact")]
+                snapshots.append(Snapshot(step, depth, *fields[:3], fields[3].astype(bool), offset))
+        except KeyError as error:
+            raise ValueError(f"{path}: no array {error} (see docs/output.md, fields.npz)") from None
+    return snapshots
 
 
 def _read_snapshots(folder: Path, curve: Dict[str, np.ndarray]) -> List[Snapshot]:
+    """fields.npz when there is one; else (a folder of an older adhesim) the ``.npy``
+    pressure and displacement of the chosen steps."""
+    npz = folder / "fields.npz"
+    if npz.is_file():
+        return _read_fields_npz(npz)
     fields: Dict[int, Dict[str, np.ndarray]] = {}
     for path in sorted(folder.glob("snapshots/step_*.npy")):
-        match = _FIELD.search(path.name)
+        match = _NPY_FIELD.search(path.name)
         if match:
             fields.setdefault(int(match[1]), {})[match[2]] = np.load(path)
-    for npz in (folder / "fields.npz", folder / "snapshots" / "fields.npz"):
-        if npz.is_file():
-            with np.load(npz) as archive:
-                for key in archive.files:
-                    match = _FIELD.search(key)
-                    if match:
-                        fields.setdefault(int(match[1]), {})[match[2]] = archive[key]
     depths = dict(zip(curve.get("step", []), curve.get("d", [])))
-    snapshots = []
-    for step, f in sorted(fields.items()):
-        if "pressure" not in f or "displacement" not in f:
-            continue
-        contact = f.get("contact")
-        snapshots.append(
-            Snapshot(
-                step,
-                depths.get(step, float("nan")),
-                f["pressure"],
-                f["displacement"],
-                f.get("gap"),
-                None if contact is None else contact.astype(bool),
-            )
-        )
-    return snapshots
+    offsets = dict(zip(curve.get("step", []), curve.get("x", [])))
+    return [
+        Snapshot(step, depths.get(step, float("nan")), f["pressure"], f["displacement"],
+                 offset=offsets.get(step, 0.0))
+        for step, f in sorted(fields.items())
+        if "pressure" in f and "displacement" in f
+    ]
 
 
 def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
@@ -377,12 +406,14 @@ def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
 
     Returns:
         RunResult: the curve with the same column kinds as ``run`` gives, the summary,
-        and the snapshots whose pressure and displacement fields are there
-        (``snapshots/step_NNNNNN_{pressure,displacement}.npy`` or a ``fields.npz`` with
-        keys ``step_NNNNNN_{pressure,displacement,gap,contact}``).
+        and the snapshots of ``fields.npz`` (docs/output.md: the same steps and fields
+        as ``run`` gives); in a folder without ``fields.npz`` (an older adhesim), the
+        chosen steps' ``snapshots/step_NNNNNN_{pressure,displacement}.npy`` (gap and
+        contact None).
 
     Raises:
-        ValueError: a missing or unreadable ``curve.csv`` / ``summary.json``, naming it.
+        ValueError: a missing or unreadable ``curve.csv`` / ``summary.json``, or a
+            ``fields.npz`` without an array of the contract, naming it.
     """
     folder = Path(folder)
     curve_path, summary_path = folder / "curve.csv", folder / "summary.json"
