@@ -83,9 +83,15 @@ fn wrong_types_and_values_are_named() {
     let (_dir, output) = run_text(HERTZ, &["--set", "protocol.depth_unit=\"jkr\""]);
     assert_fails_with(&output, &["protocol.depth_unit", "work_of_adhesion"]);
     let (_dir, output) = run_text(HERTZ, &["--set", "indenter.amplitude=0.1"]);
-    assert_fails_with(&output, &["indenter.amplitude is not used"]);
+    assert_fails_with(
+        &output,
+        &["unknown key `indenter.amplitude` for indenter.shape = \"sphere\" (expected `radius`)"],
+    );
     let (_dir, output) = run_text(&HERTZ.replace("radius = 1.0", ""), &[]);
-    assert_fails_with(&output, &["indenter.radius is required"]);
+    assert_fails_with(
+        &output,
+        &["missing key `indenter.radius` (needed by indenter.shape = \"sphere\")"],
+    );
     let (_dir, output) = run_text(HERTZ, &["--set", "nonsense"]);
     assert_fails_with(&output, &["KEY=VALUE", "nonsense"]);
 }

@@ -52,12 +52,12 @@ impl ScenarioFile {
     pub(crate) fn check_derived(&self, derived: &Derived) -> Result<()> {
         let material = material_keys(&self.material);
         let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
-        let radius = format!("indenter.radius = {}", show(self.indenter.radius.unwrap_or(f64::NAN)));
+        let radius = format!("indenter.radius = {}", show(self.indenter.radius().unwrap_or(f64::NAN)));
         let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
         let waviness = format!(
             "indenter.wavelength = {}, indenter.amplitude = {}",
-            show(self.indenter.wavelength.unwrap_or(f64::NAN)),
-            show(self.indenter.amplitude.unwrap_or(f64::NAN))
+            show(self.indenter.waviness().map_or(f64::NAN, |(_, wavelength)| wavelength)),
+            show(self.indenter.waviness().map_or(f64::NAN, |(amplitude, _)| amplitude))
         );
         let scales = [
             ("F_JKR", derived.f_jkr, format!("{gamma}, {radius}")),
@@ -100,7 +100,7 @@ impl ScenarioFile {
     fn check_single_precision(&self, derived: &Derived) -> Result<()> {
         let material = material_keys(&self.material);
         let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
-        let radius = format!("indenter.radius = {}", show(self.indenter.radius.unwrap_or(f64::NAN)));
+        let radius = format!("indenter.radius = {}", show(self.indenter.radius().unwrap_or(f64::NAN)));
         let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
         let delta = derived.element_size;
         let scales = [

@@ -160,8 +160,8 @@ pub enum AxisName {
     Y,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+/// The kind of an `[indenter]` (its `shape` tag), for messages and dispatch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ShapeName {
     Sphere,
     WavySphere,
@@ -188,29 +188,86 @@ impl ShapeName {
     }
 }
 
+/// `[indenter]`, tagged by `shape`: each shape takes exactly its own keys, so that a key of
+/// another shape (`amplitude` on a sphere) is rejected by serde and a missing one is named.
+/// The variants' field order is the order `summary.json` echoes them in.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IndenterSection {
-    pub shape: ShapeName,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub radius: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub amplitude: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub wavelength: Option<f64>,
-    /// Degrees.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub angle: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub semi_axes: Option<Vec<f64>>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub file: Option<PathBuf>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub spacing: Option<f64>,
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum IndenterSection {
+    Sphere {
+        radius: f64,
+    },
+    /// A sphere with sinusoidal waviness (Eq. 1).
+    WavySphere {
+        radius: f64,
+        amplitude: f64,
+        wavelength: f64,
+        /// Rotation of the waviness, degrees (default 0).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        angle: Option<f64>,
+    },
+    FlatPunch {
+        radius: f64,
+    },
+    EllipticPunch {
+        /// [a, b].
+        semi_axes: Vec<f64>,
+        /// Rotation of the ellipse axes, degrees (default 0).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        angle: Option<f64>,
+    },
+    /// A measured height map.
+    Topography {
+        file: PathBuf,
+        /// Spacing of a file that records none (npy, npz, bare ASCII).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        spacing: Option<f64>,
+    },
+    /// A paraboloid of `radius` carrying the `[roughness]`.
+    RoughSphere {
+        radius: f64,
+    },
+    /// A plane carrying the `[roughness]`.
+    RoughFlat {},
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+impl IndenterSection {
+    pub fn shape(&self) -> ShapeName {
+        match self {
+            Self::Sphere { .. } => ShapeName::Sphere,
+            Self::WavySphere { .. } => ShapeName::WavySphere,
+            Self::FlatPunch { .. } => ShapeName::FlatPunch,
+            Self::EllipticPunch { .. } => ShapeName::EllipticPunch,
+            Self::Topography { .. } => ShapeName::Topography,
+            Self::RoughSphere { .. } => ShapeName::RoughSphere,
+            Self::RoughFlat {} => ShapeName::RoughFlat,
+        }
+    }
+
+    /// `indenter.radius` of the shapes that have one.
+    pub fn radius(&self) -> Option<f64> {
+        match self {
+            Self::Sphere { radius }
+            | Self::WavySphere { radius, .. }
+            | Self::FlatPunch { radius }
+            | Self::RoughSphere { radius } => Some(*radius),
+            _ => None,
+        }
+    }
+
+    /// `indenter.amplitude` and `indenter.wavelength` of a wavy sphere.
+    pub fn waviness(&self) -> Option<(f64, f64)> {
+        match self {
+            Self::WavySphere {
+                amplitude, wavelength, ..
+            } => Some((*amplitude, *wavelength)),
+            _ => None,
+        }
+    }
+}
+
+/// The kind of a `[protocol]` (its `kind` tag), for messages and dispatch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ProtocolKind {
     IndentPulloff,
     Roll,
@@ -253,35 +310,66 @@ pub enum DepthUnit {
     Length,
 }
 
+/// `[protocol]`, tagged by `kind`: each kind takes exactly its own keys, so that a key of
+/// another kind (`max_depth` on a roll) is rejected by serde and a missing one is named.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ProtocolSection {
+    IndentPulloff(IndentationProtocol),
+    Roll(MotionProtocol),
+    Slide(SlideProtocol),
+    Translate(MotionProtocol),
+}
+
+impl ProtocolSection {
+    pub fn kind(&self) -> ProtocolKind {
+        match self {
+            Self::IndentPulloff(_) => ProtocolKind::IndentPulloff,
+            Self::Roll(_) => ProtocolKind::Roll,
+            Self::Slide(_) => ProtocolKind::Slide,
+            Self::Translate(_) => ProtocolKind::Translate,
+        }
+    }
+
+    /// The unit of `max_depth`, `step` and `depth`.
+    pub fn depth_unit(&self) -> DepthUnit {
+        match self {
+            Self::IndentPulloff(p) => p.depth_unit,
+            Self::Roll(p) | Self::Translate(p) => p.depth_unit,
+            Self::Slide(p) => p.depth_unit,
+        }
+    }
+
+    /// Roll, slide, translate: the motion's keys and (slide only) `substrate_angle`.
+    pub fn motion(&self) -> Option<(MotionProtocol, Option<f64>)> {
+        match self {
+            Self::IndentPulloff(_) => None,
+            Self::Roll(p) | Self::Translate(p) => Some((p.clone(), None)),
+            Self::Slide(p) => Some((
+                MotionProtocol {
+                    depth_unit: p.depth_unit,
+                    depth: p.depth,
+                    distance: p.distance,
+                    distance_unit: p.distance_unit,
+                    approach_steps: p.approach_steps,
+                    return_stroke: p.return_stroke,
+                    stationary_from: p.stationary_from,
+                    steps: p.steps,
+                },
+                p.substrate_angle,
+            )),
+        }
+    }
+}
+
+/// `kind = "indent_pulloff"`: approach to `max_depth`, then retraction until contact is lost.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ProtocolSection {
-    pub kind: ProtocolKind,
-    /// Deepest indentation of `indent_pulloff`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub max_depth: Option<f64>,
+pub struct IndentationProtocol {
+    /// Deepest indentation (in `depth_unit`).
+    pub max_depth: f64,
     #[serde(default)]
     pub depth_unit: DepthUnit,
-    /// roll / slide / translate: indentation held during the motion (in `depth_unit`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub depth: Option<f64>,
-    /// roll / slide / translate: travel of the indenter axis in +x.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub distance: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub distance_unit: Option<DistanceUnit>,
-    /// roll / slide / translate: steps of the approach to `depth` (default 50).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub approach_steps: Option<i64>,
-    /// roll / slide / translate: travel back to x = 0 after the forward stroke.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub return_stroke: Option<bool>,
-    /// roll / slide / translate: means are taken over x > stationary_from·distance (default 0.5).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stationary_from: Option<f64>,
-    /// slide: rotation of the substrate's waviness against the indenter's, degrees (default 30).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub substrate_angle: Option<f64>,
     /// Steps per branch (approach); the retraction uses the same step size.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps: Option<i64>,
@@ -291,6 +379,55 @@ pub struct ProtocolSection {
     /// Safety limit on retraction steps (default: 20 × the approach steps, at least 1000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_retract_steps: Option<i64>,
+}
+
+/// `kind = "roll"` or `"translate"`: approach to `depth`, then travel by `distance` in +x.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionProtocol {
+    #[serde(default)]
+    pub depth_unit: DepthUnit,
+    /// Indentation held during the motion (in `depth_unit`).
+    pub depth: f64,
+    /// Travel of the indenter axis in +x.
+    pub distance: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance_unit: Option<DistanceUnit>,
+    /// Steps of the approach to `depth` (default 50).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_steps: Option<i64>,
+    /// Travel back to x = 0 after the forward stroke.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_stroke: Option<bool>,
+    /// Means are taken over x > stationary_from·distance (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stationary_from: Option<f64>,
+    /// Steps of the travel.
+    pub steps: i64,
+}
+
+/// `kind = "slide"`: a roll's keys (see [`MotionProtocol`]) and the substrate's angle. The
+/// keys are repeated rather than flattened because serde's `flatten` cannot be combined
+/// with `deny_unknown_fields`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlideProtocol {
+    #[serde(default)]
+    pub depth_unit: DepthUnit,
+    pub depth: f64,
+    pub distance: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance_unit: Option<DistanceUnit>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_steps: Option<i64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_stroke: Option<bool>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stationary_from: Option<f64>,
+    /// Rotation of the substrate's waviness against the indenter's, degrees (default 30).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substrate_angle: Option<f64>,
+    pub steps: i64,
 }
 
 fn default_jump_snapshot_elements() -> i64 {

@@ -121,17 +121,36 @@ fn section_error(name: &str, value: &toml::Value, error: toml::de::Error) -> any
             } else {
                 format!("{name}.{field}")
             };
-            let tail = tail.trim_start_matches(',').trim();
-            return if tail.is_empty() {
-                anyhow!("unknown key `{key}`")
-            } else {
-                anyhow!("unknown key `{key}` ({tail})")
+            let tail = match tail.trim_start_matches(',').trim() {
+                "there are no fields" => "it takes no keys",
+                tail => tail,
+            };
+            let shape = tagged_by(name, value);
+            let hint = (name == "protocol").then(|| protocol_key_owner(field)).flatten();
+            let with_hint;
+            let tail = match hint {
+                Some(hint) => {
+                    with_hint = format!("{hint}; {tail}");
+                    with_hint.as_str()
+                }
+                None => tail,
+            };
+            return match (shape.is_empty(), tail.is_empty()) {
+                (true, true) => anyhow!("unknown key `{key}`"),
+                (true, false) => anyhow!("unknown key `{key}` ({tail})"),
+                (false, true) => anyhow!("unknown key `{key}` for {shape}"),
+                (false, false) => anyhow!("unknown key `{key}` for {shape} ({tail})"),
             };
         }
     }
     if let Some(rest) = message.strip_prefix("missing field `") {
         if let Some((field, _)) = rest.split_once('`') {
-            return anyhow!("missing key `{name}.{field}`");
+            let shape = tagged_by(name, value);
+            return if shape.is_empty() {
+                anyhow!("missing key `{name}.{field}`")
+            } else {
+                anyhow!("missing key `{name}.{field}` (needed by {shape})")
+            };
         }
     }
     // A type or value error: name the key whose value the message quotes or whose type
@@ -155,6 +174,30 @@ fn section_error(name: &str, value: &toml::Value, error: toml::de::Error) -> any
         return anyhow!("{key} = {item}: {message}");
     }
     anyhow!("[{name}]: {message}")
+}
+
+/// `indenter.shape = "sphere"` for the `[indenter]` and `protocol.kind = "roll"` for the
+/// `[protocol]` (whose keys depend on that tag), or an empty string.
+fn tagged_by(name: &str, value: &toml::Value) -> String {
+    match (name, value.get("shape"), value.get("kind")) {
+        ("indenter", Some(shape), _) => format!("indenter.shape = {shape}"),
+        ("protocol", _, Some(kind)) => format!("protocol.kind = {kind}"),
+        _ => String::new(),
+    }
+}
+
+/// Which protocol kind a stray `[protocol]` key belongs to, for the message (serde lists
+/// the keys the given kind takes, not where the stray one goes).
+fn protocol_key_owner(field: &str) -> Option<&'static str> {
+    Some(match field {
+        "max_depth" => "a key of protocol.kind = \"indent_pulloff\"; a roll, slide or translate holds protocol.depth",
+        "step" | "max_retract_steps" => "a key of protocol.kind = \"indent_pulloff\"",
+        "substrate_angle" => "a key of protocol.kind = \"slide\"",
+        "depth" | "distance" | "distance_unit" | "approach_steps" | "return_stroke" | "stationary_from" => {
+            "a key of protocol.kind = \"roll\", \"slide\", \"translate\""
+        }
+        _ => return None,
+    })
 }
 
 /// Dotted keys and values of every non-table value below `value`.

@@ -107,7 +107,7 @@ pub fn fit_results(scenario: &ValidScenario, records: &[StepRecord]) -> (FitResu
     let (Some(jkr), Some(min_radius)) = (scenario.jkr, min_fit_radius(scenario)) else {
         return (FitResults::default(), None);
     };
-    if scenario.file.protocol.kind != ProtocolKind::IndentPulloff {
+    if scenario.file.protocol.kind() != ProtocolKind::IndentPulloff {
         return (FitResults::default(), None);
     }
     let analysis = analyse_indentation(

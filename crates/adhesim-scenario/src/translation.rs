@@ -46,16 +46,17 @@ impl ScenarioFile {
             derived,
             substrate_roughness,
         } = inputs;
-        let p = &self.protocol;
-        let kind = p.kind;
+        let kind = self.protocol.kind();
         let name = kind.name();
-        check_translation_keys(p)?;
+        let Some((p, substrate_angle)) = self.protocol.motion() else {
+            bail!("[protocol]: validate_translation needs protocol.kind = \"roll\", \"slide\" or \"translate\"");
+        };
         let wavy = match &indenter {
             Indenter::WavySphere(w) => *w,
             Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
             _ => bail!(
                 "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
-                self.indenter.shape.name()
+                self.indenter.shape().name()
             ),
         };
         let wavelength = matches!(indenter, Indenter::WavySphere(_)).then(|| wavy.waviness().wavelength());
@@ -65,7 +66,7 @@ impl ScenarioFile {
             _ => {
                 let degrees = finite(
                     "protocol.substrate_angle",
-                    p.substrate_angle.unwrap_or(DEFAULT_SUBSTRATE_ANGLE),
+                    substrate_angle.unwrap_or(DEFAULT_SUBSTRATE_ANGLE),
                 )?;
                 Kinematics::Slide {
                     substrate_angle: degrees.to_radians(),
@@ -81,9 +82,7 @@ impl ScenarioFile {
         let mut heights = vec![0.0; grid.len()];
         contact.fill_heights(&grid, 0.0, &mut heights);
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
-        let raw_depth = p
-            .depth
-            .ok_or_else(|| anyhow!("missing key `protocol.depth` (needed by protocol.kind = \"{name}\")"))?;
+        let raw_depth = p.depth;
         let depth = finite("protocol.depth", raw_depth)? * unit;
         if depth <= start_depth {
             bail!(
@@ -91,9 +90,7 @@ impl ScenarioFile {
                 start_depth / unit
             );
         }
-        let raw_distance = p
-            .distance
-            .ok_or_else(|| anyhow!("missing key `protocol.distance` (needed by protocol.kind = \"{name}\")"))?;
+        let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
             DistanceUnit::Length => 1.0,
             DistanceUnit::Wavelength => wavelength.ok_or_else(|| {
@@ -104,10 +101,7 @@ impl ScenarioFile {
         };
         let distance = positive("protocol.distance", raw_distance)? * distance_scale;
         check_travel_inside(&grid, &wavy, jkr.as_ref(), depth, (raw_distance, distance_scale))?;
-        let steps = p
-            .steps
-            .ok_or_else(|| anyhow!("missing key `protocol.steps` (steps of the travel, protocol.kind = \"{name}\")"))?;
-        let steps = step_count("protocol.steps", steps)?;
+        let steps = step_count("protocol.steps", p.steps)?;
         let approach_steps = step_count(
             "protocol.approach_steps",
             p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS),
@@ -211,30 +205,6 @@ fn check_travel_inside(
         bail!(
             "protocol.distance = {raw_distance} carries the contact off the grid: the indenter travels to X = {distance:.4e} and {how} is a ≈ {contact_radius:.4e}, so the contact's front reaches X + a = {front:.4e}, beyond the domain's half-width grid.size/2 = {half_width:.4e} (the contact would be cut by the edge or lost, with zero force); choose {advice}, or a larger grid.size"
         );
-    }
-    Ok(())
-}
-
-/// Keys of `[protocol]` that a translation of this kind does not use.
-fn check_translation_keys(p: &ProtocolSection) -> Result<()> {
-    let kind = p.kind;
-    let name = kind.name();
-    for (key, is_set) in [
-        ("max_depth", p.max_depth.is_some()),
-        ("step", p.step.is_some()),
-        ("max_retract_steps", p.max_retract_steps.is_some()),
-    ] {
-        if is_set {
-            let hint = if key == "max_depth" {
-                " (use protocol.depth)"
-            } else {
-                ""
-            };
-            bail!("protocol.{key} is not used by protocol.kind = \"{name}\"{hint}");
-        }
-    }
-    if p.substrate_angle.is_some() && kind != ProtocolKind::Slide {
-        bail!("protocol.substrate_angle is used by protocol.kind = \"slide\" only, not \"{name}\"");
     }
     Ok(())
 }

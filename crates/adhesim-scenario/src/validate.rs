@@ -39,10 +39,6 @@ pub(crate) fn finite(key: &str, value: f64) -> Result<f64> {
     }
 }
 
-pub(crate) fn required<T: Copy>(key: &str, value: Option<T>, shape: ShapeName) -> Result<T> {
-    value.ok_or_else(|| anyhow!("{key} is required for indenter.shape = \"{}\"", shape.name()))
-}
-
 impl ScenarioFile {
     /// Checks every value and builds the library objects, one section after the other.
     /// `base` resolves relative file paths.
@@ -51,7 +47,7 @@ impl ScenarioFile {
         let material = validate_material(&self.material)?;
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
         let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base, roughness.as_ref())?;
-        let shape = self.indenter.shape;
+        let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
         self.check_derived(&derived)?;
@@ -76,7 +72,7 @@ impl ScenarioFile {
             derived,
             substrate_roughness: substrate_roughness.map(|map| map.heights),
         };
-        let mut valid = if self.protocol.kind.is_translation() {
+        let mut valid = if self.protocol.kind().is_translation() {
             self.validate_translation(inputs)?
         } else {
             self.validate_indentation(inputs, heights, start_depth)?
@@ -88,7 +84,7 @@ impl ScenarioFile {
 
     /// `[roughness]` (indent_pulloff only) and `[substrate_roughness]` (slide only) on the grid.
     fn roughness_maps(&self, grid: &Grid, base: &Path) -> Result<(Option<RoughnessMap>, Option<RoughnessMap>)> {
-        let kind = self.protocol.kind;
+        let kind = self.protocol.kind();
         if self.roughness.is_some() && kind.is_translation() {
             bail!(
                 "[roughness] roughens the indenter of protocol.kind = \"indent_pulloff\" only, got \"{}\" (a slide's substrate takes [substrate_roughness])",
@@ -133,30 +129,15 @@ impl ScenarioFile {
             ..
         } = inputs;
         let contact_modulus = material.contact_modulus();
-        let p = &self.protocol;
-        for (key, is_set) in [
-            ("depth", p.depth.is_some()),
-            ("distance", p.distance.is_some()),
-            ("distance_unit", p.distance_unit.is_some()),
-            ("approach_steps", p.approach_steps.is_some()),
-            ("return_stroke", p.return_stroke.is_some()),
-            ("stationary_from", p.stationary_from.is_some()),
-            ("substrate_angle", p.substrate_angle.is_some()),
-        ] {
-            if is_set {
-                bail!(
-                    "protocol.{key} is not used by protocol.kind = \"indent_pulloff\" (it belongs to \"roll\", \"slide\", \"translate\")"
-                );
-            }
-        }
+        let ProtocolSection::IndentPulloff(p) = &self.protocol else {
+            bail!("[protocol]: validate_indentation needs protocol.kind = \"indent_pulloff\"");
+        };
         if !self.analysis.is_empty() {
             bail!(
                 "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only"
             );
         }
-        let raw_max_depth = p.max_depth.ok_or_else(|| {
-            anyhow!("missing key `protocol.max_depth` (needed by protocol.kind = \"indent_pulloff\")")
-        })?;
+        let raw_max_depth = p.max_depth;
         let max_depth = finite("protocol.max_depth", raw_max_depth)? * unit;
         if max_depth <= start_depth {
             bail!(
@@ -296,87 +277,50 @@ fn validate_indenter(
     base: &Path,
     roughness: Option<&RoughnessMap>,
 ) -> Result<(Indenter, Vec<f64>, f64)> {
-    let ind = section;
-    let shape = ind.shape;
-    let allowed: &[&str] = match shape {
-        ShapeName::Sphere => &["radius"],
-        ShapeName::WavySphere => &["radius", "amplitude", "wavelength", "angle"],
-        ShapeName::FlatPunch => &["radius"],
-        ShapeName::EllipticPunch => &["semi_axes", "angle"],
-        ShapeName::Topography => &["file", "spacing"],
-        ShapeName::RoughSphere => &["radius"],
-        ShapeName::RoughFlat => &[],
-    };
-    let present = [
-        ("radius", ind.radius.is_some()),
-        ("amplitude", ind.amplitude.is_some()),
-        ("wavelength", ind.wavelength.is_some()),
-        ("angle", ind.angle.is_some()),
-        ("semi_axes", ind.semi_axes.is_some()),
-        ("file", ind.file.is_some()),
-        ("spacing", ind.spacing.is_some()),
-    ];
-    for (key, is_set) in present {
-        if is_set && !allowed.contains(&key) {
-            let keys = if allowed.is_empty() {
-                "none".to_string()
-            } else {
-                allowed.join(", ")
-            };
-            bail!(
-                "indenter.{key} is not used by indenter.shape = \"{}\" (its keys: {keys})",
-                shape.name()
-            );
-        }
-    }
-    let angle_degrees = finite("indenter.angle", ind.angle.unwrap_or(0.0))?;
-    let angle = angle_degrees.to_radians();
-    let indenter = match shape {
-        ShapeName::Sphere => {
-            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
-            Indenter::Sphere(Sphere::new(radius)?)
-        }
-        ShapeName::WavySphere => {
-            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
-            let amplitude = non_negative(
-                "indenter.amplitude",
-                required("indenter.amplitude", ind.amplitude, shape)?,
-            )?;
-            let wavelength = positive(
-                "indenter.wavelength",
-                required("indenter.wavelength", ind.wavelength, shape)?,
-            )?;
+    // Which keys each shape takes, and that they are present, serde has checked
+    // (`IndenterSection` is tagged by `shape`); the numbers' ranges are checked here.
+    let shape = section.shape();
+    let angle = |angle: &Option<f64>| finite("indenter.angle", angle.unwrap_or(0.0)).map(f64::to_radians);
+    let indenter = match section {
+        IndenterSection::Sphere { radius } => Indenter::Sphere(Sphere::new(positive("indenter.radius", *radius)?)?),
+        IndenterSection::WavySphere {
+            radius,
+            amplitude,
+            wavelength,
+            angle: degrees,
+        } => {
+            let angle = angle(degrees)?;
+            let radius = positive("indenter.radius", *radius)?;
+            let amplitude = non_negative("indenter.amplitude", *amplitude)?;
+            let wavelength = positive("indenter.wavelength", *wavelength)?;
             Indenter::WavySphere(WavySphere::new(radius, amplitude, wavelength, angle)?)
         }
-        ShapeName::FlatPunch => {
-            let radius = positive("indenter.radius", required("indenter.radius", ind.radius, shape)?)?;
-            Indenter::FlatPunch(FlatPunch::new(radius)?)
+        IndenterSection::FlatPunch { radius } => {
+            Indenter::FlatPunch(FlatPunch::new(positive("indenter.radius", *radius)?)?)
         }
-        ShapeName::EllipticPunch => {
-            let axes = ind
-                .semi_axes
-                .as_ref()
-                .ok_or_else(|| anyhow!("indenter.semi_axes is required for indenter.shape = \"elliptic_punch\""))?;
-            if axes.len() != 2 {
-                bail!("indenter.semi_axes must be [a, b], got {axes:?}");
+        IndenterSection::EllipticPunch {
+            semi_axes,
+            angle: degrees,
+        } => {
+            let angle = angle(degrees)?;
+            if semi_axes.len() != 2 {
+                bail!("indenter.semi_axes must be [a, b], got {semi_axes:?}");
             }
-            let a = positive("indenter.semi_axes[0]", axes[0])?;
-            let b = positive("indenter.semi_axes[1]", axes[1])?;
+            let a = positive("indenter.semi_axes[0]", semi_axes[0])?;
+            let b = positive("indenter.semi_axes[1]", semi_axes[1])?;
             Indenter::EllipticPunch(EllipticPunch::new((a, b), angle)?)
         }
-        ShapeName::Topography => {
-            let file = ind
-                .file
-                .as_ref()
-                .ok_or_else(|| anyhow!("indenter.file is required for indenter.shape = \"topography\""))?;
-            let spacing = ind.spacing.map(|s| positive("indenter.spacing", s)).transpose()?;
+        IndenterSection::Topography { file, spacing } => {
+            let spacing = spacing.map(|s| positive("indenter.spacing", s)).transpose()?;
             let (values, rows, columns, spacing) = read_height_map(&base.join(file), spacing)?;
             Indenter::Topography(
                 Topography::new(values, rows, columns, spacing)
                     .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
             )
         }
-        ShapeName::RoughSphere | ShapeName::RoughFlat => rough_indenter(ind, grid, roughness)?,
+        IndenterSection::RoughSphere { .. } | IndenterSection::RoughFlat {} => {
+            rough_indenter(section, grid, roughness)?
+        }
     };
     let (indenter, heights) = with_roughness(indenter, grid, roughness)?;
     let start_depth = heights
@@ -397,18 +341,16 @@ fn validate_indenter(
 
 /// `rough_sphere` (radius + the `[roughness]`) and `rough_flat`.
 fn rough_indenter(section: &IndenterSection, grid: &Grid, roughness: Option<&RoughnessMap>) -> Result<Indenter> {
-    let shape = section.shape;
+    let shape = section.shape();
     let Some(map) = roughness else {
         bail!(
             "indenter.shape = \"{}\" needs a [roughness] section (roughness.file, or roughness.hurst, roughness.seed and roughness.rms_height or roughness.rms_slope)",
             shape.name()
         );
     };
-    let profile = if shape == ShapeName::RoughFlat {
-        RoughProfile::rough_flat(map.heights.clone(), grid)
-    } else {
-        let radius = positive("indenter.radius", required("indenter.radius", section.radius, shape)?)?;
-        RoughProfile::rough_sphere(radius, map.heights.clone(), grid)
+    let profile = match section.radius() {
+        Some(radius) => RoughProfile::rough_sphere(positive("indenter.radius", radius)?, map.heights.clone(), grid),
+        None => RoughProfile::rough_flat(map.heights.clone(), grid),
     };
     Ok(Indenter::Rough(profile.map_err(|e| anyhow!("[roughness]: {e}"))?))
 }
@@ -550,14 +492,14 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
 /// The length of one `protocol.depth_unit`.
 fn depth_unit(section: &ProtocolSection, shape: ShapeName, jkr: Option<&Jkr>, gamma0: f64) -> Result<f64> {
     let p = section;
-    if p.kind.is_translation() && !matches!(shape, ShapeName::Sphere | ShapeName::WavySphere) {
+    if p.kind().is_translation() && !matches!(shape, ShapeName::Sphere | ShapeName::WavySphere) {
         bail!(
             "protocol.kind = \"{}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
-            p.kind.name(),
+            p.kind().name(),
             shape.name()
         );
     }
-    Ok(match p.depth_unit {
+    Ok(match p.depth_unit() {
         DepthUnit::Length => 1.0,
         DepthUnit::Jkr => match jkr {
             Some(j) => j.critical_depth().abs(),

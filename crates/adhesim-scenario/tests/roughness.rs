@@ -301,8 +301,14 @@ fn every_roughness_error_names_the_key_and_the_value() {
         ),
         (&["roughness=[]"], "`roughness` must be a table [roughness]"),
         (&["roughness.seed=1.5"], "roughness.seed = 1.5"),
-        (&["indenter.shape=rough_flat"], "indenter.radius is not used by indenter.shape = \"rough_flat\" (its keys: none)"),
-        (&["indenter.amplitude=0.1"], "indenter.amplitude is not used by indenter.shape = \"rough_sphere\""),
+        (
+            &["indenter.shape=rough_flat"],
+            "unknown key `indenter.radius` for indenter.shape = \"rough_flat\" (it takes no keys)",
+        ),
+        (
+            &["indenter.amplitude=0.1"],
+            "unknown key `indenter.amplitude` for indenter.shape = \"rough_sphere\" (expected `radius`)",
+        ),
     ];
     for (overrides, expected) in cases {
         let error = error_of(ROUGH_SPHERE, overrides);

@@ -190,10 +190,10 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
             wanted.name()
         )
     })?;
-    let wavelength = base
+    let (_, wavelength) = base
         .file
         .indenter
-        .wavelength
+        .waviness()
         .ok_or_else(|| anyhow!("base = {}: needs a wavy_sphere indenter", study.base.display()))?;
     let jkr = base
         .jkr
@@ -219,7 +219,8 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
     let base_angle = (study.kind == StudyKind::Sliding).then(|| {
         base.file
             .protocol
-            .substrate_angle
+            .motion()
+            .and_then(|(_, substrate_angle)| substrate_angle)
             .unwrap_or(scenario::DEFAULT_SUBSTRATE_ANGLE)
     });
     let angles: Vec<Option<f64>> = match base_angle {
