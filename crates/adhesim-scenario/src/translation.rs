@@ -47,38 +47,11 @@ impl ScenarioFile {
             substrate_roughness,
         } = inputs;
         let kind = self.protocol.kind();
-        let name = kind.name();
         let Some((p, substrate_angle)) = self.protocol.motion() else {
             bail!("[protocol]: validate_translation needs protocol.kind = \"roll\", \"slide\" or \"translate\"");
         };
-        let wavy = match &indenter {
-            Indenter::WavySphere(w) => *w,
-            Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
-            _ => bail!(
-                "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
-                self.indenter.shape().name()
-            ),
-        };
-        let wavelength = matches!(indenter, Indenter::WavySphere(_)).then(|| wavy.waviness().wavelength());
-        let kinematics = match kind {
-            ProtocolKind::Roll => Kinematics::Roll,
-            ProtocolKind::Translate => Kinematics::Translate,
-            _ => {
-                let degrees = finite(
-                    "protocol.substrate_angle",
-                    substrate_angle.unwrap_or(DEFAULT_SUBSTRATE_ANGLE),
-                )?;
-                Kinematics::Slide {
-                    substrate_angle: degrees.to_radians(),
-                }
-            }
-        };
-        let mut contact = TranslatingContact::new(wavy, kinematics);
-        if let Some(roughness) = substrate_roughness {
-            contact = contact
-                .with_substrate_roughness(roughness, &grid)
-                .map_err(|e| anyhow!("[substrate_roughness]: {e}"))?;
-        }
+        let (wavy, wavelength, contact) =
+            self.translating_contact(&indenter, &grid, kind, substrate_angle, substrate_roughness)?;
         let mut heights = vec![0.0; grid.len()];
         contact.fill_heights(&grid, 0.0, &mut heights);
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
@@ -156,6 +129,48 @@ impl ScenarioFile {
             roughness: None,
             warnings: Vec::new(),
         })
+    }
+
+    /// The translating contact of a roll / slide / translate (a sphere is a wavy sphere of
+    /// zero amplitude), with the slide's substrate roughness; and the waviness wavelength.
+    fn translating_contact(
+        &self,
+        indenter: &Indenter,
+        grid: &Grid,
+        kind: ProtocolKind,
+        substrate_angle: Option<f64>,
+        substrate_roughness: Option<Vec<f64>>,
+    ) -> Result<(WavySphere, Option<f64>, TranslatingContact)> {
+        let name = kind.name();
+        let wavy = match indenter {
+            Indenter::WavySphere(w) => *w,
+            Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
+            _ => bail!(
+                "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+                self.indenter.shape().name()
+            ),
+        };
+        let wavelength = matches!(indenter, Indenter::WavySphere(_)).then(|| wavy.waviness().wavelength());
+        let kinematics = match kind {
+            ProtocolKind::Roll => Kinematics::Roll,
+            ProtocolKind::Translate => Kinematics::Translate,
+            _ => {
+                let degrees = finite(
+                    "protocol.substrate_angle",
+                    substrate_angle.unwrap_or(DEFAULT_SUBSTRATE_ANGLE),
+                )?;
+                Kinematics::Slide {
+                    substrate_angle: degrees.to_radians(),
+                }
+            }
+        };
+        let mut contact = TranslatingContact::new(wavy, kinematics);
+        if let Some(roughness) = substrate_roughness {
+            contact = contact
+                .with_substrate_roughness(roughness, grid)
+                .map_err(|e| anyhow!("[substrate_roughness]: {e}"))?;
+        }
+        Ok((wavy, wavelength, contact))
     }
 }
 
