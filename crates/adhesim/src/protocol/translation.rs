@@ -80,21 +80,7 @@ impl Translation {
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
-        if self.steps == 0 || self.approach_steps == 0 {
-            return Err(ProtocolError::InvalidParameter("steps must be >= 1".into()));
-        }
-        if !(self.distance.is_finite() && self.distance > 0.0) {
-            return Err(ProtocolError::InvalidParameter(format!(
-                "distance must be > 0, got {}",
-                self.distance
-            )));
-        }
-        if !(self.depth.is_finite() && self.depth > self.start_depth) {
-            return Err(ProtocolError::InvalidParameter(format!(
-                "depth ({}) must exceed the depth of first contact ({})",
-                self.depth, self.start_depth
-            )));
-        }
+        self.check()?;
         let grid = *operator.grid();
         solver.reset();
         let mut state = ContactState::new(&grid);
@@ -106,20 +92,7 @@ impl Translation {
             Kinematics::Roll => Phase::Roll,
             _ => Phase::Slide,
         };
-        let mut schedule: Vec<(Phase, f64, f64)> = (1..=self.approach_steps)
-            .map(|i| {
-                let depth = self.start_depth + (self.depth - self.start_depth) * i as f64 / self.approach_steps as f64;
-                (Phase::Approach, depth, 0.0)
-            })
-            .collect();
-        schedule.extend((1..=self.steps).map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)));
-        if self.return_stroke {
-            schedule.extend(
-                (0..self.steps)
-                    .rev()
-                    .map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)),
-            );
-        }
+        let schedule = self.schedule(phase);
         let forward_end = self.approach_steps + self.steps;
         let mut stationary = Vec::new();
         for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
@@ -170,37 +143,79 @@ impl Translation {
                 return Err(ProtocolError::Interrupted(step));
             }
         }
-        if !stationary.is_empty() {
-            let count = stationary.len() as f64;
-            let mean = |f: &dyn Fn(&StepRecord) -> f64| stationary.iter().map(f).sum::<f64>() / count;
-            summary.mean_tangential_force = mean(&|r| r.force_tangential);
-            let mean_force = summary.mean_tangential_force;
-            summary.tangential_force_fluctuation = mean(&|r| (r.force_tangential - mean_force).powi(2)).sqrt();
-            summary.mean_normal_force = mean(&|r| r.force_normal);
-            summary.mean_half_width = mean(&|r| r.half_width);
-            summary.mean_radius = mean(&|r| r.radius);
-            summary.mean_area = mean(&|r| r.area);
-            summary.compactness = mean(&|r| {
-                if r.radius > 0.0 {
-                    r.area / (std::f64::consts::PI * r.radius * r.radius)
-                } else {
-                    0.0
-                }
-            });
-            let travelled = stationary.last().map_or(0.0, |r| r.offset) - stationary[0].offset;
-            if travelled > 0.0 {
-                let work: f64 = stationary
-                    .windows(2)
-                    .map(|w| {
-                        0.5 * (w[0].force_tangential + w[1].force_tangential_before_change)
-                            * (w[1].offset - w[0].offset)
-                    })
-                    .sum();
-                summary.mean_tangential_force_work = work / travelled;
-                let released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
-                summary.dissipation_per_distance = released / travelled;
-            }
-        }
+        stationary_means(&mut summary, &stationary);
         Ok(summary)
+    }
+    /// The parameters a run needs, checked before anything is allocated.
+    fn check(&self) -> Result<(), ProtocolError> {
+        if self.steps == 0 || self.approach_steps == 0 {
+            return Err(ProtocolError::InvalidParameter("steps must be >= 1".into()));
+        }
+        if !(self.distance.is_finite() && self.distance > 0.0) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "distance must be > 0, got {}",
+                self.distance
+            )));
+        }
+        if !(self.depth.is_finite() && self.depth > self.start_depth) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "depth ({}) must exceed the depth of first contact ({})",
+                self.depth, self.start_depth
+            )));
+        }
+        Ok(())
+    }
+
+    /// (phase, depth, offset) of every step: the approach at x = 0, the forward stroke and,
+    /// if asked, the return stroke.
+    fn schedule(&self, phase: Phase) -> Vec<(Phase, f64, f64)> {
+        let mut schedule: Vec<(Phase, f64, f64)> = (1..=self.approach_steps)
+            .map(|i| {
+                let depth = self.start_depth + (self.depth - self.start_depth) * i as f64 / self.approach_steps as f64;
+                (Phase::Approach, depth, 0.0)
+            })
+            .collect();
+        schedule.extend((1..=self.steps).map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)));
+        if self.return_stroke {
+            schedule.extend(
+                (0..self.steps)
+                    .rev()
+                    .map(|i| (phase, self.depth, self.distance * i as f64 / self.steps as f64)),
+            );
+        }
+        schedule
+    }
+}
+
+/// Means over the stationary part of the forward stroke (paper Eqs. 12–18 read these).
+fn stationary_means(summary: &mut TranslationSummary, stationary: &[StepRecord]) {
+    if stationary.is_empty() {
+        return;
+    }
+    let count = stationary.len() as f64;
+    let mean = |f: &dyn Fn(&StepRecord) -> f64| stationary.iter().map(f).sum::<f64>() / count;
+    summary.mean_tangential_force = mean(&|r| r.force_tangential);
+    let mean_force = summary.mean_tangential_force;
+    summary.tangential_force_fluctuation = mean(&|r| (r.force_tangential - mean_force).powi(2)).sqrt();
+    summary.mean_normal_force = mean(&|r| r.force_normal);
+    summary.mean_half_width = mean(&|r| r.half_width);
+    summary.mean_radius = mean(&|r| r.radius);
+    summary.mean_area = mean(&|r| r.area);
+    summary.compactness = mean(&|r| {
+        if r.radius > 0.0 {
+            r.area / (std::f64::consts::PI * r.radius * r.radius)
+        } else {
+            0.0
+        }
+    });
+    let travelled = stationary.last().map_or(0.0, |r| r.offset) - stationary[0].offset;
+    if travelled > 0.0 {
+        let work: f64 = stationary
+            .windows(2)
+            .map(|w| 0.5 * (w[0].force_tangential + w[1].force_tangential_before_change) * (w[1].offset - w[0].offset))
+            .sum();
+        summary.mean_tangential_force_work = work / travelled;
+        let released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
+        summary.dissipation_per_distance = released / travelled;
     }
 }
