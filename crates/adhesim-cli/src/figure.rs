@@ -4,14 +4,13 @@
 //! palette and one set of sizes, and written as `NAME.svg` and `NAME.png` by
 //! [`save_svg_png`].
 //!
-//! A panel's axes cover its series with a 5 % margin (or a given x range, linear or
+//! A panel's axes cover its series with a 5 % margin (or given ranges, linear or
 //! logarithmic); a horizontal line marks y = 0 where the range crosses it; the legend lists
 //! the labelled series.
 
 use anyhow::{anyhow, Result};
 use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
-use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
@@ -121,7 +120,10 @@ pub struct Panel {
     pub y_label: String,
     pub series: Vec<Series>,
     log_x: bool,
+    log_y: bool,
     x_range: Option<(f64, f64)>,
+    y_range: Option<(f64, f64)>,
+    scientific_ticks: bool,
     include_y: Vec<f64>,
     guides_y: Vec<f64>,
     legend: SeriesLabelPosition,
@@ -136,7 +138,10 @@ impl Panel {
             y_label: y_label.into(),
             series: Vec::new(),
             log_x: false,
+            log_y: false,
             x_range: None,
+            y_range: None,
+            scientific_ticks: false,
             include_y: Vec::new(),
             guides_y: Vec::new(),
             legend: SeriesLabelPosition::UpperLeft,
@@ -161,6 +166,21 @@ impl Panel {
         self
     }
 
+    /// A logarithmic y axis over this range, as it is (no margin, no [`Panel::include_y`]).
+    pub fn log_y(self, low: f64, high: f64) -> Self {
+        Self {
+            log_y: true,
+            y_range: Some((low, high)),
+            ..self
+        }
+    }
+
+    /// Tick labels as `1.0e-3` and about 6 x ticks (log axes over many decades).
+    pub fn scientific_ticks(mut self) -> Self {
+        self.scientific_ticks = true;
+        self
+    }
+
     /// Stretches the y range to contain `y` (before the margin).
     pub fn include_y(mut self, y: f64) -> Self {
         self.include_y.push(y);
@@ -182,7 +202,9 @@ impl Panel {
     fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let ranged = || self.series.iter().filter(|s| !s.clipped).flat_map(|s| s.points.iter());
         let x = self.x_range.unwrap_or_else(|| padded_range(ranged().map(|p| p.0)));
-        let y = padded_range(ranged().map(|p| p.1).chain(self.include_y.iter().copied()));
+        let y = self
+            .y_range
+            .unwrap_or_else(|| padded_range(ranged().map(|p| p.1).chain(self.include_y.iter().copied())));
         (x, y)
     }
 }
@@ -276,38 +298,58 @@ where
     if !panel.title.is_empty() {
         builder.caption(&panel.title, (FAMILY, 20));
     }
-    if panel.log_x {
-        let chart = builder
-            .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
-            .map_err(plot_error)?;
-        draw_contents(chart, panel, (x0, x1), (y0, y1))
-    } else {
-        let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(plot_error)?;
-        draw_contents(chart, panel, (x0, x1), (y0, y1))
+    let ranges = ((x0, x1), (y0, y1));
+    match (panel.log_x, panel.log_y) {
+        (false, false) => {
+            let chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(plot_error)?;
+            draw_contents(chart, panel, ranges)
+        }
+        (true, false) => {
+            let chart = builder
+                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+                .map_err(plot_error)?;
+            draw_contents(chart, panel, ranges)
+        }
+        (false, true) => {
+            let chart = builder
+                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .map_err(plot_error)?;
+            draw_contents(chart, panel, ranges)
+        }
+        (true, true) => {
+            let chart = builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(plot_error)?;
+            draw_contents(chart, panel, ranges)
+        }
     }
 }
 
-/// Mesh, guide lines, series and legend of a panel whose axes are built (linear or log x).
-fn draw_contents<'a, DB, X>(
-    mut chart: ChartContext<'a, DB, Cartesian2d<X, RangedCoordf64>>,
+/// Mesh, guide lines, series and legend of a panel whose axes are built (linear or log).
+fn draw_contents<'a, DB, X, Y>(
+    mut chart: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     panel: &Panel,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
 ) -> Result<()>
 where
     DB: DrawingBackend + 'a,
     DB::ErrorType: 'static,
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    chart
-        .configure_mesh()
-        .x_desc(&panel.x_label)
+    let scientific = |v: &f64| format!("{v:.1e}");
+    let mut mesh = chart.configure_mesh();
+    mesh.x_desc(&panel.x_label)
         .y_desc(&panel.y_label)
         .label_style((FAMILY, 14))
         .axis_desc_style((FAMILY, 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(plot_error)?;
+        .light_line_style(RGBColor(235, 235, 235));
+    if panel.scientific_ticks {
+        mesh.x_labels(6)
+            .x_label_formatter(&scientific)
+            .y_label_formatter(&scientific);
+    }
+    mesh.draw().map_err(plot_error)?;
     let zero = (y0 < 0.0 && y1 > 0.0).then_some((0.0, 0.4));
     for (y, opacity) in zero.into_iter().chain(panel.guides_y.iter().map(|&y| (y, 0.25))) {
         chart
@@ -340,8 +382,8 @@ where
 }
 
 /// Draws the points with their mark; returns the annotation of the part the legend shows.
-fn draw_marks<'c, 'a: 'c, DB, X>(
-    chart: &'c mut ChartContext<'a, DB, Cartesian2d<X, RangedCoordf64>>,
+fn draw_marks<'c, 'a: 'c, DB, X, Y>(
+    chart: &'c mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     mark: Mark,
     colour: RGBColor,
     points: &[(f64, f64)],
@@ -350,6 +392,7 @@ where
     DB: DrawingBackend + 'a,
     DB::ErrorType: 'static,
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let line = |width: u32| LineSeries::new(points.iter().copied(), colour.stroke_width(width));
     let dots = |radius: u32| points.iter().map(move |&p| Circle::new(p, radius, colour.filled()));
@@ -463,6 +506,29 @@ mod tests {
         assert!(close(y0, -2.3) && close(y1, 4.3), "{y0} {y1}");
         let given = Panel::new("", "α", "y").log_x().x_range(0.1, 10.0).ranges().0;
         assert_eq!(given, (0.1, 10.0));
+        // A log y range is taken as it is: include_y does not stretch it.
+        let log_y = Panel::new("", "q", "C").include_y(1e6).log_y(1e-3, 1e2).ranges().1;
+        assert_eq!(log_y, (1e-3, 1e2));
+    }
+
+    #[test]
+    fn a_log_log_panel_draws_scientific_ticks() {
+        let dir = tempfile::tempdir().unwrap();
+        let power_law = (0..8).map(|k| 10f64.powi(k - 4)).map(|q| (q, q.powi(-2))).collect();
+        let panel = Panel::new("psd", "q", "C")
+            .with([Series::new("C", PALETTE[0], Mark::LinePoints, power_law)])
+            .log_x()
+            .x_range(1e-5, 1e4)
+            .log_y(1e-9, 1e9)
+            .scientific_ticks();
+        Figure::stacked(vec![panel]).save(dir.path(), "p", (500, 400)).unwrap();
+        let svg = std::fs::read_to_string(dir.path().join("p.svg")).unwrap();
+        // Decade ticks over 18 decades read as 1.0eN; a plain formatter would write 0.000001.
+        assert!(
+            svg.contains(">1.0e0<") || svg.lines().any(|l| l.trim() == "1.0e0"),
+            "{svg}"
+        );
+        assert!(!svg.contains("0.000001"), "{svg}");
     }
 
     #[test]

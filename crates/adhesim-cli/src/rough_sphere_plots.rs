@@ -13,11 +13,10 @@
 //! - `rough_sphere_depth`: the same quantities vs h_rms/|d_JKR|
 //!   (`roughness_depth_ratio`), the amplitude-only axis.
 
-use crate::figure::{grey_first, save_svg_png, Drawing};
+use crate::figure::{grey_first, Figure, Mark, Panel, Series, REFERENCE_GREY};
 use adhesim::analysis::johnson::{rough_sphere_parameter, roughness_depth_ratio};
-use anyhow::{anyhow, Context, Result};
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use anyhow::{Context, Result};
+use plotters::chart::SeriesLabelPosition;
 use std::path::{Path, PathBuf};
 
 /// One case: its series, the group its seeds share, both axes and the three quantities.
@@ -41,10 +40,6 @@ const QUANTITIES: [(&str, &str); 3] = [
     ("(b) detachment", "γ2 / γ0"),
     ("(c) adhesive force", "|F_ad| / |F_JKR|"),
 ];
-
-fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("plot: {e:?}")
-}
 
 /// Rough-sphere cases and wavy-sphere reference points of one table.
 fn read(path: &Path, cases: &mut Vec<Case>, reference: &mut Reference) -> Result<()> {
@@ -160,155 +155,113 @@ fn means(cases: &[Case], x: impl Fn(&Case) -> f64, q: usize) -> Vec<(String, Lin
     out
 }
 
-/// One of the two figures: the x axis it uses and whether the wavy reference belongs on it.
-struct Figure<'a> {
-    cases: &'a [Case],
-    reference: &'a Reference,
-    depth_axis: bool,
+/// The x value of a case on one of the two figures: α_r, or h_rms/|d_JKR| on the depth axis.
+fn x_of(case: &Case, depth_axis: bool) -> f64 {
+    if depth_axis {
+        case.depth_ratio
+    } else {
+        case.parameter
+    }
 }
 
-impl Figure<'_> {
-    fn x(&self, case: &Case) -> f64 {
-        if self.depth_axis {
-            case.depth_ratio
-        } else {
-            case.parameter
-        }
+/// Panel `q` of a figure: the wavy reference (α_r axis only), the y = 1 line, and per series
+/// its seeds as dots with their mean as a line; for γ also the area-equivalent-radius
+/// values (squares, their mean dashed). `series_order` fixes each series' colour on all panels.
+fn panel(cases: &[Case], reference: &Reference, depth_axis: bool, q: usize, series_order: &[String]) -> Panel {
+    let x = |case: &Case| x_of(case, depth_axis);
+    let x_label = if depth_axis {
+        "h_rms / |d_JKR|"
+    } else {
+        "rough-sphere parameter α_r = √(2γ0/(πE* h_rms h'_rms))"
+    };
+    let mut series = Vec::new();
+    if !depth_axis {
+        let wavy: Line = reference.iter().filter_map(|(a, v)| Some((*a, v[q]?))).collect();
+        series.push(Series::new(
+            "wavy sphere, α_r = 2^¼·α",
+            REFERENCE_GREY,
+            Mark::Trace,
+            wavy,
+        ));
     }
-
-    fn panel<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>, q: usize, styles: &[String]) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let reference: Vec<(f64, f64)> = if self.depth_axis {
-            Vec::new()
-        } else {
-            self.reference.iter().filter_map(|(a, v)| Some((*a, v[q]?))).collect()
-        };
-        let points: Vec<(f64, f64)> = self
-            .cases
-            .iter()
-            .flat_map(|c| {
-                let area = if q < 2 { c.values[q + 3] } else { None };
-                [c.values[q], area].into_iter().flatten().map(|v| (self.x(c), v))
-            })
-            .chain(reference.iter().copied())
-            .collect();
-        let (x_lo, x_hi) = points
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
-        let (y_lo, y_hi) = points
-            .iter()
-            .fold((0.0f64, 1.2f64), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
-        let (x_lo, x_hi) = (x_lo / 1.3, x_hi * 1.3);
-        let pad = 0.05 * (y_hi - y_lo);
-        let mut chart = ChartBuilder::on(area)
-            .caption(QUANTITIES[q].0, ("sans-serif", 18))
-            .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(56)
-            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo - pad)..(y_hi + pad))
-            .map_err(err)?;
-        let x_desc = if self.depth_axis {
-            "h_rms / |d_JKR|"
-        } else {
-            "rough-sphere parameter α_r = √(2γ0/(πE* h_rms h'_rms))"
-        };
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(QUANTITIES[q].1)
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 15))
-            .light_line_style(RGBColor(235, 235, 235))
-            .draw()
-            .map_err(err)?;
-        chart
-            .draw_series(LineSeries::new([(x_lo, 1.0), (x_hi, 1.0)], BLACK.mix(0.25)))
-            .map_err(err)?;
-        if !reference.is_empty() {
-            let style = BLACK.mix(0.6).stroke_width(1);
-            chart
-                .draw_series(LineSeries::new(reference.iter().copied(), style))
-                .map_err(err)?
-                .label("wavy sphere, α_r = 2^¼·α")
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
-            chart
-                .draw_series(reference.iter().map(|&p| Circle::new(p, 2, BLACK.mix(0.6).filled())))
-                .map_err(err)?;
-        }
-        for (series, line) in means(self.cases, |c| self.x(c), q) {
-            let k = styles.iter().position(|s| *s == series).unwrap_or(0);
-            let colour = grey_first(k + 1);
-            let style = colour.stroke_width(2);
-            let seeds: Vec<(f64, f64)> = self
-                .cases
+    for (name, mean) in means(cases, x, q) {
+        let k = series_order.iter().position(|s| *s == name).unwrap_or(0);
+        let colour = grey_first(k + 1);
+        let seeds = |value: usize| -> Line {
+            cases
                 .iter()
-                .filter(|c| c.series == series)
-                .filter_map(|c| Some((self.x(c), c.values[q]?)))
-                .collect();
-            chart
-                .draw_series(seeds.iter().map(|&p| Circle::new(p, 3, colour.stroke_width(1))))
-                .map_err(err)?;
-            chart
-                .draw_series(LineSeries::new(line, style))
-                .map_err(err)?
-                .label(format!("{series} (line: seed mean)"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
-            // γ with the area-equivalent radius: thin line, square markers.
-            let area = q + 3;
-            if q >= 2 {
-                continue;
-            }
-            let Some((_, area_line)) = means(self.cases, |c| self.x(c), area)
-                .into_iter()
-                .find(|(s, _)| *s == series)
-            else {
-                continue;
-            };
-            let thin = colour.mix(0.7).stroke_width(1);
-            chart
-                .draw_series(self.cases.iter().filter(|c| c.series == series).filter_map(|c| {
-                    let p = (self.x(c), c.values[area]?);
-                    Some(EmptyElement::at(p) + Rectangle::new([(-3, -3), (3, 3)], thin))
-                }))
-                .map_err(err)?;
-            chart
-                .draw_series(LineSeries::new(area_line, thin))
-                .map_err(err)?
-                .label(format!("{series}, radius √(A/π)"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], thin));
+                .filter(|c| c.series == name)
+                .filter_map(|c| Some((x(c), c.values[value]?)))
+                .collect()
+        };
+        series.push(Series::new("", colour, Mark::Points, seeds(q)));
+        series.push(Series::new(
+            format!("{name} (line: seed mean)"),
+            colour,
+            Mark::Line,
+            mean,
+        ));
+        // γ with the area-equivalent radius √(A/π).
+        let area = q + 3;
+        if q >= 2 {
+            continue;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font(("sans-serif", 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .draw()
-            .map_err(err)?;
-        Ok(())
+        let Some((_, area_mean)) = means(cases, x, area).into_iter().find(|(s, _)| *s == name) else {
+            continue;
+        };
+        // Told once in the title, not per series: ten legend rows would cover the data.
+        series.push(Series::new("", colour, Mark::Marker(0), seeds(area)));
+        series.push(Series::new("", colour, Mark::Dashed, area_mean));
+    }
+    // A log axis 1.3× beyond the data each way; y from at least 0 to 1.2.
+    let (x_low, x_high) = series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
+    let (x_low, x_high) = if x_low.is_finite() && x_low > 0.0 {
+        (x_low / 1.3, x_high * 1.3)
+    } else {
+        (0.1, 10.0)
+    };
+    let title = if q < 2 {
+        format!("{}; □, dashed: radius √(A/π)", QUANTITIES[q].0)
+    } else {
+        QUANTITIES[q].0.to_string()
+    };
+    Panel::new(title, x_label, QUANTITIES[q].1)
+        .with(series)
+        .log_x()
+        .x_range(x_low, x_high)
+        .include_y(0.0)
+        .include_y(1.2)
+        .guide_y(1.0)
+        .legend_at(legend_corner(depth_axis, q))
+}
+
+/// The empty corner of panel `q`: γ falls with α_r and rises with h_rms/|d_JKR|; the force
+/// ratio stays near 1 for large α_r and small depths.
+fn legend_corner(depth_axis: bool, q: usize) -> SeriesLabelPosition {
+    match (depth_axis, q >= 2) {
+        (false, false) => SeriesLabelPosition::UpperRight,
+        (false, true) => SeriesLabelPosition::LowerRight,
+        (true, false) => SeriesLabelPosition::UpperLeft,
+        (true, true) => SeriesLabelPosition::LowerLeft,
     }
 }
 
-impl Drawing for Figure<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        area.fill(&WHITE).map_err(err)?;
-        let mut styles: Vec<String> = Vec::new();
-        for case in self.cases {
-            if !styles.contains(&case.series) {
-                styles.push(case.series.clone());
-            }
+/// One of the two figures: three panels side by side.
+fn figure(cases: &[Case], reference: &Reference, depth_axis: bool) -> Figure {
+    let mut series_order: Vec<String> = Vec::new();
+    for case in cases {
+        if !series_order.contains(&case.series) {
+            series_order.push(case.series.clone());
         }
-        let panels = area.split_evenly((1, 3));
-        for (q, panel) in panels.iter().enumerate() {
-            self.panel(panel, q, &styles)?;
-        }
-        area.present().map_err(err)
     }
+    Figure::side_by_side(
+        (0..QUANTITIES.len())
+            .map(|q| panel(cases, reference, depth_axis, q, &series_order))
+            .collect(),
+    )
 }
 
 /// Draws the rough-sphere figures into `out` when some table has rough-sphere cases;
@@ -324,12 +277,7 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
     reference.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut written = Vec::new();
     for (name, depth_axis) in [("rough_sphere_master", false), ("rough_sphere_depth", true)] {
-        let figure = Figure {
-            cases: &cases,
-            reference: &reference,
-            depth_axis,
-        };
-        written.extend(save_svg_png(out, name, (1500, 480), &figure)?);
+        written.extend(figure(&cases, &reference, depth_axis).save(out, name, (1500, 480))?);
     }
     Ok(written)
 }

@@ -6,7 +6,7 @@
 //! doi:10.1088/2051-672X/aa51f8: C(q) ∝ q^(−2−2H)); writes `psd.csv`, the log–log PSD
 //! plot, a height-map picture and `statistics.json` into `--out`.
 
-use crate::figure::{save_svg_png, Drawing, PALETTE};
+use crate::figure::{Figure, Mark, Panel, Series, PALETTE};
 use adhesim::analysis::fit::fit_power_law;
 use adhesim::surface::{isotropic_psd, statistics, PsdBin};
 use adhesim::{Boundary, Grid};
@@ -14,8 +14,7 @@ use adhesim_scenario::RoughnessSection;
 use adhesim_topography::{read_topography, ReadOptions};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use plotters::chart::SeriesLabelPosition;
 use serde::Serialize;
 use std::f64::consts::{PI, TAU};
 use std::path::{Path, PathBuf};
@@ -120,7 +119,7 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
         hurst_fit_range: fit.map(|f| f.range),
     };
     let mut written = vec![write_psd_csv(&out, &psd)?];
-    written.extend(save_svg_png(&out, "psd", (800, 600), &PsdFigure { bins: &psd, fit })?);
+    written.extend(psd_figure(&psd, fit)?.save(&out, "psd", (800, 600))?);
     written.push(write_height_map(&out.join("heights.png"), grid.n(), &surface.heights)?);
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out.join("statistics.json"), json + "\n")
@@ -343,89 +342,50 @@ fn write_psd_csv(out: &Path, psd: &[PsdBin]) -> Result<String> {
     Ok("psd.csv".into())
 }
 
-/// The log–log PSD with the fitted power law over its range.
-struct PsdFigure<'a> {
-    bins: &'a [PsdBin],
-    fit: Option<HurstFit>,
-}
-
-impl Drawing for PsdFigure<'_> {
-    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()>
-    where
-        DB::ErrorType: 'static,
-    {
-        let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("drawing the PSD: {e:?}");
-        area.fill(&WHITE).map_err(err)?;
-        let positive: Vec<(f64, f64)> = self
-            .bins
-            .iter()
-            .filter(|b| b.psd > 0.0)
-            .map(|b| (b.wavevector, b.psd))
-            .collect();
-        if positive.is_empty() {
-            bail!("the PSD has no positive bin (a flat map)");
-        }
-        let (q_min, q_max) = positive
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
-        let (c_min, c_max) = positive
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
-        let title = match self.fit {
-            Some(fit) => format!("Isotropic PSD (Hurst estimate H = {:.3})", fit.hurst),
-            None => "Isotropic PSD".to_string(),
-        };
-        let mut chart = ChartBuilder::on(area)
-            .caption(title, ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(44)
-            .y_label_area_size(70)
-            .build_cartesian_2d(
-                (q_min / 1.2..q_max * 1.2).log_scale(),
-                (c_min / 2.0..c_max * 2.0).log_scale(),
-            )
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc("wavevector q (1/length)")
-            .y_desc("C(q) (length⁴)")
-            .x_labels(6)
-            .x_label_formatter(&|v| format!("{v:.1e}"))
-            .y_label_formatter(&|v| format!("{v:.1e}"))
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 15))
-            .light_line_style(RGBColor(235, 235, 235))
-            .draw()
-            .map_err(err)?;
-        chart
-            .draw_series(LineSeries::new(positive.iter().copied(), PALETTE[0].stroke_width(2)))
-            .map_err(err)?;
-        chart
-            .draw_series(positive.iter().map(|&p| Circle::new(p, 3, PALETTE[0].filled())))
-            .map_err(err)?;
-        if let Some(HurstFit {
-            hurst: h,
-            prefactor,
-            range: (low, high),
-        }) = self.fit
-        {
-            let line = [low, high].map(|q| (q, prefactor * q.powf(-2.0 - 2.0 * h)));
-            chart
-                .draw_series(LineSeries::new(line, PALETTE[1].stroke_width(2)))
-                .map_err(err)?
-                .label(format!("fit ∝ q^(−2−2H), H = {h:.3}"))
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], PALETTE[1].stroke_width(2)));
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK.mix(0.3))
-                .label_font(("sans-serif", 14))
-                .draw()
-                .map_err(err)?;
-        }
-        area.present().map_err(err)?;
-        Ok(())
+/// The log–log PSD with the fitted power law over its range; an error for a flat map (no
+/// positive bin to draw on a log axis).
+fn psd_figure(bins: &[PsdBin], fit: Option<HurstFit>) -> Result<Figure> {
+    let positive: Vec<(f64, f64)> = bins
+        .iter()
+        .filter(|b| b.psd > 0.0)
+        .map(|b| (b.wavevector, b.psd))
+        .collect();
+    if positive.is_empty() {
+        bail!("the PSD has no positive bin (a flat map)");
     }
+    let (q_min, q_max) = positive
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
+    let (c_min, c_max) = positive
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
+    let title = match fit {
+        Some(fit) => format!("Isotropic PSD (Hurst estimate H = {:.3})", fit.hurst),
+        None => "Isotropic PSD".to_string(),
+    };
+    let mut series = vec![Series::new("", PALETTE[0], Mark::LinePoints, positive)];
+    if let Some(HurstFit {
+        hurst: h,
+        prefactor,
+        range: (low, high),
+    }) = fit
+    {
+        let line = [low, high].map(|q| (q, prefactor * q.powf(-2.0 - 2.0 * h)));
+        series.push(Series::new(
+            format!("fit ∝ q^(−2−2H), H = {h:.3}"),
+            PALETTE[1],
+            Mark::Line,
+            line.to_vec(),
+        ));
+    }
+    let panel = Panel::new(title, "wavevector q (1/length)", "C(q) (length⁴)")
+        .with(series)
+        .log_x()
+        .x_range(q_min / 1.2, q_max * 1.2)
+        .log_y(c_min / 2.0, c_max * 2.0)
+        .scientific_ticks()
+        .legend_at(SeriesLabelPosition::UpperRight);
+    Ok(Figure::stacked(vec![panel]))
 }
 
 /// The height map as a PNG, y upwards, blue (low) – white (mean) – red (high) scaled to the
