@@ -254,3 +254,14 @@ impl Drop for FolderLock {
         let _ = std::fs::remove_file(&self.path);
     }
 }
+
+/// The output folder of a command: `--out` if given, else `out/<file stem>`.
+pub fn output_dir(out: Option<&Path>, input: &Path, what: &str) -> Result<PathBuf> {
+    if let Some(out) = out {
+        return Ok(out.to_path_buf());
+    }
+    let stem = input
+        .file_stem()
+        .ok_or_else(|| anyhow!("{what} path {} has no file name", input.display()))?;
+    Ok(Path::new("out").join(stem))
+}

@@ -99,15 +99,7 @@ pub fn command(args: &RunArgs) -> Result<()> {
             e
         }
     })?;
-    let out = match &args.out {
-        Some(out) => out.clone(),
-        None => {
-            let stem = path
-                .file_stem()
-                .ok_or_else(|| anyhow!("scenario path {} has no file name", path.display()))?;
-            Path::new("out").join(stem)
-        }
-    };
+    let out = folder::output_dir(args.out.as_deref(), path, "scenario")?;
     folder::prepare_run_folder(&out, args.force)?;
     run(scenario, &out, &args.options)
 }

@@ -11,7 +11,7 @@ pub mod plan;
 pub mod table;
 
 use crate::commands::batch::{self, write_atomically, Batch, BatchCase};
-use crate::commands::folder::{FolderLock, Shard};
+use crate::commands::folder::{self, FolderLock, Shard};
 use crate::commands::run::{run, RunOptions};
 use crate::resources;
 use adhesim_scenario as scenario;
@@ -81,15 +81,7 @@ pub fn command(args: &SweepArgs) -> Result<()> {
         return merge(dir, *quiet);
     }
     let file = args.file.as_ref().ok_or_else(|| anyhow!("a sweep file is required"))?;
-    let out = match &args.out {
-        Some(out) => out.clone(),
-        None => {
-            let stem = file
-                .file_stem()
-                .ok_or_else(|| anyhow!("sweep path {} has no file name", file.display()))?;
-            Path::new("out").join(stem)
-        }
-    };
+    let out = folder::output_dir(args.out.as_deref(), file, "sweep")?;
     if args.merge_only {
         return merge(&out, args.quiet);
     }
