@@ -2,7 +2,8 @@
 
 use crate::*;
 
-const MINIMAL: &str = r#"
+/// A small valid JKR sphere scenario, shared with `guards_tests`.
+pub(crate) const MINIMAL: &str = r#"
 [grid]
 n = 16
 size = 1.0
@@ -67,13 +68,18 @@ fn material_forms_are_exclusive() {
     assert_eq!(error.to_string(), "material.contact_modulus must be > 0, got -2");
 }
 
+/// The error (with its causes) of the scenario `text` with `overrides`, as text.
+pub(crate) fn error_of(text: &str, overrides: &[&str]) -> String {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    match load(text, "test", Path::new("."), &overrides) {
+        Ok(_) => panic!("accepted: {overrides:?}"),
+        Err(e) => format!("{e:#}"),
+    }
+}
+
 /// The error of `MINIMAL` with `overrides`, as text.
 fn error_with(overrides: &[&str]) -> String {
-    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    match load(MINIMAL, "test", Path::new("."), &overrides) {
-        Ok(_) => panic!("{overrides:?} should be refused"),
-        Err(error) => error.to_string(),
-    }
+    error_of(MINIMAL, overrides)
 }
 
 #[test]

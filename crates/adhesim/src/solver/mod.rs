@@ -242,8 +242,10 @@ fn mask_rows(mask: &[f64], row_length: usize) -> std::ops::Range<usize> {
     }
 }
 
-/// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// Σ a_k b_k with four interleaved partial sums (vectorisable; deterministic). Inlined:
+/// the peel predictor calls it on short rows of its window solves.
+#[inline(always)]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut partial = [0.0; 4];
     let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = a_chunks

@@ -9,6 +9,7 @@
 //! enter). It is a prediction, not a bound: the solver verifies every predicted subset with
 //! a solve, so the window's size and shape decide the work, never the result.
 
+use super::dot;
 use crate::elastic::influence::love_coefficient;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
@@ -148,25 +149,6 @@ impl PeelPredictor {
         }
         self.touched.clear();
     }
-}
-
-/// Σ a_k b_k with four partial sums (short rows of the window solve; inlined).
-#[inline(always)]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut partial = [0.0; 4];
-    let (a_chunks, b_chunks) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = a_chunks
-        .remainder()
-        .iter()
-        .zip(b_chunks.remainder())
-        .map(|(x, y)| x * y)
-        .sum();
-    for (x, y) in a_chunks.zip(b_chunks) {
-        for lane in 0..4 {
-            partial[lane] += x[lane] * y[lane];
-        }
-    }
-    (partial[0] + partial[1]) + (partial[2] + partial[3]) + tail
 }
 
 /// Cholesky factor L (lower triangle, row-major, in place) of the SPD size×size `a`, whose
