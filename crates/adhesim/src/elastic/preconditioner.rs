@@ -42,4 +42,10 @@ impl SpectralPreconditioner {
     pub fn apply(&mut self, field: &[f64], result: &mut [f64]) {
         self.engine.convolve(field, result);
     }
+
+    /// As [`apply`](Self::apply) for a field that vanishes outside `rows`, written on
+    /// `rows` only (other rows of `result` are left as they are): the bits of `apply` there.
+    pub fn apply_rows(&mut self, field: &[f64], result: &mut [f64], rows: std::ops::Range<usize>) {
+        self.engine.convolve_rows(field, result, rows.clone(), rows);
+    }
 }

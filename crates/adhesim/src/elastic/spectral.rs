@@ -60,8 +60,9 @@ pub(crate) struct SpectralConvolution<T: Precision = f64> {
     inverse_columns: Arc<dyn Fft<T>>,
     /// Row spectra, `[row * spectrum_columns + column]` for the N data rows.
     row_spectra: Vec<Complex<T>>,
-    /// Column-major spectrum, `[column * padded + row]`.
-    columns: Vec<Complex<T>>,
+    /// The convolved spectrum on the kept output rows, tile by tile: tile t (columns
+    /// t·TILE..) holds `[row * TILE + column − t·TILE]` for the N rows.
+    kept: Vec<Complex<T>>,
     blocks: Vec<BlockScratch<T>>,
 }
 
@@ -69,9 +70,14 @@ struct BlockScratch<T> {
     real_row: Vec<T>,
     real_scratch: Vec<Complex<T>>,
     complex_scratch: Vec<Complex<T>>,
+    /// TILE full-length columns, `[column * padded + row]`: small enough to stay in cache
+    /// from the gather through both column transforms to the scatter.
+    tile: Vec<Complex<T>>,
+    /// One spectrum row gathered from the tiles for the inverse row transform.
+    spectrum: Vec<Complex<T>>,
 }
 
-/// Rows or columns gathered together in a transpose (16 complex values = 4 cache lines).
+/// Columns transformed together (16 complex values = 4 cache lines per row of a tile).
 const TILE: usize = 16;
 
 fn block_len(total: usize, blocks: usize) -> usize {
@@ -99,6 +105,8 @@ impl<T: Precision> SpectralConvolution<T> {
                 real_row: vec![T::zero(); padded],
                 real_scratch: vec![Complex::default(); scratch_len],
                 complex_scratch: vec![Complex::default(); complex_scratch_len],
+                tile: vec![Complex::default(); TILE * padded],
+                spectrum: vec![Complex::default(); spectrum_columns],
             })
             .collect();
         Self {
@@ -110,8 +118,8 @@ impl<T: Precision> SpectralConvolution<T> {
             inverse_rows,
             forward_columns,
             inverse_columns,
-            row_spectra: vec![Complex::default(); padded * spectrum_columns],
-            columns: vec![Complex::default(); spectrum_columns * padded],
+            row_spectra: vec![Complex::default(); n * spectrum_columns],
+            kept: vec![Complex::default(); spectrum_columns.div_ceil(TILE) * n * TILE],
             blocks,
         }
     }
@@ -194,66 +202,71 @@ impl<T: Precision> SpectralConvolution<T> {
                 }
             });
 
-        // 2. Transpose, column transforms, kernel product, inverse column transforms.
-        let columns_per_block = block_len(columns, blocks);
+        if output_rows.is_empty() {
+            return;
+        }
+
+        // 2. Per tile of TILE columns: gather the input rows, column transforms, kernel
+        // product, inverse column transforms, and keep the output rows, while the tile stays
+        // in cache (a transpose of the whole spectrum and back is memory-bound at large N).
+        let tiles = columns.div_ceil(TILE);
+        let tile_len = output_rows.len() * TILE;
+        let tiles_per_block = block_len(tiles, blocks);
         let row_spectra = &self.row_spectra;
         let kernel = &self.kernel;
         let (forward_columns, inverse_columns) = (&self.forward_columns, &self.inverse_columns);
         let (first_row, end_row) = (input_rows.start, input_rows.end);
-        self.columns
-            .par_chunks_mut(columns_per_block * padded)
-            .zip(kernel.par_chunks(columns_per_block * padded))
+        let first_output = output_rows.start;
+        self.kept[..tiles * tile_len]
+            .par_chunks_mut(tiles_per_block * tile_len)
             .zip(self.blocks.par_iter_mut())
             .enumerate()
-            .for_each(|(block, ((data, kernel), scratch))| {
-                // Gather the block's columns in tiles of TILE so that each row is read
-                // contiguously (a plain strided gather is cache-bound at large N).
-                let first = block * columns_per_block;
-                let count = data.len() / padded;
-                for tile in (0..count).step_by(TILE) {
-                    let width = TILE.min(count - tile);
+            .for_each(|(block, (kept, scratch))| {
+                for (local, kept) in kept.chunks_mut(tile_len).enumerate() {
+                    let first = (block * tiles_per_block + local) * TILE;
+                    let width = TILE.min(columns - first);
+                    let tile = &mut scratch.tile[..width * padded];
+                    for column in tile.chunks_mut(padded) {
+                        column[..first_row].fill(Complex::default());
+                        column[end_row..].fill(Complex::default());
+                    }
                     for i in first_row..end_row {
-                        let row = &row_spectra[i * columns + first + tile..][..width];
+                        let row = &row_spectra[i * columns + first..][..width];
                         for (offset, &value) in row.iter().enumerate() {
-                            data[(tile + offset) * padded + i] = value;
+                            tile[offset * padded + i] = value;
                         }
                     }
-                }
-                for (column, kernel) in data.chunks_mut(padded).zip(kernel.chunks(padded)) {
-                    column[..first_row].fill(Complex::default());
-                    column[end_row..].fill(Complex::default());
-                    forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
-                    for (value, &k) in column.iter_mut().zip(kernel) {
-                        *value = value.scale(k);
+                    for (offset, column) in tile.chunks_mut(padded).enumerate() {
+                        forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
+                        for (value, &k) in column.iter_mut().zip(&kernel[(first + offset) * padded..]) {
+                            *value = value.scale(k);
+                        }
+                        inverse_columns.process_with_scratch(column, &mut scratch.complex_scratch);
                     }
-                    inverse_columns.process_with_scratch(column, &mut scratch.complex_scratch);
+                    for (row, kept_row) in kept.chunks_mut(TILE).enumerate() {
+                        let i = first_output + row;
+                        for (offset, target) in kept_row[..width].iter_mut().enumerate() {
+                            *target = tile[offset * padded + i];
+                        }
+                    }
                 }
             });
 
-        // 3. Transpose back the kept output rows and transform them to real space.
-        let columns_data = &self.columns;
+        // 3. Gather each kept output row from the tiles and transform it to real space.
+        let kept = &self.kept;
         let inverse_rows = &self.inverse_rows;
         let rows_per_block = block_len(output_rows.len(), blocks);
-        let first_output = output_rows.start;
-        self.row_spectra[output_rows.start * columns..output_rows.end * columns]
-            .par_chunks_mut(rows_per_block * columns)
-            .zip(output[output_rows.start * n..output_rows.end * n].par_chunks_mut(rows_per_block * n))
+        output[output_rows.start * n..output_rows.end * n]
+            .par_chunks_mut(rows_per_block * n)
             .zip(self.blocks.par_iter_mut())
             .enumerate()
-            .for_each(|(block, ((spectra, out), scratch))| {
-                // Gather the block's rows in tiles of TILE (contiguous reads per column).
-                let first = first_output + block * rows_per_block;
-                let count = spectra.len() / columns;
-                for tile in (0..count).step_by(TILE) {
-                    let height = TILE.min(count - tile);
-                    for c in 0..columns {
-                        let column = &columns_data[c * padded + first + tile..][..height];
-                        for (offset, &value) in column.iter().enumerate() {
-                            spectra[(tile + offset) * columns + c] = value;
-                        }
+            .for_each(|(block, (out, scratch))| {
+                for (local, row_out) in out.chunks_mut(n).enumerate() {
+                    let row = block * rows_per_block + local;
+                    let spectrum = &mut scratch.spectrum[..columns];
+                    for (tile, values) in spectrum.chunks_mut(TILE).enumerate() {
+                        values.copy_from_slice(&kept[tile * tile_len + row * TILE..][..values.len()]);
                     }
-                }
-                for (spectrum, row_out) in spectra.chunks_mut(columns).zip(out.chunks_mut(n)) {
                     // Exactly real in exact arithmetic; drop round-off so c2r accepts it.
                     spectrum[0].im = T::zero();
                     if padded % 2 == 0 {

@@ -226,7 +226,7 @@ impl NormalSolver {
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
-        before_change: &mut dyn FnMut(&ContactState),
+        before_change: &mut (dyn FnMut(&ContactState) + Send),
     ) -> Result<StepReport, SolveError> {
         match self {
             Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
@@ -244,7 +244,7 @@ impl NormalSolver {
 fn non_adhesive_step<O: ElasticOperator + ?Sized>(
     operator: &mut O,
     state: &mut ContactState,
-    before_change: &mut dyn FnMut(&ContactState),
+    before_change: &mut (dyn FnMut(&ContactState) + Send),
     solve: impl FnOnce(&mut O, &mut ContactState) -> Result<SolveReport, SolveError>,
 ) -> Result<StepReport, SolveError> {
     let before = state.contact.clone();

@@ -74,12 +74,12 @@ impl Ccg {
         control: Control,
         state: &mut ContactState,
     ) -> Result<SolveReport, SolveError> {
-        match control {
+        super::on_worker(|| match control {
             Control::Displacement(depth) if operator.grid().boundary() == Boundary::Periodic => {
                 self.solve_periodic_depth(operator, heights, depth, state)
             }
             _ => self.solve_constrained(operator, heights, control, state),
-        }
+        })
     }
 
     /// Periodic displacement control: the load-controlled solve whose mean depth is d,

@@ -30,9 +30,18 @@ pub fn pressure_error_bound(residual: &[f64], contact_modulus: f64, element_size
 /// of a free element i is K_iC·S_C·r: K_iC·S_C is non-negative with row sums below 1 (the
 /// M-matrix structure of S_{C∪i}, docs/fast-step.md), so |δu_i| ≤ ‖r‖∞ = the band before
 /// the safety factor.
+/// Every element is visited (far gaps are large but must be looked at), in parallel.
 pub fn attachments_certain(heights: &[f64], depth: f64, displacement: &[f64], contact: &[bool], band: f64) -> bool {
-    (0..heights.len())
-        .all(|k| contact[k] || !heights[k].is_finite() || (heights[k] - depth + displacement[k]).abs() > band)
+    use rayon::prelude::*;
+    let chunk = super::PARALLEL_CHUNK;
+    heights
+        .par_chunks(chunk)
+        .zip(displacement.par_chunks(chunk))
+        .zip(contact.par_chunks(chunk))
+        .all(|((heights, displacement), contact)| {
+            (0..heights.len())
+                .all(|k| contact[k] || !heights[k].is_finite() || (heights[k] - depth + displacement[k]).abs() > band)
+        })
 }
 
 /// Bound on |u_i − u*_i| over the free elements: `CERTIFICATE_SAFETY`·‖r‖∞.

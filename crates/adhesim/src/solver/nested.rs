@@ -175,6 +175,16 @@ impl NestedActiveSet {
         depth: f64,
         state: &mut ContactState,
     ) -> Result<SolveReport, SolveError> {
+        super::on_worker(|| self.solve_on_worker(operator, heights, depth, state))
+    }
+
+    fn solve_on_worker<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<SolveReport, SolveError> {
         assert_eq!(operator.grid(), &self.grid, "operator and solver grids differ");
         let len = self.grid.len();
         if heights.len() != len {
@@ -390,8 +400,8 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
         &mut state.pressure,
         &mut state.displacement,
         buffers,
-        |residual, preconditioned| preconditioner.apply(residual, preconditioned),
-        |norm2, _, _, _| {
+        |residual, preconditioned, rows| preconditioner.apply_rows(residual, preconditioned, rows),
+        |norm2, _, _, _, _| {
             let norm = norm2.sqrt();
             norm.is_finite().then_some(norm <= goal)
         },

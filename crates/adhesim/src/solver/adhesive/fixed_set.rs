@@ -7,7 +7,8 @@ use crate::elastic::ElasticOperator;
 use crate::solver::certificate::{
     attachments_certain, classify_releases, gap_error_bound, pressure_error_bound, Releases,
 };
-use crate::solver::{masked_pcg, ContactState, PcgBuffers, SolveError};
+use crate::solver::{contact_span, masked_pcg, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
+use rayon::prelude::*;
 
 impl AdhesiveSolver {
     /// How the next solve may stop: never early on the first solve of a step (its outputs
@@ -29,7 +30,10 @@ impl AdhesiveSolver {
         }
         let bans_lifted =
             self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
-        let trial_available = (0..self.grid.len()).any(|k| {
+        // A trial element touches the contact: it lies in the contact's rows or next to them.
+        let (n, span) = (self.grid.n(), contact_span(&state.contact, self.grid.n()));
+        let near = span.start.saturating_sub(n)..(span.end + n).min(self.grid.len());
+        let trial_available = near.into_iter().any(|k| {
             // As find_candidates: only adhesive elements are tried.
             if state.contact[k] || !heights[k].is_finite() || (self.banned[k] && !bans_lifted) {
                 return false;
@@ -70,26 +74,31 @@ impl AdhesiveSolver {
         exact: bool,
         stop: StopRule,
     ) -> Result<usize, SolveError> {
-        let len = self.grid.len();
-        for k in 0..len {
-            if !state.contact[k] {
-                state.pressure[k] = 0.0;
-            }
-        }
+        // Element-wise loops over the grid, on the pool (the same bits for any split).
+        state
+            .pressure
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(state.contact.par_chunks(PARALLEL_CHUNK))
+            .for_each(|(pressure, contact)| {
+                for (p, &c) in pressure.iter_mut().zip(contact) {
+                    if !c {
+                        *p = 0.0;
+                    }
+                }
+            });
         if exact {
             operator.apply(&state.pressure, &mut state.displacement);
-        } else {
-            let mut changed = false;
-            for k in 0..len {
-                self.direction[k] = state.pressure[k] - self.displacement_pressure[k];
-                changed |= self.direction[k] != 0.0;
-            }
-            if changed {
-                operator.apply_single(&self.direction, &mut self.response);
-                for (u, du) in state.displacement.iter_mut().zip(&self.response) {
-                    *u += du;
-                }
-            }
+        } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
+        {
+            // Only the rows where p changed are transformed forward (the same bits).
+            let n = self.grid.n();
+            let rows = changed.start / n..changed.end.div_ceil(n);
+            operator.apply_single_rows(&self.direction, &mut self.response, rows, 0..n);
+            state
+                .displacement
+                .par_chunks_mut(PARALLEL_CHUNK)
+                .zip(self.response.par_chunks(PARALLEL_CHUNK))
+                .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
         }
         let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
         if self.last_solve_certified {
@@ -151,10 +160,14 @@ impl AdhesiveSolver {
         stop: StopRule,
     ) -> Result<usize, SolveError> {
         self.last_solve_certified = false;
-        let len = self.grid.len();
+        // The residual vanishes off the contact: only the contact's rows are visited (the
+        // sums meet the contact elements in the same order).
+        let span = contact_span(&state.contact, self.grid.n());
         let mut target_norm = 0.0;
         let mut residual_norm = 0.0;
-        for k in 0..len {
+        self.residual[..span.start].fill(0.0);
+        self.residual[span.end..].fill(0.0);
+        for k in span.clone() {
             if state.contact[k] {
                 let target = depth - heights[k];
                 target_norm += target * target;
@@ -195,17 +208,21 @@ impl AdhesiveSolver {
         };
         let (contact_modulus, element_size) = (operator.contact_modulus(), delta);
         if converged(residual_norm, &self.residual, &state.contact) {
-            self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
-            self.gap_error_bound = gap_error_bound(&self.residual);
+            self.pressure_error_bound =
+                pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
+            self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
             return Ok(0);
         }
         // 1 on C, 0 elsewhere: branch-free vector loops (direction and residual are 0
         // outside C, so the masked updates equal the element-wise conditional ones).
-        for (m, &c) in self.mask.iter_mut().zip(&state.contact) {
+        self.mask[..span.start].fill(0.0);
+        self.mask[span.end..].fill(0.0);
+        for (m, &c) in self.mask[span.clone()].iter_mut().zip(&state.contact[span.clone()]) {
             *m = if c { 1.0 } else { 0.0 };
         }
         let contact = &state.contact;
         let critical_stress = &self.critical_stress;
+        let n = self.grid.n();
         let mut certified = false;
         let mut preconditioner = self.preconditioner.as_mut();
         let applications = &mut self.preconditioner_applications;
@@ -221,21 +238,27 @@ impl AdhesiveSolver {
             &mut state.pressure,
             &mut state.displacement,
             buffers,
-            |residual, preconditioned| match preconditioner.as_mut() {
+            |residual, preconditioned, rows| match preconditioner.as_mut() {
                 Some(preconditioner) => {
-                    preconditioner.apply(residual, preconditioned);
+                    preconditioner.apply_rows(residual, preconditioned, rows);
                     *applications += 1;
                 }
-                None => preconditioned.copy_from_slice(residual),
+                None => {
+                    let set = rows.start * n..rows.end * n;
+                    preconditioned[set.clone()].copy_from_slice(&residual[set]);
+                }
             },
-            |norm2, residual, pressure, displacement| {
-                if converged(norm2, residual, contact) {
+            |norm2, residual, pressure, displacement, set| {
+                // r and the set lie in `set`: the scans there see every element that counts.
+                let (residual, contact_rows) = (&residual[set.clone()], &contact[set.clone()]);
+                if converged(norm2, residual, contact_rows) {
                     return Some(true);
                 }
                 // Stop once the release decisions cannot change (docs/fast-step.md).
                 if stop != StopRule::Converge {
                     let band = pressure_error_bound(residual, contact_modulus, element_size);
-                    certified = match classify_releases(pressure, contact, critical_stress, band) {
+                    let critical_stress = &critical_stress[set.clone()];
+                    certified = match classify_releases(&pressure[set], contact_rows, critical_stress, band) {
                         Releases::Some => true,
                         Releases::None if stop == StopRule::ReleasesOrAttachments => {
                             attachments_certain(heights, depth, displacement, contact, gap_error_bound(residual))
@@ -248,10 +271,39 @@ impl AdhesiveSolver {
             self.params.max_cg_iterations,
         );
         self.last_solve_certified = certified;
-        self.pressure_error_bound = pressure_error_bound(&self.residual, contact_modulus, element_size);
-        self.gap_error_bound = gap_error_bound(&self.residual);
+        self.pressure_error_bound = pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
+        self.gap_error_bound = gap_error_bound(&self.residual[span]);
         outcome
             .map(|info| info.iterations)
             .map_err(|error| error.into_solve_error(target_norm.sqrt(), self.params.relative_tolerance))
     }
+}
+
+/// Writes direction = p − p_last and returns the range from the first to the last element
+/// where it is nonzero (`None` when p has not changed).
+fn pressure_change(direction: &mut [f64], pressure: &[f64], last: &[f64]) -> Option<std::ops::Range<usize>> {
+    direction
+        .par_chunks_mut(PARALLEL_CHUNK)
+        .zip(pressure.par_chunks(PARALLEL_CHUNK))
+        .zip(last.par_chunks(PARALLEL_CHUNK))
+        .enumerate()
+        .map(|(chunk, ((direction, pressure), last))| {
+            let mut changed: Option<(usize, usize)> = None;
+            for (i, ((d, p), q)) in direction.iter_mut().zip(pressure).zip(last).enumerate() {
+                *d = p - q;
+                if *d != 0.0 {
+                    let k = chunk * PARALLEL_CHUNK + i;
+                    changed = Some((changed.map_or(k, |(first, _)| first), k + 1));
+                }
+            }
+            changed
+        })
+        .reduce(
+            || None,
+            |a, b| match (a, b) {
+                (None, x) | (x, None) => x,
+                (Some((a0, a1)), Some((b0, b1))) => Some((a0.min(b0), a1.max(b1))),
+            },
+        )
+        .map(|(first, end)| first..end)
 }

@@ -288,7 +288,18 @@ impl AdhesiveSolver {
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
-        before_change: &mut dyn FnMut(&ContactState),
+        before_change: &mut (dyn FnMut(&ContactState) + Send),
+    ) -> Result<StepReport, SolveError> {
+        crate::solver::on_worker(|| self.step_on_worker(operator, heights, depth, state, before_change))
+    }
+
+    fn step_on_worker<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        before_change: &mut (dyn FnMut(&ContactState) + Send),
     ) -> Result<StepReport, SolveError> {
         let len = self.grid.len();
         if heights.len() != len {

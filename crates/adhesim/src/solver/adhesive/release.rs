@@ -23,9 +23,8 @@ impl AdhesiveSolver {
             }
             return 0;
         };
-        let len = self.grid.len();
         let n = self.grid.n();
-        for k in 0..len {
+        for k in crate::solver::contact_span(&state.contact, n) {
             if state.contact[k] && (self.trial[k] || !trial_only) {
                 peel.lower[k] = -state.pressure[k] - self.pressure_error_bound;
             }
@@ -130,7 +129,8 @@ impl AdhesiveSolver {
         let mut any_violator = false;
         let mut smallest = f64::INFINITY;
         let mut largest: f64 = 0.0;
-        for k in 0..self.grid.len() {
+        let span = crate::solver::contact_span(&state.contact, self.grid.n());
+        for k in span.clone() {
             if state.contact[k] {
                 let ratio = over_stress_ratio(state.pressure[k], self.critical_stress[k]);
                 if ratio > 1.0 {
@@ -147,7 +147,7 @@ impl AdhesiveSolver {
             Detachment::AllViolators | Detachment::RandomHalf { .. } => smallest,
             Detachment::WorstFirst { fraction } => smallest.max(largest * (1.0 - fraction)),
         } * (1.0 - 1e-9);
-        for k in 0..self.grid.len() {
+        for k in span {
             if state.contact[k] && over_stress_ratio(state.pressure[k], self.critical_stress[k]) >= threshold {
                 self.violators.push(k);
             }
