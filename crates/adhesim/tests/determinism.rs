@@ -1,14 +1,14 @@
-//! The same problem gives bit-identical results on 1 and 2 threads: every FFT row and
-//! column is transformed independently of how the work is split, and all reductions are
-//! sequential.
+//! The same problem gives bit-identical results on 1, 2 and 3 threads: every FFT row and
+//! column is transformed independently of how the work is split, element-wise loops and
+//! exact reductions (max, any) run on the pool in chunks, and every sum is sequential.
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
     Profile, StepRecord, WavySphere,
 };
 
-fn wavy_sphere_cycle() -> Vec<StepRecord> {
-    let grid = Grid::new(48, 0.3, Boundary::Free).unwrap();
+fn wavy_sphere_cycle(n: usize) -> Vec<StepRecord> {
+    let grid = Grid::new(n, 0.3 * n as f64 / 48.0, Boundary::Free).unwrap();
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let profile = WavySphere::new(1.0, 5e-4, 0.025, 0.0).unwrap();
     let heights = profile.heights(&grid);
@@ -33,26 +33,40 @@ fn wavy_sphere_cycle() -> Vec<StepRecord> {
     records
 }
 
-#[test]
-fn one_and_two_threads_agree_bit_for_bit() {
+/// Runs the cycle on pools of 1, 2 and 3 threads and compares every step bit for bit.
+fn check_thread_counts(n: usize) {
     let run = |threads| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(wavy_sphere_cycle)
+            .install(|| wavy_sphere_cycle(n))
     };
     let single = run(1);
-    let double = run(2);
     assert!(single.len() > 20);
     assert!(single.iter().any(|r| r.force_normal < 0.0), "adhesive case expected");
-    assert_eq!(single.len(), double.len());
-    for (a, b) in single.iter().zip(&double) {
-        assert_eq!(a.force_normal.to_bits(), b.force_normal.to_bits(), "step {}", a.step);
-        assert_eq!(a.contact_elements, b.contact_elements);
-        assert_eq!(
-            a.report.dissipated_energy.to_bits(),
-            b.report.dissipated_energy.to_bits()
-        );
+    for threads in [2, 3] {
+        let other = run(threads);
+        assert_eq!(single.len(), other.len());
+        for (a, b) in single.iter().zip(&other) {
+            assert_eq!(a.force_normal.to_bits(), b.force_normal.to_bits(), "step {}", a.step);
+            assert_eq!(a.contact_elements, b.contact_elements);
+            assert_eq!(
+                a.report.dissipated_energy.to_bits(),
+                b.report.dissipated_energy.to_bits()
+            );
+        }
     }
+}
+
+#[test]
+fn one_and_two_threads_agree_bit_for_bit() {
+    check_thread_counts(48);
+}
+
+/// 96² elements: more than one chunk of the pool's element-wise loops and reductions
+/// (`PARALLEL_CHUNK` = 8192 elements), so the chunked paths are the ones compared.
+#[test]
+fn chunked_loops_agree_bit_for_bit() {
+    check_thread_counts(96);
 }

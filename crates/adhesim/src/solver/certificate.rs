@@ -21,8 +21,16 @@ pub const CERTIFICATE_SAFETY: f64 = 2.0;
 /// Bound on |p_i − p*_i| over the set for the residual `residual` (zero outside the set):
 /// `CERTIFICATE_SAFETY`·2·`LATTICE_INVERSE_DIAGONAL`·(E*/Δ)·‖r‖∞.
 pub fn pressure_error_bound(residual: &[f64], contact_modulus: f64, element_size: f64) -> f64 {
-    let largest = residual.iter().fold(0.0f64, |m, r| m.max(r.abs()));
-    CERTIFICATE_SAFETY * 2.0 * LATTICE_INVERSE_DIAGONAL * contact_modulus / element_size * largest
+    CERTIFICATE_SAFETY * 2.0 * LATTICE_INVERSE_DIAGONAL * contact_modulus / element_size * largest_magnitude(residual)
+}
+
+/// max |r| (0 for an empty field), on the pool: a maximum is exact in any order.
+fn largest_magnitude(residual: &[f64]) -> f64 {
+    use rayon::prelude::*;
+    residual
+        .par_chunks(super::PARALLEL_CHUNK)
+        .map(|chunk| chunk.iter().fold(0.0f64, |m, r| m.max(r.abs())))
+        .reduce(|| 0.0, f64::max)
 }
 
 /// The attachment decisions of an iterate (which free elements penetrate) are certain
@@ -46,7 +54,7 @@ pub fn attachments_certain(heights: &[f64], depth: f64, displacement: &[f64], co
 
 /// Bound on |u_i − u*_i| over the free elements: `CERTIFICATE_SAFETY`·‖r‖∞.
 pub fn gap_error_bound(residual: &[f64]) -> f64 {
-    CERTIFICATE_SAFETY * residual.iter().fold(0.0f64, |m, r| m.max(r.abs()))
+    CERTIFICATE_SAFETY * largest_magnitude(residual)
 }
 
 /// The release decision an iterate certifies.
@@ -61,21 +69,30 @@ pub enum Releases {
 }
 
 /// Classifies the release decisions of an iterate for the pressure error bound `band`.
+/// On the pool: "some element within the band" and "some violator" do not depend on order.
 pub fn classify_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> Releases {
-    let mut violator = false;
-    for k in 0..pressure.len() {
-        if contact[k] {
-            let excess = -pressure[k] - critical_stress[k];
-            if excess.abs() <= band {
-                return Releases::Uncertain;
+    use rayon::prelude::*;
+    let chunk = super::PARALLEL_CHUNK;
+    let (uncertain, violator) = pressure
+        .par_chunks(chunk)
+        .zip(contact.par_chunks(chunk))
+        .zip(critical_stress.par_chunks(chunk))
+        .map(|((pressure, contact), critical_stress)| {
+            let (mut uncertain, mut violator) = (false, false);
+            for k in 0..pressure.len() {
+                if contact[k] {
+                    let excess = -pressure[k] - critical_stress[k];
+                    uncertain |= excess.abs() <= band;
+                    violator |= excess > 0.0;
+                }
             }
-            violator |= excess > 0.0;
-        }
-    }
-    if violator {
-        Releases::Some
-    } else {
-        Releases::None
+            (uncertain, violator)
+        })
+        .reduce(|| (false, false), |a, b| (a.0 || b.0, a.1 || b.1));
+    match (uncertain, violator) {
+        (true, _) => Releases::Uncertain,
+        (false, true) => Releases::Some,
+        (false, false) => Releases::None,
     }
 }
 

@@ -202,9 +202,10 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     let set = support.start * n..support.end * n;
     let mut apply_preconditioner = |residual: &[f64], preconditioned: &mut [f64]| -> f64 {
         precondition(residual, preconditioned, support.clone());
-        for k in set.clone() {
-            preconditioned[k] *= mask[k];
-        }
+        preconditioned[set.clone()]
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(mask[set.clone()].par_chunks(PARALLEL_CHUNK))
+            .for_each(|(z, m)| z.iter_mut().zip(m).for_each(|(z, m)| *z *= m));
         dot_on(residual, preconditioned, set.clone())
     };
     // Outside the set's rows only the widened lanes of `dot_on` are read: zero there.
@@ -229,10 +230,21 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             .par_chunks_mut(PARALLEL_CHUNK)
             .zip(response.par_chunks(PARALLEL_CHUNK))
             .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += step * du));
-        for k in set.clone() {
-            pressure[k] += step * direction[k];
-            residual[k] -= step * response[k] * mask[k];
-        }
+        pressure[set.clone()]
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(residual[set.clone()].par_chunks_mut(PARALLEL_CHUNK))
+            .zip(direction[set.clone()].par_chunks(PARALLEL_CHUNK))
+            .zip(
+                response[set.clone()]
+                    .par_chunks(PARALLEL_CHUNK)
+                    .zip(mask[set.clone()].par_chunks(PARALLEL_CHUNK)),
+            )
+            .for_each(|(((p, r), d), (du, m))| {
+                for k in 0..p.len() {
+                    p[k] += step * d[k];
+                    r[k] -= step * du[k] * m[k];
+                }
+            });
         norm2 = dot_on(residual, residual, set.clone());
         if converged(norm2, residual, pressure, displacement, set.clone()).ok_or(PcgError::NonFinite { iteration })? {
             return Ok(PcgInfo { iterations: iteration });
@@ -240,9 +252,15 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
         let new_rho = apply_preconditioner(residual, preconditioned);
         let ratio = new_rho / rho;
         rho = new_rho;
-        for k in set.clone() {
-            direction[k] = (preconditioned[k] + ratio * direction[k]) * mask[k];
-        }
+        direction[set.clone()]
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(preconditioned[set.clone()].par_chunks(PARALLEL_CHUNK))
+            .zip(mask[set.clone()].par_chunks(PARALLEL_CHUNK))
+            .for_each(|((d, z), m)| {
+                for k in 0..d.len() {
+                    d[k] = (z[k] + ratio * d[k]) * m[k];
+                }
+            });
     }
     Err(PcgError::NotConverged {
         iterations: max_iterations,
@@ -250,8 +268,9 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     })
 }
 
-/// Elements per rayon task in the element-wise loops over the whole grid (64 rows of 512).
-pub(crate) const PARALLEL_CHUNK: usize = 1 << 15;
+/// Elements per rayon task in the element-wise loops and exact reductions (max, any) over
+/// the grid or the set's rows: 16 rows of 512.
+pub(crate) const PARALLEL_CHUNK: usize = 1 << 13;
 
 /// [`dot`] of two vectors whose products vanish outside `range`, with the bits of the dot
 /// over the whole vectors: the range is widened to whole lanes of four, so every nonzero
