@@ -9,7 +9,9 @@
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results;
 //! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on (`auto`: from 256²;
-//! default off, docs/fast-step.md §3).
+//! default off, docs/fast-step.md §3); `ADHESIM_RING_LAYERS=2` attaches two layers of
+//! elements per trial ring (`AdhesiveParams::trial_ring_layers`, a different rule: its
+//! physics cost is measured in BENCHMARKS.md).
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
 use adhesim::solver::PredictedGrowth;
@@ -67,6 +69,10 @@ fn main() {
                 Ok("auto") => PredictedGrowth::Auto,
                 _ => PredictedGrowth::Off,
             },
+            trial_ring_layers: std::env::var("ADHESIM_RING_LAYERS")
+                .map_or(AdhesiveParams::default().trial_ring_layers, |v| {
+                    v.parse().expect("ADHESIM_RING_LAYERS as a whole number ≥ 1")
+                }),
             ..AdhesiveParams::default()
         },
     )));

@@ -11,6 +11,7 @@
 
 use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
+use crate::grid::Grid;
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
@@ -88,8 +89,19 @@ impl AdhesiveSolver {
         !self.banned[k] && self.critical_stress[k] > 0.0
     }
 
+    /// Whether free element `k` lies within [`AdhesiveParams::trial_ring_layers`] edge-neighbour
+    /// steps ([`Grid::for_each_neighbour`](crate::Grid::for_each_neighbour)) of the contact:
+    /// with 1 layer, whether it touches the contact (the paper's rule); with 2, also whether
+    /// one of its neighbours does. The walk costs 4^layers look-ups per element.
+    ///
+    /// [`AdhesiveParams::trial_ring_layers`]: super::AdhesiveParams::trial_ring_layers
+    pub(super) fn within_trial_reach(&self, k: usize, contact: &[bool]) -> bool {
+        within_steps(&self.grid, contact, k, self.params.trial_ring_layers.get())
+    }
+
     /// Attachment candidates: penetrating elements, then (trial attachment) free
-    /// unbanned adhesive edge-neighbours of the contact, marked as trial.
+    /// unbanned adhesive elements within the trial reach of the contact (its edge-neighbours
+    /// by default), marked as trial.
     fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
         self.candidates.clear();
         for k in 0..self.grid.len() {
@@ -100,10 +112,7 @@ impl AdhesiveSolver {
             if gap < 0.0 {
                 self.candidates.push(k);
             } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
-                let mut touches = false;
-                self.grid
-                    .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
-                if touches {
+                if self.within_trial_reach(k, &state.contact) {
                     self.candidates.push(k);
                     self.trial[k] = true;
                 }
@@ -112,7 +121,8 @@ impl AdhesiveSolver {
     }
 
     /// Whether the ring about to be attached may grow through a predicted subset: the fast
-    /// rule on a free grid with retries after growth, and no element banned (the step is at
+    /// rule on a free grid with retries after growth, one layer per trial ring (the replay
+    /// and its evidence, docs/fast-step.md §3, are for that rule), and no element banned (the step is at
     /// its high-water mark, so the reference rule lifts every ban on any growth and the
     /// least-fixed-point argument applies; docs/fast-step.md §3).
     fn prediction_allowed(&self, round: &Round) -> bool {
@@ -125,6 +135,7 @@ impl AdhesiveSolver {
             && !round.prediction_blocked
             && self.params.retry_after_growth
             && self.local_peel.is_some()
+            && self.params.trial_ring_layers.get() == 1
             && !self.banned.iter().any(|&b| b)
     }
 
@@ -274,4 +285,14 @@ impl AdhesiveSolver {
         self.predicted_failures.extend_from_slice(&peel.queue);
         self.local_peel = Some(peel);
     }
+}
+
+/// Whether an element of `contact` lies within `steps` edge-neighbour steps of element `k`
+/// (`k` itself excluded): a walk over [`Grid::for_each_neighbour`] through any elements.
+fn within_steps(grid: &Grid, contact: &[bool], k: usize, steps: usize) -> bool {
+    let mut found = false;
+    grid.for_each_neighbour(k, |neighbour| {
+        found = found || contact[neighbour] || (steps > 1 && within_steps(grid, contact, neighbour, steps - 1));
+    });
+    found
 }

@@ -1,6 +1,8 @@
 //! Parameters, options and per-step report of the adhesive solver, and the local
 //! detachment criterion σ_c (docs/physics.md §2.2).
 
+use std::num::NonZeroUsize;
+
 /// c_U = [2 ln(1+√2) − (2/3)(√2 − 1)]/π: elastic energy U = c_U σ²Δ³/E* stored by one
 /// square element under uniform tension σ (mean displacement; docs/physics.md §2.2).
 pub const ELEMENT_ENERGY_FACTOR: f64 = 0.473_201_004_409_338_54;
@@ -126,6 +128,18 @@ pub struct AdhesiveParams {
     /// hold. Same contact sets, fewer solves; never in the reference rule, the other
     /// release orders, or on periodic grids. Default [`PredictedGrowth::Off`].
     pub predicted_growth: PredictedGrowth,
+    /// How many layers of free elements around the contact one trial ring holds (default 1,
+    /// the paper's rule and the reference for every result). Trial elements are the free,
+    /// unbanned, adhesive elements whose grid distance to the contact is at most this many
+    /// edge-neighbour steps ([`Grid::for_each_neighbour`](crate::Grid::for_each_neighbour),
+    /// wrapping on periodic grids; the path may cross any element). 2 attaches the whole
+    /// two-element neighbourhood per ring, about halving the rings a growing front needs,
+    /// but it is a different closure rule: the inner layer is tested with the outer one
+    /// attached (F2 of docs/fast-step.md raises its pressures), so the approach branch
+    /// changes (measured in BENCHMARKS.md, "two layers per trial ring"). Kept for that
+    /// measurement; predicted-subset growth is used with 1 only. `NonZeroUsize`: a ring of
+    /// 0 layers would attach nothing.
+    pub trial_ring_layers: NonZeroUsize,
     /// Test aid (default false): after every certified early stop, converge the solve
     /// fully on a copy and panic if a pressure moved by more than the certified bound or a
     /// release decision changed. Costs a full solve per early stop.
@@ -146,6 +160,7 @@ impl Default for AdhesiveParams {
             retry_after_growth: true,
             reference_rule: false,
             predicted_growth: PredictedGrowth::Off,
+            trial_ring_layers: NonZeroUsize::MIN,
             check_certificates: false,
         }
     }
