@@ -296,3 +296,42 @@ fn within_steps(grid: &Grid, contact: &[bool], k: usize, steps: usize) -> bool {
     });
     found
 }
+
+#[cfg(test)]
+mod tests {
+    use super::within_steps;
+    use crate::grid::{Boundary, Grid};
+
+    /// The elements within `steps` of one contact element at (row, column) on an n² grid.
+    fn reach(boundary: Boundary, n: usize, (row, column): (usize, usize), steps: usize) -> Vec<(usize, usize)> {
+        let grid = Grid::new(n, 1.0, boundary).unwrap();
+        let mut contact = vec![false; n * n];
+        contact[row * n + column] = true;
+        (0..n * n)
+            .filter(|&k| !contact[k] && within_steps(&grid, &contact, k, steps))
+            .map(|k| (k / n, k % n))
+            .collect()
+    }
+
+    /// One step is the edge-neighbour test of the paper's rule (the 4 neighbours); two steps
+    /// are the diamond |Δrow| + |Δcolumn| ≤ 2 (12 elements), cut at a free edge and wrapped
+    /// on a periodic grid, as `Grid::for_each_neighbour` is.
+    #[test]
+    fn trial_reach_is_the_edge_neighbour_distance() {
+        assert_eq!(
+            reach(Boundary::Free, 7, (3, 3), 1),
+            vec![(2, 3), (3, 2), (3, 4), (4, 3)]
+        );
+        let diamond = reach(Boundary::Free, 7, (3, 3), 2);
+        assert_eq!(diamond.len(), 12);
+        assert!(diamond
+            .iter()
+            .all(|&(r, c)| (r as i64 - 3).abs() + (c as i64 - 3).abs() <= 2));
+        // At the corner of a free grid: (0,1), (1,0), (0,2), (1,1), (2,0).
+        assert_eq!(reach(Boundary::Free, 7, (0, 0), 2).len(), 5);
+        // On a periodic grid the corner's diamond wraps: 12 elements, e.g. (6, 6) and (0, 5).
+        let wrapped = reach(Boundary::Periodic, 7, (0, 0), 2);
+        assert_eq!(wrapped.len(), 12);
+        assert!(wrapped.contains(&(6, 6)) && wrapped.contains(&(0, 5)));
+    }
+}
