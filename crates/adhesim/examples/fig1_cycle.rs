@@ -124,12 +124,16 @@ fn main() {
         let fft: u64 = part.iter().map(|r| r.report.operator_applications).sum();
         let solves: usize = part.iter().map(|r| r.report.solves).sum();
         let cg: usize = part.iter().map(|r| r.report.cg_iterations).sum();
+        let rings: usize = part.iter().map(|r| r.report.attachment_rounds).sum();
+        let attached: usize = part.iter().map(|r| r.report.attached).sum();
         println!(
-            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve",
+            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve, {:.2} attachment rounds/step, {:.1} elements attached/step",
             part.len(),
             fft as f64 / steps,
             solves as f64 / steps,
-            cg as f64 / solves.max(1) as f64
+            cg as f64 / solves.max(1) as f64,
+            rings as f64 / steps,
+            attached as f64 / steps
         );
     }
     if let NormalSolver::Adhesive(adhesive) = &solver {

@@ -78,6 +78,7 @@ impl AdhesiveSolver {
         for &k in &self.candidates {
             state.contact[k] = true;
         }
+        round.report.attachment_rounds += 1;
         Ok(Flow::Continue)
     }
 

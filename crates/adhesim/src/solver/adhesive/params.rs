@@ -175,6 +175,9 @@ pub struct StepReport {
     pub cg_iterations: usize,
     /// Elastic operator applications (FFT pairs).
     pub operator_applications: u64,
+    /// Attachment rounds: how often the step attached candidates (a trial ring, penetrating
+    /// elements, or both) and went on to solve; a growing front needs one per ring.
+    pub attachment_rounds: usize,
     /// Elements in C at the end that were not at the start.
     pub attached: usize,
     /// Elements in C at the start that are not at the end.
