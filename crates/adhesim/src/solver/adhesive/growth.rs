@@ -112,11 +112,12 @@ impl AdhesiveSolver {
             let gap = heights[k] - depth + state.displacement[k];
             if gap < 0.0 {
                 self.candidates.push(k);
-            } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
-                if self.within_trial_reach(k, &state.contact) {
-                    self.candidates.push(k);
-                    self.trial[k] = true;
-                }
+            } else if self.params.attachment == Attachment::Trial
+                && self.may_try(k)
+                && self.within_trial_reach(k, &state.contact)
+            {
+                self.candidates.push(k);
+                self.trial[k] = true;
             }
         }
     }
