@@ -31,7 +31,8 @@ pub fn over_stress_ratio(pressure: f64, critical_stress: f64) -> f64 {
 /// How new contact is formed (docs/physics.md §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Attachment {
-    /// Penetrating elements attach, and every free edge-neighbour of the contact is
+    /// Penetrating elements attach, and every free edge-neighbour of the contact (every
+    /// free element within [`AdhesiveParams::trial_ring_layers`] steps of it) is
     /// tentatively attached; those that cannot hold (p < −σ_c) are released and banned for
     /// the rest of the step: the discrete Griffith closure test with the same σ_c.
     #[default]
