@@ -84,7 +84,7 @@ pub enum PredictedGrowth {
     Auto,
 }
 
-/// Parameters of [`AdhesiveSolver`].
+/// Parameters of [`AdhesiveSolver`](super::AdhesiveSolver).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdhesiveParams {
     /// CG stops when ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6; the front criterion below is
