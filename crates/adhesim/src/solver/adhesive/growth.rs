@@ -44,6 +44,11 @@ impl AdhesiveSolver {
         }
         self.find_candidates(heights, depth, state);
         if self.candidates.is_empty() {
+            if self.last_solve_certified {
+                // Only if the certified stop's trial test (stop_rule) saw candidates that
+                // find_candidates does not: the step must not end on an early stop.
+                self.converge_final(operator, heights, depth, state, &mut round.report)?;
+            }
             return Ok(Flow::Stop);
         }
         let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
