@@ -134,12 +134,13 @@ pub struct AdhesiveParams {
     /// unbanned, adhesive elements whose grid distance to the contact is at most this many
     /// edge-neighbour steps ([`Grid::for_each_neighbour`](crate::Grid::for_each_neighbour),
     /// wrapping on periodic grids; the path may cross any element). 2 attaches the whole
-    /// two-element neighbourhood per ring, about halving the rings a growing front needs,
-    /// but it is a different closure rule: the inner layer is tested with the outer one
-    /// attached (F2 of docs/fast-step.md raises its pressures), so the approach branch
-    /// changes (measured in BENCHMARKS.md, "two layers per trial ring"). Kept for that
-    /// measurement; predicted-subset growth is used with 1 only. `NonZeroUsize`: a ring of
-    /// 0 layers would attach nothing.
+    /// two-element neighbourhood per ring: a growing front needs fewer rings (17–36 % fewer
+    /// on the Fig. 1 cycle) but more solves per ring. It is a different closure rule: the
+    /// inner layer is tested with the outer one attached (F2 of docs/fast-step.md raises
+    /// its pressures), so the approach branch changes (γ1 up by 3–5 % on the Fig. 1 cycle;
+    /// BENCHMARKS.md, "two layers per trial ring"). Kept for that measurement;
+    /// predicted-subset growth is used with 1 only. `NonZeroUsize`: a ring of 0 layers
+    /// would attach nothing.
     pub trial_ring_layers: NonZeroUsize,
     /// Test aid (default false): after every certified early stop, converge the solve
     /// fully on a copy and panic if a pressure moved by more than the certified bound or a
