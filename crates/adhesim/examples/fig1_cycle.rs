@@ -9,7 +9,9 @@
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results;
 //! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on (`auto`: from 256²;
-//! default off, docs/fast-step.md §3).
+//! default off, docs/fast-step.md §3); `ADHESIM_RING_LAYERS=2` attaches two layers of
+//! elements per trial ring (`AdhesiveParams::trial_ring_layers`, a different rule: its
+//! physics cost is measured in BENCHMARKS.md).
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
 use adhesim::solver::PredictedGrowth;
@@ -67,6 +69,10 @@ fn main() {
                 Ok("auto") => PredictedGrowth::Auto,
                 _ => PredictedGrowth::Off,
             },
+            trial_ring_layers: std::env::var("ADHESIM_RING_LAYERS")
+                .map_or(AdhesiveParams::default().trial_ring_layers, |v| {
+                    v.parse().expect("ADHESIM_RING_LAYERS as a whole number ≥ 1")
+                }),
             ..AdhesiveParams::default()
         },
     )));
@@ -118,12 +124,16 @@ fn main() {
         let fft: u64 = part.iter().map(|r| r.report.operator_applications).sum();
         let solves: usize = part.iter().map(|r| r.report.solves).sum();
         let cg: usize = part.iter().map(|r| r.report.cg_iterations).sum();
+        let rings: usize = part.iter().map(|r| r.report.attachment_rounds).sum();
+        let attached: usize = part.iter().map(|r| r.report.attached).sum();
         println!(
-            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve",
+            "  {label}: {} steps, {:.1} FFT pairs/step, {:.2} solves/step, {:.2} CG iterations/solve, {:.2} attachment rounds/step, {:.1} elements attached/step",
             part.len(),
             fft as f64 / steps,
             solves as f64 / steps,
-            cg as f64 / solves.max(1) as f64
+            cg as f64 / solves.max(1) as f64,
+            rings as f64 / steps,
+            attached as f64 / steps
         );
     }
     if let NormalSolver::Adhesive(adhesive) = &solver {

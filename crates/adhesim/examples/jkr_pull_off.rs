@@ -12,7 +12,8 @@
 //! being linear in d on each fixed-set stretch so that the trapezoid rule with the force
 //! before each change is exact up to the CG tolerance (measured 3e-6 at a_JKR/Δ = 16).
 //! `cargo test --release -p adhesim --example jkr_pull_off` runs it at a_JKR/Δ = 8 (about
-//! a second).
+//! a second). `ADHESIM_RING_LAYERS=2` attaches two layers of elements per trial ring
+//! (`AdhesiveParams::trial_ring_layers`; BENCHMARKS.md measures what it changes).
 #![allow(clippy::needless_range_loop)]
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
@@ -57,6 +58,10 @@ fn run(resolution: f64, max_depth_jkr: f64, steps_per_unit: f64) {
                 .map(|v| v.parse().unwrap())
                 .unwrap_or(1e-9),
             carry_bans_when_retracting: std::env::var_os("ADHESIM_EXACT_RINGS").is_none(),
+            trial_ring_layers: std::env::var("ADHESIM_RING_LAYERS")
+                .map_or(AdhesiveParams::default().trial_ring_layers, |v| {
+                    v.parse().expect("ADHESIM_RING_LAYERS as a whole number ≥ 1")
+                }),
             ..AdhesiveParams::default()
         },
     )));

@@ -7,12 +7,14 @@
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Attachment, Boundary, Detachment, ElasticMaterial, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Profile, Sphere, WavySphere,
+    IndentPulloff, NormalSolver, Phase, Profile, Sphere, WavySphere,
 };
+use std::num::NonZeroUsize;
 
 /// Contact sets and forces of every step of an indentation–pull-off cycle.
 struct Cycle {
     sets: Vec<Vec<bool>>,
+    phases: Vec<Option<Phase>>,
     forces: Vec<f64>,
     fft_pairs: u64,
     /// Rings grown through a predicted subset, and predictions that fell back.
@@ -22,6 +24,7 @@ struct Cycle {
 impl adhesim::Observer for Cycle {
     fn on_step(&mut self, view: adhesim::StepView<'_>) -> std::ops::ControlFlow<()> {
         self.sets.push(view.state.contact.clone());
+        self.phases.push(view.record.phase);
         self.forces.push(view.record.force_normal);
         self.fft_pairs += view.record.report.operator_applications;
         std::ops::ControlFlow::Continue(())
@@ -46,6 +49,7 @@ fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, 
     };
     let mut record = Cycle {
         sets: Vec::new(),
+        phases: Vec::new(),
         forces: Vec::new(),
         fft_pairs: 0,
         predicted_growth: (0, 0),
@@ -139,6 +143,52 @@ fn wavy_sphere_sets_are_unchanged() {
     let grid = Grid::new(48, 0.6, Boundary::Free).unwrap();
     let heights = WavySphere::new(1.0, 0.0025, 0.05, 0.0).unwrap().heights(&grid);
     all_modes(grid, &heights, gamma, 6.0 * d_jkr, 30);
+}
+
+/// Two layers per trial ring (`AdhesiveParams::trial_ring_layers` = 2, a different closure
+/// rule measured in BENCHMARKS.md) on the wavy sphere of the test above: the fast rule, its
+/// certificates checked, reaches the reference rule's sets under that rule too (the trial
+/// test of the certified stops must see the same two-step reach as the candidates, or a
+/// step would end on an unconverged state), and the approach contact is never smaller than
+/// with one layer (F2, docs/fast-step.md §1: the inner layer is tested with the outer one
+/// attached) and larger at some step (the option takes effect).
+#[test]
+fn two_layer_rings_keep_the_fast_rule_exact() {
+    let gamma = 6.168_502_750_680_85e-4;
+    let d_jkr = (3.0 * std::f64::consts::PI.powi(2) * gamma * gamma / 64.0).cbrt();
+    let grid = Grid::new(48, 0.6, Boundary::Free).unwrap();
+    let heights = WavySphere::new(1.0, 0.0025, 0.05, 0.0).unwrap().heights(&grid);
+    let run = |params| cycle(grid, &heights, gamma, 6.0 * d_jkr, 30, params);
+    let two = NonZeroUsize::new(2).unwrap();
+    let reference = run(AdhesiveParams {
+        reference_rule: true,
+        trial_ring_layers: two,
+        ..AdhesiveParams::default()
+    });
+    let fast = run(AdhesiveParams {
+        check_certificates: true,
+        trial_ring_layers: two,
+        ..AdhesiveParams::default()
+    });
+    assert_same(&reference, &fast, "two layers, fast");
+    let one = run(AdhesiveParams {
+        reference_rule: true,
+        ..AdhesiveParams::default()
+    });
+    let size = |set: &Vec<bool>| set.iter().filter(|&&c| c).count();
+    let mut larger = 0;
+    for (step, phase) in one.phases.iter().enumerate() {
+        if *phase != Some(Phase::Approach) {
+            break;
+        }
+        let (one_layer, two_layers) = (size(&one.sets[step]), size(&reference.sets[step]));
+        assert!(
+            two_layers >= one_layer,
+            "approach step {step}: {two_layers} elements with two layers, {one_layer} with one"
+        );
+        larger += usize::from(two_layers > one_layer);
+    }
+    assert!(larger > 0, "two layers never attached more than one");
 }
 
 /// Options without a test elsewhere: worst-first releases and penetration-only attachment

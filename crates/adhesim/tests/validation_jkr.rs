@@ -8,8 +8,9 @@
 
 mod common;
 
-use adhesim::Phase;
+use adhesim::{AdhesiveParams, Phase};
 use common::{loop_area, JkrCase};
+use std::num::NonZeroUsize;
 
 /// Pull-off force converges at first order from above: the error at a_JKR/Δ = 16 is
 /// between 0.3 and 0.7 of that at 8 (0.5 for exact first order; the staircase front makes
@@ -30,6 +31,36 @@ fn pull_off_force_converges_at_first_order() {
     }
     let ratio = errors[1] / errors[0];
     assert!((0.3..0.7).contains(&ratio), "error ratio {ratio:.3}");
+}
+
+/// Two layers per trial ring (`AdhesiveParams::trial_ring_layers` = 2, the rule-level
+/// change measured in BENCHMARKS.md, "two layers per trial ring"): the pull-off force must
+/// still lie within ±50 % of the first-order mesh error 1.4Δ/a_JKR, the tolerance of
+/// [`pull_off_force_converges_at_first_order`] for the exact rule (the same closed form, the
+/// same mesh error; the rule changes only which closures are tested), at a_JKR/Δ = 8 and 16.
+#[test]
+fn two_layer_rings_keep_the_jkr_pull_off_force() {
+    for resolution in [8.0, 16.0] {
+        let case = JkrCase::new(resolution, 2.0);
+        let params = AdhesiveParams {
+            trial_ring_layers: NonZeroUsize::new(2).unwrap(),
+            ..AdhesiveParams::default()
+        };
+        let (summary, _) = case.run_with(params, 2.0, 40.0);
+        let (exact, _) = case.run(2.0, 40.0);
+        let f_jkr = case.jkr.critical_force().abs();
+        let error = summary.max_adhesive_force / f_jkr - 1.0;
+        let expected = 1.4 / resolution;
+        println!(
+            "a/Δ = {resolution}: |F_min|/|F_JKR| two layers {:.5}, one layer {:.5}",
+            summary.max_adhesive_force / f_jkr,
+            exact.max_adhesive_force / f_jkr
+        );
+        assert!(
+            error > 0.5 * expected && error < 1.5 * expected,
+            "a/Δ = {resolution}: two layers |F_min|/|F_JKR| − 1 = {error:.4}, expected ≈ {expected:.4}"
+        );
+    }
 }
 
 /// At a_JKR/Δ = 16: the retraction branch stays within 0.08|F_JKR| of JKR for

@@ -264,6 +264,7 @@ fn non_adhesive_step<O: ElasticOperator + ?Sized>(
         solves: 1,
         cg_iterations: solve.iterations,
         operator_applications: solve.operator_applications,
+        attachment_rounds: 0,
         attached,
         detached,
         force_before_change: solve.force,

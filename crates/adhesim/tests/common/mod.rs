@@ -33,6 +33,16 @@ impl JkrCase {
     }
 
     pub fn run(&self, max_depth_jkr: f64, steps_per_unit: f64) -> (ProtocolSummary, Vec<StepRecord>) {
+        self.run_with(AdhesiveParams::default(), max_depth_jkr, steps_per_unit)
+    }
+
+    /// As [`run`](Self::run), with other solver parameters.
+    pub fn run_with(
+        &self,
+        params: AdhesiveParams,
+        max_depth_jkr: f64,
+        steps_per_unit: f64,
+    ) -> (ProtocolSummary, Vec<StepRecord>) {
         let material = ElasticMaterial::new(1.0).unwrap();
         let mut operator = FreeOperator::new(self.grid, material);
         let heights = Sphere::new(1.0).unwrap().heights(&self.grid);
@@ -41,7 +51,7 @@ impl JkrCase {
             self.grid,
             1.0,
             vec![self.jkr.work_of_adhesion; self.grid.len()],
-            AdhesiveParams::default(),
+            params,
         )));
         let protocol = IndentPulloff {
             start_depth: 0.0,

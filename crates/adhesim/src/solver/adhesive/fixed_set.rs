@@ -41,10 +41,7 @@ impl AdhesiveSolver {
             if self.critical_stress[k] <= 0.0 {
                 return false;
             }
-            let mut touches = false;
-            self.grid
-                .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
-            touches
+            self.within_trial_reach(k, &state.contact)
         });
         if trial_available {
             StopRule::ReleasesOrAttachments

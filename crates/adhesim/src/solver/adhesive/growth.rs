@@ -11,6 +11,7 @@
 
 use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
+use crate::grid::Grid;
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
@@ -43,6 +44,11 @@ impl AdhesiveSolver {
         }
         self.find_candidates(heights, depth, state);
         if self.candidates.is_empty() {
+            if self.last_solve_certified {
+                // Only if the certified stop's trial test (stop_rule) saw candidates that
+                // find_candidates does not: the step must not end on an early stop.
+                self.converge_final(operator, heights, depth, state, &mut round.report)?;
+            }
             return Ok(Flow::Stop);
         }
         let pure_ring = self.candidates.iter().all(|&k| self.trial[k]);
@@ -77,6 +83,7 @@ impl AdhesiveSolver {
         for &k in &self.candidates {
             state.contact[k] = true;
         }
+        round.report.attachment_rounds += 1;
         Ok(Flow::Continue)
     }
 
@@ -88,8 +95,19 @@ impl AdhesiveSolver {
         !self.banned[k] && self.critical_stress[k] > 0.0
     }
 
+    /// Whether free element `k` lies within [`AdhesiveParams::trial_ring_layers`] edge-neighbour
+    /// steps ([`Grid::for_each_neighbour`](crate::Grid::for_each_neighbour)) of the contact:
+    /// with 1 layer, whether it touches the contact (the paper's rule); with 2, also whether
+    /// one of its neighbours does. The walk costs 4^layers look-ups per element.
+    ///
+    /// [`AdhesiveParams::trial_ring_layers`]: super::AdhesiveParams::trial_ring_layers
+    pub(super) fn within_trial_reach(&self, k: usize, contact: &[bool]) -> bool {
+        within_steps(&self.grid, contact, k, self.params.trial_ring_layers.get())
+    }
+
     /// Attachment candidates: penetrating elements, then (trial attachment) free
-    /// unbanned adhesive edge-neighbours of the contact, marked as trial.
+    /// unbanned adhesive elements within the trial reach of the contact (its edge-neighbours
+    /// by default), marked as trial.
     fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
         self.candidates.clear();
         for k in 0..self.grid.len() {
@@ -99,20 +117,19 @@ impl AdhesiveSolver {
             let gap = heights[k] - depth + state.displacement[k];
             if gap < 0.0 {
                 self.candidates.push(k);
-            } else if self.params.attachment == Attachment::Trial && self.may_try(k) {
-                let mut touches = false;
-                self.grid
-                    .for_each_neighbour(k, |neighbour| touches |= state.contact[neighbour]);
-                if touches {
-                    self.candidates.push(k);
-                    self.trial[k] = true;
-                }
+            } else if self.params.attachment == Attachment::Trial
+                && self.may_try(k)
+                && self.within_trial_reach(k, &state.contact)
+            {
+                self.candidates.push(k);
+                self.trial[k] = true;
             }
         }
     }
 
     /// Whether the ring about to be attached may grow through a predicted subset: the fast
-    /// rule on a free grid with retries after growth, and no element banned (the step is at
+    /// rule on a free grid with retries after growth, one layer per trial ring (the replay
+    /// and its evidence, docs/fast-step.md §3, are for that rule), and no element banned (the step is at
     /// its high-water mark, so the reference rule lifts every ban on any growth and the
     /// least-fixed-point argument applies; docs/fast-step.md §3).
     fn prediction_allowed(&self, round: &Round) -> bool {
@@ -125,6 +142,7 @@ impl AdhesiveSolver {
             && !round.prediction_blocked
             && self.params.retry_after_growth
             && self.local_peel.is_some()
+            && self.params.trial_ring_layers.get() == 1
             && !self.banned.iter().any(|&b| b)
     }
 
@@ -273,5 +291,54 @@ impl AdhesiveSolver {
         }
         self.predicted_failures.extend_from_slice(&peel.queue);
         self.local_peel = Some(peel);
+    }
+}
+
+/// Whether an element of `contact` lies within `steps` edge-neighbour steps of element `k`
+/// (`k` itself excluded): a walk over [`Grid::for_each_neighbour`] through any elements.
+fn within_steps(grid: &Grid, contact: &[bool], k: usize, steps: usize) -> bool {
+    let mut found = false;
+    grid.for_each_neighbour(k, |neighbour| {
+        found = found || contact[neighbour] || (steps > 1 && within_steps(grid, contact, neighbour, steps - 1));
+    });
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::within_steps;
+    use crate::grid::{Boundary, Grid};
+
+    /// The elements within `steps` of one contact element at (row, column) on an n² grid.
+    fn reach(boundary: Boundary, n: usize, (row, column): (usize, usize), steps: usize) -> Vec<(usize, usize)> {
+        let grid = Grid::new(n, 1.0, boundary).unwrap();
+        let mut contact = vec![false; n * n];
+        contact[row * n + column] = true;
+        (0..n * n)
+            .filter(|&k| !contact[k] && within_steps(&grid, &contact, k, steps))
+            .map(|k| (k / n, k % n))
+            .collect()
+    }
+
+    /// One step is the edge-neighbour test of the paper's rule (the 4 neighbours); two steps
+    /// are the diamond |Δrow| + |Δcolumn| ≤ 2 (12 elements), cut at a free edge and wrapped
+    /// on a periodic grid, as `Grid::for_each_neighbour` is.
+    #[test]
+    fn trial_reach_is_the_edge_neighbour_distance() {
+        assert_eq!(
+            reach(Boundary::Free, 7, (3, 3), 1),
+            vec![(2, 3), (3, 2), (3, 4), (4, 3)]
+        );
+        let diamond = reach(Boundary::Free, 7, (3, 3), 2);
+        assert_eq!(diamond.len(), 12);
+        assert!(diamond
+            .iter()
+            .all(|&(r, c)| (r as i64 - 3).abs() + (c as i64 - 3).abs() <= 2));
+        // At the corner of a free grid: (0,1), (1,0), (0,2), (1,1), (2,0).
+        assert_eq!(reach(Boundary::Free, 7, (0, 0), 2).len(), 5);
+        // On a periodic grid the corner's diamond wraps: 12 elements, e.g. (6, 6) and (0, 5).
+        let wrapped = reach(Boundary::Periodic, 7, (0, 0), 2);
+        assert_eq!(wrapped.len(), 12);
+        assert!(wrapped.contains(&(6, 6)) && wrapped.contains(&(0, 5)));
     }
 }

@@ -1,6 +1,8 @@
 //! Parameters, options and per-step report of the adhesive solver, and the local
 //! detachment criterion σ_c (docs/physics.md §2.2).
 
+use std::num::NonZeroUsize;
+
 /// c_U = [2 ln(1+√2) − (2/3)(√2 − 1)]/π: elastic energy U = c_U σ²Δ³/E* stored by one
 /// square element under uniform tension σ (mean displacement; docs/physics.md §2.2).
 pub const ELEMENT_ENERGY_FACTOR: f64 = 0.473_201_004_409_338_54;
@@ -29,7 +31,8 @@ pub fn over_stress_ratio(pressure: f64, critical_stress: f64) -> f64 {
 /// How new contact is formed (docs/physics.md §2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Attachment {
-    /// Penetrating elements attach, and every free edge-neighbour of the contact is
+    /// Penetrating elements attach, and every free edge-neighbour of the contact (every
+    /// free element within [`AdhesiveParams::trial_ring_layers`] steps of it) is
     /// tentatively attached; those that cannot hold (p < −σ_c) are released and banned for
     /// the rest of the step: the discrete Griffith closure test with the same σ_c.
     #[default]
@@ -81,7 +84,7 @@ pub enum PredictedGrowth {
     Auto,
 }
 
-/// Parameters of [`AdhesiveSolver`].
+/// Parameters of [`AdhesiveSolver`](super::AdhesiveSolver).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdhesiveParams {
     /// CG stops when ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6; the front criterion below is
@@ -126,6 +129,19 @@ pub struct AdhesiveParams {
     /// hold. Same contact sets, fewer solves; never in the reference rule, the other
     /// release orders, or on periodic grids. Default [`PredictedGrowth::Off`].
     pub predicted_growth: PredictedGrowth,
+    /// How many layers of free elements around the contact one trial ring holds (default 1,
+    /// the paper's rule and the reference for every result). Trial elements are the free,
+    /// unbanned, adhesive elements whose grid distance to the contact is at most this many
+    /// edge-neighbour steps ([`Grid::for_each_neighbour`](crate::Grid::for_each_neighbour),
+    /// wrapping on periodic grids; the path may cross any element). 2 attaches the whole
+    /// two-element neighbourhood per ring: a growing front needs fewer rings (17–36 % fewer
+    /// on the Fig. 1 cycle) but more solves per ring. It is a different closure rule: the
+    /// inner layer is tested with the outer one attached (F2 of docs/fast-step.md raises
+    /// its pressures), so the approach branch changes (γ1 up by 3–5 % on the Fig. 1 cycle;
+    /// BENCHMARKS.md, "two layers per trial ring"). Kept for that measurement;
+    /// predicted-subset growth is used with 1 only. `NonZeroUsize`: a ring of 0 layers
+    /// would attach nothing.
+    pub trial_ring_layers: NonZeroUsize,
     /// Test aid (default false): after every certified early stop, converge the solve
     /// fully on a copy and panic if a pressure moved by more than the certified bound or a
     /// release decision changed. Costs a full solve per early stop.
@@ -146,6 +162,7 @@ impl Default for AdhesiveParams {
             retry_after_growth: true,
             reference_rule: false,
             predicted_growth: PredictedGrowth::Off,
+            trial_ring_layers: NonZeroUsize::MIN,
             check_certificates: false,
         }
     }
@@ -160,6 +177,9 @@ pub struct StepReport {
     pub cg_iterations: usize,
     /// Elastic operator applications (FFT pairs).
     pub operator_applications: u64,
+    /// Attachment rounds: how often the step attached candidates (a trial ring, penetrating
+    /// elements, or both) and went on to solve; a growing front needs one per ring.
+    pub attachment_rounds: usize,
     /// Elements in C at the end that were not at the start.
     pub attached: usize,
     /// Elements in C at the start that are not at the end.
