@@ -4,6 +4,7 @@
 use super::{AdhesiveSolver, Attachment, Detachment, StopRule};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::ElasticOperator;
+use crate::grid::Boundary;
 use crate::solver::certificate::{
     attachments_certain, classify_releases, gap_error_bound, pressure_error_bound, Releases,
 };
@@ -30,9 +31,17 @@ impl AdhesiveSolver {
         }
         let bans_lifted =
             self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
-        // A trial element touches the contact: it lies in the contact's rows or next to them.
-        let (n, span) = (self.grid.n(), contact_span(&state.contact, self.grid.n()));
-        let near = span.start.saturating_sub(n)..(span.end + n).min(self.grid.len());
+        // A trial element lies within `trial_ring_layers` rows of the contact's rows (on a
+        // free grid; a periodic one wraps, so every row is looked at).
+        let (n, len) = (self.grid.n(), self.grid.len());
+        let near = match self.grid.boundary() {
+            Boundary::Free => {
+                let reach = self.params.trial_ring_layers.get() * n;
+                let span = contact_span(&state.contact, n);
+                span.start.saturating_sub(reach)..(span.end + reach).min(len)
+            }
+            Boundary::Periodic => 0..len,
+        };
         let trial_available = near.into_iter().any(|k| {
             // As find_candidates: only adhesive elements are tried.
             if state.contact[k] || !heights[k].is_finite() || (self.banned[k] && !bans_lifted) {
