@@ -11,6 +11,7 @@
 
 use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
+use crate::solver::certificate::{classify_releases, Releases};
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
@@ -25,9 +26,11 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         round: &mut Round,
     ) -> Result<Flow, SolveError> {
-        if round.growth == Growth::Predicted && self.dropped_member_penetrates(heights, depth, state) {
-            // The argument needs every dropped member at a gap ≥ 0 (F2): peel the full
-            // ring exactly instead.
+        if round.growth == Growth::Predicted
+            && (self.dropped_member_penetrates(heights, depth, state) || self.stability_uncertain(state))
+        {
+            // The argument needs every dropped member at a gap ≥ 0 (F2) and the subset
+            // certainly stable: otherwise peel the full ring exactly instead.
             self.fall_back(state, round);
             return self.release_violators(operator, heights, depth, state, round);
         }
@@ -190,6 +193,21 @@ impl AdhesiveSolver {
         self.ring_members
             .iter()
             .any(|&k| !state.contact[k] && heights[k] - depth + state.displacement[k] <= self.gap_error_bound)
+    }
+
+    /// Whether the stability of the current set is a tie (docs/fast-step.md §2): some
+    /// element's margin |p + σ_c| lies within the pressure error bound of the last solve, so
+    /// the exact pressures may release it although the iterate does not. A predicted subset
+    /// is accepted only if it is certainly stable: the reference rule meets such a tie on its
+    /// own peel of the full ring too (from another iterate), and a release there can cascade
+    /// through the whole subset.
+    fn stability_uncertain(&self, state: &ContactState) -> bool {
+        classify_releases(
+            &state.pressure,
+            &state.contact,
+            &self.critical_stress,
+            self.pressure_error_bound,
+        ) == Releases::Uncertain
     }
 
     /// Restores the state solved on X ∪ R (the predicted subset failed completely) and
