@@ -1,13 +1,15 @@
 //! Attachment and predicted-subset growth of the adhesive step (docs/fast-step.md §3).
 //!
 //! On the approach the step's result is the least fixed point of X ↦ peel(X ∪ ring(X))
-//! (docs/physics.md §2.4a): every stable subset Y with X ⊆ Y ⊆ X ∪ R of a trial ring R is a
-//! safe intermediate set. So after the solve on X ∪ R the solver predicts, with the local
-//! lattice-inverse release rounds, which members of R the peel will release, and attaches
-//! only the predicted holders H; the exact peel of X ∪ H (and of any later predicted subset)
-//! gives such a Y. A prediction that is wrong costs solves, never the result: if H fails
-//! completely, the solved state on X ∪ R is restored and R is peeled exactly, as in the
-//! reference rule, so the step still ends on the same fixed point.
+//! (docs/physics.md §2.4a): every stable subset Y with X ⊆ Y ⊆ X ∪ R of a trial ring R, at
+//! which no dropped member penetrates, is a safe intermediate set. So after the solve on
+//! X ∪ R the solver predicts, with a local replay of the peel, which members of R the peel
+//! will release, and attaches only the predicted holders H; the exact peel of X ∪ H (and of
+//! any later predicted subset) gives such a Y. A prediction that is wrong costs solves,
+//! never the result: if H fails completely, a dropped member penetrates, or Y's stability
+//! is a tie within the solve's error bound (a finite-precision decision that a cascade
+//! could overturn, docs/fast-step.md §3), the solved state on X ∪ R is restored and R is
+//! peeled exactly, as in the reference rule, so the step still ends on the same fixed point.
 
 use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
