@@ -295,3 +295,70 @@ impl AdhesiveSolver {
         self.local_peel = Some(peel);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{AdhesiveParams, StepReport};
+    use super::*;
+    use crate::elastic::FreeOperator;
+    use crate::grid::{Boundary, Grid};
+    use crate::material::ElasticMaterial;
+
+    /// A solver in the state after a stable-looking solve on a predicted subset: contact
+    /// block X ∪ H' of a 16² grid, one ring member dropped (free, positive gap), and one
+    /// element of H' at tension (1 − 1e-7)·σ_c; returns the solver, the state and the round.
+    fn predicted_subset() -> (AdhesiveSolver, ContactState, Round, Grid) {
+        let grid = Grid::new(16, 1.0, Boundary::Free).expect("grid");
+        let params = AdhesiveParams {
+            predicted_growth: PredictedGrowth::On,
+            ..AdhesiveParams::default()
+        };
+        let mut solver = AdhesiveSolver::new(grid, 1.0, vec![1e-3; grid.len()], params);
+        let mut state = ContactState::new(&grid);
+        let held = 8 * 16 + 10;
+        let dropped = 8 * 16 + 11;
+        for row in 6..10 {
+            for column in 6..11 {
+                state.contact[row * 16 + column] = true;
+                state.pressure[row * 16 + column] = 0.1;
+            }
+        }
+        state.pressure[held] = -(1.0 - 1e-7) * solver.critical_stress[held];
+        solver.ring_members = vec![held, dropped];
+        solver.ring_solved_pressure.copy_from_slice(&state.pressure);
+        solver.ring_solved_displacement.copy_from_slice(&state.displacement);
+        let round = Round {
+            report: StepReport::default(),
+            retry_high_water: 0,
+            ring_restorable: true,
+            growth: Growth::Predicted,
+            prediction_blocked: false,
+        };
+        (solver, state, round, grid)
+    }
+
+    /// Guard (b) of docs/fast-step.md §3: a predicted subset whose stability is a tie (a
+    /// member's margin 1e-7·σ_c inside an error bound of 1e-3·σ_c) is not accepted: the full
+    /// ring is restored (the dropped member is back in contact) for the exact peel. With an
+    /// error bound below the margin the same subset is accepted and its own ring (which
+    /// holds the dropped member again) is attached, to be grown through a prediction.
+    #[test]
+    fn a_tie_on_a_predicted_subset_falls_back_to_the_full_ring() {
+        let heights = vec![1.0; 256];
+        for (bound_in_sigma, falls_back) in [(1e-3, true), (1e-9, false)] {
+            let (mut solver, mut state, mut round, grid) = predicted_subset();
+            solver.pressure_error_bound = bound_in_sigma * solver.critical_stress[0];
+            let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
+            solver
+                .attach(&mut operator, &heights, 0.0, &mut state, &mut round)
+                .expect("attach");
+            let dropped = 8 * 16 + 11;
+            assert_eq!(solver.predicted_growth().1, falls_back as u64, "bound {bound_in_sigma}");
+            assert_eq!(round.prediction_blocked, falls_back, "bound {bound_in_sigma}");
+            // Restored (fallback) or attached again as a member of the next ring (accepted).
+            assert!(state.contact[dropped]);
+            let growth = if falls_back { Growth::Exact } else { Growth::FullRing };
+            assert_eq!(round.growth, growth, "bound {bound_in_sigma}");
+        }
+    }
+}
