@@ -1,17 +1,20 @@
 //! Attachment and predicted-subset growth of the adhesive step (docs/fast-step.md §3).
 //!
 //! On the approach the step's result is the least fixed point of X ↦ peel(X ∪ ring(X))
-//! (docs/physics.md §2.4a): every stable subset Y with X ⊆ Y ⊆ X ∪ R of a trial ring R is a
-//! safe intermediate set. So after the solve on X ∪ R the solver predicts, with the local
-//! lattice-inverse release rounds, which members of R the peel will release, and attaches
-//! only the predicted holders H; the exact peel of X ∪ H (and of any later predicted subset)
-//! gives such a Y. A prediction that is wrong costs solves, never the result: if H fails
-//! completely, the solved state on X ∪ R is restored and R is peeled exactly, as in the
-//! reference rule, so the step still ends on the same fixed point.
+//! (docs/physics.md §2.4a): every stable subset Y with X ⊆ Y ⊆ X ∪ R of a trial ring R, at
+//! which no dropped member penetrates, is a safe intermediate set. So after the solve on
+//! X ∪ R the solver predicts, with a local replay of the peel, which members of R the peel
+//! will release, and attaches only the predicted holders H; the exact peel of X ∪ H (and of
+//! any later predicted subset) gives such a Y. A prediction that is wrong costs solves,
+//! never the result: if H fails completely, a dropped member penetrates, or Y's stability
+//! is a tie within the solve's error bound (a finite-precision decision that a cascade
+//! could overturn, docs/fast-step.md §3), the solved state on X ∪ R is restored and R is
+//! peeled exactly, as in the reference rule, so the step still ends on the same fixed point.
 
 use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PREDICTION_MIN_ELEMENTS};
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
+use crate::solver::certificate::{classify_releases, Releases};
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
@@ -26,9 +29,11 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         round: &mut Round,
     ) -> Result<Flow, SolveError> {
-        if round.growth == Growth::Predicted && self.dropped_member_penetrates(heights, depth, state) {
-            // The argument needs every dropped member at a gap ≥ 0 (F2): peel the full
-            // ring exactly instead.
+        if round.growth == Growth::Predicted
+            && (self.dropped_member_penetrates(heights, depth, state) || self.stability_uncertain(state))
+        {
+            // The argument needs every dropped member at a gap ≥ 0 (F2) and the subset
+            // certainly stable: otherwise peel the full ring exactly instead.
             self.fall_back(state, round);
             return self.release_violators(operator, heights, depth, state, round);
         }
@@ -210,6 +215,21 @@ impl AdhesiveSolver {
             .any(|&k| !state.contact[k] && heights[k] - depth + state.displacement[k] <= self.gap_error_bound)
     }
 
+    /// Whether the stability of the current set is a tie (docs/fast-step.md §2): some
+    /// element's margin |p + σ_c| lies within the pressure error bound of the last solve, so
+    /// the exact pressures may release it although the iterate does not. A predicted subset
+    /// is accepted only if it is certainly stable: the reference rule meets such a tie on its
+    /// own peel of the full ring too (from another iterate), and a release there can cascade
+    /// through the whole subset.
+    fn stability_uncertain(&self, state: &ContactState) -> bool {
+        classify_releases(
+            &state.pressure,
+            &state.contact,
+            &self.critical_stress,
+            self.pressure_error_bound,
+        ) == Releases::Uncertain
+    }
+
     /// Restores the state solved on X ∪ R (the predicted subset failed completely) and
     /// finds its violators again: R is then peeled exactly, without prediction.
     fn fall_back(&mut self, state: &mut ContactState, round: &mut Round) {
@@ -306,8 +326,69 @@ fn within_steps(grid: &Grid, contact: &[bool], k: usize, steps: usize) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::within_steps;
+    use super::super::{AdhesiveParams, StepReport};
+    use super::*;
+    use crate::elastic::FreeOperator;
     use crate::grid::{Boundary, Grid};
+    use crate::material::ElasticMaterial;
+
+    /// A solver in the state after a stable-looking solve on a predicted subset: contact
+    /// block X ∪ H' of a 16² grid, one ring member dropped (free, positive gap), and one
+    /// element of H' at tension (1 − 1e-7)·σ_c; returns the solver, the state and the round.
+    fn predicted_subset() -> (AdhesiveSolver, ContactState, Round, Grid) {
+        let grid = Grid::new(16, 1.0, Boundary::Free).expect("grid");
+        let params = AdhesiveParams {
+            predicted_growth: PredictedGrowth::On,
+            ..AdhesiveParams::default()
+        };
+        let mut solver = AdhesiveSolver::new(grid, 1.0, vec![1e-3; grid.len()], params);
+        let mut state = ContactState::new(&grid);
+        let held = 8 * 16 + 10;
+        let dropped = 8 * 16 + 11;
+        for row in 6..10 {
+            for column in 6..11 {
+                state.contact[row * 16 + column] = true;
+                state.pressure[row * 16 + column] = 0.1;
+            }
+        }
+        state.pressure[held] = -(1.0 - 1e-7) * solver.critical_stress[held];
+        solver.ring_members = vec![held, dropped];
+        solver.ring_solved_pressure.copy_from_slice(&state.pressure);
+        solver.ring_solved_displacement.copy_from_slice(&state.displacement);
+        let round = Round {
+            report: StepReport::default(),
+            retry_high_water: 0,
+            ring_restorable: true,
+            growth: Growth::Predicted,
+            prediction_blocked: false,
+        };
+        (solver, state, round, grid)
+    }
+
+    /// Guard (b) of docs/fast-step.md §3: a predicted subset whose stability is a tie (a
+    /// member's margin 1e-7·σ_c inside an error bound of 1e-3·σ_c) is not accepted: the full
+    /// ring is restored (the dropped member is back in contact) for the exact peel. With an
+    /// error bound below the margin the same subset is accepted and its own ring (which
+    /// holds the dropped member again) is attached, to be grown through a prediction.
+    #[test]
+    fn a_tie_on_a_predicted_subset_falls_back_to_the_full_ring() {
+        let heights = vec![1.0; 256];
+        for (bound_in_sigma, falls_back) in [(1e-3, true), (1e-9, false)] {
+            let (mut solver, mut state, mut round, grid) = predicted_subset();
+            solver.pressure_error_bound = bound_in_sigma * solver.critical_stress[0];
+            let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
+            solver
+                .attach(&mut operator, &heights, 0.0, &mut state, &mut round)
+                .expect("attach");
+            let dropped = 8 * 16 + 11;
+            assert_eq!(solver.predicted_growth().1, falls_back as u64, "bound {bound_in_sigma}");
+            assert_eq!(round.prediction_blocked, falls_back, "bound {bound_in_sigma}");
+            // Restored (fallback) or attached again as a member of the next ring (accepted).
+            assert!(state.contact[dropped]);
+            let growth = if falls_back { Growth::Exact } else { Growth::FullRing };
+            assert_eq!(round.growth, growth, "bound {bound_in_sigma}");
+        }
+    }
 
     /// The elements within `steps` of one contact element at (row, column) on an n² grid.
     fn reach(boundary: Boundary, n: usize, (row, column): (usize, usize), steps: usize) -> Vec<(usize, usize)> {

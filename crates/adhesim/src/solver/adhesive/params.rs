@@ -67,9 +67,10 @@ pub enum Detachment {
 pub const PREDICTION_MIN_ELEMENTS: usize = 256 * 256;
 
 /// When the adhesive step grows trial rings through predicted subsets (docs/fast-step.md §3).
-/// Default `Off`: on one equivalence case with a smaller replay window (fig2_h120, window
-/// of 64) the predicted path reached a larger stable set than the reference rule at one
-/// step, so the claim "same contact sets" is not established for every contact.
+/// Default `Off` until the N = 512 Fig. 1 cycle is re-measured: before the tie guard of
+/// docs/fast-step.md §3 (a predicted subset is accepted only if certainly stable), the
+/// predicted path reached a larger stable set than the reference rule at one step there and
+/// on one equivalence case with a smaller replay window (fig2_h120, window of 64).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PredictedGrowth {
     /// Never: every ring is peeled exactly.
