@@ -63,25 +63,26 @@ pub enum Detachment {
 }
 
 /// Grids with at least this many elements use predicted-subset growth under
-/// [`PredictedGrowth::Auto`] (256²).
-pub const PREDICTION_MIN_ELEMENTS: usize = 256 * 256;
+/// [`PredictedGrowth::Auto`] (512²).
+pub const PREDICTION_MIN_ELEMENTS: usize = 512 * 512;
 
 /// When the adhesive step grows trial rings through predicted subsets (docs/fast-step.md §3).
-/// Default `Off` until the N = 512 Fig. 1 cycle is re-measured: before the tie guard of
-/// docs/fast-step.md §3 (a predicted subset is accepted only if certainly stable), the
-/// predicted path reached a larger stable set than the reference rule at one step there and
-/// on one equivalence case with a smaller replay window (fig2_h120, window of 64).
+/// Default `Auto`: with the tie guard of docs/fast-step.md §3 (a predicted subset is accepted
+/// only if certainly stable) the contact sets equal the exact peel's on every equivalence
+/// case (n ≤ 128, prediction forced on) and in the Fig. 1 cycle at n = 256 (75 and 150
+/// steps) and N = 512 (every step's contact size, attached and detached counts).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PredictedGrowth {
     /// Never: every ring is peeled exactly.
-    #[default]
     Off,
     /// Always (where it applies).
     On,
-    /// On grids of at least [`PREDICTION_MIN_ELEMENTS`] elements: the local replays cost
-    /// about what they save in FFT pairs at 256² (Fig. 1 cycle: 15 % less CPU) and less
-    /// at 512² (22 % less), but more at 128², where an FFT pair is cheap (Fig. 1: 15–25 %
-    /// more CPU; the patchy Fig. 2 contact at h = 0.006: about 3× the wall time).
+    /// On grids of at least [`PREDICTION_MIN_ELEMENTS`] elements, where it pays in wall
+    /// time on 2 cores (Fig. 1 cycle, BENCHMARKS.md): at 512², 153.6 s instead of 171.8 s;
+    /// at 256², 22 % fewer FFT pairs but the same CPU time and 8–12 % more wall time (the
+    /// replays run on one thread); at 128², 15–25 % more CPU (the patchy Fig. 2 contact at
+    /// h = 0.006: about 3× the wall time).
+    #[default]
     Auto,
 }
 
