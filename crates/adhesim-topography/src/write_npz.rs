@@ -152,6 +152,10 @@ pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<()
     let mut zip = zip::ZipWriter::new(std::io::BufWriter::new(file));
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
+        // Level 1: the fields are doubles, which deflate shrinks by their runs of zeros
+        // (free elements, no contact) about as well at the fastest level; at level 6 the
+        // compression took a quarter of a whole Hertz run at N = 512 (BENCHMARKS.md).
+        .compression_level(Some(1))
         .large_file(arrays.iter().any(|a| a.data.len() * 8 > u32::MAX as usize / 2));
     for array in arrays {
         zip.start_file(format!("{}.npy", array.name), options)
