@@ -124,6 +124,24 @@ fn main() {
         ratio(analysis.gamma_approach),
         ratio(analysis.gamma_pulloff)
     );
+    print_phases(&records);
+    if let NormalSolver::Adhesive(adhesive) = &solver {
+        let (predicted, fallbacks) = adhesive.predicted_growth();
+        println!(
+            "  certified early stops: {} of {} solves; rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
+            adhesive.certified_stops(),
+            summary.solves,
+            1e3 * adhesive.prediction_seconds() / summary.steps as f64,
+            cpu / wall
+        );
+    }
+    if let Some(path) = curve_path {
+        write_curve(&path, &records);
+    }
+}
+
+/// Counters per step of the approach and of the retraction apart.
+fn print_phases(records: &[StepRecord]) {
     let approach = records.iter().filter(|r| r.phase == Some(Phase::Approach)).count();
     for (label, part) in [("approach", &records[..approach]), ("retraction", &records[approach..])] {
         let steps = part.len().max(1) as f64;
@@ -142,39 +160,31 @@ fn main() {
             attached as f64 / steps
         );
     }
-    if let NormalSolver::Adhesive(adhesive) = &solver {
-        let (predicted, fallbacks) = adhesive.predicted_growth();
-        println!(
-            "  certified early stops: {} of {} solves; rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
-            adhesive.certified_stops(),
-            summary.solves,
-            1e3 * adhesive.prediction_seconds() / summary.steps as f64,
-            cpu / wall
-        );
-    }
-    if let Some(path) = curve_path {
-        let mut file = std::io::BufWriter::new(std::fs::File::create(&path).expect("curve file"));
+}
+
+/// Depth, force, contact size and counters per step, to compare solver options.
+fn write_curve(path: &str, records: &[StepRecord]) {
+    let mut file = std::io::BufWriter::new(std::fs::File::create(path).expect("curve file"));
+    writeln!(
+        file,
+        "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached"
+    )
+    .expect("write");
+    for r in records {
         writeln!(
             file,
-            "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached"
+            "{},{:e},{:e},{},{:e},{},{},{},{},{}",
+            r.step,
+            r.depth,
+            r.force_normal,
+            r.contact_elements,
+            r.radius,
+            r.report.solves,
+            r.report.cg_iterations,
+            r.report.operator_applications,
+            r.report.attached,
+            r.report.detached
         )
         .expect("write");
-        for r in &records {
-            writeln!(
-                file,
-                "{},{:e},{:e},{},{:e},{},{},{},{},{}",
-                r.step,
-                r.depth,
-                r.force_normal,
-                r.contact_elements,
-                r.radius,
-                r.report.solves,
-                r.report.cg_iterations,
-                r.report.operator_applications,
-                r.report.attached,
-                r.report.detached
-            )
-            .expect("write");
-        }
     }
 }
