@@ -8,8 +8,8 @@
 //! `ADHESIM_RELATIVE_TOLERANCE=1e-9` overrides the CG's relative tolerance;
 //! `ADHESIM_REFERENCE_RULE=1` runs the reference rule (every fixed-set solve converged,
 //! no certified early stops; docs/fast-step.md) to compare work and results;
-//! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on, `auto` on from 512²
-//! (default off, docs/fast-step.md §3); `ADHESIM_RING_LAYERS=2` attaches
+//! `ADHESIM_PREDICTED_GROWTH=1` turns predicted-subset growth on, `0` off (default: the
+//! solver's `Auto`, on from 512², docs/fast-step.md §3); `ADHESIM_RING_LAYERS=2` attaches
 //! two layers of elements per trial ring (`AdhesiveParams::trial_ring_layers`) and
 //! `ADHESIM_ATTACHMENT=penetration` attaches by penetration only
 //! (`Attachment::PenetrationOnly`): different rules, whose physics cost is measured in
@@ -68,8 +68,8 @@ fn main() {
             reference_rule: std::env::var("ADHESIM_REFERENCE_RULE").is_ok_and(|v| v == "1"),
             predicted_growth: match std::env::var("ADHESIM_PREDICTED_GROWTH").as_deref() {
                 Ok("1") => PredictedGrowth::On,
-                Ok("auto") => PredictedGrowth::Auto,
-                _ => PredictedGrowth::Off,
+                Ok("0") => PredictedGrowth::Off,
+                _ => PredictedGrowth::Auto,
             },
             attachment: match std::env::var("ADHESIM_ATTACHMENT").as_deref() {
                 Ok("penetration") => Attachment::PenetrationOnly,
