@@ -6,6 +6,8 @@
 //! the inverse of a principal submatrix never exceeds that of the whole operator's inverse,
 //! so max diag(S_C) ≤ [`LATTICE_INVERSE_DIAGONAL`]·E*/Δ for every set on every grid.
 
+use rayon::prelude::*;
+
 /// Diagonal of the inverse of the discrete Love operator on the infinite square lattice, in
 /// units of E*/Δ, rounded up: (2π)⁻²∫∫ dθ / K̂(θ) = 1.162 781 0 (FFT of the lattice
 /// kernel on 1024² and 2048² periodic boxes: 1.162 780 98 and 1.162 780 97). The test
@@ -26,7 +28,6 @@ pub fn pressure_error_bound(residual: &[f64], contact_modulus: f64, element_size
 
 /// max |r| (0 for an empty field), on the pool: a maximum is exact in any order.
 fn largest_magnitude(residual: &[f64]) -> f64 {
-    use rayon::prelude::*;
     residual
         .par_chunks(super::PARALLEL_CHUNK)
         .map(|chunk| chunk.iter().fold(0.0f64, |m, r| m.max(r.abs())))
@@ -40,7 +41,6 @@ fn largest_magnitude(residual: &[f64]) -> f64 {
 /// the safety factor.
 /// Every element is visited (far gaps are large but must be looked at), in parallel.
 pub fn attachments_certain(heights: &[f64], depth: f64, displacement: &[f64], contact: &[bool], band: f64) -> bool {
-    use rayon::prelude::*;
     let chunk = super::PARALLEL_CHUNK;
     heights
         .par_chunks(chunk)
@@ -71,7 +71,6 @@ pub enum Releases {
 /// Classifies the release decisions of an iterate for the pressure error bound `band`.
 /// On the pool: "some element within the band" and "some violator" do not depend on order.
 pub fn classify_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> Releases {
-    use rayon::prelude::*;
     let chunk = super::PARALLEL_CHUNK;
     let (uncertain, violator) = pressure
         .par_chunks(chunk)

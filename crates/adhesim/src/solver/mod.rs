@@ -278,8 +278,7 @@ pub(crate) const PARALLEL_CHUNK: usize = 1 << 13;
 /// zeros (adding a zero leaves a partial sum unchanged).
 pub(crate) fn dot_on(a: &[f64], b: &[f64], range: Range<usize>) -> f64 {
     let start = range.start - range.start % 4;
-    let end = range.end.div_ceil(4) * 4;
-    let end = if end >= a.len() { a.len() } else { end };
+    let end = (range.end.div_ceil(4) * 4).min(a.len());
     if start >= end {
         return 0.0;
     }
@@ -342,4 +341,46 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
         }
     }
     (partial[0] + partial[1]) + (partial[2] + partial[3]) + tail
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{contact_span, dot, dot_on};
+
+    /// `dot_on` over the nonzero range has the bits of `dot` over the whole vectors, for
+    /// ranges at every alignment to the four lanes and lengths with and without a tail.
+    #[test]
+    fn dot_on_a_range_has_the_bits_of_the_whole_dot() {
+        for len in [37, 40, 41] {
+            for start in 0..9 {
+                for end in [start, start + 1, start + 5, len - 3, len] {
+                    let end = end.max(start).min(len);
+                    let value = |k: usize| {
+                        if (start..end).contains(&k) {
+                            (k as f64 * 0.37).sin() * 1e3
+                        } else {
+                            0.0
+                        }
+                    };
+                    let a: Vec<f64> = (0..len).map(value).collect();
+                    let b: Vec<f64> = (0..len).map(|k| (k as f64 * 1.3).cos() + 1e-9 * k as f64).collect();
+                    assert_eq!(
+                        dot_on(&a, &b, start..end).to_bits(),
+                        dot(&a, &b).to_bits(),
+                        "len {len}, range {start}..{end}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The span covers whole rows from the first contact row to the last.
+    #[test]
+    fn contact_span_is_whole_rows() {
+        let mut contact = vec![false; 25];
+        assert_eq!(contact_span(&contact, 5), 0..0);
+        contact[7] = true;
+        contact[13] = true;
+        assert_eq!(contact_span(&contact, 5), 5..15);
+    }
 }
