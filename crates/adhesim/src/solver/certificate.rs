@@ -68,6 +68,31 @@ pub enum Releases {
     Uncertain,
 }
 
+/// How many elements of the set are certain violators (−p − σ_c > `band`) and how many lie
+/// within the band (|−p − σ_c| ≤ `band`). On the pool: counts do not depend on order.
+pub fn count_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> (usize, usize) {
+    let chunk = super::PARALLEL_CHUNK;
+    pressure
+        .par_chunks(chunk)
+        .zip(contact.par_chunks(chunk))
+        .zip(critical_stress.par_chunks(chunk))
+        .map(|((pressure, contact), critical_stress)| {
+            let (mut certain, mut uncertain) = (0, 0);
+            for k in 0..pressure.len() {
+                if contact[k] {
+                    let excess = -pressure[k] - critical_stress[k];
+                    if excess.abs() <= band {
+                        uncertain += 1;
+                    } else if excess > 0.0 {
+                        certain += 1;
+                    }
+                }
+            }
+            (certain, uncertain)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+}
+
 /// Classifies the release decisions of an iterate for the pressure error bound `band`.
 /// On the pool: "some element within the band" and "some violator" do not depend on order.
 pub fn classify_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> Releases {

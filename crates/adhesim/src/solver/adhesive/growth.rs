@@ -199,7 +199,9 @@ impl AdhesiveSolver {
         }
         for index in 0..self.predicted_failures.len() {
             let k = self.predicted_failures[index];
+            let released_pressure = state.pressure[k];
             self.release(k, state);
+            self.spread_release(k, released_pressure, state);
         }
         round.growth = Growth::Predicted;
         Ok(Flow::Continue)

@@ -11,8 +11,9 @@ impl AdhesiveSolver {
     /// Releases the violators (only the failed trial elements with `trial_only`), then,
     /// with local rounds, every element of the same kind whose tension a local lower bound
     /// certifies above σ_c, in a sequence of single releases (docs/fast-step.md). These are
-    /// elements the following rounds of the reference rule would release. Returns the
-    /// number of the extra releases.
+    /// elements the following rounds of the reference rule would release. Each release
+    /// also spreads its load over the contact nearby as the next solve's warm start
+    /// ([`spread_release`](Self::spread_release)). Returns the number of the extra releases.
     pub(super) fn release_with_local_rounds(&mut self, state: &mut ContactState, trial_only: bool) -> usize {
         let Some(mut peel) = self.local_peel.take() else {
             for index in 0..self.violators.len() {
@@ -42,6 +43,7 @@ impl AdhesiveSolver {
             let released = peel.queue[head];
             head += 1;
             let tension = peel.lower[released].max(0.0);
+            let released_pressure = state.pressure[released];
             self.release(released, state);
             let centre = ((released / n) as i64, (released % n) as i64);
             peel.prepare(n, centre, |k| !state.contact[k]);
@@ -52,10 +54,16 @@ impl AdhesiveSolver {
                         continue;
                     }
                     let k = row as usize * n + column as usize;
-                    if !state.contact[k] || (trial_only && !self.trial[k]) || peel.queued[k] {
+                    if !state.contact[k] {
                         continue;
                     }
-                    peel.lower[k] += peel.rise((row, column)) * tension;
+                    let rise = peel.rise((row, column));
+                    // Warm start of the next solve (see `spread_release`).
+                    state.pressure[k] += rise * released_pressure;
+                    if (trial_only && !self.trial[k]) || peel.queued[k] {
+                        continue;
+                    }
+                    peel.lower[k] += rise * tension;
                     if peel.lower[k] > self.critical_stress[k] {
                         peel.queue.push(k);
                         peel.queued[k] = true;
@@ -113,6 +121,33 @@ impl AdhesiveSolver {
         Ok(())
     }
 
+    /// Warm start of the next solve after releasing element `released`, whose pressure was
+    /// `released_pressure`: the contact elements within `REACH` take up that load by the
+    /// local rises (with v's load p_v, the exact new pressures are p_i − (S_iv/S_vv)·p_v,
+    /// docs/fast-step.md "Warm starts"). Only where the next CG starts changes, never the
+    /// set it solves, so the decisions stay those of the solved pressures.
+    pub(super) fn spread_release(&mut self, released: usize, released_pressure: f64, state: &mut ContactState) {
+        let Some(mut peel) = self.local_peel.take() else {
+            return;
+        };
+        let n = self.grid.n();
+        let centre = ((released / n) as i64, (released % n) as i64);
+        peel.prepare(n, centre, |k| !state.contact[k]);
+        for a in -REACH..=REACH {
+            for b in -REACH..=REACH {
+                let (row, column) = (centre.0 + a, centre.1 + b);
+                if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
+                    continue;
+                }
+                let k = row as usize * n + column as usize;
+                if state.contact[k] {
+                    state.pressure[k] += peel.rise((row, column)) * released_pressure;
+                }
+            }
+        }
+        self.local_peel = Some(peel);
+    }
+
     pub(super) fn release(&mut self, k: usize, state: &mut ContactState) {
         state.contact[k] = false;
         state.pressure[k] = 0.0;
@@ -154,6 +189,13 @@ impl AdhesiveSolver {
         }
         if let Detachment::RandomHalf { .. } = self.params.detachment {
             self.keep_random_half(state, largest);
+        }
+        if self.last_solve_certified {
+            // A certified stop may leave elements inside the error band: only the certain
+            // violators go now (any subset of violators is a valid release, §2.4a).
+            let band = self.pressure_error_bound;
+            let (pressure, critical_stress) = (&state.pressure, &self.critical_stress);
+            self.violators.retain(|&k| -pressure[k] - critical_stress[k] > band);
         }
     }
 
