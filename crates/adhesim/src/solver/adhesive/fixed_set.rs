@@ -104,7 +104,10 @@ impl AdhesiveSolver {
                 .zip(self.response.par_chunks(PARALLEL_CHUNK))
                 .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
         }
-        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
+        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop, 1.0)?;
+        if !self.last_solve_certified {
+            iterations += self.refine_ties(operator, heights, depth, state)?;
+        }
         if self.last_solve_certified {
             self.certified_stops += 1;
             if self.params.check_certificates {
@@ -112,6 +115,38 @@ impl AdhesiveSolver {
             }
         }
         self.displacement_pressure.copy_from_slice(&state.pressure);
+        Ok(iterations)
+    }
+
+    /// Tie refinement (docs/fast-step.md §2): a converged solve whose iterate leaves some
+    /// release decision inside its error band (|p + σ_c| ≤ band) is continued, from u
+    /// recomputed in double precision, at tolerances [`TIE_TOLERANCE_SCALE`] times the
+    /// solver's, until no decision lies inside the (shrinking) band or those tolerances are
+    /// met. The decisions are then those of the exact solution wherever its margin exceeds
+    /// the refined band, whatever iterate the solve came from. Returns the iterations.
+    fn refine_ties<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<usize, SolveError> {
+        let span = contact_span(&state.contact, self.grid.n());
+        let (_, uncertain) = count_releases(
+            &state.pressure[span.clone()],
+            &state.contact[span.clone()],
+            &self.critical_stress[span],
+            self.pressure_error_bound,
+        );
+        if uncertain == 0 {
+            return Ok(0);
+        }
+        self.tie_refinements += 1;
+        operator.apply(&state.pressure, &mut state.displacement);
+        let iterations =
+            self.iterate_fixed_set(operator, heights, depth, state, StopRule::Decided, TIE_TOLERANCE_SCALE)?;
+        // Refined from a converged state: as converged as the plain solve, for the outputs.
+        self.last_solve_certified = false;
         Ok(iterations)
     }
 
@@ -127,7 +162,7 @@ impl AdhesiveSolver {
     ) -> Result<usize, SolveError> {
         let early = state.clone();
         let (bound, gap_bound) = (self.pressure_error_bound, self.gap_error_bound);
-        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge)?;
+        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge, 1.0)?;
         for k in 0..self.grid.len() {
             if !state.contact[k] && heights[k].is_finite() {
                 let converged = heights[k] - depth + state.displacement[k];
@@ -155,7 +190,7 @@ impl AdhesiveSolver {
     }
 
     /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
-    /// whose u = K p is up to date.
+    /// whose u = K p is up to date, at `tolerance_scale` times the solver's tolerances.
     pub(super) fn iterate_fixed_set<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
@@ -163,6 +198,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
         stop: StopRule,
+        tolerance_scale: f64,
     ) -> Result<usize, SolveError> {
         self.last_solve_certified = false;
         // The residual vanishes off the contact: only the contact's rows are visited (the
@@ -195,12 +231,16 @@ impl AdhesiveSolver {
         // element of stress σ_c produces by itself.
         let delta = self.grid.element_size();
         let pointwise = if self.minimum_critical_stress > 0.0 {
-            self.params.front_tolerance * SELF_COMPLIANCE_FACTOR * self.minimum_critical_stress * delta
+            tolerance_scale
+                * self.params.front_tolerance
+                * SELF_COMPLIANCE_FACTOR
+                * self.minimum_critical_stress
+                * delta
                 / operator.contact_modulus()
         } else {
             f64::INFINITY
         };
-        let relative = self.params.relative_tolerance * target_norm.sqrt();
+        let relative = tolerance_scale * self.params.relative_tolerance * target_norm.sqrt();
         let converged = |norm2: f64, residual: &[f64], contact: &[bool]| -> bool {
             if norm2.sqrt() > relative {
                 return false;
@@ -264,7 +304,9 @@ impl AdhesiveSolver {
                     let band = pressure_error_bound(residual, contact_modulus, element_size);
                     let critical_stress = &critical_stress[set.clone()];
                     let (certain, uncertain) = count_releases(&pressure[set], contact_rows, critical_stress, band);
-                    certified = if certain > 0 {
+                    certified = if stop == StopRule::Decided {
+                        uncertain == 0
+                    } else if certain > 0 {
                         uncertain <= certain
                     } else if uncertain == 0 && stop == StopRule::ReleasesOrAttachments {
                         attachments_certain(heights, depth, displacement, contact, gap_error_bound(residual))
@@ -284,6 +326,10 @@ impl AdhesiveSolver {
             .map_err(|error| error.into_solve_error(target_norm.sqrt(), self.params.relative_tolerance))
     }
 }
+
+/// Tolerances of a tie refinement relative to the solver's (relative residual 1e-6 →
+/// 1e-10, front 1e-4 → 1e-8 by default): the band of a converged refinement is ≈ 5e-8·σ_c.
+const TIE_TOLERANCE_SCALE: f64 = 1e-4;
 
 /// Writes direction = p − p_last and returns the range from the first to the last element
 /// where it is nonzero (`None` when p has not changed).

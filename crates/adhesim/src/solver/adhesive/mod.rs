@@ -78,6 +78,8 @@ pub struct AdhesiveSolver {
     saved_certified: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
+    /// Tie refinements (docs/fast-step.md §2), over the solver's life.
+    tie_refinements: u64,
     /// Certified local release rounds (free grids, fast rule only).
     local_peel: Option<LocalPeel>,
     /// Trial elements released by local certificates (without a solve), over the solver's life.
@@ -112,6 +114,8 @@ enum StopRule {
     /// As `Releases`, or once there is certainly no release and the attachment decisions
     /// are certain (the step goes on to attach: trial neighbours exist).
     ReleasesOrAttachments,
+    /// Tie refinement: stop once no release decision lies inside the error band.
+    Decided,
 }
 
 impl AdhesiveSolver {
@@ -165,6 +169,7 @@ impl AdhesiveSolver {
             last_solve_certified: false,
             saved_certified: false,
             certified_stops: 0,
+            tie_refinements: 0,
             local_peel: (grid.boundary() == Boundary::Free
                 && !params.reference_rule
                 && params.detachment == Detachment::AllViolators)
@@ -208,6 +213,12 @@ impl AdhesiveSolver {
     /// over the solver's life.
     pub fn certified_stops(&self) -> u64 {
         self.certified_stops
+    }
+
+    /// Converged solves continued because a release decision lay inside the error band
+    /// (docs/fast-step.md §2), over the solver's life.
+    pub fn tie_refinements(&self) -> u64 {
+        self.tie_refinements
     }
 
     /// The parameters.
