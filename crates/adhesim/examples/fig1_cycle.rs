@@ -128,10 +128,11 @@ fn main() {
     if let NormalSolver::Adhesive(adhesive) = &solver {
         let (predicted, fallbacks) = adhesive.predicted_growth();
         println!(
-            "  certified early stops: {} of {} solves; tie refinements {}; rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
+            "  certified early stops: {} of {} solves; tie refinements {} ({} unresolved); rings grown through a predicted subset: {predicted} ({fallbacks} fell back to the exact peel), local replays {:.1} ms/step; CPU {cpu:.1} s ({:.2} cores)",
             adhesive.certified_stops(),
             summary.solves,
             adhesive.tie_refinements(),
+            adhesive.unresolved_ties(),
             1e3 * adhesive.prediction_seconds() / summary.steps as f64,
             cpu / wall
         );

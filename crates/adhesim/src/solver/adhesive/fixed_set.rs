@@ -8,6 +8,7 @@ use crate::grid::Boundary;
 use crate::solver::certificate::{attachments_certain, count_releases, gap_error_bound, pressure_error_bound};
 use crate::solver::{contact_span, masked_pcg, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
 use rayon::prelude::*;
+use std::ops::Range;
 
 impl AdhesiveSolver {
     /// How the next solve may stop: never early on the first solve of a step (its outputs
@@ -104,7 +105,7 @@ impl AdhesiveSolver {
                 .zip(self.response.par_chunks(PARALLEL_CHUNK))
                 .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
         }
-        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop, 1.0)?;
+        let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
         if !self.last_solve_certified {
             iterations += self.refine_ties(operator, heights, depth, state)?;
         }
@@ -143,8 +144,17 @@ impl AdhesiveSolver {
         }
         self.tie_refinements += 1;
         operator.apply(&state.pressure, &mut state.displacement);
-        let iterations =
-            self.iterate_fixed_set(operator, heights, depth, state, StopRule::Decided, TIE_TOLERANCE_SCALE)?;
+        let iterations = match self.iterate_fixed_set(operator, heights, depth, state, StopRule::Decided) {
+            Ok(iterations) => iterations,
+            // The refined tolerances out of reach: the decision stays a tie, taken on the
+            // iterate, which is at least as converged as the plain solve (p and u stay
+            // consistent through every CG iteration).
+            Err(SolveError::NotConverged { iterations, .. }) => {
+                self.unresolved_ties += 1;
+                iterations
+            }
+            Err(error) => return Err(error),
+        };
         // Refined from a converged state: as converged as the plain solve, for the outputs.
         self.last_solve_certified = false;
         Ok(iterations)
@@ -162,7 +172,7 @@ impl AdhesiveSolver {
     ) -> Result<usize, SolveError> {
         let early = state.clone();
         let (bound, gap_bound) = (self.pressure_error_bound, self.gap_error_bound);
-        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge, 1.0)?;
+        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge)?;
         for k in 0..self.grid.len() {
             if !state.contact[k] && heights[k].is_finite() {
                 let converged = heights[k] - depth + state.displacement[k];
@@ -189,26 +199,15 @@ impl AdhesiveSolver {
         Ok(iterations)
     }
 
-    /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
-    /// whose u = K p is up to date, at `tolerance_scale` times the solver's tolerances.
-    pub(super) fn iterate_fixed_set<O: ElasticOperator + ?Sized>(
-        &mut self,
-        operator: &mut O,
-        heights: &[f64],
-        depth: f64,
-        state: &mut ContactState,
-        stop: StopRule,
-        tolerance_scale: f64,
-    ) -> Result<usize, SolveError> {
-        self.last_solve_certified = false;
-        // The residual vanishes off the contact: only the contact's rows are visited (the
-        // sums meet the contact elements in the same order).
-        let span = contact_span(&state.contact, self.grid.n());
+    /// Writes r = (d − z) − u on C (0 elsewhere) and returns (‖d − z‖², ‖r‖²) over C. The
+    /// residual vanishes off the contact: only the contact's rows `span` are visited (the
+    /// sums meet the contact elements in the same order).
+    fn set_residual(&mut self, heights: &[f64], depth: f64, state: &ContactState, span: Range<usize>) -> (f64, f64) {
         let mut target_norm = 0.0;
         let mut residual_norm = 0.0;
         self.residual[..span.start].fill(0.0);
         self.residual[span.end..].fill(0.0);
-        for k in span.clone() {
+        for k in span {
             if state.contact[k] {
                 let target = depth - heights[k];
                 target_norm += target * target;
@@ -218,6 +217,29 @@ impl AdhesiveSolver {
                 self.residual[k] = 0.0;
             }
         }
+        (target_norm, residual_norm)
+    }
+
+    /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
+    /// whose u = K p is up to date (a tie refinement, `StopRule::Decided`, at
+    /// [`TIE_TOLERANCE_SCALE`] times the solver's tolerances and at most
+    /// [`TIE_MAX_ITERATIONS`] iterations).
+    pub(super) fn iterate_fixed_set<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        stop: StopRule,
+    ) -> Result<usize, SolveError> {
+        let (tolerance_scale, max_iterations) = if stop == StopRule::Decided {
+            (TIE_TOLERANCE_SCALE, TIE_MAX_ITERATIONS)
+        } else {
+            (1.0, self.params.max_cg_iterations)
+        };
+        self.last_solve_certified = false;
+        let span = contact_span(&state.contact, self.grid.n());
+        let (target_norm, residual_norm) = self.set_residual(heights, depth, state, span.clone());
         if target_norm == 0.0 {
             // d − z = 0 on all of C (a flat face exactly at the depth, e.g. a punch retracted
             // to d = 0): K_CC p_C = 0 has the exact solution p = 0 (K is positive definite),
@@ -316,14 +338,14 @@ impl AdhesiveSolver {
                 }
                 Some(certified)
             },
-            self.params.max_cg_iterations,
+            max_iterations,
         );
         self.last_solve_certified = certified;
         self.pressure_error_bound = pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
         self.gap_error_bound = gap_error_bound(&self.residual[span]);
-        outcome
-            .map(|info| info.iterations)
-            .map_err(|error| error.into_solve_error(target_norm.sqrt(), self.params.relative_tolerance))
+        outcome.map(|info| info.iterations).map_err(|error| {
+            error.into_solve_error(target_norm.sqrt(), tolerance_scale * self.params.relative_tolerance)
+        })
     }
 }
 
@@ -331,9 +353,13 @@ impl AdhesiveSolver {
 /// 1e-10, front 1e-4 → 1e-8 by default): the band of a converged refinement is ≈ 5e-8·σ_c.
 const TIE_TOLERANCE_SCALE: f64 = 1e-4;
 
+/// Iterations a tie refinement may take (from a converged state it needs ≈ 10 to reach the
+/// refined tolerances; more means they are out of reach of the single-precision directions).
+const TIE_MAX_ITERATIONS: usize = 100;
+
 /// Writes direction = p − p_last and returns the range from the first to the last element
 /// where it is nonzero (`None` when p has not changed).
-fn pressure_change(direction: &mut [f64], pressure: &[f64], last: &[f64]) -> Option<std::ops::Range<usize>> {
+fn pressure_change(direction: &mut [f64], pressure: &[f64], last: &[f64]) -> Option<Range<usize>> {
     direction
         .par_chunks_mut(PARALLEL_CHUNK)
         .zip(pressure.par_chunks(PARALLEL_CHUNK))

@@ -78,8 +78,10 @@ pub struct AdhesiveSolver {
     saved_certified: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
-    /// Tie refinements (docs/fast-step.md §2), over the solver's life.
+    /// Tie refinements (docs/fast-step.md §2), and those that did not reach the refined
+    /// tolerances, over the solver's life.
     tie_refinements: u64,
+    unresolved_ties: u64,
     /// Certified local release rounds (free grids, fast rule only).
     local_peel: Option<LocalPeel>,
     /// Trial elements released by local certificates (without a solve), over the solver's life.
@@ -170,6 +172,7 @@ impl AdhesiveSolver {
             saved_certified: false,
             certified_stops: 0,
             tie_refinements: 0,
+            unresolved_ties: 0,
             local_peel: (grid.boundary() == Boundary::Free
                 && !params.reference_rule
                 && params.detachment == Detachment::AllViolators)
@@ -219,6 +222,12 @@ impl AdhesiveSolver {
     /// (docs/fast-step.md §2), over the solver's life.
     pub fn tie_refinements(&self) -> u64 {
         self.tie_refinements
+    }
+
+    /// Tie refinements that stopped at their iteration limit before the refined tolerances
+    /// (the decision was then taken on that iterate), over the solver's life.
+    pub fn unresolved_ties(&self) -> u64 {
+        self.unresolved_ties
     }
 
     /// The parameters.
