@@ -93,6 +93,7 @@ impl AdhesiveSolver {
             });
         if exact {
             operator.apply(&state.pressure, &mut state.displacement);
+            self.displacement_drifted = false;
         } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
         {
             // Only the rows where p changed are transformed forward (the same bits).
@@ -104,6 +105,7 @@ impl AdhesiveSolver {
                 .par_chunks_mut(PARALLEL_CHUNK)
                 .zip(self.response.par_chunks(PARALLEL_CHUNK))
                 .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
+            self.displacement_drifted = true;
         }
         let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
         if !self.last_solve_certified {
@@ -144,6 +146,7 @@ impl AdhesiveSolver {
         }
         self.tie_refinements += 1;
         operator.apply(&state.pressure, &mut state.displacement);
+        self.displacement_drifted = false;
         let iterations = match self.iterate_fixed_set(operator, heights, depth, state, StopRule::Decided) {
             Ok(iterations) => iterations,
             // The refined tolerances out of reach: the decision stays a tie, taken on the
@@ -157,6 +160,26 @@ impl AdhesiveSolver {
         };
         // Refined from a converged state: as converged as the plain solve, for the outputs.
         self.last_solve_certified = false;
+        Ok(iterations)
+    }
+
+    /// Converges the state that ends a step at [`OUTPUT_TOLERANCE_SCALE`] times the
+    /// tolerances, from an exact u: the decisions are taken, but the reported force and
+    /// energy then do not depend on where the last CG happened to stop within its
+    /// tolerance (a warm-started solve may stop just inside it). Returns the iterations.
+    pub(super) fn polish_output<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+    ) -> Result<usize, SolveError> {
+        if self.displacement_drifted {
+            operator.apply(&state.pressure, &mut state.displacement);
+            self.displacement_drifted = false;
+        }
+        let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Output)?;
+        self.displacement_pressure.copy_from_slice(&state.pressure);
         Ok(iterations)
     }
 
@@ -232,10 +255,10 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         stop: StopRule,
     ) -> Result<usize, SolveError> {
-        let (tolerance_scale, max_iterations) = if stop == StopRule::Decided {
-            (TIE_TOLERANCE_SCALE, TIE_MAX_ITERATIONS)
-        } else {
-            (1.0, self.params.max_cg_iterations)
+        let (tolerance_scale, max_iterations) = match stop {
+            StopRule::Decided => (TIE_TOLERANCE_SCALE, TIE_MAX_ITERATIONS),
+            StopRule::Output => (OUTPUT_TOLERANCE_SCALE, self.params.max_cg_iterations),
+            _ => (1.0, self.params.max_cg_iterations),
         };
         self.last_solve_certified = false;
         let span = contact_span(&state.contact, self.grid.n());
@@ -253,28 +276,28 @@ impl AdhesiveSolver {
         // element of stress σ_c produces by itself.
         let delta = self.grid.element_size();
         let pointwise = if self.minimum_critical_stress > 0.0 {
-            tolerance_scale
-                * self.params.front_tolerance
-                * SELF_COMPLIANCE_FACTOR
-                * self.minimum_critical_stress
-                * delta
+            self.params.front_tolerance * SELF_COMPLIANCE_FACTOR * self.minimum_critical_stress * delta
                 / operator.contact_modulus()
         } else {
             f64::INFINITY
         };
-        let relative = tolerance_scale * self.params.relative_tolerance * target_norm.sqrt();
-        let converged = |norm2: f64, residual: &[f64], contact: &[bool]| -> bool {
-            if norm2.sqrt() > relative {
+        let relative = self.params.relative_tolerance * target_norm.sqrt();
+        // At `scale` times the solver's tolerances.
+        let converged = |scale: f64, norm2: f64, residual: &[f64], contact: &[bool]| -> bool {
+            if norm2.sqrt() > scale * relative {
                 return false;
             }
             if pointwise.is_finite() {
-                residual.iter().zip(contact).all(|(r, &c)| !c || r.abs() <= pointwise)
+                residual
+                    .iter()
+                    .zip(contact)
+                    .all(|(r, &c)| !c || r.abs() <= scale * pointwise)
             } else {
                 true
             }
         };
         let (contact_modulus, element_size) = (operator.contact_modulus(), delta);
-        if converged(residual_norm, &self.residual, &state.contact) {
+        if converged(tolerance_scale, residual_norm, &self.residual, &state.contact) {
             self.pressure_error_bound =
                 pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
             self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
@@ -318,16 +341,18 @@ impl AdhesiveSolver {
             |norm2, residual, pressure, displacement, set| {
                 // r and the set lie in `set`: the scans there see every element that counts.
                 let (residual, contact_rows) = (&residual[set.clone()], &contact[set.clone()]);
-                if converged(norm2, residual, contact_rows) {
+                if converged(tolerance_scale, norm2, residual, contact_rows) {
                     return Some(true);
                 }
                 // Stop once the release decisions cannot change (docs/fast-step.md).
-                if stop != StopRule::Converge {
+                if stop != StopRule::Converge && stop != StopRule::Output {
                     let band = pressure_error_bound(residual, contact_modulus, element_size);
                     let critical_stress = &critical_stress[set.clone()];
                     let (certain, uncertain) = count_releases(&pressure[set], contact_rows, critical_stress, band);
                     certified = if stop == StopRule::Decided {
-                        uncertain == 0
+                        // Certain decisions on a state converged at least as the plain solve
+                        // (its u is exact now, so the plain criterion may not hold yet).
+                        uncertain == 0 && converged(1.0, norm2, residual, contact_rows)
                     } else if certain > 0 {
                         uncertain <= certain
                     } else if uncertain == 0 && stop == StopRule::ReleasesOrAttachments {
@@ -352,6 +377,9 @@ impl AdhesiveSolver {
 /// Tolerances of a tie refinement relative to the solver's (relative residual 1e-6 →
 /// 1e-10, front 1e-4 → 1e-8 by default): the band of a converged refinement is ≈ 5e-8·σ_c.
 const TIE_TOLERANCE_SCALE: f64 = 1e-4;
+
+/// Tolerances of the state that ends a step relative to the solver's (`polish_output`).
+const OUTPUT_TOLERANCE_SCALE: f64 = 0.1;
 
 /// Iterations a tie refinement may take (from a converged state it needs ≈ 10 to reach the
 /// refined tolerances; more means they are out of reach of the single-precision directions).

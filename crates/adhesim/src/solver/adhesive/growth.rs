@@ -49,9 +49,10 @@ impl AdhesiveSolver {
         }
         self.find_candidates(heights, depth, state);
         if self.candidates.is_empty() {
-            if self.last_solve_certified {
+            if self.last_solve_certified || self.displacement_drifted {
                 // Only if the certified stop's trial test (stop_rule) saw candidates that
-                // find_candidates does not: the step must not end on an early stop.
+                // find_candidates does not: the step must not end on an early stop (nor on
+                // a displacement followed in single precision: the outputs need the exact u).
                 self.converge_final(operator, heights, depth, state, &mut round.report)?;
             }
             return Ok(Flow::Stop);
@@ -66,7 +67,7 @@ impl AdhesiveSolver {
         round.ring_restorable = pure_ring;
         if pure_ring {
             if self.predict_failed_ring(depth, state) {
-                if self.last_solve_certified {
+                if self.last_solve_certified || self.displacement_drifted {
                     self.converge_final(operator, heights, depth, state, &mut round.report)?;
                 }
                 for &k in &self.candidates {
@@ -75,7 +76,7 @@ impl AdhesiveSolver {
                 }
                 return Ok(Flow::Stop);
             }
-            self.saved_certified = self.last_solve_certified;
+            self.saved_certified = self.last_solve_certified || self.displacement_drifted;
             self.saved_pressure.copy_from_slice(&state.pressure);
             self.saved_displacement.copy_from_slice(&state.displacement);
             self.current_ring = Some(self.ring_pool.attempt(depth, &state.contact));
@@ -243,6 +244,7 @@ impl AdhesiveSolver {
         state.pressure.copy_from_slice(&self.ring_solved_pressure);
         state.displacement.copy_from_slice(&self.ring_solved_displacement);
         self.displacement_pressure.copy_from_slice(&self.ring_solved_pressure);
+        self.displacement_drifted = true;
         (
             self.pressure_error_bound,
             self.gap_error_bound,

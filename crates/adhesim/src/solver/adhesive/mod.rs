@@ -74,7 +74,12 @@ pub struct AdhesiveSolver {
     gap_error_bound: f64,
     /// Whether the last solve stopped early on certified decisions.
     last_solve_certified: bool,
-    /// Whether the state saved before a trial ring came from such an early stop.
+    /// Whether `state.displacement` has been followed by single-precision updates since it
+    /// was last computed exactly (a state that ends a step is then converged again from an
+    /// exact u: the drift would otherwise reach the reported force at ≈ 1e-6).
+    displacement_drifted: bool,
+    /// Whether the state saved before a trial ring came from such an early stop or has such
+    /// a displacement (it is converged again if it ends the step).
     saved_certified: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
@@ -118,6 +123,9 @@ enum StopRule {
     ReleasesOrAttachments,
     /// Tie refinement: stop once no release decision lies inside the error band.
     Decided,
+    /// The state that ends a step: converge at `OUTPUT_TOLERANCE_SCALE` times the
+    /// tolerances, for the reported force and energy.
+    Output,
 }
 
 impl AdhesiveSolver {
@@ -169,6 +177,7 @@ impl AdhesiveSolver {
             pressure_error_bound: 0.0,
             gap_error_bound: 0.0,
             last_solve_certified: false,
+            displacement_drifted: false,
             saved_certified: false,
             certified_stops: 0,
             tie_refinements: 0,
@@ -369,6 +378,7 @@ impl AdhesiveSolver {
                 break;
             }
         }
+        round.report.cg_iterations += self.polish_output(operator, heights, depth, state)?;
         Ok(self.finish_step(operator, heights, depth, state, round.report, applications_before))
     }
 
