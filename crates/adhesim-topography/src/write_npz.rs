@@ -1,5 +1,5 @@
-//! Contact fields as a numpy `.npz` archive (one DEFLATE-compressed `.npy` member per array),
-//! loadable with `numpy.load`.
+//! Contact fields as a numpy `.npz` archive (one `.npy` member per array, DEFLATE-compressed
+//! unless deflate would barely shrink it), loadable with `numpy.load`.
 
 use std::io::Write;
 use std::path::Path;
@@ -128,8 +128,39 @@ pub(crate) fn npy_bytes(array: &NamedArray<'_>) -> Vec<u8> {
     out
 }
 
+/// Bytes deflate is tried on to decide whether a member is compressed: four samples spread
+/// over the member, so that a field that is zero in one region and dense in another is
+/// judged by both.
+const SAMPLE_CHUNKS: usize = 4;
+const SAMPLE_CHUNK_BYTES: usize = 16 * 1024;
+
+/// Compressed members must be at most this fraction of their size in the samples; a member
+/// deflate shrinks less is stored. Dense smooth doubles (displacement and gap fields)
+/// shrink by only 10–25 % at a cost of about 3 ms per MB, which was most of the output time
+/// of a whole Hertz run at N = 512 (BENCHMARKS.md, issue #14 item 7).
+const WORTHWHILE_RATIO: f64 = 0.75;
+
+/// Whether DEFLATE at level 1 shrinks `bytes` to at most [`WORTHWHILE_RATIO`], judged on
+/// samples (small members are compressed: the cost is negligible).
+fn deflate_pays(bytes: &[u8]) -> bool {
+    let sample_total = SAMPLE_CHUNKS * SAMPLE_CHUNK_BYTES;
+    if bytes.len() <= 2 * sample_total {
+        return true;
+    }
+    let mut encoder = flate2::write::DeflateEncoder::new(Vec::new(), flate2::Compression::new(1));
+    for chunk in 0..SAMPLE_CHUNKS {
+        let start = chunk * (bytes.len() - SAMPLE_CHUNK_BYTES) / (SAMPLE_CHUNKS - 1);
+        // Writing into a Vec cannot fail.
+        let _ = encoder.write_all(&bytes[start..start + SAMPLE_CHUNK_BYTES]);
+    }
+    let compressed = encoder.finish().map_or(usize::MAX, |out| out.len());
+    (compressed as f64) <= WORTHWHILE_RATIO * sample_total as f64
+}
+
 /// Writes `arrays` to `path` as an `.npz` archive, as `numpy.savez_compressed` does: member
-/// `NAME.npy` per array, DEFLATE-compressed. Names must be distinct; float values finite.
+/// `NAME.npy` per array, DEFLATE-compressed, except members that deflate would shrink by
+/// less than a quarter ([`WORTHWHILE_RATIO`]), which are stored (`numpy.load` reads both).
+/// Names must be distinct; float values finite.
 pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<(), TopographyError> {
     let path = path.as_ref();
     for (index, array) in arrays.iter().enumerate() {
@@ -150,17 +181,23 @@ pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<()
     let zip_error = |e: zip::result::ZipError| io_error(std::io::Error::other(e));
     let file = std::fs::File::create(path).map_err(io_error)?;
     let mut zip = zip::ZipWriter::new(std::io::BufWriter::new(file));
-    let options = zip::write::SimpleFileOptions::default()
+    let large_file = arrays.iter().any(|a| a.data.len() * 8 > u32::MAX as usize / 2);
+    let deflated = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
         // Level 1: the fields are doubles, which deflate shrinks by their runs of zeros
         // (free elements, no contact) about as well at the fastest level; at level 6 the
         // compression took a quarter of a whole Hertz run at N = 512 (BENCHMARKS.md).
         .compression_level(Some(1))
-        .large_file(arrays.iter().any(|a| a.data.len() * 8 > u32::MAX as usize / 2));
+        .large_file(large_file);
+    let stored = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Stored)
+        .large_file(large_file);
     for array in arrays {
+        let bytes = npy_bytes(array);
+        let options = if deflate_pays(&bytes) { deflated } else { stored };
         zip.start_file(format!("{}.npy", array.name), options)
             .map_err(zip_error)?;
-        zip.write_all(&npy_bytes(array)).map_err(io_error)?;
+        zip.write_all(&bytes).map_err(io_error)?;
     }
     let mut writer = zip.finish().map_err(zip_error)?;
     writer.flush().map_err(io_error)

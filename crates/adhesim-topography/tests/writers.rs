@@ -294,3 +294,60 @@ print("numpy loaded fields.npz")
     println!("{}", String::from_utf8_lossy(&output.stdout));
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
 }
+
+#[test]
+fn npz_stores_the_members_deflate_would_barely_shrink() {
+    // A dense smooth-but-noisy field of 128² doubles (128 KiB, above the sampling
+    // threshold) deflates by ~10 %: stored. A mostly-zero contact pressure field deflates
+    // far below the 75 % limit: compressed. Both must read back bit for bit.
+    let n = 128;
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let dense: Vec<f64> = (0..n * n)
+        .map(|i| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (i as f64 * 1e-3).sin() + (state >> 11) as f64 * 1e-22
+        })
+        .collect();
+    let sparse: Vec<f64> = (0..n * n)
+        .map(|i| if (i / n) % 16 == 3 { 1.0 + i as f64 } else { 0.0 })
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fields.npz");
+    let shape = [n, n];
+    write_npz(
+        &path,
+        &[
+            NamedArray::f64("dense", &shape, &dense),
+            NamedArray::f64("sparse", &shape, &sparse),
+        ],
+    )
+    .unwrap();
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(&path).unwrap()).unwrap();
+    assert_eq!(
+        archive.by_name("dense.npy").unwrap().compression(),
+        zip::CompressionMethod::Stored
+    );
+    let sparse_member = archive.by_name("sparse.npy").unwrap();
+    assert_eq!(sparse_member.compression(), zip::CompressionMethod::Deflated);
+    assert!(sparse_member.compressed_size() * 4 < sparse_member.size());
+    drop(sparse_member);
+    for (name, values) in [("dense", &dense), ("sparse", &sparse)] {
+        let options = ReadOptions {
+            channel: Some(name.into()),
+            spacing: Some((1.0, 1.0)),
+            height_unit: Some("m".into()),
+            ..Default::default()
+        };
+        let read = read_topography(&path, &options).unwrap();
+        assert_eq!((read.nx, read.ny), (n, n));
+        assert!(
+            read.heights
+                .iter()
+                .zip(values.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{name}"
+        );
+    }
+}
