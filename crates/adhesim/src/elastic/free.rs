@@ -21,6 +21,7 @@ fn love_images(n: usize, delta: f64, modulus: f64) -> [[Vec<f64>; 2]; 2] {
     }
     let s = 0.5 * delta;
     let scale = std::f64::consts::PI * modulus;
+    let lattice = PrimitiveLattice::new(n, delta, s);
     // Per pair m ≤ l: (primitives [x+s or x−s][y+s or y−s] at x = lΔ, y = mΔ).
     let primitives: Vec<[[f64; 2]; 2]> = (0..n * n)
         .into_par_iter()
@@ -29,10 +30,9 @@ fn love_images(n: usize, delta: f64, modulus: f64) -> [[Vec<f64>; 2]; 2] {
             if l < m {
                 return [[0.0; 2]; 2];
             }
-            let (x, y) = (l as f64 * delta, m as f64 * delta);
             [
-                [love_primitive(x + s, y + s), love_primitive(x + s, y - s)],
-                [love_primitive(x - s, y + s), love_primitive(x - s, y - s)],
+                [lattice.value(l, 0, m, 0), lattice.value(l, 0, m, 1)],
+                [lattice.value(l, 1, m, 0), lattice.value(l, 1, m, 1)],
             ]
         })
         .collect();
@@ -70,6 +70,56 @@ fn love_images(n: usize, delta: f64, modulus: f64) -> [[Vec<f64>; 2]; 2] {
         }
     }
     images
+}
+
+/// Love's primitive Φ at every pair of the arguments lΔ ± s (0 ≤ l < N), each distinct
+/// argument pair evaluated once. Where (l + 1)Δ − s and lΔ + s round to the same double
+/// (always when Δ is a power of two) neighbouring elements share their corners, so the
+/// N² offsets need about N²/2 evaluations instead of 2N²; where they differ, both are
+/// kept and the values are those of a direct evaluation anyway (same arguments, same bits).
+struct PrimitiveLattice {
+    /// Index into the distinct arguments of lΔ + s (`[l][0]`) and lΔ − s (`[l][1]`).
+    argument_index: Vec<[usize; 2]>,
+    /// Φ(a_i, a_j) for i ≥ j, row-major lower triangle (Φ is symmetric bitwise).
+    table: Vec<f64>,
+}
+
+impl PrimitiveLattice {
+    fn new(n: usize, delta: f64, s: f64) -> Self {
+        let argument = |l: usize, sign: usize| {
+            let x = l as f64 * delta;
+            if sign == 0 {
+                x + s
+            } else {
+                x - s
+            }
+        };
+        let mut distinct: Vec<f64> = (0..n).flat_map(|l| [argument(l, 0), argument(l, 1)]).collect();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup_by(|a, b| a.to_bits() == b.to_bits());
+        let position = |value: f64| {
+            distinct
+                .binary_search_by(|probe| probe.total_cmp(&value))
+                .expect("every argument is in the list")
+        };
+        let argument_index = (0..n)
+            .map(|l| [position(argument(l, 0)), position(argument(l, 1))])
+            .collect();
+        let table = (0..distinct.len())
+            .into_par_iter()
+            .flat_map_iter(|i| (0..=i).map(move |j| (i, j)))
+            .map(|(i, j)| love_primitive(distinct[i], distinct[j]))
+            .collect();
+        Self { argument_index, table }
+    }
+
+    /// Φ(lΔ ± s, mΔ ± s), sign index 0 for + and 1 for − (the stored Φ(a_i, a_j), i ≥ j,
+    /// is the same value: Φ is symmetric bit for bit).
+    fn value(&self, l: usize, sign_l: usize, m: usize, sign_m: usize) -> f64 {
+        let (i, j) = (self.argument_index[l][sign_l], self.argument_index[m][sign_m]);
+        let (high, low) = if i >= j { (i, j) } else { (j, i) };
+        self.table[high * (high + 1) / 2 + low]
+    }
 }
 
 /// Non-periodic half-space by discrete convolution and FFT (DC-FFT).
@@ -253,15 +303,23 @@ mod tests {
 
     #[test]
     fn octant_images_have_the_bits_of_direct_evaluation() {
-        // Every signed offset of the padded kernel, against a direct evaluation.
-        let (n, delta, modulus) = (12, 0.013, 2.5);
-        let images = love_images(n, delta, modulus);
-        for m in -(n as i64 - 1)..n as i64 {
-            for l in -(n as i64 - 1)..n as i64 {
-                let direct = love_coefficient(l as f64 * delta, m as f64 * delta, delta, modulus);
-                let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
-                let tabulated = images[sign_m][sign_l][m.unsigned_abs() as usize * n + l.unsigned_abs() as usize];
-                assert_eq!(tabulated.to_bits(), direct.to_bits(), "offset ({l}, {m})");
+        // Every signed offset of the padded kernel, against a direct evaluation: for element
+        // sizes whose corner arguments round differently from one element to the next
+        // (0.013, 0.3/64) and for a power of two, where neighbours share their corners.
+        for (n, delta, modulus) in [(12, 0.013, 2.5), (10, 0.3 / 64.0, 1.0), (16, 1.0 / 64.0, 0.7)] {
+            let images = love_images(n, delta, modulus);
+            for m in -(n as i64 - 1)..n as i64 {
+                for l in -(n as i64 - 1)..n as i64 {
+                    let direct = love_coefficient(l as f64 * delta, m as f64 * delta, delta, modulus);
+                    let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
+                    let tabulated = images[sign_m][sign_l][m.unsigned_abs() as usize * n + l.unsigned_abs() as usize];
+                    assert_eq!(tabulated.to_bits(), direct.to_bits(), "n = {n}, offset ({l}, {m})");
+                }
+            }
+            let lattice = PrimitiveLattice::new(n, delta, 0.5 * delta);
+            let arguments = lattice.argument_index.iter().flatten().max().unwrap() + 1;
+            if delta == 1.0 / 64.0 {
+                assert_eq!(arguments, n + 1, "a power-of-two size shares every corner");
             }
         }
     }
