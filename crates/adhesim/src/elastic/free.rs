@@ -7,69 +7,38 @@ use rayon::prelude::*;
 use std::ops::Range;
 
 /// K(±lΔ, ±mΔ) for 0 ≤ m, l < N, bit for bit what [`love_coefficient`] gives at each
-/// signed offset, with the four primitives Φ(lΔ ± s, mΔ ± s) evaluated once per pair
-/// m ≤ l. Φ is odd in each argument and symmetric under exchange, bitwise
+/// signed offset, from Love's primitive evaluated once per distinct corner pair
+/// ([`PrimitiveLattice`]). Φ is odd in each argument and symmetric under exchange, bitwise
 /// ([`love_primitive`]), so each of the eight images of an offset is the same four values
-/// with signs, summed in the order `love_coefficient` sums them.
-/// Returns `[sign_m][sign_l][m * n + l]` with sign index 0 for + and 1 for −.
-fn love_images(n: usize, delta: f64, modulus: f64) -> [[Vec<f64>; 2]; 2] {
-    let mut images: [[Vec<f64>; 2]; 2] = Default::default();
-    for row in images.iter_mut() {
-        for table in row.iter_mut() {
-            *table = vec![0.0; n * n];
+/// with signs, summed in the order `love_coefficient` sums them. Nothing of size N² is
+/// stored but the lattice: the padded kernel is filled straight from [`Self::value`].
+struct LoveImages {
+    lattice: PrimitiveLattice,
+    /// πE*.
+    scale: f64,
+}
+
+impl LoveImages {
+    fn new(n: usize, delta: f64, modulus: f64) -> Self {
+        Self {
+            lattice: PrimitiveLattice::new(n, delta, 0.5 * delta),
+            scale: std::f64::consts::PI * modulus,
         }
     }
-    let s = 0.5 * delta;
-    let scale = std::f64::consts::PI * modulus;
-    let lattice = PrimitiveLattice::new(n, delta, s);
-    // Per pair m ≤ l: (primitives [x+s or x−s][y+s or y−s] at x = lΔ, y = mΔ).
-    let primitives: Vec<[[f64; 2]; 2]> = (0..n * n)
-        .into_par_iter()
-        .map(|k| {
-            let (m, l) = (k / n, k % n);
-            if l < m {
-                return [[0.0; 2]; 2];
-            }
-            [
-                [lattice.value(l, 0, m, 0), lattice.value(l, 0, m, 1)],
-                [lattice.value(l, 1, m, 0), lattice.value(l, 1, m, 1)],
-            ]
-        })
-        .collect();
-    // Φ(σ_x·x ± s, σ_y·y ± s) from the stored values: for σ = −1, ±s turns into ∓s and
-    // the sign comes out.
-    let corner = |p: &[[f64; 2]; 2], sign_x: usize, dx: usize, sign_y: usize, dy: usize| {
-        let value = p[dx ^ sign_x][dy ^ sign_y];
-        if sign_x ^ sign_y == 1 {
-            -value
-        } else {
-            value
-        }
-    };
-    for m in 0..n {
-        for l in 0..n {
-            let swapped = l < m;
-            let p = if swapped {
-                &primitives[l * n + m]
+
+    /// K at offset (σ_l·lΔ, σ_m·mΔ), sign index 0 for + and 1 for −.
+    fn value(&self, m: usize, sign_m: usize, l: usize, sign_l: usize) -> f64 {
+        // Φ(σ_l·lΔ ± s, σ_m·mΔ ± s): for σ = −1, ±s turns into ∓s and the sign comes out.
+        let term = |dx: usize, dy: usize| {
+            let value = self.lattice.value(l, dx ^ sign_l, m, dy ^ sign_m);
+            if sign_l ^ sign_m == 1 {
+                -value
             } else {
-                &primitives[m * n + l]
-            };
-            for (sign_m, row) in images.iter_mut().enumerate() {
-                for (sign_l, table) in row.iter_mut().enumerate() {
-                    // Exchange maps Φ(x±s, y∓s) to the stored Φ(y∓s, x±s).
-                    let term = |dx: usize, dy: usize| {
-                        if swapped {
-                            corner(p, sign_m, dy, sign_l, dx)
-                        } else {
-                            corner(p, sign_l, dx, sign_m, dy)
-                        }
-                    };
-                    table[m * n + l] = (term(0, 0) - term(0, 1) - term(1, 0) + term(1, 1)) / scale;
-                }
+                value
             }
-        }
+        };
+        (term(0, 0) - term(0, 1) - term(1, 0) + term(1, 1)) / self.scale
     }
-    images
 }
 
 /// Love's primitive Φ at every pair of the arguments lΔ ± s (0 ≤ l < N), each distinct
@@ -133,8 +102,11 @@ pub struct FreeOperator {
     contact_modulus: f64,
     self_compliance: f64,
     engine: SpectralConvolution,
-    /// The same kernel in single precision, for [`ElasticOperator::apply_single`].
-    single: SpectralConvolution<f32>,
+    /// The same kernel in single precision, for [`ElasticOperator::apply_single`]; made at
+    /// the first single-precision application (a solver that only applies the operator in
+    /// double precision, such as the final round after a contact-window solve, never
+    /// pays for it).
+    single: Option<SpectralConvolution<f32>>,
     applications: u64,
 }
 
@@ -154,19 +126,26 @@ impl FreeOperator {
                 i => Some((padded - i, 1)),
             }
         };
-        let images = love_images(n, delta, modulus);
+        let images = LoveImages::new(n, delta, modulus);
         let engine = SpectralConvolution::new(n, padded, |i, j| match (wrap(i), wrap(j)) {
-            (Some((m, sign_m)), Some((l, sign_l))) => images[sign_m][sign_l][m * n + l],
+            (Some((m, sign_m)), Some((l, sign_l))) => images.value(m, sign_m, l, sign_l),
             _ => 0.0,
         });
         Self {
             grid,
             contact_modulus: modulus,
             self_compliance: love_coefficient(0.0, 0.0, delta, modulus),
-            single: engine.to_single(),
+            single: None,
             engine,
             applications: 0,
         }
+    }
+}
+
+impl FreeOperator {
+    fn single_engine(&mut self) -> &mut SpectralConvolution<f32> {
+        let engine = &self.engine;
+        self.single.get_or_insert_with(|| engine.to_single())
     }
 }
 
@@ -182,7 +161,7 @@ impl ElasticOperator for FreeOperator {
         self.applications += 1;
     }
     fn apply_single(&mut self, pressure: &[f64], displacement: &mut [f64]) {
-        self.single.convolve(pressure, displacement);
+        self.single_engine().convolve(pressure, displacement);
         self.applications += 1;
     }
     fn apply_single_rows(
@@ -192,7 +171,7 @@ impl ElasticOperator for FreeOperator {
         input_rows: Range<usize>,
         output_rows: Range<usize>,
     ) {
-        self.single
+        self.single_engine()
             .convolve_rows(pressure, displacement, input_rows, output_rows);
         self.applications += 1;
     }
@@ -307,12 +286,12 @@ mod tests {
         // sizes whose corner arguments round differently from one element to the next
         // (0.013, 0.3/64) and for a power of two, where neighbours share their corners.
         for (n, delta, modulus) in [(12, 0.013, 2.5), (10, 0.3 / 64.0, 1.0), (16, 1.0 / 64.0, 0.7)] {
-            let images = love_images(n, delta, modulus);
+            let images = LoveImages::new(n, delta, modulus);
             for m in -(n as i64 - 1)..n as i64 {
                 for l in -(n as i64 - 1)..n as i64 {
                     let direct = love_coefficient(l as f64 * delta, m as f64 * delta, delta, modulus);
                     let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
-                    let tabulated = images[sign_m][sign_l][m.unsigned_abs() as usize * n + l.unsigned_abs() as usize];
+                    let tabulated = images.value(m.unsigned_abs() as usize, sign_m, l.unsigned_abs() as usize, sign_l);
                     assert_eq!(tabulated.to_bits(), direct.to_bits(), "n = {n}, offset ({l}, {m})");
                 }
             }

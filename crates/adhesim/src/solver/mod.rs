@@ -8,6 +8,7 @@
 mod adhesive;
 mod ccg;
 mod certificate;
+mod contact_window;
 mod local_peel;
 mod nested;
 mod peel_predictor;

@@ -1,3 +1,4 @@
+use super::contact_window::WindowLevel;
 use super::{dot, masked_pcg, ContactState, PcgBuffers, SolveError, SolveReport};
 use crate::elastic::{ElasticOperator, FreeOperator, SpectralPreconditioner};
 use crate::grid::{Boundary, Grid};
@@ -36,7 +37,7 @@ impl Default for NestedParams {
 }
 
 /// Buffers and preconditioner of the fixed-set CG on one grid.
-struct Workspace {
+pub(super) struct Workspace {
     target: Vec<f64>,
     residual: Vec<f64>,
     preconditioned: Vec<f64>,
@@ -47,7 +48,7 @@ struct Workspace {
 }
 
 impl Workspace {
-    fn new(grid: &Grid, contact_modulus: f64) -> Self {
+    pub(super) fn new(grid: &Grid, contact_modulus: f64) -> Self {
         let len = grid.len();
         Self {
             target: vec![0.0; len],
@@ -67,10 +68,12 @@ const COARSE_TOLERANCE: f64 = 1e-6;
 
 /// A coarse level of the continuation: its own operator, heights and state.
 struct CoarseLevel {
-    operator: FreeOperator,
+    grid: Grid,
     heights: Vec<f64>,
     state: ContactState,
-    workspace: Workspace,
+    window: Option<WindowLevel>,
+    /// Operator and buffers of the whole level, made when the window does not suffice.
+    full: Option<(FreeOperator, Workspace)>,
 }
 
 /// Non-adhesive frictionless normal contact under displacement control by a primal
@@ -97,6 +100,10 @@ pub struct NestedActiveSet {
     fine: Workspace,
     coarse: Vec<CoarseLevel>,
     coarse_applications: u64,
+    /// The fine level's contact window (see [`super::contact_window`]).
+    fine_window: Option<WindowLevel>,
+    window_applications: u64,
+    material: ElasticMaterial,
     /// Depth of the last successful solve (decides whether a warm start is an unload).
     last_depth: Option<f64>,
 }
@@ -113,10 +120,11 @@ impl NestedActiveSet {
                 n /= 2;
                 let level_grid = Grid::new(n, grid.size(), Boundary::Free).expect("a halved grid is valid");
                 coarse.push(CoarseLevel {
-                    operator: FreeOperator::new(level_grid, material),
+                    grid: level_grid,
                     heights: vec![0.0; level_grid.len()],
                     state: ContactState::new(&level_grid),
-                    workspace: Workspace::new(&level_grid, modulus),
+                    window: None,
+                    full: None,
                 });
             }
         }
@@ -126,6 +134,9 @@ impl NestedActiveSet {
             fine: Workspace::new(&grid, modulus),
             coarse,
             coarse_applications: 0,
+            fine_window: None,
+            window_applications: 0,
+            material,
             last_depth: None,
         }
     }
@@ -146,6 +157,12 @@ impl NestedActiveSet {
         self.coarse_applications
     }
 
+    /// Operator applications on contact windows (all levels) during the last solve: each
+    /// is a DC-FFT convolution of twice the window's side instead of twice the level's.
+    pub fn window_applications(&self) -> u64 {
+        self.window_applications
+    }
+
     /// Whether the contact in `state` is kept as the warm start at `depth`; when not (an
     /// unload, see [`NestedParams::warm_unload`]) the state is cleared for a cold start.
     fn keep_warm_start(&self, depth: f64, state: &mut ContactState) -> bool {
@@ -159,6 +176,63 @@ impl NestedActiveSet {
             return false;
         }
         true
+    }
+
+    /// The nested continuation: heights restricted down the levels (2×2 means), each level
+    /// solved from the coarsest up, seeded by the level below. A level whose contact
+    /// settled in its window skips the level's full-grid rounds: it only seeds the next
+    /// level, whose own rounds decide. The full operator of a level is built only when a
+    /// level needs it.
+    fn solve_coarse_levels(&mut self, heights: &[f64], depth: f64) -> Result<(), SolveError> {
+        let mut finer: &[f64] = heights;
+        let mut finer_n = self.grid.n();
+        for level in self.coarse.iter_mut() {
+            restrict(finer, finer_n, &mut level.heights);
+            finer = &level.heights;
+            finer_n /= 2;
+        }
+        let levels = self.coarse.len();
+        let tolerance = self.params.relative_tolerance.max(COARSE_TOLERANCE);
+        for index in (0..levels).rev() {
+            let (head, tail) = self.coarse.split_at_mut(index + 1);
+            let level = &mut head[index];
+            if index + 1 == levels {
+                cold_start(&level.heights, depth, &mut level.state);
+            } else {
+                prolong(&tail[0].state, &level.heights, level.grid.n(), &mut level.state);
+            }
+            let window = solve_in_window(
+                &mut level.window,
+                &level.grid,
+                self.material,
+                (&level.heights, depth),
+                &mut level.state,
+                &self.params,
+                tolerance,
+            )?;
+            self.window_applications += window.applications;
+            if window.settled {
+                continue;
+            }
+            let (operator, workspace) = level.full.get_or_insert_with(|| {
+                (
+                    FreeOperator::new(level.grid, self.material),
+                    Workspace::new(&level.grid, self.material.contact_modulus()),
+                )
+            });
+            let before = operator.applications();
+            solve_level(
+                operator,
+                &level.heights,
+                depth,
+                &mut level.state,
+                workspace,
+                &self.params,
+                tolerance,
+            )?;
+            self.coarse_applications += operator.applications() - before;
+        }
+        Ok(())
     }
 
     /// Solves at indentation `depth`. A `state` that already has contact is the warm start
@@ -203,48 +277,25 @@ impl NestedActiveSet {
             return Err(SolveError::NonFinite { iteration: 0 });
         }
         self.coarse_applications = 0;
+        self.window_applications = 0;
         let warm = self.keep_warm_start(depth, state);
         self.last_depth = None;
         if !warm && !self.coarse.is_empty() {
-            // Restrict the heights down the levels (2×2 means), solve from the coarsest up.
-            let mut finer: &[f64] = heights;
-            let mut finer_n = self.grid.n();
-            for level in self.coarse.iter_mut() {
-                restrict(finer, finer_n, &mut level.heights);
-                finer = &level.heights;
-                finer_n /= 2;
-            }
-            let levels = self.coarse.len();
-            for index in (0..levels).rev() {
-                let (head, tail) = self.coarse.split_at_mut(index + 1);
-                let level = &mut head[index];
-                if index + 1 == levels {
-                    cold_start(&level.heights, depth, &mut level.state);
-                } else {
-                    let coarser = &tail[0];
-                    prolong(
-                        &coarser.state,
-                        &level.heights,
-                        level.operator.grid().n(),
-                        &mut level.state,
-                    );
-                }
-                let before = level.operator.applications();
-                solve_level(
-                    &mut level.operator,
-                    &level.heights,
-                    depth,
-                    &mut level.state,
-                    &mut level.workspace,
-                    &self.params,
-                    self.params.relative_tolerance.max(COARSE_TOLERANCE),
-                )?;
-                self.coarse_applications += level.operator.applications() - before;
-            }
+            self.solve_coarse_levels(heights, depth)?;
             prolong(&self.coarse[0].state, heights, self.grid.n(), state);
         } else if !warm {
             cold_start(heights, depth, state);
         }
+        let window = solve_in_window(
+            &mut self.fine_window,
+            &self.grid,
+            self.material,
+            (heights, depth),
+            state,
+            &self.params,
+            self.params.relative_tolerance,
+        )?;
+        self.window_applications += window.applications;
         let before = operator.applications();
         let (iterations, residual) = solve_level(
             operator,
@@ -259,15 +310,68 @@ impl NestedActiveSet {
         let area = self.grid.element_area();
         let contact_elements = state.contact.iter().filter(|&&c| c).count();
         Ok(SolveReport {
-            iterations,
+            iterations: iterations + window.iterations,
             residual,
             contact_elements,
             contact_area: area * contact_elements as f64,
             force: state.force(area),
             depth,
-            operator_applications: operator.applications() - before,
+            operator_applications: operator.applications() - before + window.applications,
         })
     }
+}
+
+/// Moves of the window per solve before the full grid takes over.
+const MAX_WINDOW_MOVES: usize = 4;
+
+/// What a window pre-solve did.
+struct WindowWork {
+    applications: u64,
+    iterations: usize,
+    /// The contact settled inside the window (it did not reach an open edge).
+    settled: bool,
+}
+
+/// Pre-solves the contact in `state` on its window (see [`super::contact_window`]),
+/// moving the window while the contact reaches its open edges, and leaves the window's
+/// pressures and set in `state` for the full grid's rounds, which decide convergence.
+/// Does nothing when there is no contact or the window would be nearly the grid.
+fn solve_in_window(
+    cache: &mut Option<WindowLevel>,
+    grid: &Grid,
+    material: ElasticMaterial,
+    (heights, depth): (&[f64], f64),
+    state: &mut ContactState,
+    params: &NestedParams,
+    relative_tolerance: f64,
+) -> Result<WindowWork, SolveError> {
+    let mut work = WindowWork {
+        applications: 0,
+        iterations: 0,
+        settled: false,
+    };
+    for _ in 0..MAX_WINDOW_MOVES {
+        let Some(level) = WindowLevel::enter(cache, grid, material, heights, state) else {
+            break;
+        };
+        let before = level.operator.applications();
+        let result = solve_level(
+            &mut level.operator,
+            &level.heights,
+            depth,
+            &mut level.state,
+            &mut level.workspace,
+            params,
+            relative_tolerance,
+        );
+        work.applications += level.operator.applications() - before;
+        work.iterations += result?.0;
+        work.settled = !level.leave(grid.n(), state);
+        if work.settled {
+            break;
+        }
+    }
+    Ok(work)
 }
 
 /// First set without information: the elements the rigid indenter penetrates, p = 0.
@@ -331,7 +435,12 @@ fn solve_level<O: ElasticOperator + ?Sized>(
             }
             work.mask[k] = if state.contact[k] { 1.0 } else { 0.0 };
         }
-        operator.apply(&state.pressure, &mut state.displacement);
+        if state.contact.iter().any(|&c| c) {
+            operator.apply(&state.pressure, &mut state.displacement);
+        } else {
+            // No pressure, no displacement: an unload to zero depth needs no transform.
+            state.displacement.fill(0.0);
+        }
         let mut target_norm = 0.0;
         for k in 0..len {
             work.residual[k] = (work.target[k] - state.displacement[k]) * work.mask[k];
