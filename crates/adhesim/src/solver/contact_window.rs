@@ -82,7 +82,7 @@ pub(super) struct Window {
 impl Window {
     /// The window of side `side` centred on `bounds`, moved inside the grid.
     fn place(bounds: &Bounds, side: usize, n: usize) -> Self {
-        let start = |(low, high): (usize, usize)| ((low + high + 1) / 2).saturating_sub(side / 2).min(n - side);
+        let start = |(low, high): (usize, usize)| (low + high).div_ceil(2).saturating_sub(side / 2).min(n - side);
         Self {
             row: start(bounds.rows),
             column: start(bounds.columns),
