@@ -96,9 +96,10 @@ impl<'a> NamedArray<'a> {
     }
 }
 
-/// The `.npy` (format version 1.0) bytes of one array, C order, header padded so the data
-/// start at a multiple of 64 bytes as numpy writes it.
-pub(crate) fn npy_bytes(array: &NamedArray<'_>) -> Vec<u8> {
+/// The `.npy` (format 1.0) header of `array`: magic, version, header length and the
+/// dictionary, padded with spaces and a newline so that the data start at a multiple of
+/// 64 bytes as numpy writes it.
+fn npy_header(array: &NamedArray<'_>) -> Vec<u8> {
     let descr = match array.data {
         ArrayData::F64(_) => "<f8",
         ArrayData::Bool(_) => "|b1",
@@ -115,17 +116,36 @@ pub(crate) fn npy_bytes(array: &NamedArray<'_>) -> Vec<u8> {
     let unpadded = crate::npy::MAGIC.len() + 2 + 2 + header.len() + 1;
     header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
     header.push('\n');
-    let mut out = Vec::with_capacity(unpadded + 64 + array.data.len() * 8);
+    let mut out = Vec::with_capacity(unpadded + 64);
     out.extend_from_slice(crate::npy::MAGIC);
     out.extend_from_slice(&[1, 0]);
     // The header of a few fields is far below u16::MAX.
     out.extend_from_slice(&(header.len() as u16).to_le_bytes());
     out.extend_from_slice(header.as_bytes());
-    match array.data {
-        ArrayData::F64(values) => values.iter().for_each(|v| out.extend_from_slice(&v.to_le_bytes())),
-        ArrayData::Bool(values) => out.extend(values.iter().map(|&b| u8::from(b))),
-    }
     out
+}
+
+/// Elements converted to bytes per write: the data go out in pieces of this size
+/// instead of as one copy of the whole array.
+const PIECE_ELEMENTS: usize = 8192;
+
+/// Writes the values of `data` from element `start` to `end` as little-endian bytes.
+fn write_values(data: &ArrayData<'_>, range: std::ops::Range<usize>, out: &mut impl Write) -> std::io::Result<()> {
+    let mut piece = Vec::with_capacity(PIECE_ELEMENTS * 8);
+    let mut start = range.start;
+    while start < range.end {
+        let end = (start + PIECE_ELEMENTS).min(range.end);
+        piece.clear();
+        match data {
+            ArrayData::F64(values) => values[start..end]
+                .iter()
+                .for_each(|v| piece.extend_from_slice(&v.to_le_bytes())),
+            ArrayData::Bool(values) => piece.extend(values[start..end].iter().map(|&b| u8::from(b))),
+        }
+        out.write_all(&piece)?;
+        start = end;
+    }
+    Ok(())
 }
 
 /// Bytes deflate is tried on to decide whether a member is compressed: four samples spread
@@ -140,21 +160,27 @@ const SAMPLE_CHUNK_BYTES: usize = 16 * 1024;
 /// of a whole Hertz run at N = 512 (BENCHMARKS.md, issue #14 item 7).
 const WORTHWHILE_RATIO: f64 = 0.75;
 
-/// Whether DEFLATE at level 1 shrinks `bytes` to at most [`WORTHWHILE_RATIO`], judged on
-/// samples (small members are compressed: the cost is negligible).
-fn deflate_pays(bytes: &[u8]) -> bool {
-    let sample_total = SAMPLE_CHUNKS * SAMPLE_CHUNK_BYTES;
-    if bytes.len() <= 2 * sample_total {
+/// Whether DEFLATE at level 1 shrinks the values of `data` to at most
+/// [`WORTHWHILE_RATIO`], judged on samples (small arrays are compressed: the cost is
+/// negligible).
+fn deflate_pays(data: &ArrayData<'_>) -> bool {
+    let element_bytes = match data {
+        ArrayData::F64(_) => 8,
+        ArrayData::Bool(_) => 1,
+    };
+    let chunk = SAMPLE_CHUNK_BYTES / element_bytes;
+    let len = data.len();
+    if len <= 2 * SAMPLE_CHUNKS * chunk {
         return true;
     }
     let mut encoder = flate2::write::DeflateEncoder::new(Vec::new(), flate2::Compression::new(1));
-    for chunk in 0..SAMPLE_CHUNKS {
-        let start = chunk * (bytes.len() - SAMPLE_CHUNK_BYTES) / (SAMPLE_CHUNKS - 1);
+    for index in 0..SAMPLE_CHUNKS {
+        let start = index * (len - chunk) / (SAMPLE_CHUNKS - 1);
         // Writing into a Vec cannot fail.
-        let _ = encoder.write_all(&bytes[start..start + SAMPLE_CHUNK_BYTES]);
+        let _ = write_values(data, start..start + chunk, &mut encoder);
     }
     let compressed = encoder.finish().map_or(usize::MAX, |out| out.len());
-    (compressed as f64) <= WORTHWHILE_RATIO * sample_total as f64
+    (compressed as f64) <= WORTHWHILE_RATIO * (SAMPLE_CHUNKS * SAMPLE_CHUNK_BYTES) as f64
 }
 
 /// Writes `arrays` to `path` as an `.npz` archive, as `numpy.savez_compressed` does: member
@@ -193,11 +219,11 @@ pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<()
         .compression_method(zip::CompressionMethod::Stored)
         .large_file(large_file);
     for array in arrays {
-        let bytes = npy_bytes(array);
-        let options = if deflate_pays(&bytes) { deflated } else { stored };
+        let options = if deflate_pays(&array.data) { deflated } else { stored };
         zip.start_file(format!("{}.npy", array.name), options)
             .map_err(zip_error)?;
-        zip.write_all(&bytes).map_err(io_error)?;
+        zip.write_all(&npy_header(array)).map_err(io_error)?;
+        write_values(&array.data, 0..array.data.len(), &mut zip).map_err(io_error)?;
     }
     let mut writer = zip.finish().map_err(zip_error)?;
     writer.flush().map_err(io_error)

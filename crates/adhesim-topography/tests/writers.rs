@@ -297,10 +297,10 @@ print("numpy loaded fields.npz")
 
 #[test]
 fn npz_stores_the_members_deflate_would_barely_shrink() {
-    // A dense smooth-but-noisy field of 128² doubles (128 KiB, above the sampling
+    // A dense smooth-but-noisy field of 192² doubles (288 KiB, above the sampling
     // threshold) deflates by ~10 %: stored. A mostly-zero contact pressure field deflates
     // far below the 75 % limit: compressed. Both must read back bit for bit.
-    let n = 128;
+    let n = 192;
     let mut state = 0x2545_f491_4f6c_dd1d_u64;
     let dense: Vec<f64> = (0..n * n)
         .map(|i| {

@@ -211,7 +211,9 @@ impl NestedActiveSet {
                 tolerance,
             )?;
             self.window_applications += window.applications;
-            if window.settled {
+            // A level without contact has nothing to solve (nothing penetrates: the
+            // coarsest level's cold start holds every penetrated element).
+            if window.settled || !level.state.contact.iter().any(|&c| c) {
                 continue;
             }
             let (operator, workspace) = level.full.get_or_insert_with(|| {
