@@ -62,8 +62,10 @@
 /// refined (docs/fast-step.md §2: the solve continues at 1e-4 of its tolerances until they
 /// are certain), so that the decision no longer depends on the iterate; forces move by
 /// ≲ 1e-6 of the largest force, and a contact set changes only where the old rule decided
-/// such a tie otherwise.
-pub const RESULTS_REVISION: u32 = 4;
+/// such a tie otherwise. 5: the non-adhesive solver pre-solves on the contact's bounding
+/// box (`NestedActiveSet`, docs/physics.md §3.3): the same contact sets, forces move by
+/// ~1e-11 (another point inside the 1e-10 tolerance); adhesive results are unchanged.
+pub const RESULTS_REVISION: u32 = 5;
 
 pub mod analysis;
 pub mod elastic;

@@ -22,6 +22,10 @@ pub struct NestedParams {
     /// cheaper than the warm start for every unload fraction at N = 512; the warm start
     /// stays for loading. See `BENCHMARKS.md`, issue #14 item 7).
     pub warm_unload: bool,
+    /// Pre-solve each level on the contact's bounding box as a grid of its own (default
+    /// true; see the `contact_window` module): the same solution, from transforms of twice
+    /// the window's side. False solves every level on its whole grid.
+    pub contact_window: bool,
 }
 
 impl Default for NestedParams {
@@ -32,6 +36,7 @@ impl Default for NestedParams {
             max_rounds: 200,
             coarsest: 32,
             warm_unload: false,
+            contact_window: true,
         }
     }
 }
@@ -352,7 +357,8 @@ fn solve_in_window(
         iterations: 0,
         settled: false,
     };
-    for _ in 0..MAX_WINDOW_MOVES {
+    let moves = if params.contact_window { MAX_WINDOW_MOVES } else { 0 };
+    for _ in 0..moves {
         let Some(level) = WindowLevel::enter(cache, grid, material, heights, state) else {
             break;
         };
