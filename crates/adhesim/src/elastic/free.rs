@@ -49,8 +49,10 @@ impl LoveImages {
 struct PrimitiveLattice {
     /// Index into the distinct arguments of lΔ + s (`[l][0]`) and lΔ − s (`[l][1]`).
     argument_index: Vec<[usize; 2]>,
-    /// Φ(a_i, a_j) for i ≥ j, row-major lower triangle (Φ is symmetric bitwise).
+    /// Φ(a_i, a_j), `[i * count + j]`: evaluated on the lower triangle and mirrored (Φ is
+    /// symmetric bit for bit), stored square so that a row of the kernel reads it in order.
     table: Vec<f64>,
+    count: usize,
 }
 
 impl PrimitiveLattice {
@@ -74,20 +76,28 @@ impl PrimitiveLattice {
         let argument_index = (0..n)
             .map(|l| [position(argument(l, 0)), position(argument(l, 1))])
             .collect();
-        let table = (0..distinct.len())
-            .into_par_iter()
-            .flat_map_iter(|i| (0..=i).map(move |j| (i, j)))
-            .map(|(i, j)| love_primitive(distinct[i], distinct[j]))
-            .collect();
-        Self { argument_index, table }
+        let count = distinct.len();
+        let mut table = vec![0.0; count * count];
+        table.par_chunks_mut(count).enumerate().for_each(|(i, row)| {
+            for (j, value) in row.iter_mut().enumerate().take(i + 1) {
+                *value = love_primitive(distinct[i], distinct[j]);
+            }
+        });
+        for i in 0..count {
+            for j in 0..i {
+                table[j * count + i] = table[i * count + j];
+            }
+        }
+        Self {
+            argument_index,
+            table,
+            count,
+        }
     }
 
-    /// Φ(lΔ ± s, mΔ ± s), sign index 0 for + and 1 for − (the stored Φ(a_i, a_j), i ≥ j,
-    /// is the same value: Φ is symmetric bit for bit).
+    /// Φ(lΔ ± s, mΔ ± s), sign index 0 for + and 1 for −.
     fn value(&self, l: usize, sign_l: usize, m: usize, sign_m: usize) -> f64 {
-        let (i, j) = (self.argument_index[l][sign_l], self.argument_index[m][sign_m]);
-        let (high, low) = if i >= j { (i, j) } else { (j, i) };
-        self.table[high * (high + 1) / 2 + low]
+        self.table[self.argument_index[m][sign_m] * self.count + self.argument_index[l][sign_l]]
     }
 }
 

@@ -148,7 +148,16 @@ impl<T: Precision> SpectralConvolution<T> {
     /// output = kernel ∗ input on the N×N data window.
     pub(crate) fn convolve(&mut self, input: &[f64], output: &mut [f64]) {
         let n = self.n;
-        self.convolve_rows(input, output, 0..n, 0..n);
+        // Rows holding a nonzero value, first to last: the transforms of the others are
+        // skipped with the bits unchanged ([`convolve_rows`](Self::convolve_rows)). An
+        // all-zero input keeps every row, so that even the signs of its zeros stay.
+        let first = input.iter().position(|&v| v != 0.0).map(|k| k / n);
+        let last = input.iter().rposition(|&v| v != 0.0).map(|k| k / n + 1);
+        let input_rows = match (first, last) {
+            (Some(first), Some(last)) => first..last,
+            _ => 0..n,
+        };
+        self.convolve_rows(input, output, input_rows, 0..n);
     }
 
     /// output = kernel ∗ input on the output rows `output_rows`, for an input that is zero
