@@ -26,7 +26,9 @@ impl LoveImages {
         }
     }
 
-    /// K at offset (σ_l·lΔ, σ_m·mΔ), sign index 0 for + and 1 for −.
+    /// K at offset (σ_l·lΔ, σ_m·mΔ), sign index 0 for + and 1 for − (the reference
+    /// [`Self::fill_row`] is tested against, entry by entry).
+    #[cfg(test)]
     fn value(&self, m: usize, sign_m: usize, l: usize, sign_l: usize) -> f64 {
         // Φ(σ_l·lΔ ± s, σ_m·mΔ ± s): for σ = −1, ±s turns into ∓s and the sign comes out.
         let term = |dx: usize, dy: usize| {
@@ -38,6 +40,35 @@ impl LoveImages {
             }
         };
         (term(0, 0) - term(0, 1) - term(1, 0) + term(1, 1)) / self.scale
+    }
+
+    /// Row (σ_m·mΔ) of the 2N-periodic padded kernel: entry j < N is offset jΔ, entry N
+    /// zero, entry j > N offset −(2N − j)Δ; the bits of [`Self::value`], read from the two
+    /// lattice rows of mΔ ± s.
+    fn fill_row(&self, m: usize, sign_m: usize, row: &mut [f64]) {
+        let n = self.lattice.argument_index.len();
+        let lattice = &self.lattice;
+        let lattice_row = |dy: usize| {
+            let start = lattice.argument_index[m][dy ^ sign_m] * lattice.count;
+            &lattice.table[start..start + lattice.count]
+        };
+        let (plus, minus) = (lattice_row(0), lattice_row(1));
+        let padded = row.len();
+        for (j, entry) in row.iter_mut().enumerate() {
+            let (l, sign_l) = match j {
+                j if j < n => (j, 0),
+                j if j == n => {
+                    *entry = 0.0;
+                    continue;
+                }
+                j => (padded - j, 1),
+            };
+            let arguments = &lattice.argument_index[l];
+            let (near, far) = (arguments[sign_l], arguments[1 ^ sign_l]);
+            let flip = |value: f64| if sign_l ^ sign_m == 1 { -value } else { value };
+            // term(dx, dy) of `value`: dx picks the l argument, dy the lattice row.
+            *entry = (flip(plus[near]) - flip(minus[near]) - flip(plus[far]) + flip(minus[far])) / self.scale;
+        }
     }
 }
 
@@ -96,6 +127,7 @@ impl PrimitiveLattice {
     }
 
     /// Φ(lΔ ± s, mΔ ± s), sign index 0 for + and 1 for −.
+    #[cfg(test)]
     fn value(&self, l: usize, sign_l: usize, m: usize, sign_m: usize) -> f64 {
         self.table[self.argument_index[m][sign_m] * self.count + self.argument_index[l][sign_l]]
     }
@@ -137,9 +169,9 @@ impl FreeOperator {
             }
         };
         let images = LoveImages::new(n, delta, modulus);
-        let engine = SpectralConvolution::new(n, padded, |i, j| match (wrap(i), wrap(j)) {
-            (Some((m, sign_m)), Some((l, sign_l))) => images.value(m, sign_m, l, sign_l),
-            _ => 0.0,
+        let engine = SpectralConvolution::new(n, padded, |i, row| match wrap(i) {
+            Some((m, sign_m)) => images.fill_row(m, sign_m, row),
+            None => row.fill(0.0),
         });
         Self {
             grid,
@@ -303,6 +335,28 @@ mod tests {
                     let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
                     let tabulated = images.value(m.unsigned_abs() as usize, sign_m, l.unsigned_abs() as usize, sign_l);
                     assert_eq!(tabulated.to_bits(), direct.to_bits(), "n = {n}, offset ({l}, {m})");
+                }
+            }
+            // The rows of the padded kernel as `FreeOperator::new` fills them.
+            let mut row = vec![f64::NAN; 2 * n];
+            for (m, sign_m) in (0..n).map(|m| (m, 0)).chain((1..n).map(|m| (m, 1))) {
+                images.fill_row(m, sign_m, &mut row);
+                for (j, &entry) in row.iter().enumerate() {
+                    let offset = match j {
+                        j if j < n => j as f64,
+                        j if j == n => {
+                            assert_eq!(entry.to_bits(), 0f64.to_bits(), "row {m}, column {n}");
+                            continue;
+                        }
+                        j => -((2 * n - j) as f64),
+                    };
+                    let y = if sign_m == 1 { -(m as f64) } else { m as f64 };
+                    let direct = love_coefficient(offset * delta, y * delta, delta, modulus);
+                    assert_eq!(
+                        entry.to_bits(),
+                        direct.to_bits(),
+                        "n = {n}, row ({m}, {sign_m}), column {j}"
+                    );
                 }
             }
             let lattice = PrimitiveLattice::new(n, delta, 0.5 * delta);

@@ -50,7 +50,7 @@ impl PeriodicOperator {
         let n = grid.n();
         let delta = grid.element_size();
         let modulus = material.contact_modulus();
-        let mut engine = SpectralConvolution::new(n, n, |_, _| 0.0);
+        let mut engine = SpectralConvolution::<f64>::planned(n, n);
         let frequency = |index: usize| -> f64 {
             let k = if index <= n / 2 {
                 index as f64

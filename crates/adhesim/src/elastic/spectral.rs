@@ -293,23 +293,24 @@ impl<T: Precision> SpectralConvolution<T> {
 }
 
 impl SpectralConvolution<f64> {
-    /// `kernel_real_space(i, j)` gives the padded×padded kernel entry at row i, column j
-    /// (already wrapped); its spectrum is computed here once.
-    pub(crate) fn new(n: usize, padded: usize, kernel_real_space: impl Fn(usize, usize) -> f64 + Sync) -> Self {
+    /// `kernel_row(i, row)` writes row i of the padded×padded kernel (already wrapped)
+    /// into `row`; its spectrum is computed here once.
+    pub(crate) fn new(n: usize, padded: usize, kernel_row: impl Fn(usize, &mut [f64]) + Sync) -> Self {
         let mut engine = Self::planned(n, padded);
-        engine.kernel = engine.kernel_spectrum(kernel_real_space);
+        engine.kernel = engine.kernel_spectrum(kernel_row);
         engine
     }
 
     /// Full 2-D forward transform of the padded kernel; keeps the real part (the kernel
     /// is even in both directions, so its spectrum is real) divided by padded².
-    fn kernel_spectrum(&mut self, kernel_real_space: impl Fn(usize, usize) -> f64 + Sync) -> Vec<f64> {
+    fn kernel_spectrum(&mut self, kernel_row: impl Fn(usize, &mut [f64]) + Sync) -> Vec<f64> {
         let padded = self.padded;
         let columns = self.spectrum_columns;
         let forward_rows = &self.forward_rows;
         let mut rows: Vec<Complex<f64>> = vec![Complex::default(); padded * columns];
         rows.par_chunks_mut(columns).enumerate().for_each(|(i, spectrum)| {
-            let mut real: Vec<f64> = (0..padded).map(|j| kernel_real_space(i, j)).collect();
+            let mut real = vec![0.0; padded];
+            kernel_row(i, &mut real);
             forward_rows
                 .process(&mut real, spectrum)
                 .expect("row transform of the kernel");
