@@ -93,30 +93,13 @@ pub fn count_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
 }
 
-/// Classifies the release decisions of an iterate for the pressure error bound `band`.
-/// On the pool: "some element within the band" and "some violator" do not depend on order.
+/// Classifies the release decisions of an iterate for the pressure error bound `band`:
+/// [`count_releases`] read as "some element within the band", else "some certain violator".
 pub fn classify_releases(pressure: &[f64], contact: &[bool], critical_stress: &[f64], band: f64) -> Releases {
-    let chunk = super::PARALLEL_CHUNK;
-    let (uncertain, violator) = pressure
-        .par_chunks(chunk)
-        .zip(contact.par_chunks(chunk))
-        .zip(critical_stress.par_chunks(chunk))
-        .map(|((pressure, contact), critical_stress)| {
-            let (mut uncertain, mut violator) = (false, false);
-            for k in 0..pressure.len() {
-                if contact[k] {
-                    let excess = -pressure[k] - critical_stress[k];
-                    uncertain |= excess.abs() <= band;
-                    violator |= excess > 0.0;
-                }
-            }
-            (uncertain, violator)
-        })
-        .reduce(|| (false, false), |a, b| (a.0 || b.0, a.1 || b.1));
-    match (uncertain, violator) {
-        (true, _) => Releases::Uncertain,
-        (false, true) => Releases::Some,
-        (false, false) => Releases::None,
+    match count_releases(pressure, contact, critical_stress, band) {
+        (_, uncertain) if uncertain > 0 => Releases::Uncertain,
+        (certain, _) if certain > 0 => Releases::Some,
+        _ => Releases::None,
     }
 }
 
@@ -264,5 +247,37 @@ mod tests {
             !attachments_certain(&heights, 0.95, &[0.0, 0.0, 0.0], &contact, 0.1),
             "gap 0.05 < band"
         );
+    }
+
+    #[test]
+    fn releases_are_counted_by_certainty() {
+        // σ_c = 1 (2 on the last element), band 1/8; every value is exact in binary so the
+        // band's edge is met exactly. Tension −p against σ_c: 1.5 and 1.25 certain,
+        // 1.0625 and 0.9375 within the band (ties either way), 0.5 and compression safe, a
+        // free element at any tension ignored, and 2.125 against σ_c = 2 on the band's
+        // edge, a tie (|excess| ≤ band). The pattern is repeated past one of the pool's
+        // chunks, so the counts are summed across chunks.
+        let band = 0.125;
+        let pattern = [-1.5, -1.25, -1.0625, -0.9375, -0.5, 0.3, -9.0, -2.125];
+        let contact_pattern = [true, true, true, true, true, true, false, true];
+        let sigma_pattern = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 2.0];
+        let copies = super::super::PARALLEL_CHUNK / pattern.len() + 3;
+        let pressure: Vec<f64> = pattern.iter().copied().cycle().take(copies * pattern.len()).collect();
+        let contact: Vec<bool> = contact_pattern.iter().copied().cycle().take(pressure.len()).collect();
+        let sigma: Vec<f64> = sigma_pattern.iter().copied().cycle().take(pressure.len()).collect();
+        assert_eq!(
+            count_releases(&pressure, &contact, &sigma, band),
+            (2 * copies, 3 * copies)
+        );
+        assert_eq!(
+            count_releases(&pressure, &contact, &sigma, 0.0),
+            (4 * copies, 0),
+            "no band"
+        );
+        assert_eq!(
+            classify_releases(&pressure, &contact, &sigma, band),
+            Releases::Uncertain
+        );
+        assert_eq!(classify_releases(&pressure, &contact, &sigma, 0.0), Releases::Some);
     }
 }

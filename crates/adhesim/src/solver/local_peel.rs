@@ -89,6 +89,9 @@ pub(crate) struct LocalPeel {
     pub(crate) queued: Vec<bool>,
     /// Elements to release, in order.
     pub(crate) queue: Vec<usize>,
+    /// (element, rise) at the contact elements within `REACH` of the last released
+    /// element, row-major ([`Self::contact_rises`]).
+    pub(crate) rises: Vec<(usize, f64)>,
     window: Vec<(i64, i64)>,
     matrix: Vec<f64>,
     solution: Vec<f64>,
@@ -101,6 +104,7 @@ impl LocalPeel {
             lower: vec![0.0; len],
             queued: vec![false; len],
             queue: Vec::new(),
+            rises: Vec::new(),
             window: Vec::new(),
             matrix: Vec::new(),
             solution: Vec::new(),
@@ -137,6 +141,27 @@ impl LocalPeel {
         self.solution.resize(size, 0.0);
         self.solution[0] = 1.0;
         cholesky_solve(&self.matrix, size, &mut self.solution);
+    }
+
+    /// Prepares the window of the element released at `centre` (row, column) of an n×n
+    /// grid and lists in [`Self::rises`] the rise at every element within ±`REACH` that
+    /// `in_contact(k)`, row by row: what a release spreads over the contact near it.
+    pub(crate) fn contact_rises(&mut self, n: usize, centre: (i64, i64), in_contact: impl Fn(usize) -> bool) {
+        self.prepare(n, centre, |k| !in_contact(k));
+        self.rises.clear();
+        for a in -REACH..=REACH {
+            for b in -REACH..=REACH {
+                let (row, column) = (centre.0 + a, centre.1 + b);
+                if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
+                    continue;
+                }
+                let k = row as usize * n + column as usize;
+                if in_contact(k) {
+                    let rise = self.rise((row, column));
+                    self.rises.push((k, rise));
+                }
+            }
+        }
     }
 
     /// Lower bound on the tension rise at `element` (row, column) per unit of tension

@@ -4,7 +4,6 @@
 use super::params::over_stress_ratio;
 use super::{AdhesiveSolver, Detachment, StopRule};
 use crate::elastic::ElasticOperator;
-use crate::solver::local_peel::REACH;
 use crate::solver::{ContactState, SolveError};
 
 impl AdhesiveSolver {
@@ -46,28 +45,18 @@ impl AdhesiveSolver {
             let released_pressure = state.pressure[released];
             self.release(released, state);
             let centre = ((released / n) as i64, (released % n) as i64);
-            peel.prepare(n, centre, |k| !state.contact[k]);
-            for a in -REACH..=REACH {
-                for b in -REACH..=REACH {
-                    let (row, column) = (centre.0 + a, centre.1 + b);
-                    if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
-                        continue;
-                    }
-                    let k = row as usize * n + column as usize;
-                    if !state.contact[k] {
-                        continue;
-                    }
-                    let rise = peel.rise((row, column));
-                    // Warm start of the next solve (see `spread_release`).
-                    state.pressure[k] += rise * released_pressure;
-                    if (trial_only && !self.trial[k]) || peel.queued[k] {
-                        continue;
-                    }
-                    peel.lower[k] += rise * tension;
-                    if peel.lower[k] > self.critical_stress[k] {
-                        peel.queue.push(k);
-                        peel.queued[k] = true;
-                    }
+            peel.contact_rises(n, centre, |k| state.contact[k]);
+            for index in 0..peel.rises.len() {
+                let (k, rise) = peel.rises[index];
+                // Warm start of the next solve (see `spread_release`).
+                state.pressure[k] += rise * released_pressure;
+                if (trial_only && !self.trial[k]) || peel.queued[k] {
+                    continue;
+                }
+                peel.lower[k] += rise * tension;
+                if peel.lower[k] > self.critical_stress[k] {
+                    peel.queue.push(k);
+                    peel.queued[k] = true;
                 }
             }
         }
@@ -132,18 +121,9 @@ impl AdhesiveSolver {
         };
         let n = self.grid.n();
         let centre = ((released / n) as i64, (released % n) as i64);
-        peel.prepare(n, centre, |k| !state.contact[k]);
-        for a in -REACH..=REACH {
-            for b in -REACH..=REACH {
-                let (row, column) = (centre.0 + a, centre.1 + b);
-                if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
-                    continue;
-                }
-                let k = row as usize * n + column as usize;
-                if state.contact[k] {
-                    state.pressure[k] += peel.rise((row, column)) * released_pressure;
-                }
-            }
+        peel.contact_rises(n, centre, |k| state.contact[k]);
+        for &(k, rise) in &peel.rises {
+            state.pressure[k] += rise * released_pressure;
         }
         self.local_peel = Some(peel);
     }
