@@ -92,8 +92,7 @@ impl AdhesiveSolver {
                 }
             });
         if exact {
-            operator.apply(&state.pressure, &mut state.displacement);
-            self.displacement_drifted = false;
+            self.make_displacement_exact(operator, state);
         } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
         {
             // Only the rows where p changed are transformed forward (the same bits).
@@ -145,8 +144,9 @@ impl AdhesiveSolver {
             return Ok(0);
         }
         self.tie_refinements += 1;
-        operator.apply(&state.pressure, &mut state.displacement);
-        self.displacement_drifted = false;
+        // Even without single-precision updates since the last exact u, the CG's own
+        // steps moved u by single-precision responses: the refinement starts exact.
+        self.make_displacement_exact(operator, state);
         let iterations = match self.iterate_fixed_set(operator, heights, depth, state, StopRule::Decided) {
             Ok(iterations) => iterations,
             // The refined tolerances out of reach: the decision stays a tie, taken on the
@@ -175,12 +175,17 @@ impl AdhesiveSolver {
         state: &mut ContactState,
     ) -> Result<usize, SolveError> {
         if self.displacement_drifted {
-            operator.apply(&state.pressure, &mut state.displacement);
-            self.displacement_drifted = false;
+            self.make_displacement_exact(operator, state);
         }
         let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Output)?;
         self.displacement_pressure.copy_from_slice(&state.pressure);
         Ok(iterations)
+    }
+
+    /// u = K p in double precision, from the pressures alone.
+    fn make_displacement_exact<O: ElasticOperator + ?Sized>(&mut self, operator: &mut O, state: &mut ContactState) {
+        operator.apply(&state.pressure, &mut state.displacement);
+        self.displacement_drifted = false;
     }
 
     /// [`AdhesiveParams::check_certificates`]: converges the solve fully from the early
@@ -243,6 +248,36 @@ impl AdhesiveSolver {
         (target_norm, residual_norm)
     }
 
+    /// The plain convergence test of a solve whose ‖d − z‖²_C is `target_norm`.
+    fn convergence(&self, target_norm: f64, contact_modulus: f64) -> Convergence {
+        // A point-wise bound well below the displacement an element of stress σ_c produces
+        // by itself.
+        let pointwise = if self.minimum_critical_stress > 0.0 {
+            self.params.front_tolerance
+                * SELF_COMPLIANCE_FACTOR
+                * self.minimum_critical_stress
+                * self.grid.element_size()
+                / contact_modulus
+        } else {
+            f64::INFINITY
+        };
+        Convergence {
+            relative: self.params.relative_tolerance * target_norm.sqrt(),
+            pointwise,
+        }
+    }
+
+    /// 1 on C, 0 elsewhere: branch-free vector loops (direction and residual are 0 outside
+    /// C, so the masked updates equal the element-wise conditional ones). Only the
+    /// contact's rows `span` hold ones.
+    fn fill_mask(&mut self, contact: &[bool], span: Range<usize>) {
+        self.mask[..span.start].fill(0.0);
+        self.mask[span.end..].fill(0.0);
+        for (m, &c) in self.mask[span.clone()].iter_mut().zip(&contact[span]) {
+            *m = if c { 1.0 } else { 0.0 };
+        }
+    }
+
     /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
     /// whose u = K p is up to date (a tie refinement, `StopRule::Decided`, at
     /// [`TIE_TOLERANCE_SCALE`] times the solver's tolerances and at most
@@ -260,6 +295,7 @@ impl AdhesiveSolver {
             StopRule::Output => (OUTPUT_TOLERANCE_SCALE, self.params.max_cg_iterations),
             _ => (1.0, self.params.max_cg_iterations),
         };
+        let (contact_modulus, element_size) = (operator.contact_modulus(), self.grid.element_size());
         self.last_solve_certified = false;
         let span = contact_span(&state.contact, self.grid.n());
         let (target_norm, residual_norm) = self.set_residual(heights, depth, state, span.clone());
@@ -272,44 +308,16 @@ impl AdhesiveSolver {
             (self.pressure_error_bound, self.gap_error_bound) = (0.0, 0.0);
             return Ok(0);
         }
-        // Stop on ‖r‖ ≤ ε‖b‖ and on a point-wise bound well below the displacement an
-        // element of stress σ_c produces by itself.
-        let delta = self.grid.element_size();
-        let pointwise = if self.minimum_critical_stress > 0.0 {
-            self.params.front_tolerance * SELF_COMPLIANCE_FACTOR * self.minimum_critical_stress * delta
-                / operator.contact_modulus()
-        } else {
-            f64::INFINITY
-        };
-        let relative = self.params.relative_tolerance * target_norm.sqrt();
-        // At `scale` times the solver's tolerances.
-        let converged = |scale: f64, norm2: f64, residual: &[f64], contact: &[bool]| -> bool {
-            if norm2.sqrt() > scale * relative {
-                return false;
-            }
-            if pointwise.is_finite() {
-                residual
-                    .iter()
-                    .zip(contact)
-                    .all(|(r, &c)| !c || r.abs() <= scale * pointwise)
-            } else {
-                true
-            }
-        };
-        let (contact_modulus, element_size) = (operator.contact_modulus(), delta);
+        let convergence = self.convergence(target_norm, contact_modulus);
+        let converged =
+            |scale, norm2, residual: &[f64], contact: &[bool]| convergence.met(scale, norm2, residual, contact);
         if converged(tolerance_scale, residual_norm, &self.residual, &state.contact) {
             self.pressure_error_bound =
                 pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
             self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
             return Ok(0);
         }
-        // 1 on C, 0 elsewhere: branch-free vector loops (direction and residual are 0
-        // outside C, so the masked updates equal the element-wise conditional ones).
-        self.mask[..span.start].fill(0.0);
-        self.mask[span.end..].fill(0.0);
-        for (m, &c) in self.mask[span.clone()].iter_mut().zip(&state.contact[span.clone()]) {
-            *m = if c { 1.0 } else { 0.0 };
-        }
+        self.fill_mask(&state.contact, span.clone());
         let contact = &state.contact;
         let critical_stress = &self.critical_stress;
         let n = self.grid.n();
@@ -371,6 +379,31 @@ impl AdhesiveSolver {
         outcome.map(|info| info.iterations).map_err(|error| {
             error.into_solve_error(target_norm.sqrt(), tolerance_scale * self.params.relative_tolerance)
         })
+    }
+}
+
+/// The plain convergence test of a fixed-set solve: ‖r‖ ≤ ε‖b‖ (`relative` = ε‖b‖) and,
+/// with σ_c > 0, |r_k| ≤ `pointwise` on C.
+#[derive(Debug, Clone, Copy)]
+struct Convergence {
+    relative: f64,
+    pointwise: f64,
+}
+
+impl Convergence {
+    /// Whether the residual (squared norm `norm2`) meets `scale` times the tolerances.
+    fn met(&self, scale: f64, norm2: f64, residual: &[f64], contact: &[bool]) -> bool {
+        if norm2.sqrt() > scale * self.relative {
+            return false;
+        }
+        if self.pointwise.is_finite() {
+            residual
+                .iter()
+                .zip(contact)
+                .all(|(r, &c)| !c || r.abs() <= scale * self.pointwise)
+        } else {
+            true
+        }
     }
 }
 

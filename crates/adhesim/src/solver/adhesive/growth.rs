@@ -76,7 +76,7 @@ impl AdhesiveSolver {
                 }
                 return Ok(Flow::Stop);
             }
-            self.saved_certified = self.last_solve_certified || self.displacement_drifted;
+            self.saved_needs_convergence = self.last_solve_certified || self.displacement_drifted;
             self.saved_pressure.copy_from_slice(&state.pressure);
             self.saved_displacement.copy_from_slice(&state.displacement);
             self.current_ring = Some(self.ring_pool.attempt(depth, &state.contact));

@@ -78,9 +78,10 @@ pub struct AdhesiveSolver {
     /// was last computed exactly (a state that ends a step is then converged again from an
     /// exact u: the drift would otherwise reach the reported force at ≈ 1e-6).
     displacement_drifted: bool,
-    /// Whether the state saved before a trial ring came from such an early stop or has such
-    /// a displacement (it is converged again if it ends the step).
-    saved_certified: bool,
+    /// Whether the state saved before a trial ring came from an early stop or had a
+    /// drifted displacement (`last_solve_certified || displacement_drifted` when it was
+    /// saved): if the ring fails and the saved state ends the step, it is converged again.
+    saved_needs_convergence: bool,
     /// Solves stopped early on a certificate, over the solver's life.
     certified_stops: u64,
     /// Tie refinements (docs/fast-step.md §2), and those that did not reach the refined
@@ -178,7 +179,7 @@ impl AdhesiveSolver {
             gap_error_bound: 0.0,
             last_solve_certified: false,
             displacement_drifted: false,
-            saved_certified: false,
+            saved_needs_convergence: false,
             certified_stops: 0,
             tie_refinements: 0,
             unresolved_ties: 0,
@@ -447,7 +448,7 @@ impl AdhesiveSolver {
         state.pressure.copy_from_slice(&self.saved_pressure);
         state.displacement.copy_from_slice(&self.saved_displacement);
         self.displacement_pressure.copy_from_slice(&self.saved_pressure);
-        if self.saved_certified {
+        if self.saved_needs_convergence {
             self.converge_final(operator, heights, depth, state, &mut round.report)?;
         }
         if let Some(ring) = self.current_ring.take() {
