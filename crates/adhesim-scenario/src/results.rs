@@ -69,6 +69,14 @@ pub struct FitResults {
     pub gamma_approach_norm: Option<f64>,
     /// γ2/γ0.
     pub gamma_pulloff_norm: Option<f64>,
+    /// γ1 fitted with the area-equivalent radius √(A/π) instead of the farthest contact.
+    pub gamma_approach_area: Option<f64>,
+    /// γ2 fitted with the area-equivalent radius √(A/π).
+    pub gamma_pulloff_area: Option<f64>,
+    /// γ1 (area-equivalent radius)/γ0.
+    pub gamma_approach_area_norm: Option<f64>,
+    /// γ2 (area-equivalent radius)/γ0.
+    pub gamma_pulloff_area_norm: Option<f64>,
     /// RMS force residual of the γ1 fit.
     pub gamma_approach_residual: Option<f64>,
     /// RMS force residual of the γ2 fit.
@@ -126,6 +134,10 @@ pub fn fit_results(scenario: &ValidScenario, records: &[StepRecord]) -> (FitResu
         boundary_friction: analysis.boundary_friction,
         gamma_approach_norm: analysis.gamma_approach.map(|f| f.work_of_adhesion / gamma0),
         gamma_pulloff_norm: analysis.gamma_pulloff.map(|f| f.work_of_adhesion / gamma0),
+        gamma_approach_area: analysis.gamma_approach_area.map(|f| f.work_of_adhesion),
+        gamma_pulloff_area: analysis.gamma_pulloff_area.map(|f| f.work_of_adhesion),
+        gamma_approach_area_norm: analysis.gamma_approach_area.map(|f| f.work_of_adhesion / gamma0),
+        gamma_pulloff_area_norm: analysis.gamma_pulloff_area.map(|f| f.work_of_adhesion / gamma0),
         gamma_approach_residual: analysis.gamma_approach.map(|f| f.residual_rms),
         gamma_pulloff_residual: analysis.gamma_pulloff.map(|f| f.residual_rms),
         gamma_approach_points: analysis.gamma_approach.map(|f| f.points),

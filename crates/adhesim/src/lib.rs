@@ -65,7 +65,10 @@
 /// such a tie otherwise. 5: the non-adhesive solver pre-solves on the contact's bounding
 /// box (`NestedActiveSet`, docs/physics.md §3.3): the same contact sets, forces move by
 /// ~1e-11 (another point inside the 1e-10 tolerance); adhesive results are unchanged.
-pub const RESULTS_REVISION: u32 = 5;
+/// 6: predicted-subset growth is the product's default from 512² (`PredictedGrowth::Auto`;
+/// the same contact sets as the exact peel, forces may move in their last bits), and the
+/// periodic non-adhesive solve no longer fails on an empty or one-element contact set.
+pub const RESULTS_REVISION: u32 = 6;
 
 pub mod analysis;
 pub mod elastic;

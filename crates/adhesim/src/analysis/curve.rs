@@ -26,6 +26,12 @@ pub struct CurveAnalysis {
     pub gamma_approach: Option<JkrFit>,
     /// γ2: JKR fit of the pull-off branch after the pinned phase.
     pub gamma_pulloff: Option<JkrFit>,
+    /// γ1 fitted with the area-equivalent radius √(A/π) in place of the farthest contact
+    /// element (the paper's radius): the two differ by up to a wavelength on a wavy front,
+    /// so the pair brackets the radius-definition part of any difference from the paper.
+    pub gamma_approach_area: Option<JkrFit>,
+    /// γ2 fitted with the area-equivalent radius, after the same pinned phase.
+    pub gamma_pulloff_area: Option<JkrFit>,
     /// q = (γ2 − γ1)/2 (paper Eq. 11).
     pub boundary_friction: Option<f64>,
     /// |F_ad|/|F_JKR|: largest tensile force over (3/2)πγ0R.
@@ -39,18 +45,33 @@ pub struct CurveAnalysis {
     pub compactness_at_max_depth: Option<f64>,
 }
 
+/// The paper's contact radius: the distance of the farthest contact element.
+fn farthest_radius(record: &StepRecord) -> f64 {
+    record.radius
+}
+
+/// The radius of the disc with the contact's area, √(A/π).
+fn area_equivalent_radius(record: &StepRecord) -> f64 {
+    (record.area / std::f64::consts::PI).sqrt()
+}
+
 /// Analyses the records of an `indent_pulloff` run.
 pub fn analyse_indentation(records: &[StepRecord], options: &CurveAnalysisOptions) -> CurveAnalysis {
     let mut analysis = CurveAnalysis::default();
     let approach: Vec<&StepRecord> = records.iter().filter(|r| r.phase == Some(Phase::Approach)).collect();
     let retract: Vec<&StepRecord> = records.iter().filter(|r| r.phase == Some(Phase::Retract)).collect();
-    let usable = |r: &&&StepRecord| r.contact_elements > 0 && r.radius >= options.min_fit_radius;
-    let approach_points: Vec<(f64, f64)> = approach
-        .iter()
-        .filter(usable)
-        .map(|r| (r.radius, r.force_normal))
-        .collect();
-    analysis.gamma_approach = fit_jkr_work_of_adhesion(&approach_points, options.radius, options.contact_modulus);
+    // (radius, force) points of a branch with the given radius definition, fitted by JKR.
+    let fit = |branch: &[&StepRecord], radius_of: fn(&StepRecord) -> f64| {
+        let points: Vec<(f64, f64)> = branch
+            .iter()
+            .filter(|r| r.contact_elements > 0)
+            .map(|r| (radius_of(r), r.force_normal))
+            .filter(|&(radius, _)| radius >= options.min_fit_radius)
+            .collect();
+        fit_jkr_work_of_adhesion(&points, options.radius, options.contact_modulus)
+    };
+    analysis.gamma_approach = fit(&approach, farthest_radius);
+    analysis.gamma_approach_area = fit(&approach, area_equivalent_radius);
 
     if let Some(deepest) = approach.last() {
         if deepest.radius > 0.0 {
@@ -69,13 +90,9 @@ pub fn analyse_indentation(records: &[StepRecord], options: &CurveAnalysisOption
         }
         analysis.pinned_steps = pinned_steps;
         analysis.pinned_depth = pinned_depth;
-        let pulloff_points: Vec<(f64, f64)> = retract
-            .iter()
-            .skip(pinned_steps)
-            .filter(usable)
-            .map(|r| (r.radius, r.force_normal))
-            .collect();
-        analysis.gamma_pulloff = fit_jkr_work_of_adhesion(&pulloff_points, options.radius, options.contact_modulus);
+        let unpinned = &retract[pinned_steps.min(retract.len())..];
+        analysis.gamma_pulloff = fit(unpinned, farthest_radius);
+        analysis.gamma_pulloff_area = fit(unpinned, area_equivalent_radius);
     }
     if let (Some(g1), Some(g2)) = (analysis.gamma_approach, analysis.gamma_pulloff) {
         analysis.boundary_friction = Some(0.5 * (g2.work_of_adhesion - g1.work_of_adhesion));

@@ -131,7 +131,8 @@ pub struct AdhesiveParams {
     /// Predicted-subset growth on the approach (docs/fast-step.md §3): after the solve with
     /// a full trial ring, attach only the members a local replay of the peel predicts to
     /// hold. Same contact sets, fewer solves; never in the reference rule, the other
-    /// release orders, or on periodic grids. Default [`PredictedGrowth::Off`].
+    /// release orders, or on periodic grids. Default [`PredictedGrowth::Auto`]: the product
+    /// (`adhesim run`, sweeps, studies, Python) and the benchmarks use the same rule.
     pub predicted_growth: PredictedGrowth,
     /// How many layers of free elements around the contact one trial ring holds (default 1,
     /// the paper's rule and the reference for every result). Trial elements are the free,
@@ -165,7 +166,7 @@ impl Default for AdhesiveParams {
             carry_bans_when_retracting: true,
             retry_after_growth: true,
             reference_rule: false,
-            predicted_growth: PredictedGrowth::Off,
+            predicted_growth: PredictedGrowth::Auto,
             trial_ring_layers: NonZeroUsize::MIN,
             check_certificates: false,
         }
