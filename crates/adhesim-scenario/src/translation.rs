@@ -63,6 +63,7 @@ impl ScenarioFile {
                 start_depth / unit
             );
         }
+        crate::validate::check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
         let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
             DistanceUnit::Length => 1.0,

@@ -39,6 +39,31 @@ pub(crate) fn finite(key: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// On a periodic grid the surface displacement has zero mean (K̂(0) = 0), so the mean gap
+/// is mean(z) − d: the whole cell is in contact at d = mean(z) and no load goes deeper
+/// (docs/physics.md §1b). `key` = `raw` (in depth units of `unit` length) is refused
+/// beyond that depth, before the run, instead of failing at the step that crosses it.
+pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw: f64, unit: f64) -> Result<()> {
+    if grid.boundary() != Boundary::Periodic || heights.iter().any(|z| !z.is_finite()) {
+        return Ok(());
+    }
+    let full_contact_depth = heights.iter().sum::<f64>() / heights.len() as f64;
+    let range = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        - heights.iter().copied().fold(f64::INFINITY, f64::min);
+    // The solver's own depth tolerance (CcgParams::depth_tolerance) times the scale.
+    if raw * unit > full_contact_depth + 1e-10 * range.max((raw * unit).abs()) {
+        bail!(
+            "{key} = {raw} lies beyond full contact of the periodic cell: the whole cell touches at depth \
+             {:.6e} (in depth_unit; the indenter's mean height over the cell, since the displacement of a \
+             periodic half-space has zero mean) and no load goes deeper. Use {key} <= {:.6e}, a larger \
+             grid.size, or grid.boundary = \"free\"",
+            full_contact_depth / unit,
+            full_contact_depth / unit
+        );
+    }
+    Ok(())
+}
+
 impl ScenarioFile {
     /// Checks every value and builds the library objects, one section after the other.
     /// `base` resolves relative file paths.
@@ -146,6 +171,7 @@ impl ScenarioFile {
                 raw_max_depth
             );
         }
+        check_periodic_depth(&grid, &heights, "protocol.max_depth", raw_max_depth, unit)?;
         let (depth_step, keys) = match (p.steps, p.step) {
             (Some(steps), None) => {
                 let steps = step_count("protocol.steps", steps)?;

@@ -99,6 +99,19 @@ impl Ccg {
             .filter(|z| z.is_finite())
             .fold(f64::NEG_INFINITY, f64::max);
         let scale = (highest - lowest).max(depth.abs()).max(f64::MIN_POSITIVE);
+        let tolerance = self.params.depth_tolerance * scale;
+        // Every element reachable (no infinite height): full contact closes the cell at
+        // d = mean(z) (the zero-mean displacement), under a finite load, and no load goes
+        // deeper. Without this check the load bracket below doubles to infinity.
+        if heights.iter().all(|z| z.is_finite()) {
+            let full_contact_depth = heights.iter().sum::<f64>() / heights.len() as f64;
+            if depth > full_contact_depth + tolerance {
+                return Err(SolveError::BeyondFullContact {
+                    depth,
+                    full_contact_depth,
+                });
+            }
+        }
         if depth <= lowest {
             state.pressure.iter_mut().for_each(|p| *p = 0.0);
             state.displacement.iter_mut().for_each(|u| *u = 0.0);
@@ -128,7 +141,6 @@ impl Ccg {
             depth,
             ..report
         };
-        let tolerance = self.params.depth_tolerance * scale;
         let mut low = (0.0, lowest - depth);
         let (mut report, mut value) = solve_at(self, load, state)?;
         let mut high;
@@ -142,6 +154,13 @@ impl Ccg {
             }
             low = (load, value);
             load *= 2.0;
+            if !load.is_finite() {
+                // Unreachable after the full-contact check (the depth is reached at a
+                // finite load); kept so that no input can make the bracket run away.
+                return Err(SolveError::NonFinite {
+                    iteration: total.iterations,
+                });
+            }
             (report, value) = solve_at(self, load, state)?;
         }
         let mut side = 0i8;
@@ -365,7 +384,14 @@ impl Ccg {
         iteration: usize,
     ) -> Result<f64, SolveError> {
         let len = pressure.len();
-        let ratio = progress.delta * norm / progress.previous_norm;
+        // Restart (steepest descent) after an overlap, and after an iteration whose gap
+        // vanished on the active set: under load control one active element has a zero
+        // mean-free gap, and norm/0 would fill the direction with NaN.
+        let ratio = if progress.previous_norm > 0.0 {
+            progress.delta * norm / progress.previous_norm
+        } else {
+            0.0
+        };
         for k in 0..len {
             self.direction[k] = if pressure[k] > 0.0 {
                 self.gap[k] + ratio * self.direction[k]

@@ -98,6 +98,17 @@ pub enum SolveError {
         /// Iteration at which it was detected.
         iteration: usize,
     },
+    /// Periodic displacement control asked for a depth the cell cannot reach: the surface
+    /// displacement of a periodic half-space has zero mean (K̂(0) = 0), so the mean gap is
+    /// mean(z) − d ≥ 0 and full contact is reached at d = mean(z) under a finite load;
+    /// a deeper indenter would need a negative mean gap (docs/physics.md §1b).
+    #[error("depth {depth:e} lies beyond full contact of the periodic cell (reached at depth {full_contact_depth:e}, the mean height of the indenter: the mean gap mean(z) − d cannot be negative on a periodic half-space)")]
+    BeyondFullContact {
+        /// The depth asked for.
+        depth: f64,
+        /// mean(z): the depth at which the whole cell is in contact.
+        full_contact_depth: f64,
+    },
     /// A load-controlled solve was asked for a non-positive or non-finite load.
     #[error("load control needs a finite load > 0, got {0}")]
     InvalidLoad(f64),
