@@ -8,6 +8,7 @@
 //! logarithmic); a horizontal line marks y = 0 where the range crosses it; the legend lists
 //! the labelled series.
 
+use crate::log_ticks::{log_tick_label, log_ticks};
 use anyhow::{anyhow, Result};
 use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -166,6 +167,12 @@ impl Panel {
         self
     }
 
+    /// This y range, as it is (no margin, no [`Panel::include_y`]), instead of the series' one.
+    pub fn y_range(mut self, low: f64, high: f64) -> Self {
+        self.y_range = Some((low, high));
+        self
+    }
+
     /// A logarithmic y axis over this range, as it is (no margin, no [`Panel::include_y`]).
     pub fn log_y(self, low: f64, high: f64) -> Self {
         Self {
@@ -306,23 +313,32 @@ where
         }
         (true, false) => {
             let chart = builder
-                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+                .build_cartesian_2d(log_axis(x0, x1), y0..y1)
                 .map_err(plot_error)?;
             draw_contents(chart, panel, ranges)
         }
         (false, true) => {
             let chart = builder
-                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .build_cartesian_2d(x0..x1, log_axis(y0, y1))
                 .map_err(plot_error)?;
             draw_contents(chart, panel, ranges)
         }
         (true, true) => {
             let chart = builder
-                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .build_cartesian_2d(log_axis(x0, x1), log_axis(y0, y1))
                 .map_err(plot_error)?;
             draw_contents(chart, panel, ranges)
         }
     }
+}
+
+/// A logarithmic axis over [low, high] with its ticks chosen by [`log_ticks`].
+fn log_axis(
+    low: f64,
+    high: f64,
+) -> plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>> {
+    let (bold, light) = log_ticks(low, high);
+    (low..high).log_scale().with_key_points(bold).with_light_points(light)
 }
 
 /// Mesh, guide lines, series and legend of a panel whose axes are built (linear or log).
@@ -344,10 +360,17 @@ where
         .label_style((FAMILY, 14))
         .axis_desc_style((FAMILY, 16))
         .light_line_style(RGBColor(235, 235, 235));
-    if panel.scientific_ticks {
-        mesh.x_labels(6)
-            .x_label_formatter(&scientific)
-            .y_label_formatter(&scientific);
+    let log_label_x = |v: &f64| log_tick_label(*v, (x0, x1));
+    let log_label_y = |v: &f64| log_tick_label(*v, (y0, y1));
+    if panel.log_x {
+        mesh.x_label_formatter(&log_label_x);
+    } else if panel.scientific_ticks {
+        mesh.x_labels(6).x_label_formatter(&scientific);
+    }
+    if panel.log_y {
+        mesh.y_label_formatter(&log_label_y);
+    } else if panel.scientific_ticks {
+        mesh.y_label_formatter(&scientific);
     }
     mesh.draw().map_err(plot_error)?;
     let zero = (y0 < 0.0 && y1 > 0.0).then_some((0.0, 0.4));
@@ -523,12 +546,13 @@ mod tests {
             .scientific_ticks();
         Figure::stacked(vec![panel]).save(dir.path(), "p", (500, 400)).unwrap();
         let svg = std::fs::read_to_string(dir.path().join("p.svg")).unwrap();
-        // Decade ticks over 18 decades read as 1.0eN; a plain formatter would write 0.000001.
-        assert!(
-            svg.contains(">1.0e0<") || svg.lines().any(|l| l.trim() == "1.0e0"),
-            "{svg}"
-        );
-        assert!(!svg.contains("0.000001"), "{svg}");
+        // Decade ticks over 18 decades read as 1eN, the y axis every third decade; a plain
+        // formatter would write 0.000001.
+        let label = |t: &str| svg.contains(&format!(">{t}<")) || svg.lines().any(|l| l.trim() == t);
+        for tick in ["1e0", "1e-3", "1e3", "1e-9", "1e9"] {
+            assert!(label(tick), "{tick} missing: {svg}");
+        }
+        assert!(!svg.contains("0.000001") && !svg.contains(">0.001<"), "{svg}");
     }
 
     #[test]

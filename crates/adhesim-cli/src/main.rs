@@ -5,6 +5,8 @@ mod commands;
 mod error_text;
 mod fields;
 mod figure;
+mod log_ticks;
+mod map_key;
 mod master_plots;
 mod output;
 mod plots;

@@ -270,7 +270,7 @@ fn fig3(data: &[Series; 3], styles: &[String], range: (f64, f64)) -> Figure {
 /// Paper Fig. 5: the mean and half difference of γ1 and γ2 vs α.
 fn fig5(data: &[(String, Series)], styles: &[String], range: (f64, f64)) -> Figure {
     let title = "Mean and half difference (cf. paper Fig. 5)";
-    Figure::stacked(vec![scatter(title, "", data, styles, range)])
+    Figure::stacked(vec![scatter(title, "(γ1 ± γ2) / (2γ0)", data, styles, range)])
 }
 
 /// Draws every plot the tables allow into `out`; returns the file names written.

@@ -225,7 +225,7 @@ impl RunObserver {
 
     fn snapshot(&mut self, name: &str, contact: &[bool], previous: &[bool]) -> Result<()> {
         let path = self.snapshots.join(format!("{name}.png"));
-        write_contact_map(&path, self.grid.n(), contact, previous)?;
+        write_contact_map(&path, &self.grid, contact, previous)?;
         self.snapshot_files.push(format!("snapshots/{name}.png"));
         Ok(())
     }
@@ -338,7 +338,8 @@ fn pixel_scale(n: usize) -> usize {
 
 /// A PNG contact map: staying contact dark grey, newly attached red, just detached blue,
 /// free white; one square of pixels per element, y upwards.
-pub fn write_contact_map(path: &Path, n: usize, contact: &[bool], previous: &[bool]) -> Result<()> {
+pub fn write_contact_map(path: &Path, grid: &Grid, contact: &[bool], previous: &[bool]) -> Result<()> {
+    let n = grid.n();
     let scale = pixel_scale(n);
     let side = (n * scale) as u32;
     let mut image = image::RgbImage::new(side, side);
@@ -353,7 +354,9 @@ pub fn write_contact_map(path: &Path, n: usize, contact: &[bool], previous: &[bo
             (false, false) => FREE,
         };
     }
-    image
+    let legend = [(STAYING, "in contact"), (ATTACHED, "attached"), (DETACHED, "detached")];
+    let pixels_per_length = scale as f64 / grid.element_size();
+    crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))
 }

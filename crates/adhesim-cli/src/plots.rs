@@ -6,7 +6,7 @@ use crate::figure::{Figure, Mark, Panel, Series, PALETTE, REFERENCE_GREY};
 use adhesim::analysis::reference::{Hertz, Jkr};
 use adhesim::{Phase, StepRecord};
 use anyhow::Result;
-use plotters::style::{RGBColor, BLACK};
+use plotters::style::RGBColor;
 use std::path::Path;
 
 /// (x, y) points of a series.
@@ -40,13 +40,40 @@ fn phase_panel(
             jumps.push(p);
         }
     }
+    // The jumps go under the data (light crosses), so that they mark without hiding.
     Panel::new(title, x_label, y_label)
         .with(reference.map(|(label, curve)| Series::new(label, REFERENCE_GREY, Mark::Line, curve)))
         .with([
+            Series::new("jump", JUMP_GREY, Mark::Crosses, jumps),
             Series::new("approach", PALETTE[0], Mark::Trace, approach),
             Series::new("retract", PALETTE[1], Mark::Trace, retract),
-            Series::new("jump", BLACK, Mark::Crosses, jumps),
         ])
+}
+
+/// Jump crosses: light enough that the steps drawn over them stay readable.
+const JUMP_GREY: RGBColor = RGBColor(175, 175, 175);
+
+/// The adhesive region of a normalised force–radius panel (F/|F_JKR| vs a/a_JKR): from
+/// a = 0 to where the force has risen back to |F_min| (F_min the most tensile force, at
+/// least |F_JKR|), the force from 1.25·F_min to |F_min|. `None` without tension.
+fn adhesive_zoom(panel: &Panel) -> Option<Panel> {
+    let data = || {
+        panel
+            .series
+            .iter()
+            .filter(|s| s.mark == Mark::Trace)
+            .flat_map(|s| s.points.iter().copied())
+    };
+    let most_tensile = data().map(|p| p.1).fold(0.0, f64::min);
+    if most_tensile >= 0.0 {
+        return None;
+    }
+    let top = most_tensile.abs().max(1.0);
+    let right = data().filter(|p| p.1 <= top).map(|p| p.0).fold(0.0, f64::max) * 1.1;
+    let mut zoom = panel.clone().x_range(0.0, right.max(1.0)).y_range(1.25 * -top, top);
+    zoom.title = "Adhesive region".to_string();
+    zoom.series.iter_mut().for_each(|s| s.clipped = true);
+    Some(zoom)
 }
 
 /// The unit and label of an axis and the closed-form curve in those units.
@@ -178,15 +205,23 @@ pub fn write_all_with_overlays(
                 Series::new(label.as_str(), colour, Mark::Dashed, curve.clone()).clipped()
             });
         let mut panel = panel.clone();
-        // The fits go under the jump crosses, which stay on top.
-        let jumps_at = panel
+        // The fits go under the steps (the first trace), over the jump crosses.
+        let steps_at = panel
             .series
             .iter()
-            .position(|s| s.mark == Mark::Crosses)
+            .position(|s| s.mark == Mark::Trace)
             .unwrap_or(panel.series.len());
-        panel.series.splice(jumps_at..jumps_at, fits);
-        let figure = Figure::stacked(vec![panel]);
-        let files = figure.save(dir, name, (800, 600))?;
+        panel.series.splice(steps_at..steps_at, fits);
+        // A normalised force–radius figure gets the adhesive region beside it: on the
+        // full range it is a sliver under the compressive branch.
+        let zoom = (*name == "force_radius" && panel.y_label.starts_with("F / |F_JKR|"))
+            .then(|| adhesive_zoom(&panel))
+            .flatten();
+        let (figure, size) = match zoom {
+            Some(zoom) => (Figure::side_by_side(vec![panel, zoom]), (1400, 600)),
+            None => (Figure::stacked(vec![panel]), (800, 600)),
+        };
+        let files = figure.save(dir, name, size)?;
         written.extend(files.map(|file| format!("plots/{file}")));
     }
     Ok(written)

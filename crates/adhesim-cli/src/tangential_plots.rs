@@ -173,7 +173,14 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
             }
         }
     }
-    image
+    let legend = [
+        (STAYING, "in contact"),
+        (ATTACHED, "attached"),
+        (DETACHED, "detached"),
+        (AXIS, "indenter axis"),
+    ];
+    let pixels_per_length = scale as f64 / delta;
+    crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))
 }

@@ -120,7 +120,7 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
     };
     let mut written = vec![write_psd_csv(&out, &psd)?];
     written.extend(psd_figure(&psd, fit)?.save(&out, "psd", (800, 600))?);
-    written.push(write_height_map(&out.join("heights.png"), grid.n(), &surface.heights)?);
+    written.push(write_height_map(&out.join("heights.png"), &grid, &surface.heights)?);
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out.join("statistics.json"), json + "\n")
         .with_context(|| format!("cannot write {}", out.join("statistics.json").display()))?;
@@ -388,9 +388,20 @@ fn psd_figure(bins: &[PsdBin], fit: Option<HurstFit>) -> Result<Figure> {
     Ok(Figure::stacked(vec![panel]))
 }
 
+/// Blue (t = −1) – white (0) – red (+1).
+fn diverging(t: f64) -> [u8; 3] {
+    let fade = |c: u8, t: f64| (255.0 + (c as f64 - 255.0) * t).round() as u8;
+    if t >= 0.0 {
+        [fade(178, t), fade(24, t), fade(43, t)]
+    } else {
+        [fade(33, -t), fade(102, -t), fade(172, -t)]
+    }
+}
+
 /// The height map as a PNG, y upwards, blue (low) – white (mean) – red (high) scaled to the
 /// largest deviation from the mean.
-fn write_height_map(path: &Path, n: usize, heights: &[f64]) -> Result<String> {
+fn write_height_map(path: &Path, grid: &Grid, heights: &[f64]) -> Result<String> {
+    let n = grid.n();
     let mean = heights.iter().sum::<f64>() / heights.len() as f64;
     let span = heights.iter().map(|h| (h - mean).abs()).fold(0.0, f64::max);
     let scale = (512 / n).clamp(1, 16);
@@ -404,14 +415,15 @@ fn write_height_map(path: &Path, n: usize, heights: &[f64]) -> Result<String> {
         } else {
             0.0
         };
-        let fade = |c: u8, t: f64| (255.0 + (c as f64 - 255.0) * t).round() as u8;
-        pixel.0 = if t >= 0.0 {
-            [fade(178, t), fade(24, t), fade(43, t)]
-        } else {
-            [fade(33, -t), fade(102, -t), fade(172, -t)]
-        };
+        pixel.0 = diverging(t);
     }
-    image
+    let legend = crate::map_key::Legend::ColourBar {
+        low: mean - span,
+        high: mean + span,
+        label: "height (length units)",
+        colour: &diverging,
+    };
+    crate::map_key::with_key(&image, scale as f64 / grid.element_size(), legend)?
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok("heights.png".into())

@@ -1,4 +1,6 @@
-//! Time-series figures (SVG and PNG) with plotters.
+//! Time-series figures (SVG and PNG) with plotters. Units: time in seconds (the frame rate
+//! or time stamps), lengths in the unit of `frames.pixel_size`, forces in the force log's
+//! unit; the axis labels name them so.
 
 use super::{ratio, FrameRow};
 use crate::figure::{padded_range, Figure, Mark, Panel, Series, PALETTE};
@@ -27,14 +29,14 @@ fn series(rows: &[FrameRow], label: &str, colour: RGBColor, value: impl Fn(&Fram
 
 /// A panel over time.
 fn panel(y_label: &str, series: Vec<Series>) -> Panel {
-    Panel::new("", "time", y_label).with(series)
+    Panel::new("", "time (s)", y_label).with(series)
 }
 
 /// The experiment's figures: areas, sliding (paper Fig. 19) and forces (Fig. 22).
 pub(super) fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
     let area_panel = || {
         panel(
-            "area",
+            "area (length²)",
             vec![
                 series(rows, "total", BLACK, |r| Some(r.m.area)),
                 series(rows, "front", PALETTE[1], |r| Some(r.m.area_front)),
@@ -43,10 +45,10 @@ pub(super) fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
         )
     };
     write_panels(dir, "areas", "Contact area", vec![area_panel()])?;
-    let fx = || panel("F_x", vec![series(rows, "", BLACK, |r| r.force_tangential)]);
+    let fx = || panel("F_x (force)", vec![series(rows, "", BLACK, |r| r.force_tangential)]);
     let tau = || {
         let stress = |r: &FrameRow| ratio(r.force_tangential, r.m.area);
-        panel("tau = F_x/A", vec![series(rows, "", BLACK, stress)])
+        panel("τ = F_x/A (force/length²)", vec![series(rows, "", BLACK, stress)])
     };
     // Paper Fig. 19: F_x, areas (total/front/rear), τ.
     write_panels(
@@ -56,9 +58,9 @@ pub(super) fn write_plots(dir: &Path, rows: &[FrameRow]) -> Result<()> {
         vec![fx(), area_panel(), tau()],
     )?;
     // Paper Fig. 22: F_N, F_x, p, τ.
-    let fn_panel = panel("F_N", vec![series(rows, "", BLACK, |r| r.force_normal)]);
+    let fn_panel = panel("F_N (force)", vec![series(rows, "", BLACK, |r| r.force_normal)]);
     let pressure = |r: &FrameRow| ratio(r.force_normal, r.m.area);
-    let p_panel = panel("p = F_N/A", vec![series(rows, "", BLACK, pressure)]);
+    let p_panel = panel("p = F_N/A (force/length²)", vec![series(rows, "", BLACK, pressure)]);
     write_panels(
         dir,
         "forces",
