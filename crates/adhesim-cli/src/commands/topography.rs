@@ -120,7 +120,7 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
     };
     let mut written = vec![write_psd_csv(&out, &psd)?];
     written.extend(psd_figure(&psd, fit)?.save(&out, "psd", (800, 600))?);
-    written.push(write_height_map(&out.join("heights.png"), &grid, &surface.heights)?);
+    written.push(write_height_map(&out.join("heights.png"), grid, &surface.heights)?);
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out.join("statistics.json"), json + "\n")
         .with_context(|| format!("cannot write {}", out.join("statistics.json").display()))?;
