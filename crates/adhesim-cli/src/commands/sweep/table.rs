@@ -1,7 +1,8 @@
 //! `DIR/table.csv`: one row per finished case, rebuilt from the case folders.
 //!
 //! Columns: `case`, the varied keys (as written in the sweep file), `johnson_parameter`,
-//! every key of `results` in `summary.json` (in its order; null → empty cell), then
+//! `grid.n` and `element_size` (the resolution; left out when `grid.n` is varied), every
+//! key of `results` in `summary.json` (in its order; null → empty cell), then
 //! `status` (`ok` or `error`; the message is in the case's `error.txt`) and `series`.
 //! Rows are sorted by case index. No wall-clock numbers: the table of a resumed or
 //! sharded sweep is byte-identical to an uninterrupted one.
@@ -39,6 +40,7 @@ impl<'de> Deserialize<'de> for Ordered {
 
 #[derive(Deserialize)]
 struct SummaryFile {
+    inputs: serde_json::Value,
     derived: serde_json::Value,
     results: Ordered,
 }
@@ -65,6 +67,8 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
         id: String,
         values: Vec<String>,
         johnson: String,
+        /// `grid.n` and the element size: the resolution of every row, varied or not.
+        resolution: [String; 2],
         results: Vec<(String, serde_json::Value)>,
         ok: bool,
     }
@@ -75,15 +79,17 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
             continue;
         };
         let folder = dir.join("cases").join(&case.id);
-        let (johnson, results) = if ok {
+        let (johnson, resolution, results) = if ok {
             let path = folder.join("summary.json");
             let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
             let summary: SummaryFile =
                 serde_json::from_str(&text).with_context(|| format!("{} is not a run summary", path.display()))?;
             let johnson = summary.derived.get("johnson_parameter").map(cell).unwrap_or_default();
-            (johnson, summary.results.0)
+            let grid_n = summary.inputs.pointer("/grid/n").map(cell).unwrap_or_default();
+            let element_size = summary.derived.get("element_size").map(cell).unwrap_or_default();
+            (johnson, [grid_n, element_size], summary.results.0)
         } else {
-            (String::new(), Vec::new())
+            (String::new(), [String::new(), String::new()], Vec::new())
         };
         for (key, _) in &results {
             if !result_keys.contains(key) {
@@ -94,6 +100,7 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
             id: case.id.clone(),
             values: case.values.clone(),
             johnson,
+            resolution,
             results,
             ok,
         });
@@ -102,6 +109,11 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
     let mut header: Vec<String> = vec!["case".into()];
     header.extend(plan.keys.iter().cloned());
     header.push("johnson_parameter".into());
+    // The resolution of every row (unless grid.n is varied, and so already a column).
+    let resolution_columns = !plan.keys.iter().any(|k| k == "grid.n");
+    if resolution_columns {
+        header.extend(["grid.n".to_string(), "element_size".to_string()]);
+    }
     header.extend(result_keys.iter().cloned());
     header.extend(["status".to_string(), "series".to_string()]);
     writer.write_record(&header)?;
@@ -110,6 +122,9 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
         let mut record = vec![row.id.clone()];
         record.extend(row.values.iter().cloned());
         record.push(row.johnson.clone());
+        if resolution_columns {
+            record.extend(row.resolution.iter().cloned());
+        }
         for key in &result_keys {
             let value = row.results.iter().find(|(k, _)| k == key).map(|(_, v)| cell(v));
             record.push(value.unwrap_or_default());
