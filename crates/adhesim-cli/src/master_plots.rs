@@ -62,6 +62,10 @@ struct Row {
     alpha: Option<f64>,
     gamma1: Option<f64>,
     gamma2: Option<f64>,
+    /// γ1/γ0 and γ2/γ0 fitted with the area-equivalent radius √(A/π) (tables of results
+    /// revision 6 and later).
+    gamma1_area: Option<f64>,
+    gamma2_area: Option<f64>,
     force: Option<f64>,
     /// Case folder, when it exists next to the table.
     folder: Option<PathBuf>,
@@ -72,6 +76,7 @@ fn read_table(path: &Path) -> Result<Vec<Row>> {
     let header = reader.headers()?.clone();
     let find = |name: &str| header.iter().position(|h| h == name);
     let case_col = find("case").ok_or_else(|| anyhow!("{}: no `case` column", path.display()))?;
+    let (g1_area, g2_area) = (find("gamma_approach_area_norm"), find("gamma_pulloff_area_norm"));
     let (alpha, g1, g2, force, series, status) = (
         find("johnson_parameter"),
         find("gamma_approach_norm"),
@@ -104,6 +109,8 @@ fn read_table(path: &Path) -> Result<Vec<Row>> {
             alpha: number(alpha).filter(|a| *a > 0.0),
             gamma1: number(g1),
             gamma2: number(g2),
+            gamma1_area: number(g1_area),
+            gamma2_area: number(g2_area),
             force: number(force),
             folder: folder.is_dir().then_some(folder),
             case,
@@ -257,7 +264,11 @@ fn alpha_label(row: &Row) -> String {
     }
 }
 
-/// Paper Fig. 3: γ1/γ0, γ2/γ0 and |F_ad|/|F_JKR| vs α, side by side.
+/// Legend suffix of the γ fitted with the area-equivalent radius.
+const AREA_SUFFIX: &str = ", radius √(A/π)";
+
+/// Paper Fig. 3: γ1/γ0, γ2/γ0 and |F_ad|/|F_JKR| vs α, side by side; (a) and (b) also with
+/// the area-equivalent radius where the tables have it.
 fn fig3(data: &[Series; 3], styles: &[String], range: (f64, f64)) -> Figure {
     let one = |s: &Series| vec![(String::new(), s.clone())];
     Figure::side_by_side(vec![
@@ -292,8 +303,22 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
         let lo = alphas.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = alphas.iter().copied().fold(0.0, f64::max);
         let range = (lo / 1.3, hi * 1.3);
-        let g1 = group(&rows, |r| r.gamma1);
-        let g2 = group(&rows, |r| r.gamma2);
+        let mut g1 = group(&rows, |r| r.gamma1);
+        let mut g2 = group(&rows, |r| r.gamma2);
+        // The same fits with the area-equivalent radius, as series of their own (markers
+        // after the tables' own), where the tables have them.
+        let area = |value: fn(&Row) -> Option<f64>| {
+            let mut series = group(&rows, value);
+            series.iter_mut().for_each(|(name, _)| name.push_str(AREA_SUFFIX));
+            series
+        };
+        g1.extend(area(|r| r.gamma1_area));
+        g2.extend(area(|r| r.gamma2_area));
+        for (name, _) in g1.iter().chain(&g2) {
+            if !styles.contains(name) {
+                styles.push(name.clone());
+            }
+        }
         let force = group(&rows, |r| r.force);
         let mean = group(&rows, |r| Some((r.gamma1? + r.gamma2?) / 2.0));
         let half_difference = group(&rows, |r| Some((r.gamma1? - r.gamma2?) / 2.0));
