@@ -17,7 +17,9 @@ pyo3::create_exception!(
 pub fn solve_error(error: adhesim::SolveError) -> PyErr {
     use adhesim::SolveError as E;
     match error {
-        E::SizeMismatch { .. } | E::InvalidLoad(_) | E::PeriodicUnsupported { .. } => {
+        // A depth past full contact of a periodic cell is an impossible request, not a
+        // failure to converge.
+        E::SizeMismatch { .. } | E::InvalidLoad(_) | E::PeriodicUnsupported { .. } | E::BeyondFullContact { .. } => {
             PyValueError::new_err(error.to_string())
         }
         E::NotConverged { .. } | E::TooManyRounds { .. } | E::NonFinite { .. } | E::NotPositiveDefinite { .. } => {
