@@ -1,83 +1,8 @@
-//! `adhesim`: command-line front end of the adhesim simulator (see `docs/cli.md`).
-//! Parses the command line and dispatches to `commands/`; nothing else lives here.
+//! `adhesim`: command-line front end of the adhesim simulator (see `docs/cli.md`). The
+//! command line itself is the library's [`adhesim_cli::main_with_args`].
 
-mod commands;
-mod error_text;
-mod fields;
-mod figure;
-mod log_ticks;
-mod map_key;
-mod master_plots;
-mod output;
-mod plots;
-mod resources;
-mod rough_sphere_plots;
-mod summary;
-mod tangential_plots;
-
-use clap::{Parser, Subcommand};
-use commands::{experiment, reference, run, study, sweep, topography};
-use error_text::error_line;
 use std::process::ExitCode;
 
-/// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
-///
-/// Without a subcommand, runs the built-in default scenario (the paper's Fig. 1 case)
-/// into ./out/default/.
-#[derive(Parser)]
-#[command(name = "adhesim", version, about, long_about)]
-struct Cli {
-    #[command(subcommand)]
-    command: Option<Command>,
-}
-
-#[derive(Subcommand)]
-enum Command {
-    /// Run one scenario file.
-    Run(run::RunArgs),
-    /// Print a closed-form reference curve as CSV to stdout.
-    Reference(reference::ReferenceArgs),
-    /// Run a parameter study (resumable, parallel, shardable); `sweep merge DIR` rebuilds
-    /// its table and plots.
-    Sweep(sweep::SweepArgs),
-    /// Redraw figures, e.g. `plot master TABLE.csv... [--out DIR]` (master curves).
-    Plot(master_plots::PlotArgs),
-    /// Rolling / sliding friction study over the Johnson parameter (paper Figs. 7, 8, 10).
-    Study(study::StudyArgs),
-    /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
-    /// generate a synthetic one (`adhesim experiment synth`).
-    Experiment(experiment::ExperimentArgs),
-    /// Statistics, PSD plot and height map of an instrument file or a scenario's roughness.
-    Topography(topography::TopographyArgs),
-}
-
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(error) => {
-            let _ = error.print();
-            return if error.use_stderr() {
-                ExitCode::from(2)
-            } else {
-                ExitCode::SUCCESS
-            };
-        }
-    };
-    let result = match cli.command {
-        None => run::run_default(),
-        Some(Command::Run(args)) => run::command(&args),
-        Some(Command::Reference(args)) => reference::print(&args),
-        Some(Command::Sweep(args)) => sweep::command(&args),
-        Some(Command::Plot(args)) => master_plots::command(&args),
-        Some(Command::Study(args)) => study::run(&args),
-        Some(Command::Experiment(args)) => experiment::main(args),
-        Some(Command::Topography(args)) => topography::command(&args),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {}", error_line(error.chain()));
-            ExitCode::FAILURE
-        }
-    }
+    ExitCode::from(adhesim_cli::main_with_args(std::env::args_os()))
 }

@@ -8,6 +8,7 @@
 //! scenario crate's pipeline (`scenario.rs`).
 
 mod adhesive;
+mod cli;
 mod convert;
 mod objects;
 mod reference;
@@ -19,6 +20,8 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RESULTS_REVISION", adhesim::RESULTS_REVISION)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     m.add("SolveError", m.py().get_type::<convert::SolveError>())?;
     m.add_class::<objects::Grid>()?;
     m.add_class::<objects::Material>()?;

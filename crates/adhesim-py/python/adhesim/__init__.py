@@ -26,6 +26,7 @@ from . import fit, geometry, reference
 from ._run import RunResult, Snapshot, load, run, sweep, sweep_table
 from ._adhesim import (
     RESULTS_REVISION,
+    __version__,
     AdhesiveSolver,
     Ccg,
     ContactState,

@@ -11,6 +11,9 @@ FloatField = npt.NDArray[np.float64]
 BoolField = npt.NDArray[np.bool_]
 
 RESULTS_REVISION: int
+__version__: str
+
+def cli_main(argv: List[str]) -> int: ...
 
 class SolveError(RuntimeError):
     """A solver did not converge (iteration or round limit, or a non-finite value)."""

@@ -1,0 +1,87 @@
+//! The `adhesim` command line as a library: [`main_with_args`] parses the arguments and
+//! dispatches to `commands/`. The binary (`src/main.rs`) and the Python wheel's console
+//! script (`adhesim._adhesim.cli_main`) both call it, so they behave alike, exit codes
+//! included (docs/cli.md).
+
+mod commands;
+mod error_text;
+mod fields;
+mod figure;
+mod log_ticks;
+mod map_key;
+mod master_plots;
+mod output;
+mod plots;
+mod resources;
+mod rough_sphere_plots;
+mod summary;
+mod tangential_plots;
+
+use clap::{Parser, Subcommand};
+use commands::{experiment, reference, run, study, sweep, topography};
+use error_text::error_line;
+
+/// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
+///
+/// Without a subcommand, runs the built-in default scenario (the paper's Fig. 1 case)
+/// into ./out/default/.
+#[derive(Parser)]
+#[command(name = "adhesim", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one scenario file.
+    Run(run::RunArgs),
+    /// Print a closed-form reference curve as CSV to stdout.
+    Reference(reference::ReferenceArgs),
+    /// Run a parameter study (resumable, parallel, shardable); `sweep merge DIR` rebuilds
+    /// its table and plots.
+    Sweep(sweep::SweepArgs),
+    /// Redraw figures, e.g. `plot master TABLE.csv... [--out DIR]` (master curves).
+    Plot(master_plots::PlotArgs),
+    /// Rolling / sliding friction study over the Johnson parameter (paper Figs. 7, 8, 10).
+    Study(study::StudyArgs),
+    /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
+    /// generate a synthetic one (`adhesim experiment synth`).
+    Experiment(experiment::ExperimentArgs),
+    /// Statistics, PSD plot and height map of an instrument file or a scenario's roughness.
+    Topography(topography::TopographyArgs),
+}
+
+/// Runs the command line on `args` (the program name first, as `std::env::args_os`
+/// gives it) and returns the exit code: 0 success, 1 an error (printed on stderr as one
+/// line), 2 a usage error (clap's message).
+pub fn main_with_args<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(error) => {
+            let _ = error.print();
+            return if error.use_stderr() { 2 } else { 0 };
+        }
+    };
+    let result = match cli.command {
+        None => run::run_default(),
+        Some(Command::Run(args)) => run::command(&args),
+        Some(Command::Reference(args)) => reference::print(&args),
+        Some(Command::Sweep(args)) => sweep::command(&args),
+        Some(Command::Plot(args)) => master_plots::command(&args),
+        Some(Command::Study(args)) => study::run(&args),
+        Some(Command::Experiment(args)) => experiment::main(args),
+        Some(Command::Topography(args)) => topography::command(&args),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(error) => {
+            eprintln!("error: {}", error_line(error.chain()));
+            1
+        }
+    }
+}
