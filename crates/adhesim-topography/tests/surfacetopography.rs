@@ -139,9 +139,7 @@ fn fixture(name: &str) -> Vec<u8> {
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     if name.ends_with(".gz") {
         let mut text = Vec::new();
-        flate2::read::GzDecoder::new(&bytes[..])
-            .read_to_end(&mut text)
-            .unwrap();
+        flate2::read::GzDecoder::new(&bytes[..]).read_to_end(&mut text).unwrap();
         text
     } else {
         bytes
@@ -163,7 +161,10 @@ fn read(name: &str, options: &ReadOptions) -> Topography {
 
 fn assert_relative(got: f64, want: f64, tolerance: f64, what: &str) {
     let error = (got / want - 1.0).abs();
-    assert!(error <= tolerance, "{what}: adhesim {got:e}, SurfaceTopography {want:e} (relative {error:e})");
+    assert!(
+        error <= tolerance,
+        "{what}: adhesim {got:e}, SurfaceTopography {want:e} (relative {error:e})"
+    );
 }
 
 /// rms height, rms slope and rms curvature as the conformance table compares them: slope and
@@ -198,8 +199,18 @@ fn readers_agree_with_surfacetopography() {
         let name = expected.file;
         let map = read(name, &metres);
         assert_eq!((map.nx, map.ny), expected.grid, "{name}: grid");
-        assert_relative(map.nx as f64 * map.dx, expected.size.0, 1e-12, &format!("{name}: x size"));
-        assert_relative(map.ny as f64 * map.dy, expected.size.1, 1e-12, &format!("{name}: y size"));
+        assert_relative(
+            map.nx as f64 * map.dx,
+            expected.size.0,
+            1e-12,
+            &format!("{name}: x size"),
+        );
+        assert_relative(
+            map.ny as f64 * map.dy,
+            expected.size.1,
+            1e-12,
+            &format!("{name}: y size"),
+        );
         let invalid = map.mask.as_ref().map_or(0, |m| m.iter().filter(|v| !**v).count());
         assert_eq!(invalid, expected.invalid, "{name}: invalid points");
         let (rms_height, rms_slope, rms_curvature) = statistics(&map);
@@ -221,7 +232,12 @@ fn readers_agree_with_surfacetopography() {
         );
         assert_relative(rms_height, expected.rms_height, 1e-9, &format!("{name}: rms height"));
         let filled_tolerance = if expected.invalid > 0 { 1e-6 } else { 1e-9 };
-        assert_relative(rms_slope, expected.rms_slope, filled_tolerance, &format!("{name}: rms slope"));
+        assert_relative(
+            rms_slope,
+            expected.rms_slope,
+            filled_tolerance,
+            &format!("{name}: rms slope"),
+        );
         if let Some(want) = expected.rms_curvature {
             let got = rms_curvature.unwrap();
             assert_relative(got, want, filled_tolerance, &format!("{name}: rms curvature"));
@@ -273,9 +289,13 @@ fn files_without_size_or_unit_with_the_callers_values() {
     assert_relative(h, 2.711434122378783, 1e-12, "example-2d rms height");
     assert_relative(slope, 2.638654960391752, 1e-12, "example-2d rms slope");
     for name in ["matrix-5.txt", "example-2d.npy", "xyz-1.txt"] {
-        let error = read_topography_from_bytes(&fixture(name), name.replace("xyz-1.txt", "xyz-1.xyz"), &ReadOptions::default())
-            .unwrap_err()
-            .to_string();
+        let error = read_topography_from_bytes(
+            &fixture(name),
+            name.replace("xyz-1.txt", "xyz-1.xyz"),
+            &ReadOptions::default(),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(error.contains("records no"), "{name}: {error}");
     }
 }
