@@ -30,7 +30,7 @@ struct Expected {
     rms_curvature: Option<f64>,
 }
 
-const EXPECTED: [Expected; 11] = [
+const EXPECTED: [Expected; 13] = [
     Expected {
         file: "x3p-2.x3p",
         grid: (650, 650),
@@ -121,6 +121,28 @@ const EXPECTED: [Expected; 11] = [
         rms_slope: 0.816496580927726,
         rms_curvature: Some(1.118033988749895),
     },
+    // adhesim's own fixtures (tests/data/README.md) written by gwyfile and surfalize, which
+    // SurfaceTopography reads too; their maps are planes (curvature 0 to rounding: not
+    // compared). SurfaceTopography decodes the .sur's Latin-1 unit "µm" as "Âµm" and reports
+    // the sizes and heights in it; converted here as µm.
+    Expected {
+        file: "../reference.gwy",
+        grid: (5, 4),
+        size: (2.4999999999999998e-06, 1e-06),
+        invalid: 1,
+        rms_height: 1.1502137582861251e-08,
+        rms_slope: 0.04004996878900158,
+        rms_curvature: None,
+    },
+    Expected {
+        file: "../reference.sur",
+        grid: (5, 4),
+        size: (2.5e-6, 1.0e-6),
+        invalid: 0,
+        rms_height: 0.011269428268725177e-6,
+        rms_slope: 0.0400499709191806,
+        rms_curvature: None,
+    },
     Expected {
         file: "xyz-2.txt",
         grid: (4, 4),
@@ -149,7 +171,7 @@ fn fixture(name: &str) -> Vec<u8> {
 /// Reads a fixture; the xyz files record no unit, SurfaceTopography then reports none, and
 /// adhesim is told metres (the values are then the file's numbers).
 fn read(name: &str, options: &ReadOptions) -> Topography {
-    let stored = name.trim_end_matches(".gz");
+    let stored = name.trim_end_matches(".gz").trim_start_matches("../");
     // the xyz fixtures end in .txt upstream; adhesim reads xyz by the extension
     let as_named = if stored.starts_with("xyz-") {
         stored.replace(".txt", ".xyz")

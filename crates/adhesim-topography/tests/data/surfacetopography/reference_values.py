@@ -16,12 +16,15 @@ import tempfile
 import numpy as np
 from SurfaceTopography import open_topography
 
-METRES = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9, None: 1.0}
+# "Âµm": SurfaceTopography 1.27.1 decodes the Latin-1 "µm" of ../reference.sur so.
+METRES = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "Âµm": 1e-6, "nm": 1e-9, None: 1.0}
 # Files that record no size or unit: what the test gives adhesim as well.
 GIVEN = {"matrix-5.txt": dict(physical_sizes=(1.0, 2.0)), "example-2d.npy": dict(physical_sizes=(3.0, 4.0))}
 FILES = ["x3p-2.x3p", "sur-2.sur.gz", "sur-3.sur.gz", "matrix-3.txt.gz", "matrix-4.txt.gz",
          "gwyddion-export-english.txt", "gwyddion-export-german.txt", "matrix-5.txt", "matrix-6.txt",
-         "txt_example.txt", "xyz-1.txt", "xyz-2.txt", "example-2d.npy"]
+         "txt_example.txt", "xyz-1.txt", "xyz-2.txt", "example-2d.npy",
+         # adhesim's own fixtures made by gwyfile and surfalize (../README.md)
+         "../reference.gwy", "../reference.sur"]
 
 
 def values(path, name):
