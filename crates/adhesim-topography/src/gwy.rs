@@ -200,7 +200,11 @@ pub(crate) fn read(bytes: &[u8], options: &ReadOptions) -> ParseResult<RawMap> {
         return Err(ParseError::malformed(format!("/{id}/data is not an object")));
     };
     let (nx, ny, values) = field_values(field)?;
-    let (xy_factor, xy_unit, given_spacing) = lateral_unit(field, options)?;
+    let LateralScale {
+        factor: xy_factor,
+        unit: xy_unit,
+        spacing: given_spacing,
+    } = lateral_unit(field, options)?;
     let (z_factor, z_unit) = match field.unit("si_unit_z") {
         unit if unit.trim().is_empty() => height_unit_option(options)?,
         unit => (parse_length_unit(&unit)?, unit),
@@ -242,20 +246,30 @@ pub(crate) fn read(bytes: &[u8], options: &ReadOptions) -> ParseResult<RawMap> {
     })
 }
 
+/// How a data field's lateral sizes become metres.
+struct LateralScale {
+    /// Metres per unit of `xreal`, `yreal`, `xoff`, `yoff`.
+    factor: f64,
+    unit: String,
+    /// The caller's spacing, replacing `xreal/xres` where the file's unit is empty.
+    spacing: Option<(f64, f64)>,
+}
+
 /// The factor of the lateral unit to metres, the unit, and the caller's spacing where the
 /// file's `si_unit_xy` is empty: Gwyddion writes an empty unit when the instrument file it
 /// imported recorded none. Then `options.spacing` (metres) or `options.lateral_unit` (the
 /// unit of `xreal`, `yreal`) must say what the file does not.
-fn lateral_unit(field: &Object, options: &ReadOptions) -> ParseResult<(f64, String, Option<(f64, f64)>)> {
+fn lateral_unit(field: &Object, options: &ReadOptions) -> ParseResult<LateralScale> {
     let unit = field.unit("si_unit_xy");
+    let scale = |factor, unit, spacing| LateralScale { factor, unit, spacing };
     if !unit.trim().is_empty() {
-        return Ok((parse_length_unit(&unit)?, unit, None));
+        return Ok(scale(parse_length_unit(&unit)?, unit, None));
     }
     if let Some(spacing) = options.spacing {
-        return Ok((1.0, "m".to_string(), Some(spacing)));
+        return Ok(scale(1.0, "m".to_string(), Some(spacing)));
     }
     match &options.lateral_unit {
-        Some(given) => Ok((parse_length_unit(given)?, given.clone(), None)),
+        Some(given) => Ok(scale(parse_length_unit(given)?, given.clone(), None)),
         None => Err(ParseError::MissingOption {
             what: "lateral unit (its si_unit_xy is empty)",
             option: "lateral_unit",

@@ -46,7 +46,7 @@ impl<'a> HeightMap<'a> {
     ) -> Result<Self, SurfaceError> {
         super::positive("dx", dx)?;
         super::positive("dy", dy)?;
-        let expected = nx.checked_mul(ny).unwrap_or(usize::MAX);
+        let expected = nx.saturating_mul(ny);
         if heights.len() != expected {
             return Err(SurfaceError::SizeMismatch {
                 expected,
