@@ -193,3 +193,34 @@ fn bad_inputs_name_the_file_or_the_section() {
     let output = adhesim(&["topography", scenario.to_str().unwrap(), "--spacing=-1"]);
     assert!(String::from_utf8_lossy(&output.stderr).contains("--spacing must be > 0, got -1"));
 }
+
+/// Gwyddion's German text export is read (SurfaceTopography's fixture: 3 × 4 points, 12.34 µm
+/// × 5678.9 nm); a decimal comma is refused naming the line and the value, not read as twice
+/// the columns.
+#[test]
+fn a_german_gwyddion_export_reads_and_a_decimal_comma_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let german = fixture("gwyddion-export-german.txt");
+    let output = adhesim(&["topography", german.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stats = statistics(&out);
+    assert_eq!((stats["nx"].as_u64(), stats["ny"].as_u64()), (Some(3), Some(4)));
+    let size_x = stats["size_x"].as_f64().unwrap();
+    assert!((size_x / 12.34e-6 - 1.0).abs() < 1e-12, "{size_x}");
+    let comma = dir.path().join("comma.txt");
+    std::fs::write(&comma, "1,5 2,5 3,5\n4,5 5,5 6,5\n7,5 8,5 9,5\n").unwrap();
+    let output = adhesim(&[
+        "topography",
+        comma.to_str().unwrap(),
+        "--spacing",
+        "1e-6",
+        "--height-unit",
+        "nm",
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("line 1: \"1,5\" has a decimal comma"),
+        "{stderr}"
+    );
+}
