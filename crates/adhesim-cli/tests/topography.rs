@@ -224,3 +224,67 @@ fn a_german_gwyddion_export_reads_and_a_decimal_comma_is_refused() {
         "{stderr}"
     );
 }
+
+/// A Gwyddion object: type name, u32 size, components (name, type, value), as
+/// `adhesim-topography`'s gwy reader documents the format.
+fn gwy_object(type_name: &str, components: &[(&str, u8, Vec<u8>)]) -> Vec<u8> {
+    let mut body = Vec::new();
+    for (name, kind, value) in components {
+        body.extend_from_slice(name.as_bytes());
+        body.push(0);
+        body.push(*kind);
+        body.extend_from_slice(value);
+    }
+    let mut out = type_name.as_bytes().to_vec();
+    out.push(0);
+    out.extend_from_slice(&(body.len() as u32).to_le_bytes());
+    out.extend_from_slice(&body);
+    out
+}
+
+/// Issue 26: a .gwy whose SI units are empty was refused with a hint to --spacing, which did
+/// not help. The error now names the flag that does (--lateral-unit, then --height-unit), and
+/// with both the map reads: xreal = 6 in µm over 3 points is dx = 2 µm.
+#[test]
+fn an_empty_unit_gwy_reads_with_the_units_the_error_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let unit = |text: &str| gwy_object("GwySIUnit", &[("unitstr", b's', [text.as_bytes(), &[0]].concat())]);
+    let doubles: Vec<u8> = [
+        6u32.to_le_bytes().to_vec(),
+        (1..=6).flat_map(|v| f64::from(v).to_le_bytes()).collect(),
+    ]
+    .concat();
+    let field = gwy_object(
+        "GwyDataField",
+        &[
+            ("xres", b'i', 3i32.to_le_bytes().to_vec()),
+            ("yres", b'i', 2i32.to_le_bytes().to_vec()),
+            ("xreal", b'd', 6f64.to_le_bytes().to_vec()),
+            ("yreal", b'd', 2f64.to_le_bytes().to_vec()),
+            ("si_unit_xy", b'o', unit("")),
+            ("si_unit_z", b'o', unit("")),
+            ("data", b'D', doubles),
+        ],
+    );
+    let bytes = [
+        b"GWYP".to_vec(),
+        gwy_object("GwyContainer", &[("/0/data", b'o', field)]),
+    ]
+    .concat();
+    let path = dir.path().join("empty.gwy");
+    std::fs::write(&path, bytes).unwrap();
+    let out = dir.path().join("out");
+    let base = ["topography", path.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    let stderr = |args: &[&str]| String::from_utf8_lossy(&adhesim(args).stderr).to_string();
+    let first = stderr(&base);
+    assert!(
+        first.contains("give --lateral-unit") && !first.contains("--spacing"),
+        "{first}"
+    );
+    let second = stderr(&[&base[..], &["--lateral-unit", "um"]].concat());
+    assert!(second.contains("give --height-unit"), "{second}");
+    let output = adhesim(&[&base[..], &["--lateral-unit", "um", "--height-unit", "nm"]].concat());
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stats = statistics(&out);
+    assert_eq!((stats["dx"].as_f64(), stats["dy"].as_f64()), (Some(2e-6), Some(1e-6)));
+}
