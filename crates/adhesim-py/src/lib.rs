@@ -14,6 +14,7 @@ mod objects;
 mod reference;
 mod scenario;
 mod solvers;
+mod surface;
 
 use pyo3::prelude::*;
 
@@ -48,5 +49,10 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenario::_curve_column_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_value, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_document, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::_self_affine, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::_height_map_statistics, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::_isotropic_psd, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::_fill_invalid, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::_read_topography, m)?)?;
     Ok(())
 }

@@ -37,7 +37,7 @@ def test_stubs_match_the_extension():
 
 def test_everything_public_has_a_docstring():
     missing = []
-    for module in (adhesim, adhesim.reference, adhesim.fit, adhesim.geometry):
+    for module in (adhesim, adhesim.reference, adhesim.fit, adhesim.geometry, adhesim.surface):
         for name in getattr(module, "__all__", []):
             obj = getattr(module, name)
             if callable(obj) and not (obj.__doc__ or "").strip():

@@ -67,6 +67,29 @@ pub struct RoughnessSection {
     /// Channel of a multi-channel file (Gwyddion title, npz member, ASCII "Channel").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub channel: Option<String>,
+    /// Unit of the heights of a file that records none (npy, npz, bare ASCII, xyz without
+    /// header, a .gwy with an empty unit): `"nm"`, `"um"`, `"m"`, … converted to metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_unit: Option<String>,
+    /// Unit of the x and y columns of an xyz file without header (or of a .gwy's sizes
+    /// whose unit is empty), converted to metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lateral_unit: Option<String>,
+    /// What to do with the points a file marks invalid: `"interpolate"` (harmonic filling,
+    /// as SurfaceTopography's `interpolate_undefined_data`) or `"refuse"` (an error). A
+    /// file with invalid points needs it; it is reported in summary.json.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub invalid_points: Option<InvalidPoints>,
+}
+
+/// The choice for the invalid points of a measured map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InvalidPoints {
+    /// Fill them with the harmonic interpolation of the valid points.
+    Interpolate,
+    /// Stop with an error naming the count.
+    Refuse,
 }
 
 /// How the generator draws its Fourier amplitudes.
@@ -550,4 +573,19 @@ pub struct RoughnessStatistics {
     pub rms_height: f64,
     pub rms_slope: f64,
     pub rms_curvature: f64,
+    /// The invalid points of a measured map and what was done with them; absent when the
+    /// map has none (or is generated).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub invalid_points: Option<InvalidPointsReport>,
+}
+
+/// The invalid points of a measured map as summary.json reports them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct InvalidPointsReport {
+    /// Points the file marks invalid.
+    pub count: usize,
+    /// Points of the map.
+    pub of: usize,
+    /// `"interpolate"`: filled by harmonic interpolation before resampling onto the grid.
+    pub handling: InvalidPoints,
 }

@@ -3,12 +3,11 @@
 //! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
 //! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
 
-use crate::model::{RoughnessMode, RoughnessSection, RoughnessStatistics};
-use crate::parse::refuse_invalid_points;
+use crate::model::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection, RoughnessStatistics};
 use crate::validate::positive;
-use adhesim::surface::{statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
+use adhesim::surface::{fill_invalid_harmonic, statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
 use adhesim::Grid;
-use adhesim_topography::{read_topography, ReadOptions};
+use adhesim_topography::{read_topography, ReadOptions, Topography, TopographyError};
 use anyhow::{anyhow, bail, Result};
 use std::path::Path;
 
@@ -23,7 +22,15 @@ const GENERATOR_KEYS: [&str; 7] = [
     "mode",
 ];
 /// Keys of the file form.
-const FILE_KEYS: [&str; 4] = ["file", "detrend", "spacing", "channel"];
+const FILE_KEYS: [&str; 7] = [
+    "file",
+    "detrend",
+    "spacing",
+    "channel",
+    "height_unit",
+    "lateral_unit",
+    "invalid_points",
+];
 
 /// A roughness sampled on the grid.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,6 +41,13 @@ pub struct RoughnessMap {
     pub statistics: RoughnessStatistics,
     /// Warnings (a grid that undersamples a measured map), for stderr and `summary.json`.
     pub warnings: Vec<String>,
+}
+
+/// A measured map on the grid, before its statistics.
+struct SampledFile {
+    heights: Vec<f64>,
+    warnings: Vec<String>,
+    invalid_points: Option<InvalidPointsReport>,
 }
 
 /// Which keys of the section are set, in the order of the two lists above.
@@ -53,6 +67,9 @@ fn present(section: &RoughnessSection) -> (Vec<&'static str>, Vec<&'static str>)
         s.detrend.is_some(),
         s.spacing.is_some(),
         s.channel.is_some(),
+        s.height_unit.is_some(),
+        s.lateral_unit.is_some(),
+        s.invalid_points.is_some(),
     ];
     let pick = |keys: &[&'static str], set: &[bool]| -> Vec<&'static str> {
         keys.iter().zip(set).filter(|(_, &on)| on).map(|(k, _)| *k).collect()
@@ -64,7 +81,7 @@ fn present(section: &RoughnessSection) -> (Vec<&'static str>, Vec<&'static str>)
 /// relative file paths are resolved against `base`.
 pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<RoughnessMap> {
     let (generator, file) = present(section);
-    let (heights, warnings) = match (generator.is_empty(), file.is_empty()) {
+    let sampled = match (generator.is_empty(), file.is_empty()) {
         (true, true) => bail!(
             "[{name}] is empty: give {name}.file, or the generator keys {name}.hurst, {name}.seed and one of {name}.rms_height / {name}.rms_slope"
         ),
@@ -75,18 +92,23 @@ pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, ba
             GENERATOR_KEYS.join(", "),
             FILE_KEYS.join(", ")
         ),
-        (false, true) => (generate(section, name, grid)?, Vec::new()),
+        (false, true) => SampledFile {
+            heights: generate(section, name, grid)?,
+            warnings: Vec::new(),
+            invalid_points: None,
+        },
         (true, false) => from_file(section, name, grid, base)?,
     };
-    let stats = statistics(grid, &heights).map_err(|e| anyhow!("[{name}]: the statistics of the map: {e}"))?;
+    let stats = statistics(grid, &sampled.heights).map_err(|e| anyhow!("[{name}]: the statistics of the map: {e}"))?;
     Ok(RoughnessMap {
-        heights,
+        heights: sampled.heights,
         statistics: RoughnessStatistics {
             rms_height: stats.rms_height,
             rms_slope: stats.rms_slope,
             rms_curvature: stats.rms_curvature,
+            invalid_points: sampled.invalid_points,
         },
-        warnings,
+        warnings: sampled.warnings,
     })
 }
 
@@ -138,12 +160,20 @@ fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f
     Ok(surface.heights)
 }
 
-/// The file form: read, detrend on request, resample onto the grid (bilinear, or spectral
-/// when the grid is finer), warn when the grid undersamples the measurement.
-fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<(Vec<f64>, Vec<String>)> {
+/// The file form: read, fill or refuse invalid points as `invalid_points` says, detrend on
+/// request, resample onto the grid (bilinear, or spectral when the grid is finer), warn
+/// when the grid undersamples the measurement.
+fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<SampledFile> {
     let s = section;
     let file = s.file.as_ref().ok_or_else(|| {
-        anyhow!("missing key `{name}.file` (the file keys {name}.detrend, {name}.spacing, {name}.channel need a file)")
+        anyhow!(
+            "missing key `{name}.file` (the file keys {} need a file)",
+            FILE_KEYS[1..]
+                .iter()
+                .map(|k| format!("{name}.{k}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
     })?;
     let key = format!("{name}.file");
     let spacing = s
@@ -153,19 +183,11 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
     let options = ReadOptions {
         channel: s.channel.clone(),
         spacing: spacing.map(|value| (value, value)),
-        height_unit: Some("m".to_string()),
-        lateral_unit: Some("m".to_string()),
+        height_unit: s.height_unit.clone(),
+        lateral_unit: s.lateral_unit.clone(),
     };
     let path = base.join(file);
-    let mut map = read_topography(&path, &options).map_err(|e| {
-        let hint = if spacing.is_none() {
-            format!(" (files that record no spacing need {name}.spacing)")
-        } else {
-            String::new()
-        };
-        anyhow!("{key}: {e}{hint}")
-    })?;
-    refuse_invalid_points(&map, &path, &key)?;
+    let mut map = read_topography(&path, &options).map_err(|e| read_error(&e, name, &key))?;
     if let Some(given) = spacing {
         if (given - map.dx).abs() > 1e-9 * given || (given - map.dy).abs() > 1e-9 * given {
             bail!(
@@ -176,6 +198,7 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
             );
         }
     }
+    let invalid_points = handle_invalid_points(&mut map, s.invalid_points, name, &key, file)?;
     if s.detrend.unwrap_or(false) {
         map.detrend_mean_plane()
             .map_err(|e| anyhow!("{key} = {}: detrending: {e}", file.display()))?;
@@ -197,5 +220,59 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
         .map(|u| format!("{key} = {}: {u}", file.display()))
         .into_iter()
         .collect();
-    Ok((resampled.topography.heights, warnings))
+    Ok(SampledFile {
+        heights: resampled.topography.heights,
+        warnings,
+        invalid_points,
+    })
+}
+
+/// A reading error with the scenario key that supplies what the file lacks.
+fn read_error(error: &TopographyError, name: &str, key: &str) -> anyhow::Error {
+    let hint = match error {
+        TopographyError::MissingOption { option, .. } => format!("; set {name}.{option}"),
+        _ => String::new(),
+    };
+    anyhow!("{key}: {error}{hint}")
+}
+
+/// Applies the section's choice for the points the file marks invalid: an error naming the
+/// key without a choice or with `"refuse"`; the harmonic filling with `"interpolate"`.
+fn handle_invalid_points(
+    map: &mut Topography,
+    choice: Option<InvalidPoints>,
+    name: &str,
+    key: &str,
+    file: &Path,
+) -> Result<Option<InvalidPointsReport>> {
+    let Some(valid) = map.mask.take() else {
+        return Ok(None);
+    };
+    let count = valid.iter().filter(|v| !**v).count();
+    let report = InvalidPointsReport {
+        count,
+        of: valid.len(),
+        handling: InvalidPoints::Interpolate,
+    };
+    match choice {
+        None | Some(InvalidPoints::Refuse) => {
+            let how = if choice.is_none() {
+                format!(
+                    "set {name}.invalid_points = \"interpolate\" to fill them by harmonic interpolation, or \"refuse\""
+                )
+            } else {
+                format!("{name}.invalid_points = \"refuse\"")
+            };
+            bail!(
+                "{key} = {}: {count} of {} points are invalid (NaN or masked in the file); {how}",
+                file.display(),
+                valid.len()
+            )
+        }
+        Some(InvalidPoints::Interpolate) => {
+            map.heights = fill_invalid_harmonic((map.nx, map.ny), &map.heights, &valid, false)
+                .map_err(|e| anyhow!("{key} = {}: filling the invalid points: {e}", file.display()))?;
+            Ok(Some(report))
+        }
+    }
 }

@@ -183,6 +183,7 @@ fn a_measured_file_is_resampled_onto_the_grid() {
     let mut section = toml::Table::new();
     section.insert("file".into(), path.display().to_string().into());
     section.insert("spacing".into(), 0.01.into());
+    section.insert("height_unit".into(), "m".into());
     table.insert("roughness".into(), section.into());
     let valid = load_with(&table.to_string(), &[]).unwrap();
     let map = valid.roughness.unwrap();

@@ -5,8 +5,11 @@
 //! (the physical extents, `nx·dx` and `ny·dy`) and `# Value units: m`. SPIP's are
 //! `# key = value` lines ending at `# Start of Data:`: `x-pixels`, `y-pixels`, `x-length`,
 //! `y-length` (nanometres), `x-offset`, `y-offset`, and `z-unit` (a length unit) or `Bit2nm`
-//! (the heights times `Bit2nm` are nanometres). Values are separated by white space, commas or
-//! semicolons, one row of the map (one y) per line; `NaN` marks an invalid point.
+//! (the heights times `Bit2nm` are nanometres). Gwyddion's labels are read in every language
+//! Gwyddion writes them (`# Kanal:`, `# Breite:`, `# Höhe:` …), and the header without `#` of
+//! another export (`h=305 w=75`, `pixel size=3.7e-7 m`, `height conversion factor (-> m)=2.9e-8`).
+//! Values are separated by white space, commas or semicolons, one row of the map (one y) per
+//! line; `NaN` marks an invalid point; a decimal comma is an error.
 
 use std::collections::BTreeMap;
 
@@ -15,15 +18,155 @@ use crate::error::{ParseError, ParseResult};
 use crate::units::{parse_length_unit, parse_length_with_unit};
 use crate::{height_unit_option, spacing_option, RawMap, ReadOptions};
 
-/// Header entries (keys in lower case) and the data rows of a text file.
+/// Header entries (keys in lower case, Gwyddion's translated labels mapped to the English
+/// ones) and the data rows of a text file.
 struct TextFile {
     header: BTreeMap<String, String>,
     rows: Vec<Vec<f64>>,
 }
 
+/// Gwyddion's plain-text export translates its header labels into the language of its user
+/// interface; these are the labels of every language Gwyddion ships (the list
+/// SurfaceTopography 1.27 reads, `IO/Text.py`), mapped to the English key.
+const GWYDDION_LABELS: [(&str, &[&str]); 4] = [
+    (
+        "channel",
+        &[
+            "channel",
+            "kanál",
+            "kanal",
+            "canal",
+            "canale",
+            "チャネル",
+            "채널",
+            "канал",
+        ],
+    ),
+    (
+        "width",
+        &[
+            "width",
+            "šířka",
+            "breite",
+            "anchura",
+            "largeur",
+            "larghezza",
+            "幅",
+            "폭",
+            "largura",
+            "ширина",
+        ],
+    ),
+    (
+        "height",
+        &[
+            "height",
+            "výška",
+            "höhe",
+            "altura",
+            "hauteur",
+            "altezza",
+            "高さ",
+            "높이",
+            "высота",
+        ],
+    ),
+    (
+        "value units",
+        &[
+            "value units",
+            "jednotky hodnot",
+            "einheiten",
+            "unités",
+            "unità valore",
+            "値の単位",
+            "값 단위",
+            "unidades de valor",
+            "единицы измерения",
+        ],
+    ),
+];
+
+/// The English key of a header label (lower case), the label itself when it is none of
+/// Gwyddion's translated ones.
+fn canonical_key(label: &str) -> String {
+    let label = label.trim().to_lowercase();
+    GWYDDION_LABELS
+        .iter()
+        .find(|(_, spellings)| spellings.contains(&label.as_str()))
+        .map_or(label, |(key, _)| key.to_string())
+}
+
+/// Records one header line (without its `#`): `key: value`, `key = value` (a full-width
+/// colon too, as the Japanese export writes), or several `key=value` tokens on one line
+/// (`h=305 w=75`). `height conversion factor (-> m)=2.9e-8` is stored as the key
+/// `height conversion factor` and the unit under `height conversion unit`.
+fn record_header(line: &str, header: &mut BTreeMap<String, String>) {
+    let tokens: Vec<&str> = line.split_whitespace().collect();
+    if tokens.len() > 1 && tokens.iter().all(|t| t.contains('=') && !t.starts_with('=')) {
+        for token in tokens {
+            let (key, value) = token.split_once('=').unwrap_or((token, ""));
+            header.entry(canonical_key(key)).or_insert_with(|| value.to_string());
+        }
+        return;
+    }
+    let Some(split) = line.find([':', '=', '：']) else {
+        return;
+    };
+    let separator = line[split..].chars().next().map_or(1, char::len_utf8);
+    let key = canonical_key(&line[..split]);
+    let value = line[split + separator..].trim().to_string();
+    if let Some(rest) = key.strip_prefix("height conversion factor") {
+        let unit = rest.trim().trim_start_matches('(').trim_end_matches(')').trim();
+        let unit = unit.trim_start_matches("->").trim();
+        header
+            .entry("height conversion unit".to_string())
+            .or_insert_with(|| unit.to_string());
+        header.entry("height conversion factor".to_string()).or_insert(value);
+        return;
+    }
+    header.entry(key).or_insert(value);
+}
+
+/// Whether a line starts with a number (a data line) rather than a header label.
+fn starts_with_number(line: &str) -> bool {
+    line.split([' ', '\t', ',', ';'])
+        .find(|t| !t.is_empty())
+        .is_some_and(|t| t.parse::<f64>().is_ok())
+}
+
+/// The values of one data line. Values are separated by white space, `;` or `,`; a comma
+/// between two digits of a token that white space or `;` delimits is a decimal comma, which
+/// is refused rather than read as two columns.
+fn parse_row(line: &str, line_number: usize) -> ParseResult<Vec<f64>> {
+    let separated = line.contains([' ', '\t', ';']);
+    if separated {
+        let decimal_comma = line.split([' ', '\t', ';']).find(|token| {
+            let bytes = token.as_bytes();
+            bytes
+                .windows(3)
+                .any(|w| w[0].is_ascii_digit() && w[1] == b',' && w[2].is_ascii_digit())
+        });
+        if let Some(token) = decimal_comma {
+            return Err(ParseError::malformed(format!(
+                "line {line_number}: {token:?} has a decimal comma; only decimal points are read (replace the commas by points)"
+            )));
+        }
+    }
+    line.split([' ', '\t', ',', ';'])
+        .filter(|t| !t.is_empty())
+        .map(|token| {
+            token
+                .parse::<f64>()
+                .map_err(|_| ParseError::malformed(format!("line {line_number}: {token:?} is not a number")))
+        })
+        .collect()
+}
+
 fn parse_text(bytes: &[u8]) -> ParseResult<TextFile> {
     let text = std::str::from_utf8(bytes)
         .map_err(|e| ParseError::malformed(format!("not UTF-8 text (byte {})", e.valid_up_to())))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut header = BTreeMap::new();
     let mut rows = Vec::new();
     let mut total = 0usize;
@@ -33,21 +176,16 @@ fn parse_text(bytes: &[u8]) -> ParseResult<TextFile> {
             continue;
         }
         if let Some(comment) = line.strip_prefix('#') {
-            let split = comment.find([':', '=']);
-            if let Some(split) = split {
-                let key = comment[..split].trim().to_ascii_lowercase();
-                let value = comment[split + 1..].trim().to_string();
-                header.entry(key).or_insert(value);
-            }
+            record_header(comment, &mut header);
             continue;
         }
-        let mut row = Vec::new();
-        for token in line.split([' ', '\t', ',', ';']).filter(|t| !t.is_empty()) {
-            let value = token
-                .parse::<f64>()
-                .map_err(|_| ParseError::malformed(format!("line {}: {token:?} is not a number", line_index + 1)))?;
-            row.push(value);
+        // Some exports (Gwyddion's `h=… w=…`, `pixel size=…` header) write their header
+        // without `#`: lines before the first data line that do not start with a number.
+        if rows.is_empty() && !starts_with_number(line) && line.contains([':', '=', '：']) {
+            record_header(line, &mut header);
+            continue;
         }
+        let row = parse_row(line, line_index + 1)?;
         total += row.len();
         if total > MAX_POINTS {
             return Err(ParseError::malformed(format!("more than {MAX_POINTS} values")));
@@ -71,19 +209,21 @@ impl TextFile {
         }
     }
 
-    /// The grid size: SPIP's `x-pixels`/`y-pixels` (values then may wrap freely), else
-    /// the rows, which must all be equally long.
+    /// The grid size: SPIP's `x-pixels`/`y-pixels` or Gwyddion's `w`/`h` (values then may
+    /// wrap freely), else the rows, which must all be equally long.
     fn grid(&self) -> ParseResult<(usize, usize, Vec<f64>)> {
         let values: Vec<f64> = self.rows.iter().flatten().copied().collect();
-        if let (Some(nx), Some(ny)) = (self.number("x-pixels")?, self.number("y-pixels")?) {
-            let count = point_count(nx as i64, ny as i64)?;
-            if values.len() != count {
-                return Err(ParseError::malformed(format!(
-                    "{} values for x-pixels × y-pixels = {nx} × {ny}",
-                    values.len()
-                )));
+        for (x_key, y_key) in [("x-pixels", "y-pixels"), ("w", "h")] {
+            if let (Some(nx), Some(ny)) = (self.number(x_key)?, self.number(y_key)?) {
+                let count = point_count(nx as i64, ny as i64)?;
+                if values.len() != count {
+                    return Err(ParseError::malformed(format!(
+                        "{} values for {x_key} × {y_key} = {nx} × {ny}",
+                        values.len()
+                    )));
+                }
+                return Ok((nx as usize, ny as usize, values));
             }
-            return Ok((nx as usize, ny as usize, values));
         }
         let nx = self.rows[0].len();
         if let Some((index, row)) = self.rows.iter().enumerate().find(|(_, r)| r.len() != nx) {
@@ -145,6 +285,11 @@ fn lateral(file: &TextFile, nx: usize, ny: usize, options: &ReadOptions) -> Pars
     if let (Some(x_len), Some(y_len)) = (file.number("x-length")?, file.number("y-length")?) {
         return Ok((x_len * 1e-9 / nx as f64, y_len * 1e-9 / ny as f64, "nm".into()));
     }
+    if let Some(pixel) = file.header.get("pixel size") {
+        let unit = pixel.split_whitespace().nth(1).unwrap_or("").to_string();
+        let spacing = parse_length_with_unit(pixel)?;
+        return Ok((spacing, spacing, unit));
+    }
     let (dx, dy) = spacing_option(options)?;
     Ok((dx, dy, "m".into()))
 }
@@ -158,6 +303,10 @@ fn heights(file: &TextFile, options: &ReadOptions) -> ParseResult<(f64, String)>
     }
     if let Some(bit2nm) = file.number("bit2nm")? {
         return Ok((bit2nm * 1e-9, format!("{bit2nm} nm")));
+    }
+    if let Some(factor) = file.number("height conversion factor")? {
+        let unit = file.header.get("height conversion unit").map_or("", String::as_str);
+        return Ok((factor * parse_length_unit(unit)?, format!("{factor} {unit}")));
     }
     height_unit_option(options)
 }

@@ -32,7 +32,7 @@ pub enum TopographyError {
         what: String,
     },
     /// The format records no such quantity and the caller did not give it.
-    #[error("{path}: the {format} file records no {what}; give it as ReadOptions::{option}")]
+    #[error("{path}: the {format} file records no {what} (ReadOptions::{option})")]
     MissingOption {
         path: PathBuf,
         format: &'static str,

@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 use crate::bytes::{point_count, Reader};
 use crate::error::{ParseError, ParseResult};
 use crate::units::parse_length_unit;
-use crate::{RawMap, ReadOptions};
+use crate::{height_unit_option, RawMap, ReadOptions};
 
 /// Objects nest this deep at most (a GwyContainer holding a data field holding a unit is 3).
 const MAX_DEPTH: usize = 16;
@@ -200,10 +200,15 @@ pub(crate) fn read(bytes: &[u8], options: &ReadOptions) -> ParseResult<RawMap> {
         return Err(ParseError::malformed(format!("/{id}/data is not an object")));
     };
     let (nx, ny, values) = field_values(field)?;
-    let xy_unit = field.unit("si_unit_xy");
-    let z_unit = field.unit("si_unit_z");
-    let xy_factor = parse_length_unit(&xy_unit)?;
-    let z_factor = parse_length_unit(&z_unit)?;
+    let LateralScale {
+        factor: xy_factor,
+        unit: xy_unit,
+        spacing: given_spacing,
+    } = lateral_unit(field, options)?;
+    let (z_factor, z_unit) = match field.unit("si_unit_z") {
+        unit if unit.trim().is_empty() => height_unit_option(options)?,
+        unit => (parse_length_unit(&unit)?, unit),
+    };
     let valid = match container.get(&format!("/{id}/mask")) {
         Some(Value::Object(mask)) => {
             let (mx, my, mask_values) = field_values(mask)?;
@@ -216,13 +221,20 @@ pub(crate) fn read(bytes: &[u8], options: &ReadOptions) -> ParseResult<RawMap> {
         }
         _ => None,
     };
+    let (dx, dy) = match given_spacing {
+        Some(spacing) => spacing,
+        None => (
+            field.double_or("xreal", f64::NAN)? / nx as f64 * xy_factor,
+            field.double_or("yreal", f64::NAN)? / ny as f64 * xy_factor,
+        ),
+    };
     let mut metadata = BTreeMap::new();
     metadata.insert("channel id".to_string(), format!("/{id}/data"));
     Ok(RawMap {
         nx,
         ny,
-        dx: field.double_or("xreal", f64::NAN)? / nx as f64 * xy_factor,
-        dy: field.double_or("yreal", f64::NAN)? / ny as f64 * xy_factor,
+        dx,
+        dy,
         x_offset: field.double_or("xoff", 0.0)? * xy_factor,
         y_offset: field.double_or("yoff", 0.0)? * xy_factor,
         heights: values.iter().map(|v| v * z_factor).collect(),
@@ -232,6 +244,37 @@ pub(crate) fn read(bytes: &[u8], options: &ReadOptions) -> ParseResult<RawMap> {
         lateral_unit: xy_unit,
         metadata,
     })
+}
+
+/// How a data field's lateral sizes become metres.
+struct LateralScale {
+    /// Metres per unit of `xreal`, `yreal`, `xoff`, `yoff`.
+    factor: f64,
+    unit: String,
+    /// The caller's spacing, replacing `xreal/xres` where the file's unit is empty.
+    spacing: Option<(f64, f64)>,
+}
+
+/// The factor of the lateral unit to metres, the unit, and the caller's spacing where the
+/// file's `si_unit_xy` is empty: Gwyddion writes an empty unit when the instrument file it
+/// imported recorded none. Then `options.spacing` (metres) or `options.lateral_unit` (the
+/// unit of `xreal`, `yreal`) must say what the file does not.
+fn lateral_unit(field: &Object, options: &ReadOptions) -> ParseResult<LateralScale> {
+    let unit = field.unit("si_unit_xy");
+    let scale = |factor, unit, spacing| LateralScale { factor, unit, spacing };
+    if !unit.trim().is_empty() {
+        return Ok(scale(parse_length_unit(&unit)?, unit, None));
+    }
+    if let Some(spacing) = options.spacing {
+        return Ok(scale(1.0, "m".to_string(), Some(spacing)));
+    }
+    match &options.lateral_unit {
+        Some(given) => Ok(scale(parse_length_unit(given)?, given.clone(), None)),
+        None => Err(ParseError::MissingOption {
+            what: "lateral unit (its si_unit_xy is empty)",
+            option: "lateral_unit",
+        }),
+    }
 }
 
 /// `(xres, yres, data)` of a GwyDataField, the data length checked against the size.

@@ -79,12 +79,15 @@ pub struct ReadOptions {
     /// `.npy`), or the ASCII "Channel" header. `None` reads the first channel.
     pub channel: Option<String>,
     /// `(dx, dy)` in metres, for formats that record no spacing (npy, npz, bare ASCII
-    /// matrices). Ignored where the file records its spacing.
+    /// matrices, a .gwy whose lateral unit is empty). Ignored where the file records its
+    /// spacing.
     pub spacing: Option<(f64, f64)>,
-    /// Unit of the stored heights (`"nm"`, `"um"`, `"m"`, …) for formats that record none.
-    /// Ignored where the file records its unit.
+    /// Unit of the stored heights (`"nm"`, `"um"`, `"m"`, …) for formats that record none
+    /// (npy, npz, bare ASCII, xyz without header, a .gwy whose z unit is empty). Ignored
+    /// where the file records its unit; never assumed.
     pub height_unit: Option<String>,
-    /// Unit of the x and y columns of an xyz file that records none.
+    /// Unit of the x and y columns of an xyz file that records none, or of the sizes of a
+    /// .gwy whose lateral unit is empty.
     pub lateral_unit: Option<String>,
 }
 

@@ -1,17 +1,18 @@
 //! `adhesim topography FILE|SCENARIO`: the statistics of a measured topography (any format
 //! of `adhesim_topography::read_topography`) or of a scenario's `[roughness]` as sampled on
-//! its grid: size, spacing, units, rms height, slope and curvature
-//! (`adhesim::surface::statistics`), a Hurst estimate from a power-law fit of the isotropic
+//! its grid: size, spacings, units, invalid points, rms height, and rms slope and curvature
+//! both by finite differences and (periodic maps) spectrally, each labelled
+//! (`adhesim::surface::HeightMap`), a Hurst estimate from a power-law fit of the isotropic
 //! PSD (Jacobs, Junge & Pastewka 2017, *Surf. Topogr.: Metrol. Prop.* 5, 013001,
 //! doi:10.1088/2051-672X/aa51f8: C(q) ∝ q^(−2−2H)); writes `psd.csv`, the log–log PSD
 //! plot, a height-map picture and `statistics.json` into `--out`.
 
 use crate::figure::{Figure, Mark, Panel, Series, PALETTE};
 use adhesim::analysis::fit::fit_power_law;
-use adhesim::surface::{isotropic_psd, statistics, PsdBin};
-use adhesim::{Boundary, Grid};
+use adhesim::surface::{HeightMap, PsdBin};
+use adhesim::Boundary;
 use adhesim_scenario::RoughnessSection;
-use adhesim_topography::{read_topography, ReadOptions};
+use adhesim_topography::{length_unit_to_metres, read_topography, ReadOptions, TopographyError};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use plotters::chart::SeriesLabelPosition;
@@ -27,9 +28,18 @@ pub struct TopographyArgs {
     /// Output folder [default: out/topography/<file stem>/].
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Sample spacing of a file that records none (npy, npz, bare ASCII).
+    /// Sample spacing in metres of a file that records none (npy, npz, bare ASCII), or of a
+    /// .gwy whose lateral unit is empty.
     #[arg(long)]
     spacing: Option<f64>,
+    /// Unit of the heights of a file that records none (npy, npz, bare ASCII, xyz without
+    /// header, .gwy with an empty unit): m, mm, um, nm, pm, Å ….
+    #[arg(long)]
+    height_unit: Option<String>,
+    /// Unit of the x and y columns of an xyz file without header (or of a .gwy's sizes
+    /// whose unit is empty).
+    #[arg(long)]
+    lateral_unit: Option<String>,
     /// Channel of a multi-channel file (Gwyddion title, npz member, ASCII "Channel").
     #[arg(long)]
     channel: Option<String>,
@@ -44,14 +54,41 @@ pub struct TopographyArgs {
     bins: usize,
 }
 
-/// A square height map on a grid, with where it came from.
+/// A height map (measured: a rectangle with its own spacings and invalid points; or a
+/// scenario's roughness on its square grid), with where it came from.
 struct Surface {
-    grid: Grid,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
     heights: Vec<f64>,
+    /// Validity of each point, `None` when all are valid.
+    valid: Option<Vec<bool>>,
+    periodic: bool,
     /// Description lines (format, size, units) printed and written to statistics.json.
     source: Vec<String>,
     /// Wavevector band of the power law (q_r, q_s) where the generator keys give it.
     band: (Option<f64>, Option<f64>),
+}
+
+impl Surface {
+    fn map(&self) -> Result<HeightMap<'_>> {
+        HeightMap::new(
+            (self.nx, self.ny),
+            (self.dx, self.dy),
+            &self.heights,
+            self.valid.as_deref(),
+            self.periodic,
+        )
+        .map_err(|e| anyhow!("{e}"))
+    }
+}
+
+/// rms slope and curvature by one definition.
+#[derive(Serialize, Clone, Copy)]
+struct Derivatives {
+    rms_slope: Option<f64>,
+    rms_curvature: Option<f64>,
 }
 
 /// What `statistics.json` holds.
@@ -59,13 +96,22 @@ struct Surface {
 struct Report {
     input: String,
     source: Vec<String>,
-    n: usize,
-    size: f64,
-    spacing: f64,
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    size_x: f64,
+    size_y: f64,
     boundary: &'static str,
+    valid_points: usize,
+    invalid_points: usize,
+    /// Over the valid points.
     rms_height: f64,
-    rms_slope: f64,
-    rms_curvature: f64,
+    /// Forward differences and the five-point Laplacian with the true spacings
+    /// (SurfaceTopography's rms_gradient and rms_curvature_from_area), valid points only.
+    finite_differences: Derivatives,
+    /// Parseval sums of a periodic map with every point valid; absent otherwise.
+    spectral: Option<Derivatives>,
     hurst_estimate: Option<f64>,
     hurst_fit_range: Option<(f64, f64)>,
 }
@@ -78,6 +124,14 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
     if let Some(spacing) = args.spacing {
         if !(spacing.is_finite() && spacing > 0.0) {
             bail!("--spacing must be > 0, got {spacing}");
+        }
+    }
+    for (flag, unit) in [
+        ("--height-unit", &args.height_unit),
+        ("--lateral-unit", &args.lateral_unit),
+    ] {
+        if let Some(unit) = unit {
+            length_unit_to_metres(unit).map_err(|e| anyhow!("{flag} {unit:?}: {e}"))?;
         }
     }
     let is_scenario = args.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
@@ -97,30 +151,14 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
         }
     };
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let stats = statistics(&surface.grid, &surface.heights).map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
-    let psd = isotropic_psd(&surface.grid, &surface.heights, args.bins)
-        .map_err(|e| anyhow!("{}: {e}", args.input.display()))?;
+    let name = args.input.display();
+    let map = surface.map().map_err(|e| anyhow!("{name}: {e}"))?;
+    let psd = map.isotropic_psd(args.bins).map_err(|e| anyhow!("{name}: {e}"))?;
     let fit = hurst_estimate(&surface, &psd);
-    let grid = &surface.grid;
-    let report = Report {
-        input: args.input.display().to_string(),
-        source: surface.source.clone(),
-        n: grid.n(),
-        size: grid.size(),
-        spacing: grid.element_size(),
-        boundary: match grid.boundary() {
-            Boundary::Free => "free",
-            Boundary::Periodic => "periodic",
-        },
-        rms_height: stats.rms_height,
-        rms_slope: stats.rms_slope,
-        rms_curvature: stats.rms_curvature,
-        hurst_estimate: fit.map(|f| f.hurst),
-        hurst_fit_range: fit.map(|f| f.range),
-    };
+    let report = report(args, &surface, &map, fit);
     let mut written = vec![write_psd_csv(&out, &psd)?];
     written.extend(psd_figure(&psd, fit)?.save(&out, "psd", (800, 600))?);
-    written.push(write_height_map(&out.join("heights.png"), grid, &surface.heights)?);
+    written.push(write_height_map(&out.join("heights.png"), &surface)?);
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out.join("statistics.json"), json + "\n")
         .with_context(|| format!("cannot write {}", out.join("statistics.json").display()))?;
@@ -130,21 +168,69 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
     Ok(())
 }
 
+fn report(args: &TopographyArgs, surface: &Surface, map: &HeightMap<'_>, fit: Option<HurstFit>) -> Report {
+    let valid_points = map.valid_count();
+    Report {
+        input: args.input.display().to_string(),
+        source: surface.source.clone(),
+        nx: surface.nx,
+        ny: surface.ny,
+        dx: surface.dx,
+        dy: surface.dy,
+        size_x: surface.nx as f64 * surface.dx,
+        size_y: surface.ny as f64 * surface.dy,
+        boundary: if surface.periodic { "periodic" } else { "free" },
+        valid_points,
+        invalid_points: surface.heights.len() - valid_points,
+        rms_height: map.rms_height(),
+        finite_differences: Derivatives {
+            rms_slope: map.rms_slope_finite_differences(),
+            rms_curvature: map.rms_curvature_finite_differences(),
+        },
+        spectral: map
+            .spectral_slope_and_curvature()
+            .map(|(slope, curvature)| Derivatives {
+                rms_slope: Some(slope),
+                rms_curvature: Some(curvature),
+            }),
+        hurst_estimate: fit.map(|f| f.hurst),
+        hurst_fit_range: fit.map(|f| f.range),
+    }
+}
+
 fn print_report(report: &Report) {
+    let number = |value: Option<f64>| value.map_or("none (map too small)".to_string(), |v| format!("{v:.6e}"));
     println!("topography {}", report.input);
     for line in &report.source {
         println!("  {line}");
     }
     println!(
-        "  analysed: {n} × {n} samples, spacing {:e}, side {:e}, {} boundary",
-        report.spacing,
-        report.size,
-        report.boundary,
-        n = report.n
+        "  analysed: the whole map, {} × {} points, spacing {:e} × {:e}, size {:e} × {:e}, {} boundary",
+        report.nx, report.ny, report.dx, report.dy, report.size_x, report.size_y, report.boundary
     );
-    println!("  rms height    {:.6e}", report.rms_height);
-    println!("  rms slope     {:.6e}", report.rms_slope);
-    println!("  rms curvature {:.6e}", report.rms_curvature);
+    if report.invalid_points > 0 {
+        println!(
+            "  {} invalid points left out of every statistic ({} valid)",
+            report.invalid_points, report.valid_points
+        );
+    }
+    println!("  rms height                             {:.6e}", report.rms_height);
+    let fd = report.finite_differences;
+    println!("  rms slope      (finite differences)    {}", number(fd.rms_slope));
+    println!("  rms curvature  (finite differences)    {}", number(fd.rms_curvature));
+    match report.spectral {
+        Some(spectral) => {
+            println!(
+                "  rms slope      (spectral)              {}",
+                number(spectral.rms_slope)
+            );
+            println!(
+                "  rms curvature  (spectral)              {}",
+                number(spectral.rms_curvature)
+            );
+        }
+        None => println!("  spectral slope and curvature: none (only for a periodic map with every point valid)"),
+    }
     match (report.hurst_estimate, report.hurst_fit_range) {
         (Some(h), Some((low, high))) => println!(
             "  Hurst estimate H = {h:.3} (power-law fit C ∝ q^(−2−2H) of the PSD for q in [{low:.4e}, {high:.4e}])"
@@ -153,20 +239,22 @@ fn print_report(report: &Report) {
     }
 }
 
-/// A measured file: read, detrend on request, the largest square at the file's spacing.
+/// A measured file: read, detrend on request; the whole map with its own spacings, its
+/// invalid points marked.
 fn from_file(args: &TopographyArgs) -> Result<Surface> {
     let path = &args.input;
     let options = ReadOptions {
         channel: args.channel.clone(),
         spacing: args.spacing.map(|s| (s, s)),
-        height_unit: Some("m".to_string()),
-        lateral_unit: Some("m".to_string()),
+        height_unit: args.height_unit.clone(),
+        lateral_unit: args.lateral_unit.clone(),
     };
     let mut map = read_topography(path, &options).map_err(|e| {
-        let hint = if args.spacing.is_none() {
-            " (files that record no spacing need --spacing)"
-        } else {
-            ""
+        let hint = match &e {
+            TopographyError::MissingOption { option, .. } => {
+                format!("; give --{}", option.replace('_', "-"))
+            }
+            _ => String::new(),
         };
         anyhow!("{e}{hint}")
     })?;
@@ -177,49 +265,20 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             map.nx, map.ny, map.dx, map.dy, map.height_unit, map.lateral_unit
         ),
     ];
-    if let Some(mask) = &map.mask {
-        let invalid = mask.iter().filter(|v| !**v).count();
-        if invalid > 0 {
-            source.push(format!(
-                "{invalid} invalid points, filled with the mean height by the reader"
-            ));
-        }
-    }
     if args.detrend {
         let (_, slope_x, slope_y) = map.detrend_mean_plane().map_err(|e| anyhow!("{e}"))?;
-        source.push(format!("mean plane subtracted (slopes {slope_x:e}, {slope_y:e})"));
+        source.push(format!(
+            "mean plane of the valid points subtracted (slopes {slope_x:e}, {slope_y:e})"
+        ));
     }
-    let spacing = map.dx.min(map.dy);
-    let n = ((map.nx - 1) as f64 * map.dx / spacing)
-        .min((map.ny - 1) as f64 * map.dy / spacing)
-        .floor() as usize
-        + 1;
-    let n = if (map.dx - map.dy).abs() <= 1e-9 * map.dx {
-        map.nx.min(map.ny)
-    } else {
-        n
-    };
-    if n < 3 {
-        bail!(
-            "{}: a {}×{} map is too small for statistics (3×3 at least)",
-            path.display(),
-            map.nx,
-            map.ny
-        );
-    }
-    let heights = if n == map.nx && n == map.ny {
-        map.heights.clone()
-    } else {
-        source.push(format!("statistics of the first {n} × {n} square of the map"));
-        map.resample_to(n, n, spacing, spacing)
-            .map_err(|e| anyhow!("{}: {e}", path.display()))?
-            .topography
-            .heights
-    };
-    let grid = Grid::new(n, n as f64 * spacing, Boundary::Free).map_err(|e| anyhow!("{}: {e}", path.display()))?;
     Ok(Surface {
-        grid,
-        heights,
+        nx: map.nx,
+        ny: map.ny,
+        dx: map.dx,
+        dy: map.dy,
+        heights: map.heights,
+        valid: map.mask,
+        periodic: false,
         source,
         band: (None, None),
     })
@@ -265,9 +324,15 @@ fn from_scenario(args: &TopographyArgs) -> Result<Surface> {
         "[{name}] of the scenario on its grid ({})",
         section.map_or(String::new(), describe)
     )];
+    let grid = &scenario.grid;
     Ok(Surface {
-        grid: scenario.grid,
+        nx: grid.n(),
+        ny: grid.n(),
+        dx: grid.element_size(),
+        dy: grid.element_size(),
         heights,
+        valid: None,
+        periodic: grid.boundary() == Boundary::Periodic,
         source,
         band,
     })
@@ -292,13 +357,14 @@ fn generator_band(section: &RoughnessSection) -> (Option<f64>, Option<f64>) {
     )
 }
 
-/// H from a power-law fit of the PSD bins between 4·(2π/L) (or twice the roll-off) and
-/// π/(2Δ) (or the cutoff / 1.5): the lowest modes are few and scattered, the highest
-/// ones feel the lattice. `None` with fewer than 3 bins in the range.
+/// H from a power-law fit of the PSD bins between 4·(2π/L) (L the shorter side; or twice
+/// the roll-off) and π/(2Δ) (Δ the coarser spacing; or the cutoff / 1.5): the lowest modes
+/// are few and scattered, the highest ones feel the lattice. `None` with fewer than 3 bins
+/// in the range.
 fn hurst_estimate(surface: &Surface, psd: &[PsdBin]) -> Option<HurstFit> {
-    let grid = &surface.grid;
-    let low = (4.0 * TAU / grid.size()).max(surface.band.0.map_or(0.0, |q| 2.0 * q));
-    let high = (PI / (2.0 * grid.element_size())).min(surface.band.1.map_or(f64::INFINITY, |q| q / 1.5));
+    let side = (surface.nx as f64 * surface.dx).min(surface.ny as f64 * surface.dy);
+    let low = (4.0 * TAU / side).max(surface.band.0.map_or(0.0, |q| 2.0 * q));
+    let high = (PI / (2.0 * surface.dx.max(surface.dy))).min(surface.band.1.map_or(f64::INFINITY, |q| q / 1.5));
     let points: Vec<(f64, f64)> = psd
         .iter()
         .filter(|b| b.wavevector >= low && b.wavevector <= high && b.psd > 0.0)
@@ -399,19 +465,29 @@ fn diverging(t: f64) -> [u8; 3] {
 }
 
 /// The height map as a PNG, y upwards, blue (low) – white (mean) – red (high) scaled to the
-/// largest deviation from the mean.
-fn write_height_map(path: &Path, grid: &Grid, heights: &[f64]) -> Result<String> {
-    let n = grid.n();
-    let mean = heights.iter().sum::<f64>() / heights.len() as f64;
-    let span = heights.iter().map(|h| (h - mean).abs()).fold(0.0, f64::max);
-    let scale = (512 / n).clamp(1, 16);
-    let side = (n * scale) as u32;
-    let mut image = image::RgbImage::new(side, side);
+/// largest deviation of a valid point from the mean; invalid points grey. Pixels are square
+/// per map point (the picture is not stretched to the spacings).
+fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
+    let (nx, ny) = (surface.nx, surface.ny);
+    let is_valid = |k: usize| surface.valid.as_ref().is_none_or(|v| v[k]);
+    let valid: Vec<f64> = (0..nx * ny)
+        .filter(|&k| is_valid(k))
+        .map(|k| surface.heights[k])
+        .collect();
+    let mean = valid.iter().sum::<f64>() / valid.len().max(1) as f64;
+    let span = valid.iter().map(|h| (h - mean).abs()).fold(0.0, f64::max);
+    let scale = (512 / nx.max(ny)).clamp(1, 16);
+    let mut image = image::RgbImage::new((nx * scale) as u32, (ny * scale) as u32);
     for (px, py, pixel) in image.enumerate_pixels_mut() {
         let column = px as usize / scale;
-        let row = n - 1 - py as usize / scale;
+        let row = ny - 1 - py as usize / scale;
+        let k = row * nx + column;
+        if !is_valid(k) {
+            pixel.0 = [160, 160, 160];
+            continue;
+        }
         let t = if span > 0.0 {
-            (heights[row * n + column] - mean) / span
+            (surface.heights[k] - mean) / span
         } else {
             0.0
         };
@@ -423,7 +499,8 @@ fn write_height_map(path: &Path, grid: &Grid, heights: &[f64]) -> Result<String>
         label: "height (length units)",
         colour: &diverging,
     };
-    crate::map_key::with_key(&image, scale as f64 / grid.element_size(), legend)?
+    // The scale bar along x: a pixel is `scale` per map point of width dx.
+    crate::map_key::with_key(&image, scale as f64 / surface.dx, legend)?
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok("heights.png".into())

@@ -15,14 +15,17 @@ Fields are float64 numpy arrays of shape (n, n) indexed [row = y, column = x].
 
 Objects: Grid, Material, HalfSpace (u = K p), ContactState, the non-adhesive solvers
 Ccg and NestedActiveSet, the AdhesiveSolver with its step API; closed forms in
-adhesim.reference, fits in adhesim.fit, indenter heights in adhesim.geometry.
+adhesim.reference, fits in adhesim.fit, indenter heights in adhesim.geometry; random
+self-affine surfaces, height-map statistics, PSD and filling in adhesim.surface;
+read_topography(path, ...) reads instrument files (x3p, gwy, sur, ASCII, xyz, npy, npz).
 
 One-call runs of a scenario file (the command line's TOML, a TOML string or a dict):
 run(scenario, out=None, progress=None, **overrides) -> RunResult (.curve, .summary,
 .snapshots); load(folder) reads a run folder back; sweep(scenario, vary={...}) runs cases.
 """
 
-from . import fit, geometry, reference
+from . import fit, geometry, reference, surface
+from .topography import Topography, read_topography
 from ._run import RunResult, Snapshot, load, run, sweep, sweep_table
 from ._adhesim import (
     RESULTS_REVISION,
@@ -53,11 +56,14 @@ __all__ = [
     "Snapshot",
     "SolveReport",
     "StepReport",
+    "Topography",
     "fit",
     "geometry",
     "load",
     "reference",
+    "read_topography",
     "run",
+    "surface",
     "sweep",
     "sweep_table",
 ]

@@ -186,3 +186,27 @@ class _RunFields:
 def _curve_column_kinds() -> Dict[str, str]: ...
 def _toml_value(value: object) -> str: ...
 def _toml_document(value: Mapping[str, object]) -> str: ...
+def _self_affine(
+    grid: Grid,
+    hurst: float,
+    seed: int,
+    rms_height: Optional[float] = None,
+    rms_slope: Optional[float] = None,
+    rolloff_wavelength: Optional[float] = None,
+    cutoff_wavelength: Optional[float] = None,
+    mode: str = "random_phase",
+) -> FloatField: ...
+def _height_map_statistics(
+    heights: FloatField, dx: float, dy: float, valid: Optional[BoolField] = None, periodic: bool = False
+) -> Dict[str, Any]: ...
+def _isotropic_psd(
+    heights: FloatField, dx: float, dy: float, bins: int, valid: Optional[BoolField] = None, periodic: bool = False
+) -> List[npt.NDArray[np.float64]]: ...
+def _fill_invalid(heights: FloatField, valid: BoolField, periodic: bool = False) -> FloatField: ...
+def _read_topography(
+    path: str,
+    channel: Optional[str] = None,
+    spacing: Optional[Tuple[float, float]] = None,
+    height_unit: Optional[str] = None,
+    lateral_unit: Optional[str] = None,
+) -> Dict[str, Any]: ...

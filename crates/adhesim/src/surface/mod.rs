@@ -27,12 +27,24 @@
 //! [`rms_height`], [`rms_slope`], [`rms_curvature`] and [`isotropic_psd`] take any height
 //! map on a [`Grid`](crate::Grid): spectral derivatives (Parseval sums over the map's spectrum) on a
 //! periodic grid, finite differences on a free one (see each function).
+//!
+//! [`HeightMap`] holds a measured map as instruments record it: a rectangle with its own
+//! x and y spacings and invalid points. Its statistics leave the invalid points out and name
+//! their definition (finite differences as SurfaceTopography 1.27, or spectral on a periodic
+//! map); [`fill_invalid_harmonic`] fills invalid points as SurfaceTopography's
+//! `interpolate_undefined_data` does.
 
+mod fill;
 mod generator;
+mod map;
 mod random;
 mod statistics;
+#[cfg(test)]
+mod tests_map;
 
+pub use fill::fill_invalid_harmonic;
 pub use generator::{Amplitudes, RmsTarget, RoughSurface, SelfAffine, DEFAULT_PATCH_FACTOR};
+pub use map::{Derivative, HeightMap};
 pub use statistics::{
     isotropic_psd, rms_curvature, rms_height, rms_slope, rms_slope_finite_differences, statistics, PsdBin,
     SurfaceStatistics,
@@ -106,6 +118,15 @@ pub enum SurfaceError {
     /// An isotropic PSD needs at least one bin.
     #[error("psd bins must be >= 1, got 0")]
     NoBins,
+    /// A measured map without a single valid point.
+    #[error("the height map has no valid point")]
+    NoValidPoint,
+    /// The harmonic filling did not reach its tolerance.
+    #[error("the harmonic filling of invalid points did not converge (relative residual {residual:e})")]
+    FillNotConverged {
+        /// Relative residual reached.
+        residual: f64,
+    },
     /// Finite differences need at least 3 samples per side.
     #[error("curvature by finite differences needs at least 3×3 samples, got {0}×{0}")]
     TooSmall(usize),
