@@ -12,8 +12,8 @@ use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use crate::solver::{
-    AdhesiveSolver, Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, SolveReport,
-    StepReport,
+    AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, Control, NestedActiveSet, NestedParams, SolveError,
+    SolveReport, StepReport,
 };
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -186,6 +186,8 @@ pub enum NormalSolver {
     NonAdhesiveNested(Box<NestedActiveSet>),
     /// JKR-type adhesive active set.
     Adhesive(Box<AdhesiveSolver>),
+    /// Adhesion by a cohesive law of finite range (Maugis–Dugdale, exponential).
+    Cohesive(Box<CohesiveSolver>),
 }
 
 /// The non-adhesive solver for `grid`: the nested active set on a free grid, CCG on a
@@ -202,9 +204,18 @@ pub fn non_adhesive_solver(grid: Grid, material: ElasticMaterial) -> NormalSolve
 impl NormalSolver {
     /// Forgets the history of previous steps before a new load path.
     pub fn reset(&mut self) {
-        if let Self::Adhesive(solver) = self {
-            solver.reset();
+        match self {
+            Self::Adhesive(solver) => solver.reset(),
+            Self::Cohesive(solver) => solver.reset(),
+            Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) => {}
         }
+    }
+
+    /// Whether the body can still hold the indenter without contact: a cohesive law pulls
+    /// across a gap, so its pull-off ends when the force vanishes, not when the contact
+    /// does.
+    pub fn acts_across_gaps(&self) -> bool {
+        matches!(self, Self::Cohesive(_))
     }
 
     /// One displacement-controlled step.
@@ -230,6 +241,7 @@ impl NormalSolver {
     ) -> Result<StepReport, SolveError> {
         match self {
             Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
+            Self::Cohesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
             Self::NonAdhesive(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
                 solver.solve(operator, heights, Control::Displacement(depth), state)
             }),
