@@ -37,6 +37,7 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+mod cohesive;
 mod curve;
 mod guards;
 mod model;
