@@ -129,6 +129,8 @@ pub fn load_within(
 }
 
 #[cfg(test)]
+mod cohesive_tests;
+#[cfg(test)]
 mod guards_tests;
 #[cfg(test)]
 mod tests;

@@ -1,5 +1,5 @@
 //! Smooth sphere with a Maugis–Dugdale cohesive zone against Maugis' closed form
-//! (docs/validation.md §9): R = E* = 1, γ0 = 1e-4.
+//! (docs/validation.md §10): R = E* = 1, γ0 = 1e-4.
 //!
 //! `cargo run --release -p adhesim --example maugis_pull_off -- λ N [size] [depth step] [max depth] [ccg]`
 //!
