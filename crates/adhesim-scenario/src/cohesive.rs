@@ -54,7 +54,7 @@ impl ScenarioFile {
                 positive("adhesion.range", range)?;
             }
         }
-        if !(section.work_of_adhesion > 0.0) {
+        if section.work_of_adhesion <= 0.0 {
             bail!(
                 "adhesion.law = \"{name}\" needs adhesion.work_of_adhesion > 0, got {}",
                 section.work_of_adhesion
