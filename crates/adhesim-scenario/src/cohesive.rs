@@ -52,6 +52,7 @@ impl ScenarioFile {
                     bail!("adhesion.law = \"exponential\" needs adhesion.range (ρ > 0)");
                 };
                 positive("adhesion.range", range)?;
+                bail!("adhesion.law = \"exponential\" is not available in scenarios yet: its solver rounds do not converge through the jumps of a pull-off (docs/physics.md §2.6); use \"dugdale\" or \"jkr\"");
             }
         }
         if section.work_of_adhesion <= 0.0 {

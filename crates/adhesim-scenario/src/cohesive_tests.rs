@@ -40,6 +40,8 @@ fn law_keys_are_checked_by_name() {
     );
     let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0"));
     assert!(error.contains("adhesion.range must be > 0, got 0"), "{error}");
+    let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0.1"));
+    assert!(error.contains("adhesion.law = \"exponential\" is not available"), "{error}");
     let error = error_of(&with_adhesion("law = \"coulomb\""));
     assert!(error.contains("adhesion.law"), "{error}");
     let zero = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0").replace("= 0.01", "= 0.0");

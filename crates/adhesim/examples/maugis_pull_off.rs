@@ -9,8 +9,8 @@
 //! `max depth` are those of the validation tests (`maugis_case` below).
 use adhesim::analysis::reference::{cohesive_stress_for, MaugisDugdale};
 use adhesim::{
-    Boundary, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Profile, Sphere, StepRecord,
+    Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid,
+    IndentPulloff, NormalSolver, Profile, Sphere, StepRecord,
 };
 use std::time::Instant;
 
@@ -36,12 +36,19 @@ fn main() {
     let material = ElasticMaterial::new(1.0).unwrap();
     let mut operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
-    let law = Dugdale::new(sigma, vec![gamma; grid.len()]);
+    // ADHESIM_EXPONENTIAL_RANGE=ρ runs the exponential law of that range instead.
+    let law: Box<dyn CohesiveLaw> = match std::env::var("ADHESIM_EXPONENTIAL_RANGE") {
+        Ok(range) => Box::new(Exponential::new(range.parse().expect("ρ"), vec![gamma; grid.len()])),
+        Err(_) => Box::new(Dugdale::new(sigma, vec![gamma; grid.len()])),
+    };
     let params = CohesiveParams {
         nested,
+        max_rounds: std::env::var("ADHESIM_MAX_ROUNDS")
+            .map(|v| v.parse().expect("rounds"))
+            .unwrap_or(CohesiveParams::default().max_rounds),
         ..CohesiveParams::default()
     };
-    let mut solver = NormalSolver::Cohesive(Box::new(CohesiveSolver::new(grid, material, Box::new(law), params)));
+    let mut solver = NormalSolver::Cohesive(Box::new(CohesiveSolver::new(grid, material, law, params)));
     let protocol = IndentPulloff {
         start_depth: 0.0,
         max_depth,
