@@ -4,7 +4,7 @@
 
 use crate::model::{AdhesionSection, BoundaryName, LawName, ScenarioFile};
 use crate::validate::positive;
-use adhesim::analysis::reference::maugis_parameter;
+use adhesim::analysis::reference::{maugis_parameter, MaugisDugdale};
 use adhesim::{
     CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, Grid, Indenter, Profile,
 };
@@ -97,4 +97,43 @@ pub(crate) fn cohesive_solver(
         LawName::Exponential => Box::new(Exponential::new(section.range?, gamma.to_vec())),
     };
     Some(CohesiveSolver::new(grid, material, law, CohesiveParams::default()))
+}
+
+/// Elements across the cohesive zone below which a resolution warning is given: 15 keep
+/// the pull-off within about 3 % at λ ≥ 1 (docs/validation.md §10).
+pub(crate) const MIN_ZONE_ELEMENTS: f64 = 15.0;
+
+/// A warning when the Dugdale zone at Maugis' pull-off of the indenter's radius of
+/// curvature spans fewer than [`MIN_ZONE_ELEMENTS`] elements: the zone's edge is resolved
+/// to an element, and the pull-off error is first order in Δ/(c − a), measured
+/// ≈ +0.4·Δ/(c − a) at λ = 1 and 2.
+pub(crate) fn zone_resolution_warning(
+    section: &AdhesionSection,
+    grid: &Grid,
+    indenter: &Indenter,
+    contact_modulus: f64,
+) -> Option<String> {
+    let (LawName::Dugdale, Some(stress), Some(radius)) = (
+        law_name(section),
+        section.cohesive_stress,
+        indenter.radius_of_curvature(),
+    ) else {
+        return None;
+    };
+    let model = MaugisDugdale {
+        radius,
+        contact_modulus,
+        work_of_adhesion: section.work_of_adhesion,
+        cohesive_stress: stress,
+    };
+    let point = model.at_max_adhesive_force();
+    let width = point.zone_radius - point.contact_radius;
+    let delta = grid.element_size();
+    let elements = width / delta;
+    (elements < MIN_ZONE_ELEMENTS).then(|| {
+        format!(
+            "the cohesive zone at Maugis' pull-off (c - a = {width:.4e}, adhesion.cohesive_stress = {stress}) spans {elements:.1} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ZONE_ELEMENTS}: the pull-off force may be too large by up to about {:.0} % (first order in the element size, docs/validation.md §10); raise grid.n or lower grid.size",
+            40.0 / elements
+        )
+    })
 }

@@ -41,7 +41,10 @@ fn law_keys_are_checked_by_name() {
     let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0"));
     assert!(error.contains("adhesion.range must be > 0, got 0"), "{error}");
     let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0.1"));
-    assert!(error.contains("adhesion.law = \"exponential\" is not available"), "{error}");
+    assert!(
+        error.contains("adhesion.law = \"exponential\" is not available"),
+        "{error}"
+    );
     let error = error_of(&with_adhesion("law = \"coulomb\""));
     assert!(error.contains("adhesion.law"), "{error}");
     let zero = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0").replace("= 0.01", "= 0.0");
@@ -73,6 +76,21 @@ fn the_law_picks_the_solver() {
     // λ = 2σ0·(R/(πγ0K²))^(1/3) with K = 4E*/3 = 8/3.
     let expected = 2.0 * 0.5 * (1.0 / (std::f64::consts::PI * 0.01 * (8.0f64 / 3.0).powi(2))).cbrt();
     assert!((dugdale.derived.maugis_parameter.unwrap() - expected).abs() < 1e-12);
+}
+
+/// A zone of fewer than 15 elements at Maugis' pull-off is warned about, naming the keys;
+/// the scenario files resolve it (λ = 1 at N = 256: 21.7 elements).
+#[test]
+fn an_unresolved_zone_is_warned_about() {
+    let text = include_str!("../../../scenarios/cohesive/maugis_lambda1.toml");
+    let resolved = load(text, "test", Path::new("."), &[]).unwrap();
+    assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
+    let coarse = load(text, "test", Path::new("."), &["grid.n=64".to_string()]).unwrap();
+    let warning = coarse.warnings.join("\n");
+    assert!(
+        warning.contains("spans 5.4 elements") && warning.contains("grid.n"),
+        "{warning}"
+    );
 }
 
 /// Runs a scenario of `scenarios/cohesive/` and returns (simulated, Maugis) largest

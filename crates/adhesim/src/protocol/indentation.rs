@@ -86,7 +86,7 @@ impl IndentPulloff {
                 .step(operator, heights, depth, state)
                 .map_err(|source| ProtocolError::Solve { step, depth, source })?;
             summary.dissipated_energy += report.dissipated_energy;
-            let record = StepRecord::measure(
+            let mut record = StepRecord::measure(
                 step,
                 phase,
                 depth,
@@ -97,6 +97,8 @@ impl IndentPulloff {
                 summary.dissipated_energy,
                 self.jump_force_threshold,
             );
+            // A cohesive zone cut by the border is as wrong as a contact cut by it.
+            record.touches_border |= solver.zone_touches_border();
             let contact_elements = record.contact_elements;
             summary.steps += 1;
             summary.solves += report.solves;

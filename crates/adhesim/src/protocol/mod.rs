@@ -76,7 +76,8 @@ pub struct StepRecord {
     /// The configuration changed by an instability: the force changed by more than the
     /// protocol's jump threshold at fixed indentation.
     pub jumped: bool,
-    /// An element on the border of a free grid is in contact (domain too small).
+    /// An element on the border of a free grid is in contact, or (a cohesive law) in its
+    /// cohesive zone (domain too small).
     pub touches_border: bool,
 }
 
@@ -216,6 +217,15 @@ impl NormalSolver {
     /// does.
     pub fn acts_across_gaps(&self) -> bool {
         matches!(self, Self::Cohesive(_))
+    }
+
+    /// Whether a cohesive law's zone (elements carrying a traction) reached the border of
+    /// a free grid at the last step; false for the other solvers.
+    pub fn zone_touches_border(&self) -> bool {
+        match self {
+            Self::Cohesive(solver) => solver.zone_touches_border(),
+            _ => false,
+        }
     }
 
     /// One displacement-controlled step.

@@ -117,6 +117,17 @@ impl CohesiveSolver {
         self.traction.iter().filter(|&&t| t > 0.0).count()
     }
 
+    /// Whether an element on the border of a free grid carries a traction: the domain cuts
+    /// the cohesive zone.
+    pub fn zone_touches_border(&self) -> bool {
+        self.grid.boundary() == Boundary::Free
+            && self
+                .traction
+                .iter()
+                .enumerate()
+                .any(|(k, &t)| t > 0.0 && self.grid.is_border(k))
+    }
+
     /// Forgets the previous load path.
     pub fn reset(&mut self) {
         self.traction.fill(0.0);
