@@ -268,3 +268,69 @@ impl CohesiveSolver {
         self.grid.element_area() * (0.5 * elastic + interface)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::elastic::FreeOperator;
+    use crate::geometry::{Profile, Sphere};
+
+    /// A sphere pressed into a half-space whose work of adhesion is γ0 for x > 0 and γ0/4
+    /// for x < 0, with σ0 fixed: the converged step is a Dugdale state element by element.
+    fn pressed(max_rounds: usize) -> (Result<StepReport, SolveError>, ContactState, CohesiveSolver, Vec<f64>) {
+        let grid = Grid::new(32, 0.3, Boundary::Free).unwrap();
+        let material = ElasticMaterial::new(1.0).unwrap();
+        let mut operator = FreeOperator::new(grid, material);
+        let heights = Sphere::new(1.0).unwrap().heights(&grid);
+        let gamma: Vec<f64> = (0..grid.len())
+            .map(|k| if grid.centre(k).0 > 0.0 { 1e-4 } else { 2.5e-5 })
+            .collect();
+        let law = Dugdale::new(0.04, gamma);
+        let params = CohesiveParams {
+            max_rounds,
+            ..CohesiveParams::default()
+        };
+        let mut solver = CohesiveSolver::new(grid, material, Box::new(law), params);
+        let mut state = ContactState::new(&grid);
+        let report = solver.step_probed(&mut operator, &heights, 1e-3, &mut state, &mut |_| {});
+        (report, state, solver, heights)
+    }
+
+    /// Tractions σ0 exactly where g < δc = γ/σ0 (contact included), q = p + t ≥ 0, and no
+    /// penetration beyond 1e-8·d (the nested solver stops at an ℓ2 residual of 1e-10 of
+    /// ‖d − z‖ over the contact, so one element may be off by a few 1e-9·d; measured
+    /// 1.7e-9·d); the zone reaches farther on the side of the larger γ.
+    #[test]
+    fn a_converged_step_is_a_dugdale_state_with_the_local_range() {
+        let (report, state, solver, heights) = pressed(500);
+        let report = report.unwrap();
+        assert!(report.solves >= 2 && report.force < report.force_before_change + 1e-12);
+        let grid = solver.grid;
+        let (mut right, mut left) = (0, 0);
+        for k in 0..grid.len() {
+            let gap = heights[k] - 1e-3 + state.displacement[k];
+            assert!(gap > -1e-11, "element {k}: gap {gap:e}");
+            let gap = if state.contact[k] { 0.0 } else { gap.max(0.0) };
+            let in_zone = gap < solver.law().range(k);
+            assert_eq!(solver.traction()[k] > 0.0, in_zone, "element {k}");
+            assert!(state.pressure[k] + solver.traction()[k] >= 0.0);
+            if in_zone {
+                if grid.centre(k).0 > 0.0 {
+                    right += 1;
+                } else {
+                    left += 1;
+                }
+            }
+        }
+        assert!(right > left, "zone elements: {right} (γ0) vs {left} (γ0/4)");
+        assert_eq!(solver.zone_elements(), right + left);
+        assert!(!solver.zone_touches_border());
+    }
+
+    /// A step that needs more zone updates than allowed says so with a typed error.
+    #[test]
+    fn too_few_rounds_is_a_typed_error() {
+        let (report, ..) = pressed(1);
+        assert_eq!(report.unwrap_err(), SolveError::TooManyRounds { rounds: 1 });
+    }
+}
