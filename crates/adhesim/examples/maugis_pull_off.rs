@@ -85,6 +85,16 @@ fn main() {
         summary.depth_at_max_adhesive_force,
         at.depth,
     );
+    // The retraction in contact against Maugis' displacement-controlled branch.
+    let branch_error = records
+        .iter()
+        .filter(|r| r.phase == Some(adhesim::Phase::Retract) && r.contact_elements > 0)
+        .filter_map(|r| model.force_at_depth(r.depth).map(|f| (r.force_normal - f).abs()))
+        .fold(0.0f64, f64::max);
+    println!(
+        "retraction branch: max |F - F_Maugis(d)| = {:.3} % of the largest adhesive force",
+        100.0 * branch_error / expected
+    );
     println!(
         "steps {}, solves {}, FFT pairs {}, jumps {}, {:.2} s; dissipated {:.4e}, loop area {:.4e}; border {}",
         summary.steps,

@@ -5,8 +5,8 @@
 mod maugis;
 
 pub use maugis::{
-    cohesive_stress_for, maugis_parameter, reduced_force_and_depth, reduced_pull_off, zone_ratio, MaugisDugdale,
-    MaugisPoint,
+    cohesive_stress_for, maugis_parameter, reduced_force_and_depth, reduced_jump_off, reduced_pull_off, zone_ratio,
+    MaugisDugdale, MaugisPoint,
 };
 
 use std::f64::consts::PI;

@@ -94,11 +94,24 @@ pub fn reduced_force_and_depth(lambda: f64, a: f64) -> (f64, f64) {
 /// largest adhesive force under displacement control is −min P̄·πγ0R. A scan of A on a
 /// geometric grid from 1e-4 to 10 brackets the minimum, golden-section search refines it.
 pub fn reduced_pull_off(lambda: f64) -> (f64, f64) {
+    let a = golden_minimum(|a| reduced_force_and_depth(lambda, a).0);
+    (reduced_force_and_depth(lambda, a).0, a)
+}
+
+/// The reduced contact radius A where the approach δ̄ is smallest: the vertical tangent of
+/// the force–approach curve, where contact is lost under displacement control. A scan of
+/// A on a geometric grid from 1e-4 to 10 brackets it, golden-section search refines it.
+pub fn reduced_jump_off(lambda: f64) -> f64 {
+    golden_minimum(|a| reduced_force_and_depth(lambda, a).1)
+}
+
+/// The A in (1e-4, 10) where `value` is smallest: a scan on a geometric grid of 2000
+/// points brackets it, golden-section search refines it.
+fn golden_minimum(value: impl Fn(f64) -> f64) -> f64 {
     let samples = 2000;
     let a_of = |i: usize| 1e-4 * (1e5f64).powf(i as f64 / samples as f64);
-    let force = |a: f64| reduced_force_and_depth(lambda, a).0;
     let best = (0..=samples)
-        .map(|i| (i, force(a_of(i))))
+        .map(|i| (i, value(a_of(i))))
         .min_by(|x, y| x.1.total_cmp(&y.1))
         .map(|(i, _)| i)
         .unwrap_or(0);
@@ -107,17 +120,46 @@ pub fn reduced_pull_off(lambda: f64) -> (f64, f64) {
     for _ in 0..100 {
         let left = high - golden * (high - low);
         let right = low + golden * (high - low);
-        if force(left) < force(right) {
+        if value(left) < value(right) {
             high = right;
         } else {
             low = left;
         }
     }
-    let a = 0.5 * (low + high);
-    (force(a), a)
+    0.5 * (low + high)
 }
 
 impl MaugisDugdale {
+    /// The force on the branch that displacement control follows (A beyond the vertical
+    /// tangent, where δ grows with A) at approach `depth`; None below the jump-off depth.
+    /// Bisection on A, the branch's δ̄ being increasing.
+    pub fn force_at_depth(&self, depth: f64) -> Option<f64> {
+        let lambda = self.lambda();
+        let target = depth / self.depth_unit();
+        let depth_of = |a: f64| reduced_force_and_depth(lambda, a).1;
+        let mut low = reduced_jump_off(lambda);
+        if target < depth_of(low) {
+            return None;
+        }
+        let mut high = 2.0 * low.max(1.0);
+        while depth_of(high) < target {
+            low = high;
+            high *= 2.0;
+        }
+        for _ in 0..200 {
+            let middle = 0.5 * (low + high);
+            if middle <= low || middle >= high {
+                break;
+            }
+            if depth_of(middle) < target {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        Some(reduced_force_and_depth(lambda, 0.5 * (low + high)).0 * self.force_unit())
+    }
+
     /// K = 4E*/3.
     fn k(&self) -> f64 {
         4.0 / 3.0 * self.contact_modulus
@@ -215,6 +257,30 @@ mod tests {
             assert!((force - jkr_force).abs() < 1e-2, "A {a}: {force} vs {jkr_force}");
             assert!((depth - jkr_depth).abs() < 1e-2, "A {a}: {depth} vs {jkr_depth}");
         }
+    }
+
+    /// On the displacement-controlled branch the force at the depth of a point is the
+    /// point's force; below the jump-off depth there is none. In the JKR limit the vertical
+    /// tangent of δ̄ = A² − (2/3)√(6A) is at A = (√6/6)^(2/3) (the JKR jump-off).
+    #[test]
+    fn force_at_depth_inverts_the_branch() {
+        let model = MaugisDugdale {
+            radius: 1.0,
+            contact_modulus: 1.0,
+            work_of_adhesion: 1e-4,
+            cohesive_stress: cohesive_stress_for(1.0, 1.0, 1e-4, 1.0),
+        };
+        for a in [0.06, 0.08, 0.1] {
+            let point = model.at_contact_radius(a);
+            let force = model.force_at_depth(point.depth).unwrap();
+            assert!((force - point.force).abs() < 1e-12 * model.force_unit(), "a {a}");
+        }
+        let jump = reduced_jump_off(1.0);
+        let lowest = reduced_force_and_depth(1.0, jump).1 * model.depth_unit();
+        assert!(model.force_at_depth(1.01 * lowest).is_none());
+        let jkr_jump = reduced_jump_off(1e4);
+        let expected = (6f64.sqrt() / 6.0).powf(2.0 / 3.0);
+        assert!((jkr_jump - expected).abs() < 1e-2, "{jkr_jump} vs {expected}");
     }
 
     /// The pull-off decreases monotonically from DMT to JKR, and the dimensional helpers
