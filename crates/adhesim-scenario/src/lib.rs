@@ -37,6 +37,7 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+mod cohesive;
 mod curve;
 mod guards;
 mod model;
@@ -127,6 +128,8 @@ pub fn load_within(
     file.validate(base)
 }
 
+#[cfg(test)]
+mod cohesive_tests;
 #[cfg(test)]
 mod guards_tests;
 #[cfg(test)]

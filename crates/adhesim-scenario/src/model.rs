@@ -157,6 +157,35 @@ pub struct AdhesionSection {
     pub work_of_adhesion: f64,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field: Option<FieldSpec>,
+    /// The adhesion law; absent means `jkr` (and is echoed absent).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub law: Option<LawName>,
+    /// σ0 of `law = "dugdale"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cohesive_stress: Option<f64>,
+    /// ρ of `law = "exponential"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+/// `adhesion.law`: the paper's sharp JKR-type criterion, or a cohesive law of finite range.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LawName {
+    #[default]
+    Jkr,
+    Dugdale,
+    Exponential,
+}
+
+impl LawName {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Jkr => "jkr",
+            Self::Dugdale => "dugdale",
+            Self::Exponential => "exponential",
+        }
+    }
 }
 
 /// Heterogeneous work of adhesion.
@@ -558,6 +587,10 @@ pub struct Derived {
     pub johnson_parameter: Option<f64>,
     pub element_size: f64,
     pub critical_stress: Option<f64>,
+    /// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of `adhesion.law = "dugdale"` on a curved
+    /// indenter (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub maugis_parameter: Option<f64>,
     /// Statistics of the `[roughness]` as sampled on the grid (absent without one).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roughness: Option<RoughnessStatistics>,

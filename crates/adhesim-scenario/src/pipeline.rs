@@ -1,6 +1,7 @@
 //! The run pipeline, one for every protocol: a validated scenario → elastic operator,
 //! normal solver and protocol → the caller's observer sees every step → results.
 
+use crate::cohesive::cohesive_solver;
 use crate::model::{TranslationSetup, ValidScenario};
 use crate::results::{fit_results, Results, RunResults};
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
@@ -34,10 +35,13 @@ impl ValidScenario {
         }
     }
 
-    /// The normal solver: the adhesive active set where γ0 > 0, the library's
-    /// non-adhesive default otherwise.
+    /// The normal solver: the cohesive solver of `adhesion.law` = "dugdale" or
+    /// "exponential", the adhesive active set where γ0 > 0, the library's non-adhesive
+    /// default otherwise.
     pub fn normal_solver(&self) -> NormalSolver {
-        if self.gamma0 > 0.0 {
+        if let Some(solver) = cohesive_solver(&self.file.adhesion, self.grid, self.material, &self.gamma) {
+            NormalSolver::Cohesive(Box::new(solver))
+        } else if self.gamma0 > 0.0 {
             NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
                 self.grid,
                 self.material.contact_modulus(),

@@ -2,6 +2,7 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
+use crate::cohesive::zone_resolution_warning;
 use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::{read_height_map, read_npy_2d};
@@ -75,8 +76,15 @@ impl ScenarioFile {
         let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
+        derived.maugis_parameter = self.validate_law(&indenter, material.contact_modulus())?;
         self.check_derived(&derived)?;
         let mut warnings = resolution_warnings(&grid, &indenter, &derived);
+        warnings.extend(zone_resolution_warning(
+            &self.adhesion,
+            &grid,
+            &indenter,
+            material.contact_modulus(),
+        ));
         for map in roughness.iter().chain(&substrate_roughness) {
             warnings.extend(map.warnings.iter().cloned());
         }
@@ -509,6 +517,7 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
         johnson_parameter: johnson,
         element_size: delta,
         critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, delta)),
+        maugis_parameter: None,
         roughness: None,
         substrate_roughness: None,
     };

@@ -2,6 +2,13 @@
 //!
 //! All for a rigid indenter on an elastic half-space of contact modulus E*.
 
+mod maugis;
+
+pub use maugis::{
+    cohesive_stress_for, maugis_parameter, reduced_force_and_depth, reduced_jump_off, reduced_pull_off, zone_ratio,
+    MaugisDugdale, MaugisPoint,
+};
+
 use std::f64::consts::PI;
 
 /// Hertz (1882) contact of a paraboloid of radius R pressed to depth d.

@@ -69,6 +69,7 @@ impl IndentPulloff {
         }
         let grid = *operator.grid();
         solver.reset();
+        let acts_across_gaps = solver.acts_across_gaps();
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
         let mut summary = ProtocolSummary::default();
@@ -85,7 +86,7 @@ impl IndentPulloff {
                 .step(operator, heights, depth, state)
                 .map_err(|source| ProtocolError::Solve { step, depth, source })?;
             summary.dissipated_energy += report.dissipated_energy;
-            let record = StepRecord::measure(
+            let mut record = StepRecord::measure(
                 step,
                 phase,
                 depth,
@@ -96,6 +97,8 @@ impl IndentPulloff {
                 summary.dissipated_energy,
                 self.jump_force_threshold,
             );
+            // A cohesive zone cut by the border is as wrong as a contact cut by it.
+            record.touches_border |= solver.zone_touches_border();
             let contact_elements = record.contact_elements;
             summary.steps += 1;
             summary.solves += report.solves;
@@ -129,11 +132,16 @@ impl IndentPulloff {
         for _ in 0..self.max_retract_steps {
             depth -= self.depth_step;
             let record = run_step(depth, Phase::Retract, &mut state, &mut previous, &mut summary)?;
-            if record.contact_elements == 0 {
+            // Without contact, a cohesive law may still pull (a tensile force): retraction
+            // goes on until it lets go.
+            let holds_across_gap = acts_across_gaps && record.force_normal < 0.0;
+            if record.contact_elements == 0 && !holds_across_gap {
                 summary.pull_off_depth = last_in_contact;
                 return Ok(summary);
             }
-            last_in_contact = Some(depth);
+            if record.contact_elements > 0 {
+                last_in_contact = Some(depth);
+            }
         }
         Err(ProtocolError::ContactNotLost {
             steps: self.max_retract_steps,

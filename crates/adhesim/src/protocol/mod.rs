@@ -12,8 +12,8 @@ use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use crate::solver::{
-    AdhesiveSolver, Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, SolveReport,
-    StepReport,
+    AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, Control, NestedActiveSet, NestedParams, SolveError,
+    SolveReport, StepReport,
 };
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -76,7 +76,8 @@ pub struct StepRecord {
     /// The configuration changed by an instability: the force changed by more than the
     /// protocol's jump threshold at fixed indentation.
     pub jumped: bool,
-    /// An element on the border of a free grid is in contact (domain too small).
+    /// An element on the border of a free grid is in contact, or (a cohesive law) in its
+    /// cohesive zone (domain too small).
     pub touches_border: bool,
 }
 
@@ -186,6 +187,8 @@ pub enum NormalSolver {
     NonAdhesiveNested(Box<NestedActiveSet>),
     /// JKR-type adhesive active set.
     Adhesive(Box<AdhesiveSolver>),
+    /// Adhesion by a cohesive law of finite range (Maugis–Dugdale, exponential).
+    Cohesive(Box<CohesiveSolver>),
 }
 
 /// The non-adhesive solver for `grid`: the nested active set on a free grid, CCG on a
@@ -202,8 +205,26 @@ pub fn non_adhesive_solver(grid: Grid, material: ElasticMaterial) -> NormalSolve
 impl NormalSolver {
     /// Forgets the history of previous steps before a new load path.
     pub fn reset(&mut self) {
-        if let Self::Adhesive(solver) = self {
-            solver.reset();
+        match self {
+            Self::Adhesive(solver) => solver.reset(),
+            Self::Cohesive(solver) => solver.reset(),
+            Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) => {}
+        }
+    }
+
+    /// Whether the body can still hold the indenter without contact: a cohesive law pulls
+    /// across a gap, so its pull-off ends when the force vanishes, not when the contact
+    /// does.
+    pub fn acts_across_gaps(&self) -> bool {
+        matches!(self, Self::Cohesive(_))
+    }
+
+    /// Whether a cohesive law's zone (elements carrying a traction) reached the border of
+    /// a free grid at the last step; false for the other solvers.
+    pub fn zone_touches_border(&self) -> bool {
+        match self {
+            Self::Cohesive(solver) => solver.zone_touches_border(),
+            _ => false,
         }
     }
 
@@ -230,6 +251,7 @@ impl NormalSolver {
     ) -> Result<StepReport, SolveError> {
         match self {
             Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
+            Self::Cohesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
             Self::NonAdhesive(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
                 solver.solve(operator, heights, Control::Displacement(depth), state)
             }),

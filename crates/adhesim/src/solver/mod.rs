@@ -1,5 +1,5 @@
 //! Contact solvers: non-adhesive (Polonsky–Keer CCG; nested-grid preconditioned active
-//! set) and adhesive (JKR-type active set).
+//! set) and adhesive (JKR-type active set; cohesive laws of finite range).
 //!
 //! A solve takes the operator, the indenter heights on the grid and a control, and a
 //! [`ContactState`] that is both the warm start and the result. Gap g = z − d + u ≥ 0,
@@ -8,6 +8,7 @@
 mod adhesive;
 mod ccg;
 mod certificate;
+mod cohesive;
 mod contact_window;
 mod local_peel;
 mod nested;
@@ -20,6 +21,7 @@ pub use adhesive::{
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;
+pub use cohesive::{CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, Exponential};
 pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 

@@ -1,0 +1,142 @@
+//! Unit tests of `adhesion.law` and its keys, and the Maugis–Dugdale scenarios run through
+//! the same pipeline as `adhesim run`.
+
+use crate::tests::MINIMAL;
+use crate::*;
+use adhesim::analysis::reference::MaugisDugdale;
+use adhesim::NormalSolver;
+use std::path::Path;
+
+fn error_of(text: &str) -> String {
+    load(text, "test", Path::new("."), &[])
+        .err()
+        .expect("an error")
+        .to_string()
+}
+
+fn with_adhesion(keys: &str) -> String {
+    MINIMAL.replace("work_of_adhesion = 0.01", &format!("work_of_adhesion = 0.01\n{keys}"))
+}
+
+/// Every error names the key at fault and its value; the JKR default takes no law keys.
+#[test]
+fn law_keys_are_checked_by_name() {
+    let error = error_of(&with_adhesion("law = \"dugdale\"\ncohesive_stress = -1.0"));
+    assert!(
+        error.contains("adhesion.cohesive_stress must be > 0, got -1"),
+        "{error}"
+    );
+    let error = error_of(&with_adhesion("law = \"dugdale\""));
+    assert!(error.contains("needs adhesion.cohesive_stress"), "{error}");
+    let error = error_of(&with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0\nrange = 0.1"));
+    assert!(
+        error.contains("adhesion.range is not a key of adhesion.law = \"dugdale\""),
+        "{error}"
+    );
+    let error = error_of(&with_adhesion("cohesive_stress = 1.0"));
+    assert!(
+        error.contains("adhesion.cohesive_stress is not a key of adhesion.law = \"jkr\""),
+        "{error}"
+    );
+    let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0"));
+    assert!(error.contains("adhesion.range must be > 0, got 0"), "{error}");
+    let error = error_of(&with_adhesion("law = \"exponential\"\nrange = 0.1"));
+    assert!(
+        error.contains("adhesion.law = \"exponential\" is not available"),
+        "{error}"
+    );
+    let error = error_of(&with_adhesion("law = \"coulomb\""));
+    assert!(error.contains("adhesion.law"), "{error}");
+    let zero = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0").replace("= 0.01", "= 0.0");
+    let error = error_of(&zero.replace("depth_unit = \"jkr\"", "depth_unit = \"length\""));
+    assert!(error.contains("needs adhesion.work_of_adhesion > 0, got 0"), "{error}");
+    let periodic = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0")
+        .replace("size = 1.0", "size = 1.0\nboundary = \"periodic\"");
+    let error = error_of(&periodic);
+    assert!(error.contains("grid.boundary = \"periodic\""), "{error}");
+}
+
+/// `law` absent is `jkr`: the JKR solver, no Maugis parameter, and the echoed section
+/// has no law key (summary.json unchanged); `dugdale` builds the cohesive solver.
+#[test]
+fn the_law_picks_the_solver() {
+    let jkr = load(MINIMAL, "test", Path::new("."), &[]).unwrap();
+    assert!(matches!(jkr.normal_solver(), NormalSolver::Adhesive(_)));
+    assert!(jkr.derived.maugis_parameter.is_none());
+    let echoed = serde_json::to_string(&jkr.file.adhesion).unwrap();
+    assert_eq!(echoed, r#"{"work_of_adhesion":0.01}"#);
+    let dugdale = load(
+        &with_adhesion("law = \"dugdale\"\ncohesive_stress = 0.5"),
+        "test",
+        Path::new("."),
+        &[],
+    )
+    .unwrap();
+    assert!(matches!(dugdale.normal_solver(), NormalSolver::Cohesive(_)));
+    // λ = 2σ0·(R/(πγ0K²))^(1/3) with K = 4E*/3 = 8/3.
+    let expected = 2.0 * 0.5 * (1.0 / (std::f64::consts::PI * 0.01 * (8.0f64 / 3.0).powi(2))).cbrt();
+    assert!((dugdale.derived.maugis_parameter.unwrap() - expected).abs() < 1e-12);
+}
+
+/// A zone of fewer than 15 elements at Maugis' pull-off is warned about, naming the keys;
+/// the scenario files resolve it (λ = 1 at N = 256: 21.7 elements).
+#[test]
+fn an_unresolved_zone_is_warned_about() {
+    let text = include_str!("../../../scenarios/cohesive/maugis_lambda1.toml");
+    let resolved = load(text, "test", Path::new("."), &[]).unwrap();
+    assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
+    let coarse = load(text, "test", Path::new("."), &["grid.n=64".to_string()]).unwrap();
+    let warning = coarse.warnings.join("\n");
+    assert!(
+        warning.contains("spans 5.4 elements") && warning.contains("grid.n"),
+        "{warning}"
+    );
+}
+
+/// Runs a scenario of `scenarios/cohesive/` and returns (simulated, Maugis) largest
+/// adhesive force.
+fn maugis_scenario(text: &str, overrides: &[String]) -> (f64, f64) {
+    let scenario = load(text, "test", Path::new("."), overrides).unwrap();
+    let outcome = run(&scenario, &mut ()).unwrap();
+    let RunResults::Indentation(results) = outcome.results else {
+        panic!("an indentation")
+    };
+    let adhesion = &scenario.file.adhesion;
+    let model = MaugisDugdale {
+        radius: 1.0,
+        contact_modulus: scenario.material.contact_modulus(),
+        work_of_adhesion: adhesion.work_of_adhesion,
+        cohesive_stress: adhesion.cohesive_stress.unwrap(),
+    };
+    (results.max_adhesive_force, model.max_adhesive_force())
+}
+
+/// The issue's acceptance at λ = 0.3 (3 %) and 0.1 (5 %) through the run pipeline of
+/// `adhesim run`, on the scenario files' grids: measured +0.71 % (N = 128, 27 elements
+/// across the zone at pull-off) and +0.05 % (N = 128); about 2 s each.
+#[test]
+fn dugdale_scenarios_give_maugis_pull_off_at_small_lambda() {
+    let (force, expected) = maugis_scenario(include_str!("../../../scenarios/cohesive/maugis_lambda0p3.toml"), &[]);
+    assert!(
+        (force / expected - 1.0).abs() < 0.03,
+        "λ = 0.3: {force:e} vs {expected:e}"
+    );
+    let (force, expected) = maugis_scenario(include_str!("../../../scenarios/cohesive/maugis_lambda0p1.toml"), &[]);
+    assert!(
+        (force / expected - 1.0).abs() < 0.05,
+        "λ = 0.1: {force:e} vs {expected:e}"
+    );
+}
+
+/// λ = 1 within 3 % on its scenario's grid (N = 256, 22 elements across the zone):
+/// measured +1.63 %, about 15 s on 2 cores. Run with
+/// `cargo test --release -p adhesim-scenario dugdale_scenario_lambda_one -- --ignored`.
+#[test]
+#[ignore = "15 s: cargo test --release -p adhesim-scenario dugdale_scenario_lambda_one -- --ignored"]
+fn dugdale_scenario_lambda_one_gives_maugis_pull_off() {
+    let (force, expected) = maugis_scenario(include_str!("../../../scenarios/cohesive/maugis_lambda1.toml"), &[]);
+    assert!(
+        (force / expected - 1.0).abs() < 0.03,
+        "λ = 1: {force:e} vs {expected:e}"
+    );
+}
