@@ -353,9 +353,7 @@ pub fn write_contact_map(path: &Path, n: usize, contact: &[bool], previous: &[bo
             (false, false) => FREE,
         };
     }
-    image
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    crate::figure::files::save_image(&image, path)
 }
 
 fn write_field(path: &Path, n: usize, values: &[f64]) -> Result<()> {

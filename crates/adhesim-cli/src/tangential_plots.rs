@@ -173,7 +173,5 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
             }
         }
     }
-    image
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    crate::figure::files::save_image(&image, path)
 }

@@ -367,9 +367,12 @@ pub fn adhesive_params(
     };
     let detachment = match worst_first_fraction {
         None => adhesim::Detachment::AllViolators,
-        Some(fraction) => adhesim::Detachment::WorstFirst {
-            fraction: non_negative("worst_first_fraction", fraction)?,
-        },
+        Some(fraction) if !(0.0..=1.0).contains(&fraction) => {
+            return Err(PyValueError::new_err(format!(
+                "worst_first_fraction must be a fraction in [0, 1] or None, got {fraction}"
+            )))
+        }
+        Some(fraction) => adhesim::Detachment::WorstFirst { fraction },
     };
     Ok(adhesim::AdhesiveParams {
         relative_tolerance: positive("relative_tolerance", relative_tolerance)?,

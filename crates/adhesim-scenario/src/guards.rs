@@ -4,6 +4,7 @@
 //! memory a grid needs is estimated before anything of that size is allocated. Errors name
 //! the input keys responsible; resolution problems are warnings.
 
+use crate::memory::{gibibytes, MemoryLimit};
 use crate::model::*;
 use adhesim::{Grid, Indenter};
 use anyhow::{bail, Result};
@@ -277,11 +278,6 @@ pub fn memory_estimate(n: u64, boundary: BoundaryName) -> u64 {
     3 * spectrum + 2 * real + 32 * n * n * 8
 }
 
-/// `1.5 GiB`.
-fn gibibytes(bytes: u64) -> String {
-    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
-}
-
 impl ScenarioFile {
     /// [`memory_estimate`] of this scenario's grid (0 for a `grid.n` that validation refuses).
     pub fn memory_estimate(&self) -> u64 {
@@ -292,12 +288,12 @@ impl ScenarioFile {
         }
     }
 
-    /// Refuses, naming `grid.n` and the estimate, a scenario of which `runs` concurrent runs
-    /// need more than `available` bytes. Call it before [`ScenarioFile::validate`], which
-    /// allocates the grid's fields.
-    pub fn check_memory(&self, available: u64, runs: u64) -> Result<()> {
+    /// Refuses, naming `grid.n`, the estimate and the limit, a scenario of which `runs`
+    /// concurrent runs need more than `limit` allows. Call it before
+    /// [`ScenarioFile::validate`], which allocates the grid's fields.
+    pub fn check_memory(&self, limit: &MemoryLimit, runs: u64) -> Result<()> {
         let need = self.memory_estimate().saturating_mul(runs.max(1));
-        if need > available {
+        if need > limit.bytes {
             let each = if runs > 1 {
                 format!(
                     " ({runs} concurrent runs of {} each)",
@@ -307,10 +303,9 @@ impl ScenarioFile {
                 String::new()
             };
             bail!(
-                "grid.n = {} needs about {}{each}, more than the {} of memory available: lower grid.n (or override this check where the estimate is known to be too high)",
+                "grid.n = {} needs about {}{each} of memory, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
                 self.grid.n,
                 gibibytes(need),
-                gibibytes(available)
             );
         }
         Ok(())

@@ -157,6 +157,7 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
         lateral_unit: Some("m".to_string()),
     };
     let path = base.join(file);
+    crate::files::check_regular_file(&path, &key)?;
     let mut map = read_topography(&path, &options).map_err(|e| {
         let hint = if spacing.is_none() {
             format!(" (files that record no spacing need {name}.spacing)")

@@ -13,7 +13,7 @@
 //! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s and
 //! `FUZZ_ERRORS=1` the errors of runs (with `-- --nocapture`).
 
-use adhesim_scenario::{load_within, run, RunResults, ValidScenario};
+use adhesim_scenario::{load_within, run, MemoryLimit, RunResults, ValidScenario};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestCaseError, TestRunner};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -342,7 +342,16 @@ fn check_case(
     all.extend(overrides);
     let base = scenarios_dir();
     let loaded = catch_unwind(AssertUnwindSafe(|| {
-        load_within(&text, origin, &base, &all, Some(AVAILABLE_MEMORY))
+        load_within(
+            &text,
+            origin,
+            &base,
+            &all,
+            Some(&MemoryLimit {
+                bytes: AVAILABLE_MEMORY,
+                source: "the fuzz test's limit".to_string(),
+            }),
+        )
     }))
     .map_err(|_| TestCaseError::fail(format!("load panicked: {origin} --set {all:?}")))?;
     match loaded {

@@ -162,6 +162,7 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
         height_unit: Some("m".to_string()),
         lateral_unit: Some("m".to_string()),
     };
+    adhesim_scenario::check_regular_file(path, "topography file")?;
     let mut map = read_topography(path, &options).map_err(|e| {
         let hint = if args.spacing.is_none() {
             " (files that record no spacing need --spacing)"
@@ -228,9 +229,10 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
 /// A scenario's `[roughness]` (or `[substrate_roughness]`) as sampled on its grid.
 fn from_scenario(args: &TopographyArgs) -> Result<Surface> {
     let path = &args.input;
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scenario {}", path.display()))?;
+    let text = adhesim_scenario::read_input_text(path, "scenario")?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let scenario = adhesim_scenario::load(&text, &path.display().to_string(), base, &[])?;
+    let limit = crate::resources::memory_limit(false)?;
+    let scenario = adhesim_scenario::load_within(&text, &path.display().to_string(), base, &[], limit.as_ref())?;
     let (name, section, heights) = if args.substrate {
         let heights = scenario
             .translation
@@ -411,8 +413,6 @@ fn write_height_map(path: &Path, n: usize, heights: &[f64]) -> Result<String> {
             [fade(33, -t), fade(102, -t), fade(172, -t)]
         };
     }
-    image
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    crate::figure::files::save_image(&image, path)?;
     Ok("heights.png".into())
 }

@@ -1,0 +1,46 @@
+//! Image and figure files written whole or not at all (`docs/reliability.md`, "Outputs and
+//! folders"). `image::ImageBuffer::save` and plotters' file backends write through a
+//! `BufWriter` that is dropped without a checked flush: on a full disk a PNG was left empty
+//! or cut at 4096 bytes while the command reported success. Here the file is encoded in
+//! memory, written to a temporary file beside it with every write checked, and renamed.
+
+use anyhow::{anyhow, Context, Result};
+use std::io::Write;
+use std::path::Path;
+
+/// Writes `bytes` to `path` through `.NAME.PID.tmp` in the same folder: every write is
+/// checked (a full disk is an error naming the file, and the temporary file is removed),
+/// then the file is renamed into place, so a file of the final name is always whole. No
+/// fsync: figures are many and are redone by rerunning; what a full disk gives is the
+/// write's own error.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let written = std::fs::File::create(&temp).and_then(|mut file| {
+        file.write_all(bytes)?;
+        file.flush()
+    });
+    if let Err(error) = written {
+        let _ = std::fs::remove_file(&temp);
+        return Err(anyhow!(error).context(format!("cannot write {}", path.display())));
+    }
+    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Encodes `image` in the format of `path`'s extension (png, tif, jpg) and writes it with
+/// [`write_file`]: the same bytes as `ImageBuffer::save`, every write checked.
+pub fn save_image<P>(image: &image::ImageBuffer<P, Vec<P::Subpixel>>, path: &Path) -> Result<()>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+{
+    let format = image::ImageFormat::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, format)
+        .with_context(|| format!("cannot encode {}", path.display()))?;
+    write_file(path, bytes.get_ref())
+}
