@@ -3,6 +3,7 @@
 //! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
 //! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
 
+use crate::guards::usable_positive;
 use crate::model::{RoughnessMode, RoughnessSection, RoughnessStatistics};
 use crate::parse::refuse_invalid_points;
 use crate::validate::positive;
@@ -100,8 +101,8 @@ fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f
         bail!("{name}.hurst must lie in (0, 1], got {hurst}");
     }
     let target = match (s.rms_height, s.rms_slope) {
-        (Some(h), None) => RmsTarget::Height(positive(&format!("{name}.rms_height"), h)?),
-        (None, Some(slope)) => RmsTarget::Slope(positive(&format!("{name}.rms_slope"), slope)?),
+        (Some(h), None) => RmsTarget::Height(usable_positive(&format!("{name}.rms_height"), h)?),
+        (None, Some(slope)) => RmsTarget::Slope(usable_positive(&format!("{name}.rms_slope"), slope)?),
         (Some(h), Some(slope)) => bail!(
             "give exactly one of {name}.rms_height and {name}.rms_slope, got both ({name}.rms_height = {h}, {name}.rms_slope = {slope})"
         ),

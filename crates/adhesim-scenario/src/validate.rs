@@ -47,10 +47,12 @@ impl ScenarioFile {
         let material = validate_material(&self.material)?;
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
         let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base, roughness.as_ref())?;
+        self.check_height_span(&heights, start_depth)?;
         let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
         self.check_derived(&derived)?;
+        self.check_field_stresses(&grid, &gamma)?;
         let mut warnings = resolution_warnings(&grid, &indenter, &derived);
         for map in roughness.iter().chain(&substrate_roughness) {
             warnings.extend(map.warnings.iter().cloned());
@@ -77,6 +79,7 @@ impl ScenarioFile {
         } else {
             self.validate_indentation(inputs, heights, start_depth)?
         };
+        warnings.extend(crate::guards::contact_radius_warning(&valid));
         valid.warnings = warnings;
         valid.roughness = roughness.map(|map| map.heights);
         Ok(valid)

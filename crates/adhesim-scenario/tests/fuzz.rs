@@ -135,7 +135,7 @@ const KEYS: [&str; 67] = [
 ];
 
 /// Values of every class a hostile user tries, as `--set` text.
-const VALUES: [&str; 45] = [
+const VALUES: [&str; 52] = [
     "nan",
     "+nan",
     "inf",
@@ -181,6 +181,15 @@ const VALUES: [&str; 45] = [
     "\"filtered\"",
     "\"slide\"",
     "{ hurst = 0.5, rms_slope = 0.1, seed = 2 }",
+    // Issue #29: file keys naming a folder or a device (a device read without end, a
+    // folder failed with a bare "Is a directory"), per-element γ beyond the solver's range.
+    "\".\"",
+    "\"/dev/zero\"",
+    "{ kind = \"map\", file = \".\" }",
+    "{ kind = \"map\", file = \"/dev/zero\" }",
+    "{ kind = \"quadratic\", ratio_edge_to_centre = 1e296 }",
+    "{ kind = \"quadratic\", ratio_edge_to_centre = 1e-303 }",
+    "{ file = \".\", spacing = 0.01 }",
 ];
 
 /// One override: a key (sometimes garbage) and a value (sometimes garbage or a scaled

@@ -186,6 +186,14 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             ));
         }
     }
+    // Issue #29: heights near 1e300 gave an rms height of inf (exit 0) and a PSD plot of
+    // unbounded ticks; beyond 1e150 their squares overflow.
+    if let Some(h) = map.heights.iter().find(|h| h.abs() > 1e150 && h.is_finite()) {
+        bail!(
+            "{}: a height of {h:e} m lies beyond 1e150 m, where its square (the rms height, the PSD) overflows: check the file's height unit",
+            path.display()
+        );
+    }
     if args.detrend {
         let (_, slope_x, slope_y) = map.detrend_mean_plane().map_err(|e| anyhow!("{e}"))?;
         source.push(format!("mean plane subtracted (slopes {slope_x:e}, {slope_y:e})"));
@@ -217,7 +225,12 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             .topography
             .heights
     };
-    let grid = Grid::new(n, n as f64 * spacing, Boundary::Free).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let grid = Grid::new(n, n as f64 * spacing, Boundary::Free).map_err(|e| {
+        anyhow!(
+            "{}: spacing {spacing:e} m (--spacing or the file's): {e}",
+            path.display()
+        )
+    })?;
     Ok(Surface {
         grid,
         heights,

@@ -12,6 +12,10 @@ const LARGEST: f64 = 1e300;
 /// Smallest lower bound of a log axis: a normal number far from underflow.
 const SMALLEST_LOG: f64 = 1e-300;
 
+/// Largest ratio of a log axis's bounds: plotters counts the decades as ln(high/low), and
+/// loops that many times where few ticks fit; an infinite ratio (1e-300 to 1e300) never ends.
+const LARGEST_LOG_RATIO: f64 = 1e200;
+
 /// Smallest span of a linear axis relative to its bounds' magnitude: tick steps are
 /// fractions of the span and must move a bound in floating point.
 const RELATIVE_SPAN: f64 = 1e-12;
@@ -40,8 +44,9 @@ pub fn linear_range(low: f64, high: f64) -> (f64, f64) {
 }
 
 /// A log range plotters can tick: bounds in [[`SMALLEST_LOG`], [`LARGEST`]], ordered, at
-/// least a factor 1 + [`RELATIVE_SPAN`] apart (a decade each way otherwise); a non-positive
-/// or NaN bound is taken at the edge of that window.
+/// least a factor 1 + [`RELATIVE_SPAN`] apart (a decade each way otherwise) and at most
+/// [`LARGEST_LOG_RATIO`] (the lower bound raised: the top of a PSD is what matters); a
+/// non-positive or NaN bound is taken at the edge of that window.
 pub fn log_range(low: f64, high: f64) -> (f64, f64) {
     let bound = |v: f64, edge: f64| {
         if v.is_nan() || v <= 0.0 {
@@ -52,6 +57,7 @@ pub fn log_range(low: f64, high: f64) -> (f64, f64) {
     };
     let (low, high) = (bound(low, SMALLEST_LOG), bound(high, LARGEST));
     let (low, high) = (low.min(high), high.max(low));
+    let low = low.max(high / LARGEST_LOG_RATIO);
     if high >= low * (1.0 + RELATIVE_SPAN) {
         return (low, high);
     }
@@ -85,9 +91,14 @@ mod tests {
                 "{low} {high} -> {a} {b}"
             );
             let (a, b) = log_range(low, high);
-            assert!(a >= SMALLEST_LOG && b <= LARGEST && b > a, "{low} {high} -> {a} {b}");
+            assert!(
+                a >= SMALLEST_LOG && b <= LARGEST && b > a && (b / a).is_finite(),
+                "{low} {high} -> {a} {b}"
+            );
         }
-        assert_eq!(log_range(0.0, f64::INFINITY), (SMALLEST_LOG, LARGEST));
+        assert_eq!(log_range(0.0, f64::INFINITY), (LARGEST / LARGEST_LOG_RATIO, LARGEST));
+        let (a, b) = log_range(1e-300, 1e300);
+        assert!(b / a <= LARGEST_LOG_RATIO * (1.0 + 1e-12), "{a} {b}");
     }
 
     /// Issue #29: `topography --spacing 1e300` gave the PSD plot a log range from 0 or to ∞,
