@@ -45,14 +45,16 @@ fn show(value: f64) -> String {
 /// stays a normal number), else an error naming `key` and the value. An rms height of
 /// 1e300 overflowed the generated surface and failed later with a message about another key.
 pub(crate) fn usable_positive(key: &str, value: f64) -> Result<f64> {
-    if value > 0.0 && usable(value) {
-        Ok(value)
-    } else {
-        bail!(
-            "{key} must be > 0 with a magnitude in 1e-150..1e150, got {}",
-            show(value)
-        )
+    if !(value.is_finite() && value > 0.0) {
+        bail!("{key} must be > 0, got {value}");
     }
+    if !usable(value) {
+        bail!(
+            "{key} = {} lies outside the magnitudes 1e-150..1e150 the solver can use: bring it to commensurate units",
+            show(value)
+        );
+    }
+    Ok(value)
 }
 
 /// Whether `value` is finite, non-zero and of a magnitude the solver can use.

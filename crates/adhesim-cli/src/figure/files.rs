@@ -44,3 +44,40 @@ where
         .with_context(|| format!("cannot encode {}", path.display()))?;
     write_file(path, bytes.get_ref())
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::figure::{Drawing, Figure, Mark, Panel, Series, PALETTE};
+    use plotters::prelude::*;
+
+    /// The checked writes give the bytes plotters' and image's own file writers gave, so the
+    /// figures of valid runs are unchanged.
+    #[test]
+    fn checked_writes_give_the_bytes_of_the_file_backends() {
+        let dir = tempfile::tempdir().unwrap();
+        let panel = Panel::new("t", "x", "y").with([Series::new(
+            "a",
+            PALETTE[0],
+            Mark::LinePoints,
+            vec![(0.0, 1.0), (1.0, 3.0), (2.0, 2.0)],
+        )]);
+        let figure = Figure::stacked(vec![panel]);
+        figure.save(dir.path(), "new", (300, 200)).unwrap();
+        crate::figure::register_font().unwrap();
+        figure
+            .draw(&SVGBackend::new(&dir.path().join("old.svg"), (300, 200)).into_drawing_area())
+            .unwrap();
+        figure
+            .draw(&BitMapBackend::new(&dir.path().join("old.png"), (300, 200)).into_drawing_area())
+            .unwrap();
+        for extension in ["svg", "png"] {
+            let read = |stem: &str| std::fs::read(dir.path().join(format!("{stem}.{extension}"))).unwrap();
+            assert_eq!(read("new"), read("old"), "{extension}");
+        }
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names.len(), 4, "no temporary file is left: {names:?}");
+    }
+}
