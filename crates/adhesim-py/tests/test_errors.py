@@ -151,3 +151,31 @@ def test_issue29_arguments_are_checked_by_name(operator):
         adhesim.fit.jkr_work_of_adhesion(radius, force, 1.0, 1.0)
     with pytest.raises(ValueError, match=r"y must hold finite numbers"):
         adhesim.fit.power_law(np.array([1.0, 2.0]), np.array([1.0, np.inf]))
+
+
+def test_issue29_hostile_object_sizes_raise_python_exceptions(monkeypatch):
+    """A fixed-seed fuzz of the objects' sizes: every combination of hostile n and size
+    either builds (and its arrays fit) or raises a Python exception; a panic or an abort
+    would end the interpreter, not raise."""
+    monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", str(1 << 30))
+    rng = np.random.default_rng(29)
+    counts = [0, 1, 2, 3, 64, 100_000, 2**31 - 1, 2**31, 2**32, 2**62, -1]
+    sizes = [1.0, 1e-310, 1e-300, 1e300, 0.0, -1.0, float("nan"), float("inf")]
+    for _ in range(200):
+        n = int(rng.choice(counts))
+        size = float(rng.choice(sizes))
+        boundary = "periodic" if rng.random() < 0.3 else "free"
+        try:
+            grid = adhesim.Grid(n, size, boundary)
+        except (ValueError, OverflowError):
+            continue
+        for make in (
+            lambda: grid.coordinates(),
+            lambda: adhesim.ContactState(grid),
+            lambda: adhesim.HalfSpace(grid, adhesim.Material(1.0)),
+            lambda: adhesim.geometry.sphere(grid, 1.0),
+        ):
+            try:
+                make()
+            except (ValueError, MemoryError):
+                pass
