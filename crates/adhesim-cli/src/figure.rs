@@ -496,8 +496,7 @@ pub fn save_svg_png(dir: &Path, name: &str, size: (u32, u32), drawing: &impl Dra
     let png = format!("{name}.png");
     let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
     drawing.draw(&BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
-    let image = image::RgbImage::from_raw(size.0, size.1, pixels).ok_or_else(|| anyhow!("{png}: image buffer size"))?;
-    files::save_image(&image, &dir.join(&png))?;
+    files::save_figure_png(pixels, size, &dir.join(&png))?;
     Ok([svg, png])
 }
 

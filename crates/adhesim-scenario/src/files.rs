@@ -44,10 +44,11 @@ fn special_file_kind(_: &std::fs::FileType) -> &'static str {
     "not a file"
 }
 
-/// The text of the regular file `path`; errors name `what` and the path.
+/// The text of the regular file `path`; errors name `what` and the path
+/// (`cannot read scenario PATH: No such file or directory`).
 pub fn read_input_text(path: &Path, what: &str) -> Result<String> {
     check_regular_file(path, what)?;
-    std::fs::read_to_string(path).with_context(|| format!("{what}: cannot read {}", path.display()))
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))
 }
 
 #[cfg(all(test, unix))]

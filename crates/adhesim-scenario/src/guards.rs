@@ -422,7 +422,7 @@ impl ScenarioFile {
                 String::new()
             };
             bail!(
-                "grid.n = {} needs about {}{each} of memory, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
+                "grid.n = {} needs about {}{each}, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
                 self.grid.n,
                 gibibytes(need),
             );

@@ -25,9 +25,21 @@ impl std::fmt::Display for MemoryLimit {
     }
 }
 
-/// `1.5 GiB`.
+/// `1.5 GiB` (the unit of the grid guard's messages).
 pub fn gibibytes(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+}
+
+/// `1.5 GiB`, `12.0 MiB` below a GiB, `900 bytes` below a MiB (an object's arrays, a
+/// frame, a reference curve: often far below a GiB).
+fn bytes_text(bytes: u64) -> String {
+    if bytes >= 1 << 30 {
+        format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
+    } else if bytes >= 1 << 20 {
+        format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64)
+    } else {
+        format!("{bytes} bytes")
+    }
 }
 
 /// The texts of the system files the limits come from (`None`: not there).
@@ -175,8 +187,12 @@ pub fn memory_available() -> Result<Option<MemoryLimit>> {
 /// Refuses, naming `what` and both sizes, an allocation of `bytes` beyond `limit`.
 pub fn check_allocation(what: &str, bytes: u128, limit: &MemoryLimit) -> Result<()> {
     if bytes > u128::from(limit.bytes) {
-        let need = u64::try_from(bytes).map_or_else(|_| format!("{bytes} bytes"), gibibytes);
-        bail!("{what} needs about {need} of memory, more than the {limit}");
+        let need = u64::try_from(bytes).map_or_else(|_| format!("{bytes} bytes"), bytes_text);
+        bail!(
+            "{what} would need about {need} of memory, more than the {} of memory available ({})",
+            bytes_text(limit.bytes),
+            limit.source
+        );
     }
     Ok(())
 }

@@ -176,7 +176,10 @@ fn read_study(args: &StudyArgs) -> Result<(StudyFile, String)> {
 fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
     let study_dir = args.study.parent().unwrap_or(Path::new("."));
     let base_path = study_dir.join(&study.base);
-    let base_text = scenario::read_input_text(&base_path, &format!("base = {}", study.base.display()))?;
+    let base_text = scenario::read_input_text(
+        &base_path,
+        &format!("the base scenario (base = {})", study.base.display()),
+    )?;
     let base_dir = base_path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let mut table = scenario::parse_toml(&base_text, &base_path.display().to_string())?;
     scenario::apply_overrides(&mut table, &study.set).context("set")?;

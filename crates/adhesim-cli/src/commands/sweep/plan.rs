@@ -333,7 +333,7 @@ fn base_scenario(sweep: &toml::Table, origin: &str, sweep_dir: &Path) -> Result<
     Ok(match (sweep.get("base"), sweep.get("scenario")) {
         (Some(toml::Value::String(file)), None) => {
             let base_path = sweep_dir.join(file);
-            let text = scenario::read_input_text(&base_path, &format!("base = \"{file}\""))?;
+            let text = scenario::read_input_text(&base_path, &format!("the base scenario (base = \"{file}\")"))?;
             let table = scenario::parse_toml(&text, &base_path.display().to_string())?;
             (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
         }
