@@ -4,7 +4,7 @@
 //! Each solver keeps a reference to its `HalfSpace` and copies the heights into a buffer
 //! it owns (reused from call to call), then releases the GIL for the solve.
 
-use crate::convert::{count, finite, non_negative, positive, read_field, solve_error};
+use crate::convert::{count, finite, positive, read_field, solve_error};
 use crate::objects::{ContactState, HalfSpace};
 use adhesim::{Boundary, Control};
 use numpy::PyArray1;

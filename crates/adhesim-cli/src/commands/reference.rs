@@ -61,10 +61,16 @@ fn samples(low: f64, high: f64, points: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Receives the rows of a curve one at a time.
+type RowSink<'a> = dyn FnMut(&[f64]) -> Result<()> + 'a;
+
+/// Generates the rows of a curve into a [`RowSink`].
+type Rows = Box<dyn Fn(&mut RowSink) -> Result<()>>;
+
 /// A closed-form curve: its columns and a generator of its rows.
 struct Curve {
     header: &'static [&'static str],
-    rows: Box<dyn Fn(&mut dyn FnMut(&[f64]) -> Result<()>) -> Result<()>>,
+    rows: Rows,
 }
 
 /// The curve `args` asks for, its inputs checked.
