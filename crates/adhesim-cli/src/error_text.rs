@@ -1,13 +1,14 @@
 //! Errors as one line of text for the terminal and for a batch case's `error.txt`.
 
 /// An error and its causes on one line, `a: b: c`, leaving out a cause whose text the line
-/// already ends with: errors whose message includes their source (thiserror's `{source}`,
-/// as in `adhesim::ProtocolError::Solve`) would otherwise show it twice with `{:#}`.
+/// already holds: errors whose message includes their source (thiserror's `{source}`, as in
+/// `adhesim::ProtocolError::Solve`, or the image decoders' errors) would otherwise show it
+/// twice with `{:#}`.
 pub fn error_line(chain: anyhow::Chain) -> String {
     let mut line = String::new();
     for cause in chain {
         let text = cause.to_string();
-        if line.ends_with(&text) {
+        if line.contains(&text) {
             continue;
         }
         if !line.is_empty() {

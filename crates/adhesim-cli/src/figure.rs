@@ -18,6 +18,9 @@ use plotters::style::FontStyle;
 use std::path::Path;
 use std::sync::OnceLock;
 
+mod axes;
+pub mod files;
+
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 /// The family name the bundled font is registered under.
 const FAMILY: &str = "sans-serif";
@@ -206,13 +209,21 @@ impl Panel {
         self
     }
 
+    /// The axis ranges, made drawable by [`axes`] (clamped where absurd).
     fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let ranged = || self.series.iter().filter(|s| !s.clipped).flat_map(|s| s.points.iter());
         let x = self.x_range.unwrap_or_else(|| padded_range(ranged().map(|p| p.0)));
         let y = self
             .y_range
             .unwrap_or_else(|| padded_range(ranged().map(|p| p.1).chain(self.include_y.iter().copied())));
-        (x, y)
+        let drawable = |(low, high): (f64, f64), log: bool| {
+            if log {
+                axes::log_range(low, high)
+            } else {
+                axes::linear_range(low, high)
+            }
+        };
+        (drawable(x, self.log_x), drawable(y, self.log_y))
     }
 }
 
@@ -497,13 +508,18 @@ pub trait Drawing {
 }
 
 /// Writes `dir/NAME.svg` and `dir/NAME.png` of `size` pixels (`dir` exists); returns the
-/// two file names.
+/// two file names. Both are drawn in memory and written by [`files::write_file`] (checked
+/// through the last byte, renamed into place).
 pub fn save_svg_png(dir: &Path, name: &str, size: (u32, u32), drawing: &impl Drawing) -> Result<[String; 2]> {
     register_font()?;
     let svg = format!("{name}.svg");
-    drawing.draw(&SVGBackend::new(&dir.join(&svg), size).into_drawing_area())?;
+    let mut text = String::new();
+    drawing.draw(&SVGBackend::with_string(&mut text, size).into_drawing_area())?;
+    files::write_file(&dir.join(&svg), text.as_bytes())?;
     let png = format!("{name}.png");
-    drawing.draw(&BitMapBackend::new(&dir.join(&png), size).into_drawing_area())?;
+    let mut pixels = vec![0u8; size.0 as usize * size.1 as usize * 3];
+    drawing.draw(&BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area())?;
+    files::save_figure_png(pixels, size, &dir.join(&png))?;
     Ok([svg, png])
 }
 

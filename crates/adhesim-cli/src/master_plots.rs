@@ -250,10 +250,8 @@ fn contact_shapes(path: &Path, cases: &[(String, PathBuf)]) -> Result<bool> {
         }
         root.present().map_err(plot_error)?;
     }
-    image::RgbImage::from_raw(width, height, buffer)
-        .ok_or_else(|| anyhow!("image buffer size"))?
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    let image = image::RgbImage::from_raw(width, height, buffer).ok_or_else(|| anyhow!("image buffer size"))?;
+    crate::figure::files::save_image(&image, path)?;
     Ok(true)
 }
 

@@ -356,9 +356,8 @@ pub fn write_contact_map(path: &Path, grid: &Grid, contact: &[bool], previous: &
     }
     let legend = [(STAYING, "in contact"), (ATTACHED, "attached"), (DETACHED, "detached")];
     let pixels_per_length = scale as f64 / grid.element_size();
-    crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    let keyed = crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?;
+    crate::figure::files::save_image(&keyed, path)
 }
 
 fn write_field(path: &Path, n: usize, values: &[f64]) -> Result<()> {

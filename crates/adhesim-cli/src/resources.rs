@@ -1,37 +1,16 @@
 //! Resource guards of the command line (`docs/reliability.md`, "Scenario inputs and
 //! resources"): the memory available to a run and the thread count.
 
-/// Environment variable that states the memory available in bytes, instead of
-/// `/proc/meminfo` (a container whose limit /proc does not show; tests).
-pub const MEMORY_VARIABLE: &str = "ADHESIM_MEMORY_AVAILABLE";
+pub use adhesim_scenario::memory::{check_allocation, MemoryLimit};
 
-/// The memory available in bytes: [`MEMORY_VARIABLE`] where set, else `MemAvailable` of
-/// `/proc/meminfo`; `None` where neither is there (not Linux): then no memory guard applies.
-pub fn available_memory() -> anyhow::Result<Option<u64>> {
-    if let Ok(value) = std::env::var(MEMORY_VARIABLE) {
-        return match value.trim().parse::<u64>() {
-            Ok(bytes) => Ok(Some(bytes)),
-            Err(_) => anyhow::bail!("{MEMORY_VARIABLE} must be a number of bytes, got `{value}`"),
-        };
-    }
-    Ok(std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|text| parse_mem_available(&text)))
-}
-
-/// The `MemAvailable:   123456 kB` line of a `/proc/meminfo` text, in bytes.
-fn parse_mem_available(text: &str) -> Option<u64> {
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kilobytes: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    kilobytes.checked_mul(1024)
-}
-
-/// The memory limit for a run: `None` (no check) with `--allow-large`.
-pub fn memory_limit(allow_large: bool) -> anyhow::Result<Option<u64>> {
+/// The memory limit for a run, the smallest of RLIMIT_AS, the cgroup's limit and
+/// `MemAvailable` (`adhesim_scenario::memory_available`): `None` (no check) with
+/// `--allow-large`.
+pub fn memory_limit(allow_large: bool) -> anyhow::Result<Option<MemoryLimit>> {
     if allow_large {
         Ok(None)
     } else {
-        available_memory()
+        adhesim_scenario::memory_available()
     }
 }
 
@@ -57,14 +36,6 @@ pub fn clamp_threads(requested: usize) -> anyhow::Result<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn mem_available_is_read_in_bytes() {
-        let text = "MemTotal:       16314264 kB\nMemFree:         1000000 kB\nMemAvailable:    8000000 kB\n";
-        assert_eq!(parse_mem_available(text), Some(8_000_000 * 1024));
-        assert_eq!(parse_mem_available("MemTotal: 1 kB\n"), None);
-        assert_eq!(parse_mem_available("MemAvailable: lots kB\n"), None);
-    }
 
     #[test]
     fn thread_counts_are_clamped_to_the_cores() {

@@ -180,7 +180,6 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
         (AXIS, "indenter axis"),
     ];
     let pixels_per_length = scale as f64 / delta;
-    crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    let keyed = crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?;
+    crate::figure::files::save_image(&keyed, path)
 }

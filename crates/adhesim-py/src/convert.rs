@@ -161,3 +161,34 @@ pub fn read_vector(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
         .map_err(|e| PyValueError::new_err(format!("{name}: {e}")))?;
     Ok(readonly.as_array().iter().copied().collect())
 }
+
+/// `MemoryError` where `bytes` (what `what` would allocate) exceed the memory this process
+/// may use: the smallest of RLIMIT_AS, the cgroup's limit and `MemAvailable`, or
+/// `ADHESIM_MEMORY_AVAILABLE` (`adhesim_scenario::memory_available`). Without it a grid of
+/// 10⁵ elements per side aborted the interpreter on allocation.
+pub fn fits_in_memory(what: &str, bytes: u128) -> PyResult<()> {
+    let limit = adhesim_scenario::memory_available().map_err(value_error)?;
+    match limit {
+        Some(limit) => adhesim_scenario::memory::check_allocation(what, bytes, &limit)
+            .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string())),
+        None => Ok(()),
+    }
+}
+
+/// Elements of `grid`, N², as u128 (sizes in bytes are computed without overflow).
+pub fn elements(grid: &adhesim::Grid) -> u128 {
+    let n = grid.n() as u128;
+    n * n
+}
+
+/// Bytes of a half-space operator and the solvers on it, an upper estimate as the scenario
+/// crate's `memory_estimate`: three complex half spectra and two real buffers on the padded
+/// grid (2N per side free, N periodic) and 32 f64 fields of N².
+pub fn half_space_bytes(grid: &adhesim::Grid) -> u128 {
+    let n = grid.n() as u128;
+    let padded = match grid.boundary() {
+        adhesim::Boundary::Free => 2 * n,
+        adhesim::Boundary::Periodic => n,
+    };
+    3 * padded * (padded / 2 + 1) * 16 + 2 * padded * padded * 8 + 32 * n * n * 8
+}

@@ -1,6 +1,6 @@
 //! Grid, material, the elastic half-space operator and the contact state.
 
-use crate::convert::{count, field, positive, read_field, value_error};
+use crate::convert::{count, elements, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
 use adhesim::{Boundary, ElasticOperator, Profile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -78,9 +78,14 @@ impl Grid {
     }
 
     /// Centre coordinates of the columns (x) or rows (y): a 1-D array (j − n//2)·Δ.
-    fn coordinates<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+    fn coordinates<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        // The values and numpy's copy.
+        fits_in_memory(
+            &format!("{}.coordinates()", self.__repr__()),
+            self.inner.n() as u128 * 16,
+        )?;
         let values: Vec<f64> = (0..self.inner.n()).map(|j| self.inner.coordinate(j)).collect();
-        PyArray1::from_vec(py, values)
+        Ok(PyArray1::from_vec(py, values))
     }
 
     fn __repr__(&self) -> String {
@@ -167,15 +172,19 @@ pub struct HalfSpace {
 #[pymethods]
 impl HalfSpace {
     #[new]
-    fn new(py: Python<'_>, grid: Grid, material: Material) -> Self {
+    fn new(py: Python<'_>, grid: Grid, material: Material) -> PyResult<Self> {
+        fits_in_memory(
+            &format!("HalfSpace({}) and its solvers", grid.__repr__()),
+            half_space_bytes(&grid.inner),
+        )?;
         let inner = py.detach(|| adhesim::HalfSpace::new(grid.inner, material.inner));
-        Self {
+        Ok(Self {
             inner,
             grid: grid.inner,
             material: material.inner,
             scratch: Vec::with_capacity(grid.inner.len()),
             output: vec![0.0; grid.inner.len()],
-        }
+        })
     }
 
     /// Surface displacement u = K p (length units) of a pressure field.
@@ -284,8 +293,13 @@ impl ContactState {
 #[pymethods]
 impl ContactState {
     #[new]
-    fn new(grid: Grid) -> Self {
-        Self::fresh(grid.inner)
+    fn new(grid: Grid) -> PyResult<Self> {
+        // Pressure, displacement, contact and the recorded heights, with numpy's copies.
+        fits_in_memory(
+            &format!("ContactState({})", grid.__repr__()),
+            elements(&grid.inner) * 40,
+        )?;
+        Ok(Self::fresh(grid.inner))
     }
 
     /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n).
@@ -389,6 +403,10 @@ impl ContactState {
 #[pyfunction]
 pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let sphere = adhesim::Sphere::new(radius).map_err(value_error)?;
+    fits_in_memory(
+        &format!("sphere_heights({})", grid.__repr__()),
+        elements(&grid.inner) * 16,
+    )?;
     field(py, &sphere.heights(&grid.inner), grid.inner.n())
 }
 
@@ -397,5 +415,9 @@ pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult
 #[pyfunction]
 pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let punch = adhesim::FlatPunch::new(radius).map_err(value_error)?;
+    fits_in_memory(
+        &format!("flat_punch_heights({})", grid.__repr__()),
+        elements(&grid.inner) * 16,
+    )?;
     field(py, &punch.heights(&grid.inner), grid.inner.n())
 }

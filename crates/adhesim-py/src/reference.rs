@@ -166,6 +166,15 @@ fn pairs(x: &Bound<'_, PyAny>, x_name: &str, y: &Bound<'_, PyAny>, y_name: &str)
             y.len()
         )));
     }
+    // A NaN or inf point would make the fitted value NaN, or be dropped in silence.
+    for (name, values) in [(x_name, &x), (y_name, &y)] {
+        if let Some(index) = values.iter().position(|v| !v.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "{name} must hold finite numbers, got {} at index {index}",
+                values[index]
+            )));
+        }
+    }
     Ok(x.into_iter().zip(y).collect())
 }
 

@@ -63,16 +63,23 @@ impl Observer for PythonObserver {
 }
 
 /// Reads, overrides and validates a scenario, refusing before any allocation one whose
-/// memory estimate exceeds `available_memory` bytes; errors become `ValueError` with the
-/// scenario crate's message (it names the key and the value, or the file).
+/// memory estimate exceeds the memory this process may use (where `check_memory`: the
+/// smallest of RLIMIT_AS, the cgroup's limit and `MemAvailable`, or
+/// `ADHESIM_MEMORY_AVAILABLE`); errors become `ValueError` with the scenario crate's
+/// message (it names the key and the value, or the file).
 fn load(
     text: &str,
     origin: &str,
     base: &std::path::Path,
     overrides: &[String],
-    available_memory: Option<u64>,
+    check_memory: bool,
 ) -> PyResult<ValidScenario> {
-    adhesim_scenario::load_within(text, origin, base, overrides, available_memory).map_err(|e| {
+    let limit = if check_memory {
+        adhesim_scenario::memory_available().map_err(|e| PyValueError::new_err(format!("{e:#}")))?
+    } else {
+        None
+    };
+    adhesim_scenario::load_within(text, origin, base, overrides, limit.as_ref()).map_err(|e| {
         let hint = if e.to_string().contains("of memory available") {
             " (refused before allocating; pass allow_large=True to run anyway)"
         } else {
@@ -84,13 +91,13 @@ fn load(
 
 /// Runs a scenario given as TOML text (see `adhesim.run`, which prepares the arguments).
 ///
-/// `available_memory` (bytes, `None`: no check) refuses a scenario whose memory estimate
-/// exceeds it, as the command line does. Returns a dict: `columns` (list of (name, numpy
+/// `check_memory` refuses a scenario whose memory estimate exceeds the memory available,
+/// as the command line does. Returns a dict: `columns` (list of (name, numpy
 /// array) in `curve.csv` order), `csv`
 /// (the text of `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of
 /// dicts of the selected steps' fields).
 #[pyfunction]
-#[pyo3(signature = (text, origin, base, overrides, progress = None, available_memory = None))]
+#[pyo3(signature = (text, origin, base, overrides, progress = None, check_memory = false))]
 pub fn _run_scenario<'py>(
     py: Python<'py>,
     text: &str,
@@ -98,9 +105,9 @@ pub fn _run_scenario<'py>(
     base: PathBuf,
     overrides: Vec<String>,
     progress: Option<Py<PyAny>>,
-    available_memory: Option<u64>,
+    check_memory: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let scenario = load(text, origin, &base, &overrides, available_memory)?;
+    let scenario = load(text, origin, &base, &overrides, check_memory)?;
     let start = Instant::now();
     let mut observer = PythonObserver {
         progress,

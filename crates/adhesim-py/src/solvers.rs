@@ -4,7 +4,7 @@
 //! Each solver keeps a reference to its `HalfSpace` and copies the heights into a buffer
 //! it owns (reused from call to call), then releases the GIL for the solve.
 
-use crate::convert::{count, finite, non_negative, positive, read_field, solve_error};
+use crate::convert::{count, finite, positive, read_field, solve_error};
 use crate::objects::{ContactState, HalfSpace};
 use adhesim::{Boundary, Control};
 use numpy::PyArray1;
@@ -367,9 +367,12 @@ pub fn adhesive_params(
     };
     let detachment = match worst_first_fraction {
         None => adhesim::Detachment::AllViolators,
-        Some(fraction) => adhesim::Detachment::WorstFirst {
-            fraction: non_negative("worst_first_fraction", fraction)?,
-        },
+        Some(fraction) if !(0.0..=1.0).contains(&fraction) => {
+            return Err(PyValueError::new_err(format!(
+                "worst_first_fraction must be a fraction in [0, 1] or None, got {fraction}"
+            )))
+        }
+        Some(fraction) => adhesim::Detachment::WorstFirst { fraction },
     };
     Ok(adhesim::AdhesiveParams {
         relative_tolerance: positive("relative_tolerance", relative_tolerance)?,

@@ -102,3 +102,80 @@ def test_non_convergence_is_reported(grid, operator):
 def test_gap_needs_a_solve(grid):
     with pytest.raises(ValueError, match=r"not been solved"):
         adhesim.ContactState(grid).gap
+
+
+# Issue #29: sizes the library cannot index or hold raised a Rust panic, aborted the
+# interpreter, or were accepted; each is now a Python exception naming what and why.
+def test_issue29_grids_beyond_the_index_range_or_floating_point_are_refused():
+    with pytest.raises(ValueError, match=r"too large"):
+        adhesim.Grid(2**32, 1.0)
+    with pytest.raises(ValueError, match=r"too large"):
+        adhesim.Grid(2**31, 1.0)
+    with pytest.raises(ValueError, match=r"outside the floating-point range"):
+        adhesim.Grid(32, 1e-310)
+
+
+def test_issue29_allocations_beyond_the_memory_available_raise_memory_error(monkeypatch):
+    monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", str(1 << 30))
+    big = adhesim.Grid(2**31 - 1, 1.0)
+    with pytest.raises(MemoryError, match=r"ContactState\(Grid\(n=2147483647.*of memory"):
+        adhesim.ContactState(big)
+    with pytest.raises(MemoryError, match=r"HalfSpace\(Grid\(n=100000.*ADHESIM_MEMORY_AVAILABLE"):
+        adhesim.HalfSpace(adhesim.Grid(100000, 1.0), adhesim.Material(1.0))
+    with pytest.raises(MemoryError, match=r"coordinates\(\)"):
+        adhesim.Grid(2**31 - 1, 1.0).coordinates()
+    # Small objects stay within the same limit.
+    assert adhesim.ContactState(adhesim.Grid(64, 1.0)).force == 0.0
+    assert len(adhesim.Grid(64, 1.0).coordinates()) == 64
+
+
+def test_issue29_arguments_are_checked_by_name(operator):
+    scenario = {
+        "grid": {"n": 16, "size": 0.5},
+        "material": {"contact_modulus": 1.0},
+        "adhesion": {"work_of_adhesion": 0.0},
+        "indenter": {"shape": "sphere", "radius": 1.0},
+        "protocol": {"kind": "indent_pulloff", "max_depth": 0.01, "depth_unit": "length", "steps": 2},
+    }
+    with pytest.raises(TypeError, match=r"overrides must be a mapping.*'grid.n=32'"):
+        adhesim.run(scenario, overrides="grid.n=32")
+    with pytest.raises(TypeError, match=r"vary must be a mapping.*\[1, 2\]"):
+        adhesim.sweep(scenario, vary=[1, 2])
+    with pytest.raises(TypeError, match=r"vary\['grid.n'\] must be a list of values"):
+        adhesim.sweep(scenario, vary={"grid.n": "32"})
+    with pytest.raises(ValueError, match=r"worst_first_fraction must be a fraction in \[0, 1\].*got 1.5"):
+        adhesim.AdhesiveSolver(operator, 0.01, worst_first_fraction=1.5)
+    radius = np.array([0.1, 0.2, np.nan])
+    force = np.array([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"contact_radius must hold finite numbers, got NaN at index 2"):
+        adhesim.fit.jkr_work_of_adhesion(radius, force, 1.0, 1.0)
+    with pytest.raises(ValueError, match=r"y must hold finite numbers"):
+        adhesim.fit.power_law(np.array([1.0, 2.0]), np.array([1.0, np.inf]))
+
+
+def test_issue29_hostile_object_sizes_raise_python_exceptions(monkeypatch):
+    """A fixed-seed fuzz of the objects' sizes: every combination of hostile n and size
+    either builds (and its arrays fit) or raises a Python exception; a panic or an abort
+    would end the interpreter, not raise."""
+    monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", str(1 << 30))
+    rng = np.random.default_rng(29)
+    counts = [0, 1, 2, 3, 64, 100_000, 2**31 - 1, 2**31, 2**32, 2**62, -1]
+    sizes = [1.0, 1e-310, 1e-300, 1e300, 0.0, -1.0, float("nan"), float("inf")]
+    for _ in range(200):
+        n = int(rng.choice(counts))
+        size = float(rng.choice(sizes))
+        boundary = "periodic" if rng.random() < 0.3 else "free"
+        try:
+            grid = adhesim.Grid(n, size, boundary)
+        except (ValueError, OverflowError):
+            continue
+        for make in (
+            lambda: grid.coordinates(),
+            lambda: adhesim.ContactState(grid),
+            lambda: adhesim.HalfSpace(grid, adhesim.Material(1.0)),
+            lambda: adhesim.geometry.sphere(grid, 1.0),
+        ):
+            try:
+                make()
+            except (ValueError, MemoryError):
+                pass

@@ -4,6 +4,7 @@
 //! memory a grid needs is estimated before anything of that size is allocated. Errors name
 //! the input keys responsible; resolution problems are warnings.
 
+use crate::memory::{gibibytes, MemoryLimit};
 use crate::model::*;
 use adhesim::{Grid, Indenter};
 use anyhow::{bail, Result};
@@ -38,6 +39,22 @@ fn show(value: f64) -> String {
     } else {
         format!("{value}")
     }
+}
+
+/// `value` if it is > 0 and of a magnitude the solver can use ([1e-150, 1e150]: its square
+/// stays a normal number), else an error naming `key` and the value. An rms height of
+/// 1e300 overflowed the generated surface and failed later with a message about another key.
+pub(crate) fn usable_positive(key: &str, value: f64) -> Result<f64> {
+    if !(value.is_finite() && value > 0.0) {
+        bail!("{key} must be > 0, got {value}");
+    }
+    if !usable(value) {
+        bail!(
+            "{key} = {} lies outside the magnitudes 1e-150..1e150 the solver can use: bring it to commensurate units",
+            show(value)
+        );
+    }
+    Ok(value)
 }
 
 /// Whether `value` is finite, non-zero and of a magnitude the solver can use.
@@ -126,6 +143,45 @@ impl ScenarioFile {
         Ok(())
     }
 
+    /// The heights of the indenter above its lowest point must span at most
+    /// [`SINGLE_PRECISION_MAGNITUDE`]: the solver's single-precision engines hold the gaps
+    /// and the pressures they imply. A sphere of radius 1e-300 (heights 1e298 at the grid's
+    /// edge) failed mid-run with "no stable contact set"; heights of 1e300 from a file or an
+    /// rms height of 1e30 likewise. The error names the keys that set the heights.
+    pub(crate) fn check_height_span(&self, heights: &[f64], start_depth: f64) -> Result<()> {
+        let span = heights
+            .iter()
+            .filter(|h| h.is_finite())
+            .map(|h| h - start_depth)
+            .fold(0.0, f64::max);
+        if span <= SINGLE_PRECISION_MAGNITUDE {
+            return Ok(());
+        }
+        let mut keys = vec![format!("indenter.shape = \"{}\"", self.indenter.shape().name())];
+        if let Some(radius) = self.indenter.radius() {
+            keys.push(format!("indenter.radius = {}", show(radius)));
+        }
+        if let IndenterSection::Topography { file, .. } = &self.indenter {
+            keys.push(format!("indenter.file = {}", file.display()));
+        }
+        if let Some(amplitude) = self.indenter.waviness().map(|(amplitude, _)| amplitude) {
+            keys.push(format!("indenter.amplitude = {}", show(amplitude)));
+        }
+        if let Some(roughness) = &self.roughness {
+            match (&roughness.file, roughness.rms_height, roughness.rms_slope) {
+                (Some(file), _, _) => keys.push(format!("roughness.file = {}", file.display())),
+                (None, Some(h), _) => keys.push(format!("roughness.rms_height = {}", show(h))),
+                (None, None, Some(s)) => keys.push(format!("roughness.rms_slope = {}", show(s))),
+                _ => {}
+            }
+        }
+        keys.push(format!("grid.size = {}", show(self.grid.size)));
+        bail!(
+            "the indenter's heights span {span:e} above its lowest point on the grid, beyond the {SINGLE_PRECISION_MAGNITUDE:e} the solver's single-precision FFTs hold; it comes from {}: bring these inputs to commensurate units",
+            keys.join(", ")
+        )
+    }
+
     /// The depth step of a run: finite, positive, and large enough to move the depth at all
     /// (`start + step != start` in floating point); the implied approach steps at most
     /// [`MAX_STEPS`]. `keys` names the inputs that set the step.
@@ -204,7 +260,16 @@ pub(crate) fn check_field(section: &AdhesionSection, grid: &Grid, gamma: &[f64])
         return Ok(());
     };
     let (x, y) = grid.centre(bad);
-    let keys = match &section.field {
+    bail!(
+        "the work of adhesion must be finite and >= 0 on every element, got {:e} at x = {x:e}, y = {y:e} (element {bad}); it comes from {}",
+        gamma[bad],
+        field_keys(section)
+    )
+}
+
+/// The keys that set γ per element, with their values.
+fn field_keys(section: &AdhesionSection) -> String {
+    match &section.field {
         Some(FieldSpec::Quadratic {
             ratio_edge_to_centre,
             half_length,
@@ -221,11 +286,34 @@ pub(crate) fn check_field(section: &AdhesionSection, grid: &Grid, gamma: &[f64])
             show(section.work_of_adhesion)
         ),
         None => format!("adhesion.work_of_adhesion = {}", show(section.work_of_adhesion)),
-    };
-    bail!(
-        "the work of adhesion must be finite and >= 0 on every element, got {:e} at x = {x:e}, y = {y:e} (element {bad}); it comes from {keys}",
-        gamma[bad]
-    )
+    }
+}
+
+impl ScenarioFile {
+    /// The critical stress σ_c of every adhesive element (γ > 0) within the range of the
+    /// solver's single-precision engines ([`SINGLE_PRECISION_MAGNITUDE`]), as
+    /// [`ScenarioFile::check_derived`] checks that of γ0: a field or map reaching γ = 1e296
+    /// overflowed mid-run, one reaching 1e-303 ended in a "did not converge" whose residual
+    /// (3.9e-34) was below its tolerance (the single-precision search directions underflow).
+    pub(crate) fn check_field_stresses(&self, grid: &Grid, gamma: &[f64]) -> Result<()> {
+        let contact_modulus = contact_modulus(&self.material);
+        let delta = grid.element_size();
+        let window = 1.0 / SINGLE_PRECISION_MAGNITUDE..=SINGLE_PRECISION_MAGNITUDE;
+        let stress = |g: f64| adhesim::solver::critical_stress(contact_modulus, g, delta);
+        let Some(bad) = gamma.iter().position(|&g| g > 0.0 && !window.contains(&stress(g))) else {
+            return Ok(());
+        };
+        let (x, y) = grid.centre(bad);
+        bail!(
+            "the critical stress σ_c = {:e} of the element at x = {x:e}, y = {y:e} (element {bad}, γ = {:e}) is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {}, {}, grid.size = {}, grid.n = {}: bring these inputs to commensurate values",
+            stress(gamma[bad]),
+            gamma[bad],
+            field_keys(&self.adhesion),
+            material_keys(&self.material),
+            show(self.grid.size),
+            self.grid.n
+        )
+    }
 }
 
 /// Resolution warnings: fewer than [`MIN_ELEMENTS_PER_FEATURE`] elements per waviness
@@ -262,6 +350,38 @@ pub(crate) fn resolution_warnings(grid: &Grid, indenter: &Indenter, derived: &De
         .collect()
 }
 
+/// Elements across the contact radius at the largest depth below which a sphere's
+/// indentation gets a warning: with fewer, the contact is one or a few elements and the
+/// force was measured 63× to 1981× the Hertz force (issue #29), without a word.
+pub const MIN_CONTACT_RADIUS_ELEMENTS: f64 = 2.0;
+
+/// The warning for a sphere (smooth, wavy or rough) whose contact radius at the largest
+/// depth spans fewer than [`MIN_CONTACT_RADIUS_ELEMENTS`] elements: the JKR radius of the
+/// stable branch with adhesion, the Hertz radius √(R·d) without, at the depth below first
+/// contact. `None` for other indenters, translations and resolved contacts.
+pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
+    let sphere = matches!(
+        valid.file.indenter,
+        IndenterSection::Sphere { .. } | IndenterSection::WavySphere { .. } | IndenterSection::RoughSphere { .. }
+    );
+    if !sphere || valid.translation.is_some() {
+        return None;
+    }
+    let radius = valid.file.indenter.radius()?;
+    let depth = valid.max_depth - valid.start_depth;
+    let (a, model) = match &valid.jkr {
+        Some(jkr) if valid.gamma0 > 0.0 => (jkr.radius_at_depth(depth)?, "JKR"),
+        _ => ((radius * depth).sqrt(), "Hertz"),
+    };
+    let delta = valid.grid.element_size();
+    let elements = a / delta;
+    (elements < MIN_CONTACT_RADIUS_ELEMENTS).then(|| {
+        format!(
+            "the {model} contact radius at the largest depth (protocol.max_depth) is a = {a:.4e}, {elements:.2} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_CONTACT_RADIUS_ELEMENTS}: the grid does not resolve the contact and its forces can be many times the closed form; raise grid.n, lower grid.size or press deeper"
+        )
+    })
+}
+
 /// Bytes a run on an `n`×`n` grid needs, an upper estimate: the FFT buffers of the elastic
 /// operator on the padded grid (2n per side for a free boundary, n for a periodic one: the
 /// kernel spectrum and two work spectra of complex f64, two real padded buffers) and about
@@ -277,11 +397,6 @@ pub fn memory_estimate(n: u64, boundary: BoundaryName) -> u64 {
     3 * spectrum + 2 * real + 32 * n * n * 8
 }
 
-/// `1.5 GiB`.
-fn gibibytes(bytes: u64) -> String {
-    format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
-}
-
 impl ScenarioFile {
     /// [`memory_estimate`] of this scenario's grid (0 for a `grid.n` that validation refuses).
     pub fn memory_estimate(&self) -> u64 {
@@ -292,12 +407,12 @@ impl ScenarioFile {
         }
     }
 
-    /// Refuses, naming `grid.n` and the estimate, a scenario of which `runs` concurrent runs
-    /// need more than `available` bytes. Call it before [`ScenarioFile::validate`], which
-    /// allocates the grid's fields.
-    pub fn check_memory(&self, available: u64, runs: u64) -> Result<()> {
+    /// Refuses, naming `grid.n`, the estimate and the limit, a scenario of which `runs`
+    /// concurrent runs need more than `limit` allows. Call it before
+    /// [`ScenarioFile::validate`], which allocates the grid's fields.
+    pub fn check_memory(&self, limit: &MemoryLimit, runs: u64) -> Result<()> {
         let need = self.memory_estimate().saturating_mul(runs.max(1));
-        if need > available {
+        if need > limit.bytes {
             let each = if runs > 1 {
                 format!(
                     " ({runs} concurrent runs of {} each)",
@@ -307,10 +422,9 @@ impl ScenarioFile {
                 String::new()
             };
             bail!(
-                "grid.n = {} needs about {}{each}, more than the {} of memory available: lower grid.n (or override this check where the estimate is known to be too high)",
+                "grid.n = {} needs about {}{each}, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
                 self.grid.n,
                 gibibytes(need),
-                gibibytes(available)
             );
         }
         Ok(())

@@ -150,13 +150,18 @@ fn the_memory_estimate_grows_with_the_grid() {
 fn a_grid_beyond_the_available_memory_is_refused_before_allocation() {
     let big = MINIMAL.replace("n = 16", "n = 8192");
     // 1 GiB available: n = 8192 needs tens of GiB.
-    let error = load_within(&big, "test", Path::new("."), &[], Some(1 << 30))
+    let limit = MemoryLimit {
+        bytes: 1 << 30,
+        source: "a test's limit".to_string(),
+    };
+    let error = load_within(&big, "test", Path::new("."), &[], Some(&limit))
         .err()
         .unwrap();
     let error = format!("{error:#}");
     assert!(error.contains("grid.n = 8192 needs about"), "{error}");
     assert!(error.contains("1.0 GiB of memory available"), "{error}");
-    assert!(load_within(MINIMAL, "test", Path::new("."), &[], Some(1 << 30)).is_ok());
+    assert!(error.contains("a test's limit"), "{error}");
+    assert!(load_within(MINIMAL, "test", Path::new("."), &[], Some(&limit)).is_ok());
 }
 
 /// Issue #16: E*, γ0 beyond about 1e±30 passed validation and failed mid-run with "solver

@@ -39,7 +39,9 @@
 
 mod cohesive;
 mod curve;
+mod files;
 mod guards;
+pub mod memory;
 mod model;
 mod parse;
 mod pipeline;
@@ -51,7 +53,9 @@ mod translation;
 mod validate;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
+pub use files::{check_regular_file, read_input_text};
 pub use guards::{memory_estimate, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
+pub use memory::{memory_available, MemoryLimit};
 pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
@@ -111,19 +115,20 @@ pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Resu
 }
 
 /// [`load`], refusing before the grid's fields are allocated a scenario whose
-/// [`memory_estimate`] exceeds `available_memory` bytes (`None`: no limit).
+/// [`memory_estimate`] exceeds `available_memory` (`None`: no limit; [`memory_available`]
+/// reads the limits of this process).
 pub fn load_within(
     text: &str,
     origin: &str,
     base: &Path,
     overrides: &[String],
-    available_memory: Option<u64>,
+    available_memory: Option<&MemoryLimit>,
 ) -> Result<ValidScenario> {
     let mut table = parse_toml(text, origin)?;
     apply_overrides(&mut table, overrides)?;
     let file = deserialize(&table)?;
-    if let Some(available) = available_memory {
-        file.check_memory(available, 1)?;
+    if let Some(limit) = available_memory {
+        file.check_memory(limit, 1)?;
     }
     file.validate(base)
 }

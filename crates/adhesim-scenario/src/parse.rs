@@ -86,7 +86,7 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
         }
         T::deserialize(value.clone())
             .map(Some)
-            .map_err(|e| section_error(name, value, e))
+            .map_err(|e| section_error::<T>(name, value, e))
     }
     let grid = section(table, "grid", true)?.expect("required");
     let material = section(table, "material", true)?.expect("required");
@@ -111,7 +111,11 @@ pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
 }
 
 /// Turns a serde error inside section `name` into a message with the dotted key.
-fn section_error(name: &str, value: &toml::Value, error: toml::de::Error) -> anyhow::Error {
+fn section_error<T: serde::de::DeserializeOwned>(
+    name: &str,
+    value: &toml::Value,
+    error: toml::de::Error,
+) -> anyhow::Error {
     let message = error.message().trim().to_string();
     if let Some(rest) = message.strip_prefix("unknown field `") {
         if let Some((field, tail)) = rest.split_once('`') {
@@ -153,18 +157,15 @@ fn section_error(name: &str, value: &toml::Value, error: toml::de::Error) -> any
             };
         }
     }
-    // A type or value error: name the key whose value the message quotes or whose type
-    // it names (serde writes `invalid type: string "a", expected f64`).
+    // A type or value error: name the key at fault. serde's message quotes the value, not
+    // the key, and a tagged section is read from a buffer that keeps no path, so the key
+    // is found by trial: the first key without which the error changes.
     let mut leaves = Vec::new();
     collect_leaves(name, value, &mut leaves);
-    let quoted = leaves.iter().find(|(_, item)| {
-        let shown = item.to_string();
-        let raw = item
-            .as_str()
-            .map(|s| format!("`{s}`"))
-            .unwrap_or_else(|| format!("`{shown}`"));
-        message.contains(&raw) || message.contains(&format!(" {shown},"))
-    });
+    if let Some((key, item)) = key_at_fault::<T>(name, value, &message, &leaves) {
+        return anyhow!("{key} = {item}: {message}");
+    }
+    let quoted = leaves.iter().find(|(_, item)| quotes(&message, item));
     let typed = || {
         leaves
             .iter()
@@ -174,6 +175,88 @@ fn section_error(name: &str, value: &toml::Value, error: toml::de::Error) -> any
         return anyhow!("{key} = {item}: {message}");
     }
     anyhow!("[{name}]: {message}")
+}
+
+/// The key of section `name` that `message` (serde's, for `value`) is about: a key whose
+/// removal changes the message (serde reads the keys in order and reports a missing key
+/// only after the last, so removing a key other than the one at fault leaves the message
+/// as it is; a required key of an earlier nested table changes it too, so a key whose
+/// value the message quotes or whose type it names is preferred). Tried in this order:
+/// the values, then the tables holding them (a table given where a number belongs), then
+/// the tags (`indenter.shape`, `protocol.kind`, `adhesion.field.kind`) where the message
+/// is about a variant, then any key.
+fn key_at_fault<T: serde::de::DeserializeOwned>(
+    name: &str,
+    value: &toml::Value,
+    message: &str,
+    leaves: &[(String, toml::Value)],
+) -> Option<(String, toml::Value)> {
+    let is_tag = |key: &str| key.ends_with(".shape") || key.ends_with(".kind");
+    let mut tables = Vec::new();
+    collect_tables(name, value, &mut tables);
+    let values: Vec<&(String, toml::Value)> = leaves
+        .iter()
+        .filter(|(key, _)| !is_tag(key))
+        .chain(tables.iter().rev())
+        .collect();
+    let tags: Vec<&(String, toml::Value)> = leaves.iter().filter(|(key, _)| is_tag(key)).collect();
+    let changes_without = |key: &str| {
+        let mut trial = value.clone();
+        let path: Vec<&str> = key[name.len() + 1..].split('.').collect();
+        let Some((last, parents)) = path.split_last() else {
+            return false;
+        };
+        let mut table = trial.as_table_mut();
+        for part in parents {
+            table = table.and_then(|t| t.get_mut(*part)).and_then(toml::Value::as_table_mut);
+        }
+        if table.and_then(|t| t.remove(*last)).is_none() {
+            return false;
+        }
+        match T::deserialize(trial) {
+            Ok(_) => true,
+            Err(e) => e.message().trim() != message,
+        }
+    };
+    let named = |item: &toml::Value| {
+        quotes(message, item) || message.contains(&format!("invalid type: {}", serde_kind(item.type_str())))
+    };
+    // A tag's removal changes every message: it is at fault only where the message is
+    // about a variant and quotes the tag's value or names its type, or where no other key is.
+    let about_variant = message.contains("variant");
+    let found = values
+        .iter()
+        .find(|(key, item)| named(item) && changes_without(key))
+        .or_else(|| {
+            tags.iter()
+                .filter(|(_, item)| about_variant && named(item))
+                .find(|(key, _)| changes_without(key))
+        })
+        .or_else(|| values.iter().chain(&tags).find(|(key, _)| changes_without(key)));
+    found.map(|&candidate| candidate.clone())
+}
+
+/// Whether serde's `message` quotes `item` (`string "a"`, `` floating point `0.5` ``).
+fn quotes(message: &str, item: &toml::Value) -> bool {
+    let shown = item.to_string();
+    let raw = item
+        .as_str()
+        .map(|s| format!("`{s}`"))
+        .unwrap_or_else(|| format!("`{shown}`"));
+    message.contains(&raw) || message.contains(&format!(" {shown},"))
+}
+
+/// Dotted keys and values of every table below `value` (not `value` itself), outer first.
+fn collect_tables(prefix: &str, value: &toml::Value, out: &mut Vec<(String, toml::Value)>) {
+    if let Some(table) = value.as_table() {
+        for (key, item) in table {
+            if item.is_table() {
+                let key = format!("{prefix}.{key}");
+                out.push((key.clone(), item.clone()));
+                collect_tables(&key, item, out);
+            }
+        }
+    }
 }
 
 /// `indenter.shape = "sphere"` for the `[indenter]` and `protocol.kind = "roll"` for the
@@ -233,6 +316,7 @@ pub fn read_npy_2d(path: &Path, key: &str) -> Result<(Vec<f64>, usize, usize)> {
         height_unit: Some("m".to_string()),
         ..ReadOptions::default()
     };
+    crate::files::check_regular_file(path, key)?;
     let map = read_topography(path, &options).map_err(|e| anyhow!("{key}: {e}"))?;
     refuse_invalid_points(&map, path, key)?;
     Ok((map.heights, map.ny, map.nx))
@@ -267,6 +351,7 @@ pub fn read_height_map(path: &Path, spacing: Option<f64>) -> Result<(Vec<f64>, u
         ..ReadOptions::default()
     };
     let key = "indenter.file";
+    crate::files::check_regular_file(path, key)?;
     let map = read_topography(path, &options).map_err(|e| {
         let hint = if spacing.is_none() {
             " (files that record no spacing need indenter.spacing)"

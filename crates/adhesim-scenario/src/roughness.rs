@@ -3,6 +3,7 @@
 //! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
 //! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
 
+use crate::guards::usable_positive;
 use crate::model::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection, RoughnessStatistics};
 use crate::validate::positive;
 use adhesim::surface::{fill_invalid_harmonic, statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
@@ -122,8 +123,8 @@ fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f
         bail!("{name}.hurst must lie in (0, 1], got {hurst}");
     }
     let target = match (s.rms_height, s.rms_slope) {
-        (Some(h), None) => RmsTarget::Height(positive(&format!("{name}.rms_height"), h)?),
-        (None, Some(slope)) => RmsTarget::Slope(positive(&format!("{name}.rms_slope"), slope)?),
+        (Some(h), None) => RmsTarget::Height(usable_positive(&format!("{name}.rms_height"), h)?),
+        (None, Some(slope)) => RmsTarget::Slope(usable_positive(&format!("{name}.rms_slope"), slope)?),
         (Some(h), Some(slope)) => bail!(
             "give exactly one of {name}.rms_height and {name}.rms_slope, got both ({name}.rms_height = {h}, {name}.rms_slope = {slope})"
         ),
@@ -187,6 +188,7 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
         lateral_unit: s.lateral_unit.clone(),
     };
     let path = base.join(file);
+    crate::files::check_regular_file(&path, &key)?;
     let mut map = read_topography(&path, &options).map_err(|e| read_error(&e, name, &key))?;
     if let Some(given) = spacing {
         if (given - map.dx).abs() > 1e-9 * given || (given - map.dy).abs() > 1e-9 * given {

@@ -73,11 +73,13 @@ impl ScenarioFile {
         let material = validate_material(&self.material)?;
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
         let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base, roughness.as_ref())?;
+        self.check_height_span(&heights, start_depth)?;
         let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
         derived.maugis_parameter = self.validate_law(&indenter, material.contact_modulus())?;
         self.check_derived(&derived)?;
+        self.check_field_stresses(&grid, &gamma)?;
         let mut warnings = resolution_warnings(&grid, &indenter, &derived);
         warnings.extend(zone_resolution_warning(
             &self.adhesion,
@@ -110,6 +112,7 @@ impl ScenarioFile {
         } else {
             self.validate_indentation(inputs, heights, start_depth)?
         };
+        warnings.extend(crate::guards::contact_radius_warning(&valid));
         valid.warnings = warnings;
         valid.roughness = roughness.map(|map| map.heights);
         Ok(valid)

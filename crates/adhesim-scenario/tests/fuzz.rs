@@ -13,7 +13,7 @@
 //! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s and
 //! `FUZZ_ERRORS=1` the errors of runs (with `-- --nocapture`).
 
-use adhesim_scenario::{load_within, run, RunResults, ValidScenario};
+use adhesim_scenario::{load_within, run, MemoryLimit, RunResults, ValidScenario};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestCaseError, TestRunner};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -135,7 +135,7 @@ const KEYS: [&str; 67] = [
 ];
 
 /// Values of every class a hostile user tries, as `--set` text.
-const VALUES: [&str; 45] = [
+const VALUES: [&str; 52] = [
     "nan",
     "+nan",
     "inf",
@@ -181,6 +181,15 @@ const VALUES: [&str; 45] = [
     "\"filtered\"",
     "\"slide\"",
     "{ hurst = 0.5, rms_slope = 0.1, seed = 2 }",
+    // Issue #29: file keys naming a folder or a device (a device read without end, a
+    // folder failed with a bare "Is a directory"), per-element γ beyond the solver's range.
+    "\".\"",
+    "\"/dev/zero\"",
+    "{ kind = \"map\", file = \".\" }",
+    "{ kind = \"map\", file = \"/dev/zero\" }",
+    "{ kind = \"quadratic\", ratio_edge_to_centre = 1e296 }",
+    "{ kind = \"quadratic\", ratio_edge_to_centre = 1e-303 }",
+    "{ file = \".\", spacing = 0.01 }",
 ];
 
 /// One override: a key (sometimes garbage) and a value (sometimes garbage or a scaled
@@ -342,7 +351,16 @@ fn check_case(
     all.extend(overrides);
     let base = scenarios_dir();
     let loaded = catch_unwind(AssertUnwindSafe(|| {
-        load_within(&text, origin, &base, &all, Some(AVAILABLE_MEMORY))
+        load_within(
+            &text,
+            origin,
+            &base,
+            &all,
+            Some(&MemoryLimit {
+                bytes: AVAILABLE_MEMORY,
+                source: "the fuzz test's limit".to_string(),
+            }),
+        )
     }))
     .map_err(|_| TestCaseError::fail(format!("load panicked: {origin} --set {all:?}")))?;
     match loaded {

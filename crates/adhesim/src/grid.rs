@@ -26,6 +26,21 @@ pub enum GridError {
     /// The side length must be finite and positive.
     #[error("grid size must be finite and > 0, got {0}")]
     InvalidSize(f64),
+    /// The element count (of the padded grid of a free boundary, 2N per side) must fit in
+    /// memory indices: beyond it N² wraps around.
+    #[error("grid of n = {0} elements per side is too large: its element count (2n per side padded for a free boundary) overflows the index range")]
+    TooManyElements(usize),
+    /// The element side and area must be normal floating-point numbers, or every stress
+    /// and force of the grid is lost to underflow or overflow.
+    #[error("grid element size size/n = {size:e}/{n} has an area Δ² = {area:e} outside the floating-point range: choose a grid size commensurate with n")]
+    ElementOutOfRange {
+        /// The side length L.
+        size: f64,
+        /// Elements per side N.
+        n: usize,
+        /// The element area (L/N)², 0 or ∞ when out of range.
+        area: f64,
+    },
 }
 
 /// An N×N grid of square elements of side `size / n`.
@@ -44,6 +59,18 @@ impl Grid {
         }
         if !(size.is_finite() && size > 0.0) {
             return Err(GridError::InvalidSize(size));
+        }
+        let padded = match boundary {
+            Boundary::Free => n.checked_mul(2),
+            Boundary::Periodic => Some(n),
+        };
+        if padded.and_then(|side| side.checked_mul(side)).is_none() {
+            return Err(GridError::TooManyElements(n));
+        }
+        let delta = size / n as f64;
+        let area = delta * delta;
+        if !(delta.is_normal() && area.is_normal()) {
+            return Err(GridError::ElementOutOfRange { size, n, area });
         }
         Ok(Self { n, size, boundary })
     }
@@ -138,6 +165,24 @@ mod tests {
     fn rejects_bad_grids() {
         assert_eq!(Grid::new(1, 1.0, Boundary::Free), Err(GridError::TooFewElements(1)));
         assert!(Grid::new(4, 0.0, Boundary::Free).is_err());
+        // Issue #29: n² wrapped to 0 elements at n = 2³²; a subnormal element was accepted.
+        assert_eq!(
+            Grid::new(1 << 32, 1.0, Boundary::Periodic),
+            Err(GridError::TooManyElements(1 << 32))
+        );
+        assert_eq!(
+            Grid::new(1 << 31, 1.0, Boundary::Free),
+            Err(GridError::TooManyElements(1 << 31))
+        );
+        assert!(Grid::new((1 << 31) - 1, 1.0, Boundary::Free).is_ok());
+        assert!(matches!(
+            Grid::new(32, 1e-310, Boundary::Free),
+            Err(GridError::ElementOutOfRange { .. })
+        ));
+        assert!(matches!(
+            Grid::new(32, 1e300, Boundary::Free),
+            Err(GridError::ElementOutOfRange { .. })
+        ));
         assert!(Grid::new(4, f64::NAN, Boundary::Free).is_err());
     }
 

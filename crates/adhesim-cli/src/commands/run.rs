@@ -72,7 +72,7 @@ pub fn run_default() -> Result<()> {
         "built-in scenario fig1.toml",
         Path::new("."),
         &[],
-        resources::memory_limit(false)?,
+        resources::memory_limit(false)?.as_ref(),
     )?;
     folder::prepare_run_folder(&out, false).context(
         "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
@@ -83,14 +83,14 @@ pub fn run_default() -> Result<()> {
 /// `adhesim run SCENARIO`.
 pub fn command(args: &RunArgs) -> Result<()> {
     let path = &args.scenario;
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scenario {}", path.display()))?;
+    let text = adhesim_scenario::read_input_text(path, "scenario")?;
     let base = path.parent().unwrap_or(Path::new("."));
     let scenario = adhesim_scenario::load_within(
         &text,
         &path.display().to_string(),
         base,
         &args.options.set,
-        resources::memory_limit(args.options.allow_large)?,
+        resources::memory_limit(args.options.allow_large)?.as_ref(),
     )
     .map_err(|e| {
         if e.to_string().contains("of memory available") {

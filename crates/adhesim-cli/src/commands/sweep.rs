@@ -107,15 +107,15 @@ pub fn command(args: &SweepArgs) -> Result<()> {
         Some(t) => resources::clamp_threads(t)?,
         None => (cores / jobs).max(1),
     };
-    if let Some(available) = resources::memory_limit(args.allow_large)? {
-        check_memory(&plan, jobs, available)?;
+    if let Some(limit) = resources::memory_limit(args.allow_large)? {
+        check_memory(&plan, jobs, &limit)?;
     }
     execute(&plan, &out, shard, jobs, threads, args.quiet, args.retry_failed)
 }
 
 /// Refuses a plan whose largest grid, run `jobs` at a time, needs more memory than is
 /// available (before any case allocates its FFT buffers).
-fn check_memory(plan: &Plan, jobs: usize, available: u64) -> Result<()> {
+fn check_memory(plan: &Plan, jobs: usize, limit: &resources::MemoryLimit) -> Result<()> {
     let mut largest: Option<(u64, &Case, adhesim_scenario::ScenarioFile)> = None;
     for case in &plan.cases {
         let table = adhesim_scenario::parse_toml(&case.scenario, &case.id)?;
@@ -127,7 +127,7 @@ fn check_memory(plan: &Plan, jobs: usize, available: u64) -> Result<()> {
     }
     let Some((_, case, file)) = largest else { return Ok(()) };
     let runs = jobs.min(plan.cases.len()) as u64;
-    file.check_memory(available, runs)
+    file.check_memory(limit, runs)
         .with_context(|| format!("case {} (pass --allow-large to run anyway, or lower --jobs)", case.id))
 }
 

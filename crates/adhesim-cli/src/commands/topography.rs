@@ -249,6 +249,7 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
         height_unit: args.height_unit.clone(),
         lateral_unit: args.lateral_unit.clone(),
     };
+    adhesim_scenario::check_regular_file(path, "topography file")?;
     let mut map = read_topography(path, &options).map_err(|e| {
         let hint = match &e {
             TopographyError::MissingOption { option, .. } => {
@@ -265,6 +266,19 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             map.nx, map.ny, map.dx, map.dy, map.height_unit, map.lateral_unit
         ),
     ];
+    // Issue #29: heights near 1e300 gave an rms height of inf (exit 0) and a PSD plot of
+    // unbounded ticks; beyond 1e150 their squares overflow.
+    let valid = |i: usize| map.mask.as_ref().is_none_or(|m| m[i]);
+    if let Some(h) = (0..map.heights.len())
+        .filter(|&i| valid(i))
+        .map(|i| map.heights[i])
+        .find(|h| h.abs() > 1e150 && h.is_finite())
+    {
+        bail!(
+            "{}: a height of {h:e} m lies beyond 1e150 m, where its square (the rms height, the PSD) overflows: check the file's height unit (--height-unit)",
+            path.display()
+        );
+    }
     if args.detrend {
         let (_, slope_x, slope_y) = map.detrend_mean_plane().map_err(|e| anyhow!("{e}"))?;
         source.push(format!(
@@ -287,9 +301,10 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
 /// A scenario's `[roughness]` (or `[substrate_roughness]`) as sampled on its grid.
 fn from_scenario(args: &TopographyArgs) -> Result<Surface> {
     let path = &args.input;
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scenario {}", path.display()))?;
+    let text = adhesim_scenario::read_input_text(path, "scenario")?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let scenario = adhesim_scenario::load(&text, &path.display().to_string(), base, &[])?;
+    let limit = crate::resources::memory_limit(false)?;
+    let scenario = adhesim_scenario::load_within(&text, &path.display().to_string(), base, &[], limit.as_ref())?;
     let (name, section, heights) = if args.substrate {
         let heights = scenario
             .translation
@@ -500,8 +515,7 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
         colour: &diverging,
     };
     // The scale bar along x: a pixel is `scale` per map point of width dx.
-    crate::map_key::with_key(&image, scale as f64 / surface.dx, legend)?
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    let keyed = crate::map_key::with_key(&image, scale as f64 / surface.dx, legend)?;
+    crate::figure::files::save_image(&keyed, path)?;
     Ok("heights.png".into())
 }

@@ -178,7 +178,7 @@ def _run_scenario(
     base: str,
     overrides: List[str],
     progress: Optional[Callable[[int, int], object]] = None,
-    available_memory: Optional[int] = None,
+    check_memory: bool = False,
 ) -> Dict[str, Any]: ...
 class _RunFields:
     def write_npz(self, path: str) -> None: ...

@@ -136,8 +136,19 @@ def _scenario_text(scenario: ScenarioLike):
     )
 
 
+def _check_overrides(overrides: Any) -> None:
+    """TypeError naming ``overrides`` unless it is None or a mapping (a string such as
+    ``"grid.n=32"`` failed inside ``dict()`` with a message naming no argument)."""
+    if overrides is not None and not isinstance(overrides, Mapping):
+        raise TypeError(
+            f"overrides must be a mapping of dotted keys to values like {{'grid.n': 32}}, "
+            f"got {type(overrides).__name__} {overrides!r}"
+        )
+
+
 def _override_items(overrides: Optional[Mapping[str, Any]], keywords: Mapping[str, Any]):
     """``KEY=VALUE`` items as ``--set`` takes them (VALUE as TOML text)."""
+    _check_overrides(overrides)
     merged = dict(overrides or {})
     merged.update(keywords)
     items = []
@@ -171,26 +182,6 @@ def _progress_callback(progress):
     if callable(progress):
         return progress, None
     raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
-
-
-def _available_memory():
-    """Bytes of memory available to a run, as the command line's guard reads them:
-    ADHESIM_MEMORY_AVAILABLE where set, else MemAvailable of /proc/meminfo; None (no
-    check) where neither is there."""
-    value = os.environ.get("ADHESIM_MEMORY_AVAILABLE")
-    if value is not None:
-        try:
-            return int(value.strip())
-        except ValueError:
-            raise ValueError(f"ADHESIM_MEMORY_AVAILABLE must be a number of bytes, got {value!r}") from None
-    try:
-        with open("/proc/meminfo") as meminfo:
-            for line in meminfo:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return None
 
 
 # The run folder's marker and outputs, as the command line keeps them
@@ -291,7 +282,8 @@ def run(
             retraction steps); or True for a tqdm bar when tqdm is installed.
         overrides: dict of dotted keys to values, like ``--set`` (``{"grid.n": 64}``).
         allow_large: run even when the memory estimate of the grid exceeds the memory
-            available (``MemAvailable`` of /proc/meminfo, or ``ADHESIM_MEMORY_AVAILABLE``),
+            available (the smallest of RLIMIT_AS, the cgroup's ``memory.max`` and
+            ``MemAvailable``, or ``ADHESIM_MEMORY_AVAILABLE``),
             like the command line's ``--allow-large``; by default such a scenario is
             refused with a ValueError before anything is allocated.
         force: write into a non-empty ``out`` that is not a run folder (its outputs are
@@ -318,8 +310,7 @@ def run(
         _check_run_folder(Path(out), force)
     callback, bar = _progress_callback(progress)
     try:
-        memory = None if allow_large else _available_memory()
-        raw = _adhesim._run_scenario(text, origin, str(base), items, callback, memory)
+        raw = _adhesim._run_scenario(text, origin, str(base), items, callback, not allow_large)
     finally:
         if bar is not None:
             bar.close()
@@ -467,16 +458,30 @@ def sweep(
         ``adhesim.sweep_table(results, "results.gamma_pulloff")`` makes columns of them.
 
     Raises:
+        TypeError: ``vary`` not a mapping of dotted keys to lists, ``overrides`` not a
+            mapping.
         ValueError: an empty ``vary``, a bad ``jobs`` or a bad case (the message names the
             case); the first failing case stops the sweep.
         KeyboardInterrupt: Ctrl-C; with ``jobs > 1`` the running cases stop at their
             next step.
     """
+    if not isinstance(vary, Mapping):
+        raise TypeError(
+            "vary must be a mapping of dotted keys to lists of values like "
+            f"{{'grid.n': [32, 64]}}, got {type(vary).__name__} {vary!r}"
+        )
     if not vary:
         raise ValueError("vary must name at least one key with a list of values")
     if not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"jobs must be an integer >= 1, got {jobs!r}")
+    _check_overrides(overrides)
     keys = list(vary)
+    for key in keys:
+        # A string is iterable but is one value, not a list of them.
+        if not isinstance(key, str):
+            raise TypeError(f"vary keys must be dotted keys (str) like 'grid.n', got {key!r}")
+        if isinstance(vary[key], (str, bytes, Mapping)) or not isinstance(vary[key], Iterable):
+            raise TypeError(f"vary[{key!r}] must be a list of values, got {type(vary[key]).__name__} {vary[key]!r}")
     values = [list(vary[key]) for key in keys]
     for key, options in zip(keys, values):
         if not options:

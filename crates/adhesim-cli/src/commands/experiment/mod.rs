@@ -83,6 +83,26 @@ struct FrameRow {
     phase: Phase,
 }
 
+/// Bytes one frame in analysis holds per pixel, an upper estimate: the decoded image (u16
+/// and a luma copy), the grey levels, the illumination-corrected and smoothed f32 copies,
+/// the masks and the change map.
+const FRAME_BYTES_PER_PIXEL: u128 = 32;
+
+/// Refuses frames whose analysis, one frame per worker thread at a time, needs more memory
+/// than the limits allow (`resources::memory_limit`).
+fn check_frame_memory(size: &FrameSize) -> Result<()> {
+    let Some(limit) = crate::resources::memory_limit(false)? else {
+        return Ok(());
+    };
+    let threads = rayon::current_num_threads() as u128;
+    let bytes = size.width as u128 * size.height as u128 * FRAME_BYTES_PER_PIXEL * threads;
+    let what = format!(
+        "frames.path: frames of {}×{} pixels ({} analysed at a time)",
+        size.width, size.height, threads
+    );
+    crate::resources::check_allocation(&what, bytes, &limit)
+}
+
 fn ratio(num: Option<f64>, den: f64) -> Option<f64> {
     let v = num? / den;
     (den > 0.0 && v.is_finite()).then_some(v)
@@ -158,6 +178,7 @@ pub fn run_experiment(spec_path: &Path, out: Option<&Path>, quiet: bool) -> Resu
     }
     let size = FrameSize::of_first(&files)
         .with_context(|| format!("no readable frames in {}", settings.frames_dir.display()))?;
+    check_frame_memory(&size)?;
     let segmenter = build_segmenter(&settings, &files, &size)?;
     let track = settings
         .indenter
@@ -273,7 +294,13 @@ impl FrameContext<'_> {
                 Ok(match row? {
                     Ok(r) => Some(r),
                     Err(e) => {
-                        bar.suspend(|| eprintln!("skipping unreadable frame {}: {e:#}", name_of(path)));
+                        bar.suspend(|| {
+                            eprintln!(
+                                "skipping unreadable frame {}: {}",
+                                name_of(path),
+                                crate::error_text::error_line(e.chain())
+                            )
+                        });
                         None
                     }
                 })
@@ -433,8 +460,7 @@ fn write_change_maps(
                 }
             }
             let name = format!("change_{:05}_vs_{:05}.png", rb.frame, ra.frame);
-            rgb.save(dir.join(&name))
-                .with_context(|| format!("cannot write changes/{name}"))?;
+            crate::figure::files::save_image(&rgb, &dir.join(&name))?;
             Ok(())
         })
         .collect();

@@ -351,7 +351,7 @@ fn check_fit_values(fits: &FitsSpec) -> Result<()> {
 
 /// Reads and validates a spec; relative paths are resolved against the spec's folder.
 pub fn load(spec_path: &Path) -> Result<Settings> {
-    let text = std::fs::read_to_string(spec_path).with_context(|| format!("cannot read {}", spec_path.display()))?;
+    let text = adhesim_scenario::read_input_text(spec_path, "experiment spec")?;
     let spec: Spec = toml::from_str(&text).with_context(|| format!("invalid spec {}", spec_path.display()))?;
     let base = spec_path.parent().unwrap_or(Path::new("."));
     let resolve = |p: &Path| if p.is_absolute() { p.to_path_buf() } else { base.join(p) };
@@ -425,11 +425,28 @@ pub fn load(spec_path: &Path) -> Result<Settings> {
         f.path = resolve(&f.path);
         f
     });
+    // A folder or FIFO named as a file failed with a bare "Is a directory" or hung.
+    let timestamps = spec.frames.timestamps.as_deref().map(resolve);
+    let files = [
+        ("forces.path", forces.as_ref().map(|f| &f.path)),
+        ("fits.power_law.path", fits.power_law.as_ref().map(|p| &p.path)),
+        ("frames.timestamps", timestamps.as_ref()),
+        (
+            "contact.background",
+            match &background {
+                BackgroundChoice::File(path) => Some(path),
+                _ => None,
+            },
+        ),
+    ];
+    for (key, path) in files.into_iter().filter_map(|(key, path)| Some((key, path?))) {
+        adhesim_scenario::check_regular_file(path, key)?;
+    }
     Ok(Settings {
         frames_dir: resolve(&spec.frames.path),
         pixel_size,
         rate,
-        timestamps: spec.frames.timestamps.as_deref().map(resolve),
+        timestamps,
         forces,
         polarity,
         threshold,

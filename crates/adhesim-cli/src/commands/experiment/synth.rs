@@ -2,6 +2,7 @@
 //! known contact, from `adhesim_experiment::synthetic`.
 
 use super::progress;
+use crate::figure::files::save_image;
 use adhesim_experiment::synthetic::SyntheticSpec;
 use anyhow::{bail, Context, Result};
 use rayon::prelude::*;
@@ -99,13 +100,12 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
             let (w, h) = (spec.width as u32, spec.height as u32);
             let path = frames_dir.join(format!("frame_{k:05}.{ext}"));
             let result = if args.bits == 8 {
-                image::GrayImage::from_raw(w, h, frame.image.to_u8()).map(|b| b.save(&path))
+                image::GrayImage::from_raw(w, h, frame.image.to_u8()).map(|b| save_image(&b, &path))
             } else {
-                image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, frame.image.to_u16()).map(|b| b.save(&path))
+                image::ImageBuffer::<image::Luma<u16>, _>::from_raw(w, h, frame.image.to_u16())
+                    .map(|b| save_image(&b, &path))
             };
-            result
-                .context("image buffer size")?
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            result.context("image buffer size")??;
             bar.inc(1);
             Ok(frame.log)
         })

@@ -105,7 +105,11 @@ impl Default for NormalRun {
 fn build(table: &toml::Table, base_dir: &Path, changes: &[String]) -> Result<ValidScenario> {
     let mut table = table.clone();
     scenario::apply_overrides(&mut table, changes)?;
-    scenario::deserialize(&table)?.validate(base_dir)
+    let file = scenario::deserialize(&table)?;
+    if let Some(limit) = crate::resources::memory_limit(false)? {
+        file.check_memory(&limit, 1)?;
+    }
+    file.validate(base_dir)
 }
 
 /// The indent_pulloff case of a rolling study: the base with its protocol replaced.
@@ -134,8 +138,7 @@ struct StudyPlan {
 
 /// Reads the study file and checks its own keys.
 fn read_study(args: &StudyArgs) -> Result<(StudyFile, String)> {
-    let text = std::fs::read_to_string(&args.study)
-        .with_context(|| format!("cannot read study file {}", args.study.display()))?;
+    let text = scenario::read_input_text(&args.study, "study file")?;
     let origin = args.study.display().to_string();
     let study: StudyFile = toml::from_str(&text).map_err(|e| anyhow!("{origin}: {}", e.message().trim()))?;
     if study.kind != args.kind {
@@ -173,8 +176,10 @@ fn read_study(args: &StudyArgs) -> Result<(StudyFile, String)> {
 fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
     let study_dir = args.study.parent().unwrap_or(Path::new("."));
     let base_path = study_dir.join(&study.base);
-    let base_text =
-        std::fs::read_to_string(&base_path).with_context(|| format!("base = {}: cannot read", base_path.display()))?;
+    let base_text = scenario::read_input_text(
+        &base_path,
+        &format!("the base scenario (base = {})", study.base.display()),
+    )?;
     let base_dir = base_path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let mut table = scenario::parse_toml(&base_text, &base_path.display().to_string())?;
     scenario::apply_overrides(&mut table, &study.set).context("set")?;

@@ -198,7 +198,7 @@ struct Range {
 
 /// Reads the sweep file and builds the validated case list.
 pub fn load(path: &Path) -> Result<Plan> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read sweep file {}", path.display()))?;
+    let text = scenario::read_input_text(path, "sweep file")?;
     let origin = path.display().to_string();
     let sweep_dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let stem = path
@@ -333,8 +333,7 @@ fn base_scenario(sweep: &toml::Table, origin: &str, sweep_dir: &Path) -> Result<
     Ok(match (sweep.get("base"), sweep.get("scenario")) {
         (Some(toml::Value::String(file)), None) => {
             let base_path = sweep_dir.join(file);
-            let text = std::fs::read_to_string(&base_path)
-                .with_context(|| format!("base = \"{file}\": cannot read {}", base_path.display()))?;
+            let text = scenario::read_input_text(&base_path, &format!("the base scenario (base = \"{file}\")"))?;
             let table = scenario::parse_toml(&text, &base_path.display().to_string())?;
             (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
         }

@@ -1,0 +1,361 @@
+//! Issue #29, reliability second pass: the reproducers of the probe of 1,418 hostile inputs
+//! (`docs/reliability.md`, "Defects and tests"). Each one aborted, hung, named the wrong key
+//! or exited 0 with a wrong result before its fix.
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+mod common;
+use common::{adhesim, assert_fails_with, read_json, scenarios_dir, stderr, write, BIN};
+
+fn hertz() -> String {
+    scenarios_dir().join("hertz.toml").to_str().unwrap().to_string()
+}
+
+/// Runs `adhesim ARGS`, failing the test (and killing the process) after `limit`: a hang
+/// is a failure, not a stuck test suite.
+fn adhesim_within(args: &[&str], limit: Duration) -> Output {
+    let mut child = Command::new(BIN)
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().unwrap();
+            panic!("adhesim {args:?} still running after {limit:?}: it hangs");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// `prlimit --as=2000000000 adhesim run scenarios/hertz.toml --set grid.n=2500` aborted after
+/// 26 s: the guard read only MemAvailable. Now RLIMIT_AS (here set by the shell's
+/// `ulimit -v`, in KiB) is read too and the grid is refused before the run.
+#[test]
+fn an_address_space_limit_refuses_a_large_grid_before_the_run() {
+    let out = tempfile::tempdir().unwrap();
+    let command = format!(
+        "ulimit -v 1953125 && exec '{BIN}' run '{}' --set grid.n=2500 --out '{}' --quiet",
+        hertz(),
+        out.path().join("run").display()
+    );
+    let output = Command::new("sh")
+        .args(["-c", &command])
+        .env_remove("ADHESIM_MEMORY_AVAILABLE")
+        .output()
+        .unwrap();
+    assert_fails_with(&output, &["grid.n = 2500 needs about", "of memory", "RLIMIT_AS"]);
+    assert!(!out.path().join("run").join("curve.csv").exists());
+}
+
+/// A FIFO given as an input file blocked forever; a folder said only "Is a directory".
+#[cfg(unix)]
+#[test]
+fn inputs_that_are_not_regular_files_are_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("scenario.toml");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let fifo = fifo.to_str().unwrap();
+    let limit = Duration::from_secs(30);
+    let output = adhesim_within(&["run", fifo, "--out", dir.path().join("o").to_str().unwrap()], limit);
+    assert_fails_with(&output, &["scenario: ", "is a FIFO (named pipe), not a regular file"]);
+    let output = adhesim_within(&["sweep", fifo, "--out", dir.path().join("s").to_str().unwrap()], limit);
+    assert_fails_with(&output, &["sweep file: ", "is a FIFO"]);
+    let output = adhesim_within(&["topography", fifo, "--spacing", "1"], limit);
+    assert_fails_with(&output, &["is a FIFO"]);
+    let folder = dir.path().to_str().unwrap();
+    let output = adhesim_within(&["run", folder], limit);
+    assert_fails_with(&output, &["scenario: ", "is a folder, not a regular file"]);
+    // A height map named by a scenario key.
+    let scenario = std::fs::read_to_string(hertz()).unwrap().replace(
+        "shape = \"sphere\"\nradius = 1.0",
+        "shape = \"topography\"\nfile = \"scenario.toml\"\nspacing = 0.01",
+    );
+    let path = write(dir.path(), "map.toml", &scenario);
+    let output = adhesim_within(&["run", path.to_str().unwrap(), "--out", folder], limit);
+    assert_fails_with(&output, &["indenter.file: ", "is a FIFO"]);
+}
+
+/// An experiment's `forces.path` naming a folder said only "Is a directory".
+#[test]
+fn an_experiment_log_that_is_a_folder_is_named_with_its_key() {
+    let dir = tempfile::tempdir().unwrap();
+    common::synth_experiment(dir.path(), 3);
+    std::fs::remove_file(dir.path().join("log.csv")).unwrap();
+    std::fs::create_dir(dir.path().join("log.csv")).unwrap();
+    let spec = dir.path().join("experiment.toml");
+    let output = adhesim(&[
+        "experiment",
+        spec.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_fails_with(&output, &["forces.path: ", "log.csv is a folder, not a regular file"]);
+}
+
+/// `adhesim reference ... | head` printed "Broken pipe" and exited 1.
+#[test]
+fn reference_into_a_closed_pipe_ends_quietly() {
+    let mut child = Command::new(BIN)
+        .args(["reference", "hertz", "--points", "1000000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert_eq!(first.trim(), "a,d,force");
+    // The reader is dropped here: the pipe closes with most rows unwritten.
+    let output = child.wait_with_output().unwrap();
+    assert!(output.status.success(), "exit {:?}: {}", output.status, stderr(&output));
+    assert_eq!(stderr(&output), "");
+}
+
+/// `adhesim reference` printed inf and NaN rows where the closed forms overflow.
+#[test]
+fn reference_prints_no_non_finite_rows() {
+    let output = adhesim(&["reference", "hertz", "--radius", "1e300", "--max-radius", "1e300"]);
+    assert_fails_with(&output, &["leaves double precision", "d = inf", "--radius 1e300"]);
+    assert!(output.stdout.is_empty(), "nothing printed before the error");
+    let output = adhesim(&["reference", "jkr", "--radius", "1e-300", "--work-of-adhesion", "1e300"]);
+    assert_fails_with(
+        &output,
+        &["is not a usable number", "--radius 1e-300", "--work-of-adhesion 1e300"],
+    );
+}
+
+/// Type errors were blamed on another key whose value the message happened to quote.
+#[test]
+fn type_errors_name_the_key_the_user_wrote() {
+    let rough = scenarios_dir().join("rough_sphere.toml");
+    let punch = scenarios_dir().join("fig12_homogeneous.toml");
+    let ratio = scenarios_dir().join("fig12_ratio13.toml");
+    let hertz = hertz();
+    let cases: [(&Path, &str, &str); 7] = [
+        (
+            Path::new(&hertz),
+            "protocol.steps=0.01",
+            "protocol.steps = 0.01: invalid type",
+        ),
+        (
+            Path::new(&hertz),
+            "indenter.shape=nan",
+            "indenter.shape = nan: invalid type",
+        ),
+        (&rough, "roughness.seed=nan", "roughness.seed = nan: invalid type"),
+        (
+            &punch,
+            "indenter.semi_axes=[\"a\",\"b\"]",
+            "indenter.semi_axes = [\"a\", \"b\"]: invalid type",
+        ),
+        (
+            &punch,
+            "indenter.semi_axes=[1,\"a\"]",
+            "indenter.semi_axes = [1, \"a\"]: invalid type",
+        ),
+        (
+            &ratio,
+            "adhesion.work_of_adhesion=\"x\"",
+            "adhesion.work_of_adhesion = \"x\": invalid type",
+        ),
+        (
+            Path::new(&hertz),
+            "protocol.max_depth={a = 1}",
+            "protocol.max_depth = { a = 1 }: invalid type: map",
+        ),
+    ];
+    for (scenario, set, expected) in cases {
+        let output = adhesim(&["run", scenario.to_str().unwrap(), "--set", set]);
+        assert_fails_with(&output, &[expected]);
+    }
+}
+
+/// `topography any.npy --spacing 1e300` made the PSD plot's tick generation allocate without
+/// bound; heights near 1e300 gave an rms height of inf with exit 0.
+#[test]
+fn absurd_topography_spacings_and_heights_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let heights: Vec<f64> = (0..256).map(|k| ((k * 37 % 101) as f64 - 50.0) * 1e-3).collect();
+    let plain = dir.path().join("plain.npy");
+    std::fs::write(&plain, npy_bytes((16, 16), &heights)).unwrap();
+    let out = dir.path().join("out");
+    let limit = Duration::from_secs(60);
+    for spacing in ["1e300", "1e-300"] {
+        let args = [
+            "topography",
+            plain.to_str().unwrap(),
+            "--spacing",
+            spacing,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let output = adhesim_within(&args, limit);
+        assert_fails_with(&output, &["plain.npy: spacing", "outside the floating-point range"]);
+    }
+    let huge: Vec<f64> = heights.iter().map(|h| h * 1e303).collect();
+    let path = dir.path().join("huge.npy");
+    std::fs::write(&path, npy_bytes((16, 16), &huge)).unwrap();
+    let args = [
+        "topography",
+        path.to_str().unwrap(),
+        "--spacing",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    assert_fails_with(
+        &adhesim_within(&args, limit),
+        &["huge.npy: a height of", "beyond 1e150"],
+    );
+}
+
+/// A sphere whose contact radius stays under an element gave 63× to 1981× the Hertz force
+/// without a word; now a warning on stderr and in summary.json (Hertz and JKR).
+#[test]
+fn an_unresolved_contact_radius_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra) in [
+        ("hertz", "adhesion.work_of_adhesion=0"),
+        ("jkr", "adhesion.work_of_adhesion=1e-6"),
+    ] {
+        let out = dir.path().join(name);
+        let args = [
+            "run",
+            &hertz(),
+            "--set",
+            "protocol.max_depth=1e-5",
+            "--set",
+            "grid.n=16",
+            "--set",
+            extra,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
+        let output = adhesim(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(
+            stderr(&output).contains("contact radius at the largest depth"),
+            "{}",
+            stderr(&output)
+        );
+        let summary = read_json(&out.join("summary.json"));
+        let warnings = summary["warnings"].as_array().unwrap();
+        let expected = if name == "hertz" {
+            "the Hertz contact radius"
+        } else {
+            "the JKR contact radius"
+        };
+        assert!(
+            warnings.iter().any(|w| w.as_str().unwrap().contains(expected)),
+            "{warnings:?}"
+        );
+    }
+    // The shipped Hertz scenario resolves its contact (a = 21 elements): no such warning.
+    let output = adhesim(&[
+        "run",
+        &hertz(),
+        "--out",
+        dir.path().join("ok").to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        !stderr(&output).contains("contact radius at the largest depth"),
+        "{}",
+        stderr(&output)
+    );
+}
+
+/// A sphere of radius 1e-300 and an rms height of 1e300 failed mid-run or with a message
+/// about another key; now refused before the run, naming theirs.
+#[test]
+fn heights_beyond_the_solver_range_are_refused_naming_the_keys() {
+    let output = adhesim(&["run", &hertz(), "--set", "indenter.radius=1e-300"]);
+    assert_fails_with(&output, &["the indenter's heights span", "indenter.radius = 1e-300"]);
+    let rough = scenarios_dir().join("rough_sphere.toml");
+    for value in ["1e300", "1e-300"] {
+        let output = adhesim(&[
+            "run",
+            rough.to_str().unwrap(),
+            "--set",
+            &format!("roughness.rms_height={value}"),
+        ]);
+        let expected = format!("roughness.rms_height = {value} lies outside the magnitudes 1e-150..1e150");
+        assert_fails_with(&output, &[&expected]);
+    }
+}
+
+fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+        shape.0, shape.1
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for v in values {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}
+
+/// Runs `adhesim ARGS` with `ADHESIM_MEMORY_AVAILABLE` = `bytes`.
+fn adhesim_with_memory(args: &[&str], bytes: &str) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .env("ADHESIM_MEMORY_AVAILABLE", bytes)
+        .output()
+        .expect("binary runs")
+}
+
+/// The memory guard holds on every path that allocates by an input's size, not only `run`
+/// and `sweep`: a study's runs, `topography SCENARIO`, an experiment's frames and
+/// `reference --points`.
+#[test]
+fn every_command_checks_the_memory_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let study = common::repo().join("sweeps/fig7_rolling.toml");
+    let output = adhesim_with_memory(
+        &[
+            "study",
+            "rolling",
+            study.to_str().unwrap(),
+            "--out",
+            &out("study"),
+            "--quiet",
+        ],
+        "1000000",
+    );
+    assert_fails_with(&output, &["needs about", "ADHESIM_MEMORY_AVAILABLE = 1000000"]);
+    let rough = scenarios_dir().join("rough_sphere.toml");
+    let output = adhesim_with_memory(
+        &["topography", rough.to_str().unwrap(), "--out", &out("topo")],
+        "1000000",
+    );
+    assert_fails_with(&output, &["needs about", "of memory"]);
+    common::synth_experiment(dir.path(), 2);
+    let spec = dir.path().join("experiment.toml");
+    let output = adhesim_with_memory(&["experiment", spec.to_str().unwrap(), "--out", &out("exp")], "100000");
+    assert_fails_with(&output, &["frames.path: frames of 320×240 pixels", "of memory"]);
+    let output = adhesim_with_memory(&["reference", "hertz", "--points", "10000000"], "1000000");
+    assert_fails_with(
+        &output,
+        &["--points 10000000 would need about 76.3 MiB of memory", "1000000 bytes"],
+    );
+    // The same commands pass within an ordinary limit.
+    let output = adhesim_with_memory(&["reference", "hertz", "--points", "10"], "1000000");
+    assert!(output.status.success(), "{}", stderr(&output));
+}

@@ -1,0 +1,82 @@
+//! Input files must be regular files (`docs/reliability.md`, "Scenario inputs and
+//! resources"): opening a FIFO blocks until a writer comes, forever in a batch job; a
+//! device streams without end; a folder fails with a bare "Is a directory". Each is
+//! refused by name before it is opened.
+
+use anyhow::{bail, Context, Result};
+use std::path::Path;
+
+/// Refuses, naming `what` (a key, `scenario`, `sweep file`) and the path, a path that is
+/// not a regular file (symbolic links are followed). A missing file passes: the reader
+/// that opens it names it with the system's reason.
+pub fn check_regular_file(path: &Path, what: &str) -> Result<()> {
+    let Ok(metadata) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    let kind = metadata.file_type();
+    if kind.is_file() {
+        return Ok(());
+    }
+    let name = if kind.is_dir() {
+        "a folder"
+    } else {
+        special_file_kind(&kind)
+    };
+    bail!("{what}: {} is {name}, not a regular file", path.display())
+}
+
+#[cfg(unix)]
+fn special_file_kind(kind: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if kind.is_fifo() {
+        "a FIFO (named pipe)"
+    } else if kind.is_char_device() || kind.is_block_device() {
+        "a device"
+    } else if kind.is_socket() {
+        "a socket"
+    } else {
+        "not a file"
+    }
+}
+
+#[cfg(not(unix))]
+fn special_file_kind(_: &std::fs::FileType) -> &'static str {
+    "not a file"
+}
+
+/// The text of the regular file `path`; errors name `what` and the path
+/// (`cannot read scenario PATH: No such file or directory`).
+pub fn read_input_text(path: &Path, what: &str) -> Result<String> {
+    check_regular_file(path, what)?;
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {what} {}", path.display()))
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_fifos_and_devices_are_refused_by_name() {
+        let dir = std::env::temp_dir().join(format!("adhesim-files-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let error = read_input_text(&dir, "scenario").unwrap_err().to_string();
+        assert!(
+            error.starts_with("scenario: ") && error.contains("is a folder"),
+            "{error}"
+        );
+        let error = check_regular_file(Path::new("/dev/zero"), "indenter.file")
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("indenter.file: /dev/zero is a device"), "{error}");
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let error = read_input_text(&fifo, "forces.path").unwrap_err().to_string();
+            assert!(error.contains("is a FIFO"), "{error}");
+        }
+        let file = dir.join("a.toml");
+        std::fs::write(&file, "x = 1").unwrap();
+        assert_eq!(read_input_text(&file, "scenario").unwrap(), "x = 1");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
