@@ -194,6 +194,8 @@ fn absurd_topography_spacings_and_heights_are_refused() {
             plain.to_str().unwrap(),
             "--spacing",
             spacing,
+            "--height-unit",
+            "m",
             "--out",
             out.to_str().unwrap(),
         ];
@@ -208,6 +210,8 @@ fn absurd_topography_spacings_and_heights_are_refused() {
         path.to_str().unwrap(),
         "--spacing",
         "1",
+        "--height-unit",
+        "m",
         "--out",
         out.to_str().unwrap(),
     ];
