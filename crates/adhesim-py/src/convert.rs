@@ -75,10 +75,37 @@ pub fn count(name: &str, value: i64, minimum: usize) -> PyResult<usize> {
     }
 }
 
-/// Copies a float64 array of shape `(n, n)` into `buffer` in row-major order (row i = y,
-/// column j = x). Refuses other types and dtypes (`TypeError`) and other shapes
-/// (`ValueError`), naming the argument and the expected shape. `+inf` is allowed where
-/// `allow_infinity` (heights: no surface there); NaN and −inf never are.
+/// `value` as a float64 numpy array: itself where it is one, else `numpy.asarray(value,
+/// dtype=numpy.float64)` (numpy's array_like convention: float32, integers, nested lists),
+/// a `TypeError` naming `name` where that fails or would drop an imaginary part.
+pub fn as_float64<'py>(value: &Bound<'py, PyAny>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    let py = value.py();
+    if let Ok(untyped) = value.cast::<PyUntypedArray>() {
+        if untyped.dtype().is_equiv_to(&dtype::<f64>(py)) {
+            return Ok(value.clone());
+        }
+    }
+    let numpy = py.import("numpy")?;
+    let type_name = value.get_type().name()?;
+    if numpy.call_method1("iscomplexobj", (value,))?.is_truthy()? {
+        return Err(PyTypeError::new_err(format!(
+            "{name} must be real numbers (array_like of floats), got complex values in a {type_name}"
+        )));
+    }
+    let kwargs = pyo3::types::PyDict::new(py);
+    kwargs.set_item("dtype", numpy.getattr("float64")?)?;
+    numpy.call_method("asarray", (value,), Some(&kwargs)).map_err(|e| {
+        PyTypeError::new_err(format!(
+            "{name} must be array_like of floats (a numpy array or nested lists), got {type_name}: {e}"
+        ))
+    })
+}
+
+/// Copies an array_like of shape `(n, n)` into `buffer` as float64 in row-major order
+/// (row i = y, column j = x): float64 arrays as they are, other dtypes and nested lists
+/// through [`as_float64`]. Refuses what numpy cannot make floats of (`TypeError`) and other
+/// shapes (`ValueError`), naming the argument and the expected shape. `+inf` is allowed
+/// where `allow_infinity` (heights: no surface there); NaN and −inf never are.
 pub fn read_field(
     value: &Bound<'_, PyAny>,
     name: &str,
@@ -87,19 +114,8 @@ pub fn read_field(
     buffer: &mut Vec<f64>,
 ) -> PyResult<()> {
     let expected = format!("({n}, {n})");
-    let Ok(untyped) = value.cast::<PyUntypedArray>() else {
-        let type_name = value.get_type().name()?;
-        return Err(PyTypeError::new_err(format!(
-            "{name} must be a numpy.ndarray of dtype float64 and shape {expected}, got {type_name} (use numpy.asarray({name}, dtype=float))"
-        )));
-    };
-    let descr = untyped.dtype();
-    if !descr.is_equiv_to(&dtype::<f64>(value.py())) {
-        return Err(PyTypeError::new_err(format!(
-            "{name} must have dtype float64 and shape {expected}, got dtype {descr} with shape {:?} (use {name}.astype(float))",
-            untyped.shape()
-        )));
-    }
+    let value = &as_float64(value, name)?;
+    let untyped = value.cast::<PyUntypedArray>()?;
     if untyped.shape() != [n, n] {
         return Err(PyValueError::new_err(format!(
             "{name} must have shape {expected} (the grid's n × n elements), got shape {:?}",
@@ -140,18 +156,13 @@ pub fn field<'py, T: numpy::Element + Copy>(
     PyArray1::from_slice(py, values).reshape([n, n])
 }
 
-/// Reads a 1-D float64 array (any strides) into a Vec.
+/// Reads a 1-D array_like (any strides, any real dtype, a list) into a Vec of float64.
 pub fn read_vector(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
-    let Ok(untyped) = value.cast::<PyUntypedArray>() else {
-        let type_name = value.get_type().name()?;
-        return Err(PyTypeError::new_err(format!(
-            "{name} must be a 1-D numpy.ndarray of dtype float64, got {type_name}"
-        )));
-    };
-    let descr = untyped.dtype();
-    if !descr.is_equiv_to(&dtype::<f64>(value.py())) || untyped.ndim() != 1 {
-        return Err(PyTypeError::new_err(format!(
-            "{name} must be a 1-D numpy.ndarray of dtype float64, got dtype {descr} with shape {:?}",
+    let value = &as_float64(value, name)?;
+    let untyped = value.cast::<PyUntypedArray>()?;
+    if untyped.ndim() != 1 {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be 1-D, got shape {:?}",
             untyped.shape()
         )));
     }

@@ -7,6 +7,8 @@ from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Tuple,
 import numpy as np
 import numpy.typing as npt
 
+# Fields come back as float64 arrays; as inputs any array_like of real numbers (float32,
+# integers, nested lists) is taken as float64.
 FloatField = npt.NDArray[np.float64]
 BoolField = npt.NDArray[np.bool_]
 
