@@ -15,6 +15,7 @@ import json
 import os
 import re
 import threading
+import warnings
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
 
@@ -170,6 +171,11 @@ def _progress_callback(progress):
         try:
             from tqdm.auto import tqdm
         except ImportError:
+            warnings.warn(
+                "progress=True draws a tqdm bar, but tqdm is not installed "
+                "(pip install tqdm, or the package's [extras]); running without a bar",
+                stacklevel=3,
+            )
             return None, None
         bar = tqdm(total=0, unit="step")
 
