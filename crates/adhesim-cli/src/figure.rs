@@ -8,7 +8,7 @@
 //! logarithmic); a horizontal line marks y = 0 where the range crosses it; the legend lists
 //! the labelled series.
 
-use crate::log_ticks::{log_tick_label, log_ticks};
+use crate::log_ticks::{log_axis, log_tick_label};
 use anyhow::{anyhow, Result};
 use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -341,15 +341,6 @@ where
             draw_contents(chart, panel, ranges)
         }
     }
-}
-
-/// A logarithmic axis over [low, high] with its ticks chosen by [`log_ticks`].
-fn log_axis(
-    low: f64,
-    high: f64,
-) -> plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>> {
-    let (bold, light) = log_ticks(low, high);
-    (low..high).log_scale().with_key_points(bold).with_light_points(light)
 }
 
 /// Mesh, guide lines, series and legend of a panel whose axes are built (linear or log).

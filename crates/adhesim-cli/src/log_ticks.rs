@@ -4,6 +4,8 @@
 //! spans many, 1-2-5 within a few decades, and finer steps within one, labelled in
 //! plain numbers on an axis within 1e-3 … 1e4 and as `1e-11` on others.
 
+use plotters::coord::combinators::{BindKeyPoints, IntoLogRange, LogCoord, WithKeyPoints};
+
 /// Labelled (bold) and unlabelled (light) tick positions inside [low, high] (low > 0).
 pub fn log_ticks(low: f64, high: f64) -> (Vec<f64>, Vec<f64>) {
     if !(low > 0.0 && high > low && low.is_finite() && high.is_finite()) {
@@ -75,6 +77,12 @@ pub fn log_tick_label(value: f64, (low, high): (f64, f64)) -> String {
             format!("{mantissa:.1}e{exponent}")
         }
     }
+}
+
+/// A logarithmic axis over [low, high] with its ticks chosen by [`log_ticks`].
+pub fn log_axis(low: f64, high: f64) -> WithKeyPoints<LogCoord<f64>> {
+    let (bold, light) = log_ticks(low, high);
+    (low..high).log_scale().with_key_points(bold).with_light_points(light)
 }
 
 #[cfg(test)]
