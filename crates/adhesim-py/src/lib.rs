@@ -35,6 +35,8 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<adhesive::AdhesiveSolver>()?;
     m.add_function(wrap_pyfunction!(objects::sphere_heights, m)?)?;
     m.add_function(wrap_pyfunction!(objects::flat_punch_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(objects::wavy_sphere_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(objects::elliptic_punch_heights, m)?)?;
     m.add_function(wrap_pyfunction!(reference::_hertz, m)?)?;
     m.add_function(wrap_pyfunction!(reference::_jkr_curve, m)?)?;
     m.add_function(wrap_pyfunction!(reference::_jkr_at_depth, m)?)?;

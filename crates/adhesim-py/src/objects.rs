@@ -421,3 +421,43 @@ pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyRe
     )?;
     field(py, &punch.heights(&grid.inner), grid.inner.n())
 }
+
+/// Heights of the paper's wavy sphere (Eq. 1), z = (x² + y²)/(2R) + h·sin(2πx′/λ)·sin(2πy′/λ)
+/// with the waviness rotated by `angle_degrees`, measured from the paraboloid's apex (the
+/// scenario file's `wavy_sphere`); shape (n, n).
+#[pyfunction]
+pub fn wavy_sphere_heights<'py>(
+    py: Python<'py>,
+    grid: Grid,
+    radius: f64,
+    amplitude: f64,
+    wavelength: f64,
+    angle_degrees: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let angle = crate::convert::finite("angle", angle_degrees)?.to_radians();
+    let profile = adhesim::WavySphere::new(radius, amplitude, wavelength, angle).map_err(value_error)?;
+    fits_in_memory(
+        &format!("wavy_sphere_heights({})", grid.__repr__()),
+        elements(&grid.inner) * 16,
+    )?;
+    field(py, &profile.heights(&grid.inner), grid.inner.n())
+}
+
+/// Heights of a flat punch with an elliptic face of semi-axes (a, b) rotated by
+/// `angle_degrees`: 0 on the face, +inf outside (the scenario file's `elliptic_punch`);
+/// shape (n, n).
+#[pyfunction]
+pub fn elliptic_punch_heights<'py>(
+    py: Python<'py>,
+    grid: Grid,
+    semi_axes: (f64, f64),
+    angle_degrees: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let angle = crate::convert::finite("angle", angle_degrees)?.to_radians();
+    let punch = adhesim::EllipticPunch::new(semi_axes, angle).map_err(value_error)?;
+    fits_in_memory(
+        &format!("elliptic_punch_heights({})", grid.__repr__()),
+        elements(&grid.inner) * 16,
+    )?;
+    field(py, &punch.heights(&grid.inner), grid.inner.n())
+}

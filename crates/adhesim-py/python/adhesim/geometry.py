@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._adhesim import Grid, flat_punch_heights, sphere_heights
+from ._adhesim import Grid, elliptic_punch_heights, flat_punch_heights, sphere_heights, wavy_sphere_heights
 
-__all__ = ["sphere", "flat_punch"]
+__all__ = ["sphere", "flat_punch", "wavy_sphere", "elliptic_punch"]
 
 
 def sphere(grid: Grid, radius: float) -> np.ndarray:
@@ -29,3 +29,26 @@ def flat_punch(grid: Grid, radius: float) -> np.ndarray:
     Raises ValueError for a radius that is not finite and > 0.
     """
     return flat_punch_heights(grid, float(radius))
+
+
+def wavy_sphere(grid: Grid, radius: float, amplitude: float, wavelength: float, angle: float = 0.0) -> np.ndarray:
+    """The paper's wavy sphere (Eq. 1): z = (x^2 + y^2)/(2R) + h sin(2 pi x'/lambda) sin(2 pi y'/lambda).
+
+    The waviness of amplitude h (length, >= 0) and wavelength lambda (length, > 0) is
+    rotated by ``angle`` degrees; heights are measured from the paraboloid's apex, as the
+    scenario file's ``shape = "wavy_sphere"``.
+
+    Raises ValueError for a radius or wavelength that is not finite and > 0, a negative
+    amplitude or a non-finite angle.
+    """
+    return wavy_sphere_heights(grid, float(radius), float(amplitude), float(wavelength), float(angle))
+
+
+def elliptic_punch(grid: Grid, semi_axes, angle: float = 0.0) -> np.ndarray:
+    """Flat punch with an elliptic face of semi-axes (a, b) (length, > 0), rotated by
+    ``angle`` degrees: 0 on the face, +inf outside (the scenario file's ``elliptic_punch``).
+
+    Raises ValueError for semi-axes that are not finite and > 0 or a non-finite angle.
+    """
+    a, b = semi_axes
+    return elliptic_punch_heights(grid, (float(a), float(b)), float(angle))
