@@ -460,7 +460,15 @@ fn write_change_maps(
                 }
             }
             let name = format!("change_{:05}_vs_{:05}.png", rb.frame, ra.frame);
-            crate::figure::files::save_image(&rgb, &dir.join(&name))?;
+            // The key: new and vanished contact, and a scale bar in the length unit of
+            // frames.pixel_size (one image pixel per camera pixel).
+            let legend = [([255, 0, 0], "new contact"), ([0, 0, 255], "vanished contact")];
+            let keyed = crate::map_key::with_key(
+                &rgb,
+                1.0 / settings.pixel_size,
+                crate::map_key::Legend::Categories(&legend),
+            )?;
+            crate::figure::files::save_image(&keyed, &dir.join(&name))?;
             Ok(())
         })
         .collect();
