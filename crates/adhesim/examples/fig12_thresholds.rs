@@ -12,37 +12,15 @@
 //! within |x| < 0.5a, `major`: all within |x| > 0.75a, `mixed` otherwise) and the largest
 //! number of separate contact patches during the pull-off.
 
-use adhesim::analysis::contact::count_patches;
+use adhesim::analysis::contact::DetachmentWatch;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, ElasticMaterial, EllipticPunch, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Observer, Profile, StepView, WorkOfAdhesion,
+    NormalSolver, Profile, WorkOfAdhesion,
 };
-use std::ops::ControlFlow;
-
-/// Where the first detachment happens and whether the contact ever splits.
-struct Watch {
-    grid: Grid,
-    first_detached: Option<Vec<(f64, f64)>>,
-    most_patches: usize,
-}
-
-impl Observer for Watch {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        if self.first_detached.is_none() && view.record.report.detached > 0 {
-            let positions = (0..self.grid.len())
-                .filter(|&k| view.previous_contact[k] && !view.state.contact[k])
-                .map(|k| self.grid.centre(k))
-                .collect();
-            self.first_detached = Some(positions);
-        }
-        self.most_patches = self.most_patches.max(count_patches(&self.grid, &view.state.contact));
-        ControlFlow::Continue(())
-    }
-}
 
 const SEMI_AXES: (f64, f64) = (1.0, 0.5);
 
-fn run(n: usize, ratio: f64) -> Result<Watch, String> {
+fn run(n: usize, ratio: f64) -> Result<DetachmentWatch, String> {
     let grid = Grid::new(n, 2.4, Boundary::Free).map_err(|e| e.to_string())?;
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).map_err(|e| e.to_string())?);
     let heights = EllipticPunch::new(SEMI_AXES, 0.0)
@@ -68,11 +46,7 @@ fn run(n: usize, ratio: f64) -> Result<Watch, String> {
         max_retract_steps: 100_000,
         jump_force_threshold: 0.0,
     };
-    let mut watch = Watch {
-        grid,
-        first_detached: None,
-        most_patches: 0,
-    };
+    let mut watch = DetachmentWatch::new(grid);
     protocol
         .run(&mut operator, &heights, &mut solver, &mut watch)
         .map_err(|e| e.to_string())?;

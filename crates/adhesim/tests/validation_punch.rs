@@ -2,13 +2,12 @@
 //! detachment pattern of an elliptic punch (paper Sect. 5.1, Fig. 12).
 #![allow(clippy::needless_range_loop)]
 
-use adhesim::analysis::contact::count_patches;
+use adhesim::analysis::contact::DetachmentWatch;
 use adhesim::analysis::reference::FlatPunchReference;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, ElasticMaterial, EllipticPunch, FlatPunch, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Observer, Profile, StepView, WorkOfAdhesion,
+    IndentPulloff, NormalSolver, Profile, WorkOfAdhesion,
 };
-use std::ops::ControlFlow;
 
 /// Circular punch a = 16Δ: pull-off force within 5 % of Kendall's −√(8πa³E*γ0) (the
 /// prototype found 1.02 at this resolution; the staircase rim makes convergence
@@ -47,27 +46,6 @@ fn circular_punch_pull_off_is_kendall() {
     assert!(summary.pull_off_depth.unwrap() / kendall_depth < -0.9);
 }
 
-/// Records where the first detachment happens and whether the contact ever splits.
-struct DetachmentWatch {
-    grid: Grid,
-    first_detached: Option<Vec<(f64, f64)>>,
-    most_patches: usize,
-}
-
-impl Observer for DetachmentWatch {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        if self.first_detached.is_none() && view.record.report.detached > 0 {
-            let positions = (0..self.grid.len())
-                .filter(|&k| view.previous_contact[k] && !view.state.contact[k])
-                .map(|k| self.grid.centre(k))
-                .collect();
-            self.first_detached = Some(positions);
-        }
-        self.most_patches = self.most_patches.max(count_patches(&self.grid, &view.state.contact));
-        ControlFlow::Continue(())
-    }
-}
-
 fn elliptic_detachment(ratio: Option<f64>) -> DetachmentWatch {
     let n = 64;
     let delta = 1.0 / n as f64;
@@ -99,11 +77,7 @@ fn elliptic_detachment(ratio: Option<f64>) -> DetachmentWatch {
         max_retract_steps: 100_000,
         jump_force_threshold: 0.0,
     };
-    let mut watch = DetachmentWatch {
-        grid,
-        first_detached: None,
-        most_patches: 0,
-    };
+    let mut watch = DetachmentWatch::new(grid);
     protocol.run(&mut operator, &heights, &mut solver, &mut watch).unwrap();
     watch
 }
