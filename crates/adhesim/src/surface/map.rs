@@ -295,8 +295,8 @@ fn signed_index(row: usize, n: usize) -> f64 {
 }
 
 /// Half spectrum H(q) = Σ_x h(x)·e^(−iq·x) of an `nx × ny` row-major map: `ny` rows of
-/// `nx/2 + 1` columns.
-fn forward_transform(heights: &[f64], nx: usize, ny: usize) -> Vec<Complex<f64>> {
+/// `nx/2 + 1` columns (also the square grids' statistics, nx = ny).
+pub(super) fn forward_transform(heights: &[f64], nx: usize, ny: usize) -> Vec<Complex<f64>> {
     let columns = nx / 2 + 1;
     let row_fft = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
     let mut spectrum = vec![Complex::new(0.0, 0.0); ny * columns];

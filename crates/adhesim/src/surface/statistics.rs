@@ -1,8 +1,6 @@
+use super::map::forward_transform;
 use super::SurfaceError;
 use crate::grid::{Boundary, Grid};
-use num_complex::Complex;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
 use std::f64::consts::{PI, TAU};
 
 /// The three rms values of a height map.
@@ -155,7 +153,7 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
             *h *= window[k / n] * window[k % n] * scale;
         }
     }
-    let spectrum = forward_transform(&centred, n);
+    let spectrum = forward_transform(&centred, n, n);
     let columns = n / 2 + 1;
     let wavenumber = TAU / grid.size();
     let area = grid.size() * grid.size();
@@ -203,7 +201,7 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
 /// (1/N⁴)·Σ_q |q|^(2·order)·|H(q)|² over every lattice mode (periodic maps).
 fn spectral_moment(grid: &Grid, heights: &[f64], order: i32) -> f64 {
     let n = grid.n();
-    let spectrum = forward_transform(heights, n);
+    let spectrum = forward_transform(heights, n, n);
     let columns = n / 2 + 1;
     let wavenumber = TAU / grid.size();
     let mut sum = 0.0;
@@ -220,38 +218,6 @@ fn spectral_moment(grid: &Grid, heights: &[f64], order: i32) -> f64 {
         }
     }
     sum / (n as f64).powi(4)
-}
-
-/// Half spectrum H(q) = Σ_x h(x)·e^(−iq·x), rows × (N/2 + 1) columns.
-fn forward_transform(heights: &[f64], n: usize) -> Vec<Complex<f64>> {
-    let columns = n / 2 + 1;
-    let row_fft = RealFftPlanner::<f64>::new().plan_fft_forward(n);
-    let mut spectrum = vec![Complex::new(0.0, 0.0); n * columns];
-    let mut input = vec![0.0; n];
-    let mut scratch = row_fft.make_scratch_vec();
-    for row in 0..n {
-        input.copy_from_slice(&heights[row * n..(row + 1) * n]);
-        row_fft
-            .process_with_scratch(
-                &mut input,
-                &mut spectrum[row * columns..(row + 1) * columns],
-                &mut scratch,
-            )
-            .expect("buffer lengths match the plan");
-    }
-    let column_fft = FftPlanner::<f64>::new().plan_fft_forward(n);
-    let mut buffer = vec![Complex::new(0.0, 0.0); n];
-    let mut column_scratch = vec![Complex::new(0.0, 0.0); column_fft.get_inplace_scratch_len()];
-    for column in 0..columns {
-        for row in 0..n {
-            buffer[row] = spectrum[row * columns + column];
-        }
-        column_fft.process_with_scratch(&mut buffer, &mut column_scratch);
-        for row in 0..n {
-            spectrum[row * columns + column] = buffer[row];
-        }
-    }
-    spectrum
 }
 
 #[cfg(test)]
