@@ -14,6 +14,13 @@ use std::path::Path;
 /// fsync: figures are many and are redone by rerunning; what a full disk gives is the
 /// write's own error.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_through_temp(path, bytes, false)
+}
+
+/// Writes `bytes` to a temporary sibling of `path`, checked through its flush (and synced
+/// to disk where `durable`: the batch engine's markers and tables), then renames it into
+/// place; a failed write removes the temporary file and names both.
+pub fn write_through_temp(path: &Path, bytes: &[u8], durable: bool) -> Result<()> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -21,11 +28,19 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     let written = std::fs::File::create(&temp).and_then(|mut file| {
         file.write_all(bytes)?;
-        file.flush()
+        if durable {
+            file.sync_all()
+        } else {
+            file.flush()
+        }
     });
     if let Err(error) = written {
         let _ = std::fs::remove_file(&temp);
-        return Err(anyhow!(error).context(format!("cannot write {}", path.display())));
+        return Err(anyhow!(error).context(format!(
+            "cannot write {} (through the temporary file {})",
+            path.display(),
+            temp.display()
+        )));
     }
     std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
 }

@@ -201,23 +201,5 @@ pub fn parse_shard(text: Option<&str>) -> Result<Shard> {
 /// Writes a file through a temporary sibling and a rename, so readers never see half of it
 /// (a full disk leaves the previous file or none, and an error naming the path).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let written = std::fs::File::create(&temp).and_then(|mut file| {
-        use std::io::Write;
-        file.write_all(bytes)?;
-        file.sync_all()
-    });
-    if let Err(error) = written {
-        let _ = std::fs::remove_file(&temp);
-        return Err(anyhow!(error).context(format!(
-            "cannot write {} (through the temporary file {})",
-            path.display(),
-            temp.display()
-        )));
-    }
-    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
+    crate::figure::files::write_through_temp(path, bytes, true)
 }
