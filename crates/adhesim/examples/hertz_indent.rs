@@ -54,7 +54,7 @@ fn run(n: usize) {
         nested.coarse_applications(),
         nested.coarse_levels(),
         report.force / hertz.force(depth) - 1.0,
-        state.contact_radius(&grid, (0.0, 0.0)) / grid.element_size(),
+        state.contact_radius(&grid, (0.0, 0.0)) / grid.dx(),
     );
     let mut state = ContactState::new(&grid);
     let start = std::time::Instant::now();
@@ -67,8 +67,8 @@ fn run(n: usize) {
         report.iterations,
         report.operator_applications,
         report.force / hertz.force(depth) - 1.0,
-        state.contact_radius(&grid, (0.0, 0.0)) / grid.element_size(),
-        hertz.contact_radius(depth) / grid.element_size()
+        state.contact_radius(&grid, (0.0, 0.0)) / grid.dx(),
+        hertz.contact_radius(depth) / grid.dx()
     );
     check("CCG", &grid, &state, report.force, &hertz, depth);
     // Both are converged far below the discretisation error (CCG to a pressure change of
@@ -84,9 +84,9 @@ fn check(solver: &str, grid: &Grid, state: &ContactState, force: f64, hertz: &He
     );
     let radius_error = state.contact_radius(grid, (0.0, 0.0)) - hertz.contact_radius(depth);
     assert!(
-        radius_error.abs() <= grid.element_size(),
+        radius_error.abs() <= grid.dx(),
         "{solver}: contact radius off by {:.2} elements",
-        radius_error / grid.element_size()
+        radius_error / grid.dx()
     );
 }
 

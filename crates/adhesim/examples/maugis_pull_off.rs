@@ -71,11 +71,11 @@ fn main() {
     println!(
         "λ {lambda}: σ0 {sigma:.4e}, δc {:.4e}, N {n}, Δ {:.4e}, zone at pull-off {:.4e} ({:.1} Δ), a {:.4e} ({:.1} Δ)",
         gamma / sigma,
-        grid.element_size(),
+        grid.dx(),
         at.zone_radius - at.contact_radius,
-        (at.zone_radius - at.contact_radius) / grid.element_size(),
+        (at.zone_radius - at.contact_radius) / grid.dx(),
         at.contact_radius,
-        at.contact_radius / grid.element_size(),
+        at.contact_radius / grid.dx(),
     );
     println!(
         "max adhesive force {:.6e} vs Maugis {:.6e}: error {:+.3} % (depth {:.4e} vs {:.4e})",

@@ -227,7 +227,7 @@ fn roughness(case: &Case, grid: &Grid) -> Result<Vec<f64>, String> {
         .with_amplitudes(Amplitudes::RandomPhase)
         .generate(&fine_grid, case.seed)
         .map_err(|e| format!("roughness of {}: {e}", case.name()))?;
-    let (n, fine_n) = (grid.n(), fine_grid.n());
+    let (n, fine_n) = (grid.nx(), fine_grid.nx());
     let mut heights = vec![0.0; grid.len()];
     for (k, height) in heights.iter_mut().enumerate() {
         let (row, column) = (k / n, k % n);

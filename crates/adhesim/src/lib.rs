@@ -37,7 +37,7 @@
 //! assert!(force_error.abs() < 0.005, "force error {force_error}");
 //! // The contact radius (farthest element centre in contact) is within one element of √(Rd).
 //! let radius_error = state.contact_radius(&grid, (0.0, 0.0)) - hertz.contact_radius(depth);
-//! assert!(radius_error.abs() <= grid.element_size(), "radius error {radius_error}");
+//! assert!(radius_error.abs() <= grid.dx(), "radius error {radius_error}");
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //! The physics and the algorithms are stated in `docs/physics.md` of the repository, the

@@ -100,7 +100,7 @@ fn drive(grid: Grid, heights: &[f64], depths: &[f64], label: &str) -> Cycle {
 
 /// A paraboloid z = r²/(2R) centred on element (n/2, n/2), so that one element is lowest.
 fn sphere_in_cell(grid: &Grid, radius: f64) -> Vec<f64> {
-    let n = grid.n();
+    let n = grid.nx();
     let (x0, y0) = grid.centre((n / 2) * n + n / 2);
     (0..grid.len())
         .map(|k| {
@@ -125,7 +125,7 @@ fn sphere_in_a_periodic_cell_from_no_contact_to_full_contact() {
         let size = 0.3;
         let grid = Grid::new(n, size, Boundary::Periodic).unwrap();
         let heights = sphere_in_cell(&grid, radius);
-        let delta = grid.element_size();
+        let delta = grid.dx();
         let full_contact = heights.iter().sum::<f64>() / heights.len() as f64;
         // the next-lowest element lies Δ²/(2R) above the lowest: 1 % of that keeps one
         let single = 0.01 * delta * delta / (2.0 * radius);
@@ -234,7 +234,7 @@ fn resolved_rough_flat_follows_persson_under_displacement_control() {
         let grid = Grid::new(n, 1.0, Boundary::Periodic).unwrap();
         let surface = SelfAffine::new(0.8, RmsTarget::Slope(0.1))
             .with_rolloff_wavelength(0.25)
-            .with_cutoff_wavelength(8.0 * grid.element_size())
+            .with_cutoff_wavelength(8.0 * grid.dx())
             .generate(&grid, 5)
             .unwrap();
         let slope = adhesim::surface::rms_slope(&grid, &surface.heights).unwrap();
@@ -244,7 +244,7 @@ fn resolved_rough_flat_follows_persson_under_displacement_control() {
         for &(depth, force, elements) in &cycle.loading {
             let area_fraction = elements as f64 / grid.len() as f64;
             if (0.005..=0.05).contains(&area_fraction) {
-                let kappa = area_fraction * MODULUS * slope / (force / grid.size().powi(2));
+                let kappa = area_fraction * MODULUS * slope / (force / grid.size_x().powi(2));
                 assert!((1.6..=2.9).contains(&kappa), "{label}: d = {depth:e}: κ = {kappa}");
                 checked += 1;
             }

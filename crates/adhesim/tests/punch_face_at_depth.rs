@@ -15,7 +15,7 @@ use adhesim::{
 fn punch_retracted_to_its_face_depth_carries_no_force() {
     let n = 32;
     let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
-    let delta = grid.element_size();
+    let delta = grid.dx();
     let radius = 8.0 * delta;
     let contact_modulus = 1.0;
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(contact_modulus).unwrap());

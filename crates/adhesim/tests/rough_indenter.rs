@@ -14,7 +14,7 @@ use common::JkrCase;
 
 fn surface(grid: &Grid, seed: u64) -> Vec<f64> {
     SelfAffine::new(0.8, RmsTarget::Slope(0.1))
-        .with_rolloff_wavelength(grid.size() / 4.0)
+        .with_rolloff_wavelength(grid.size_x() / 4.0)
         .generate(grid, seed)
         .unwrap()
         .heights
@@ -54,7 +54,7 @@ fn heights_are_base_minus_roughness_shifted_to_first_contact() {
             assert!((profile.height(x, y) - heights[777]).abs() <= 1e-15 * scale);
             // a sideways offset (sub-element and beyond the map's edge): the indexed
             // lattice lookup agrees with the analytic height (rounding of offset/Δ only)
-            let offset = (0.3 * grid.element_size(), -1.7 * grid.element_size());
+            let offset = (0.3 * grid.dx(), -1.7 * grid.dx());
             let mut moved = vec![0.0; grid.len()];
             profile.fill_heights(&grid, offset, &mut moved);
             for (k, &z) in moved.iter().enumerate() {
@@ -105,7 +105,7 @@ fn first_contact_is_the_lowest_point_of_the_combined_surface() {
                 .fold(f64::INFINITY, |m, (_, &z)| m.min(z));
             let mut operator = HalfSpace::new(grid, ElasticMaterial::new(1.0).unwrap());
             let mut state = ContactState::new(&grid);
-            let load = 0.05 * grid.element_size() * second;
+            let load = 0.05 * grid.dx() * second;
             Ccg::new(CcgParams::default())
                 .solve(&mut operator, &heights, Control::Load(load), &mut state)
                 .unwrap();

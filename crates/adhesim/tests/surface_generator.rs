@@ -249,3 +249,37 @@ fn invalid_parameters_are_named_errors() {
     assert!((surface.rolloff_wavevector - TAU / 0.25).abs() < 1e-12);
     assert!((surface.cutoff_wavevector - TAU / 0.125).abs() < 1e-12);
 }
+
+/// Issue #26 item 2: on a free rectangle of square elements the surface is the square
+/// grid's of the longer side, cut (the same realisation, bit for bit); a periodic rectangle
+/// or rectangular elements are refused with the grid named.
+#[test]
+fn rectangles_cut_the_square_realisation_or_are_refused() {
+    use adhesim::{Boundary, Grid, RmsTarget, SelfAffine, SurfaceError};
+    let generator = SelfAffine::new(0.8, RmsTarget::Height(1e-3));
+    let square = generator
+        .generate(&Grid::new(48, 1.5, Boundary::Free).unwrap(), 7)
+        .unwrap();
+    let wide = Grid::rectangular(48, 32, 1.5, 1.0, Boundary::Free).unwrap();
+    let cut = generator.generate(&wide, 7).unwrap();
+    assert_eq!(cut.heights.len(), 48 * 32);
+    assert_eq!(cut.grid, wide);
+    for row in 0..32 {
+        assert_eq!(
+            cut.heights[row * 48..(row + 1) * 48],
+            square.heights[row * 48..(row + 1) * 48]
+        );
+    }
+    let tall = Grid::rectangular(32, 48, 1.0, 1.5, Boundary::Free).unwrap();
+    let cut = generator.generate(&tall, 7).unwrap();
+    assert_eq!(cut.heights[32..64], square.heights[48..80]);
+    for grid in [
+        Grid::rectangular(48, 32, 1.5, 1.0, Boundary::Periodic).unwrap(),
+        Grid::rectangular(48, 32, 1.0, 1.0, Boundary::Free).unwrap(),
+    ] {
+        assert!(matches!(
+            generator.generate(&grid, 7),
+            Err(SurfaceError::RectangularGrid { nx: 48, ny: 32, .. })
+        ));
+    }
+}

@@ -14,7 +14,7 @@ fn single_element_reproduces_love_near_and_far() {
     let grid = Grid::new(n, 3.2, Boundary::Free).unwrap();
     let material = ElasticMaterial::new(2.5).unwrap();
     let mut operator = FreeOperator::new(grid, material);
-    let delta = grid.element_size();
+    let delta = grid.dx();
     for &(row, column) in &[(0usize, 0usize), (n - 1, n - 1), (17, 40)] {
         let mut pressure = vec![0.0; grid.len()];
         pressure[row * n + column] = 1.0;
@@ -88,7 +88,7 @@ fn periodic_operator_reproduces_cosine_pressure() {
     let modulus = 1.7;
     let grid = Grid::new(n, size, Boundary::Periodic).unwrap();
     let material = ElasticMaterial::new(modulus).unwrap();
-    let delta = grid.element_size();
+    let delta = grid.dx();
     for &k in &[1usize, 5, 20] {
         let q = TAU * k as f64 / size;
         let pressure: Vec<f64> = (0..grid.len()).map(|e| (q * grid.centre(e).0).cos()).collect();
@@ -131,7 +131,7 @@ fn periodic_near_field_matches_love() {
     let n = 128;
     let grid = Grid::new(n, 1.0, Boundary::Periodic).unwrap();
     let material = ElasticMaterial::new(1.0).unwrap();
-    let delta = grid.element_size();
+    let delta = grid.dx();
     let mut operator = PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent);
     let centre = (n / 2) * n + n / 2;
     let mut pressure = vec![0.0; grid.len()];

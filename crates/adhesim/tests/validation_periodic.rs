@@ -18,7 +18,7 @@ fn wavy_contact_matches_westergaard() {
     let amplitude = 1e-3;
     let modulus = 1.0;
     let grid = Grid::new(n, size, Boundary::Periodic).unwrap();
-    let delta = grid.element_size();
+    let delta = grid.dx();
     let mut operator = HalfSpace::new(grid, ElasticMaterial::new(modulus).unwrap());
     let heights: Vec<f64> = (0..grid.len())
         .map(|k| amplitude * (1.0 - (TAU * grid.centre(k).0 / size).cos()))
@@ -39,7 +39,7 @@ fn wavy_contact_matches_westergaard() {
         // half-width: largest |x| in contact along a row
         let half_width = (0..n)
             .filter(|&j| state.contact[j])
-            .map(|j| grid.coordinate(j).abs())
+            .map(|j| grid.x(j).abs())
             .fold(0.0, f64::max);
         let expected = size * psi / PI;
         assert!(

@@ -38,7 +38,7 @@ fn kappa(grid: &Grid, heights: &[f64], slope: f64) -> [f64; 3] {
     let mut operator = HalfSpace::new(*grid, ElasticMaterial::new(modulus).unwrap());
     let mut state = ContactState::new(grid);
     let mut solver = Ccg::new(CcgParams::default());
-    let area = grid.size() * grid.size();
+    let area = grid.size_x() * grid.size_x();
     let mut out = [0.0; 3];
     for (value, load) in out.iter_mut().zip(LOADS) {
         // loads ascend: each solve starts from the previous contact (warm start)

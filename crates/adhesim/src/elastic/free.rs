@@ -1,4 +1,4 @@
-use super::influence::{love_coefficient, love_primitive};
+use super::influence::{love_primitive, love_rectangle};
 use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
 use crate::grid::Grid;
@@ -6,12 +6,12 @@ use crate::material::ElasticMaterial;
 use rayon::prelude::*;
 use std::ops::Range;
 
-/// K(±lΔ, ±mΔ) for 0 ≤ m, l < N, bit for bit what [`love_coefficient`] gives at each
-/// signed offset, from Love's primitive evaluated once per distinct corner pair
-/// ([`PrimitiveLattice`]). Φ is odd in each argument and symmetric under exchange, bitwise
-/// ([`love_primitive`]), so each of the eight images of an offset is the same four values
-/// with signs, summed in the order `love_coefficient` sums them. Nothing of size N² is
-/// stored but the lattice: the padded kernel is filled straight from [`Self::value`].
+/// K(±lΔx, ±mΔy) for 0 ≤ l < Nx, 0 ≤ m < Ny, bit for bit what [`love_rectangle`] gives at
+/// each signed offset, from Love's primitive evaluated once per distinct corner pair
+/// ([`PrimitiveLattice`]). Φ is odd in each argument, bitwise ([`love_primitive`]), so each
+/// of the four images of an offset is the same four values with signs, summed in the order
+/// `love_rectangle` sums them. Nothing of size Nx·Ny is stored but the lattice: the padded
+/// kernel is filled straight from [`Self::fill_row`].
 struct LoveImages {
     lattice: PrimitiveLattice,
     /// πE*.
@@ -19,18 +19,19 @@ struct LoveImages {
 }
 
 impl LoveImages {
-    fn new(n: usize, delta: f64, modulus: f64) -> Self {
+    /// For `counts` = (Nx, Ny) elements of sides `spacing` = (Δx, Δy).
+    fn new(counts: (usize, usize), spacing: (f64, f64), modulus: f64) -> Self {
         Self {
-            lattice: PrimitiveLattice::new(n, delta, 0.5 * delta),
+            lattice: PrimitiveLattice::new(counts, spacing),
             scale: std::f64::consts::PI * modulus,
         }
     }
 
-    /// K at offset (σ_l·lΔ, σ_m·mΔ), sign index 0 for + and 1 for − (the reference
+    /// K at offset (σ_l·lΔx, σ_m·mΔy), sign index 0 for + and 1 for − (the reference
     /// [`Self::fill_row`] is tested against, entry by entry).
     #[cfg(test)]
     fn value(&self, m: usize, sign_m: usize, l: usize, sign_l: usize) -> f64 {
-        // Φ(σ_l·lΔ ± s, σ_m·mΔ ± s): for σ = −1, ±s turns into ∓s and the sign comes out.
+        // Φ(σ_l·lΔx ± a, σ_m·mΔy ± b): for σ = −1, ±a turns into ∓a and the sign comes out.
         let term = |dx: usize, dy: usize| {
             let value = self.lattice.value(l, dx ^ sign_l, m, dy ^ sign_m);
             if sign_l ^ sign_m == 1 {
@@ -42,15 +43,15 @@ impl LoveImages {
         (term(0, 0) - term(0, 1) - term(1, 0) + term(1, 1)) / self.scale
     }
 
-    /// Row (σ_m·mΔ) of the 2N-periodic padded kernel: entry j < N is offset jΔ, entry N
-    /// zero, entry j > N offset −(2N − j)Δ; the bits of [`Self::value`], read from the two
-    /// lattice rows of mΔ ± s.
+    /// Row (σ_m·mΔy) of the 2Nx-periodic padded kernel: entry j < Nx is offset jΔx, entry
+    /// Nx zero, entry j > Nx offset −(2Nx − j)Δx; the bits of [`Self::value`], read from
+    /// the two lattice rows of mΔy ± b.
     fn fill_row(&self, m: usize, sign_m: usize, row: &mut [f64]) {
-        let n = self.lattice.argument_index.len();
         let lattice = &self.lattice;
+        let n = lattice.x_index.len();
         let lattice_row = |dy: usize| {
-            let start = lattice.argument_index[m][dy ^ sign_m] * lattice.count;
-            &lattice.table[start..start + lattice.count]
+            let start = lattice.y_index[m][dy ^ sign_m] * lattice.x_count;
+            &lattice.table[start..start + lattice.x_count]
         };
         let (plus, minus) = (lattice_row(0), lattice_row(1));
         let padded = row.len();
@@ -63,7 +64,7 @@ impl LoveImages {
                 }
                 j => (padded - j, 1),
             };
-            let arguments = &lattice.argument_index[l];
+            let arguments = &lattice.x_index[l];
             let (near, far) = (arguments[sign_l], arguments[1 ^ sign_l]);
             let flip = |value: f64| if sign_l ^ sign_m == 1 { -value } else { value };
             // term(dx, dy) of `value`: dx picks the l argument, dy the lattice row.
@@ -72,64 +73,92 @@ impl LoveImages {
     }
 }
 
-/// Love's primitive Φ at every pair of the arguments lΔ ± s (0 ≤ l < N), each distinct
+/// The distinct values of lΔ ± s for 0 ≤ l < n, sorted, and the index of each argument
+/// (`[l][0]` for lΔ + s, `[l][1]` for lΔ − s).
+fn corner_arguments(n: usize, delta: f64) -> (Vec<f64>, Vec<[usize; 2]>) {
+    let s = 0.5 * delta;
+    let argument = |l: usize, sign: usize| {
+        let x = l as f64 * delta;
+        if sign == 0 {
+            x + s
+        } else {
+            x - s
+        }
+    };
+    let mut distinct: Vec<f64> = (0..n).flat_map(|l| [argument(l, 0), argument(l, 1)]).collect();
+    distinct.sort_by(f64::total_cmp);
+    distinct.dedup_by(|a, b| a.to_bits() == b.to_bits());
+    let position = |value: f64| {
+        distinct
+            .binary_search_by(|probe| probe.total_cmp(&value))
+            .expect("every argument is in the list")
+    };
+    let index = (0..n)
+        .map(|l| [position(argument(l, 0)), position(argument(l, 1))])
+        .collect();
+    (distinct, index)
+}
+
+/// Love's primitive Φ at every pair of the arguments (lΔx ± a, mΔy ± b), each distinct
 /// argument pair evaluated once. Where (l + 1)Δ − s and lΔ + s round to the same double
 /// (always when Δ is a power of two) neighbouring elements share their corners, so the
-/// N² offsets need about N²/2 evaluations instead of 2N²; where they differ, both are
-/// kept and the values are those of a direct evaluation anyway (same arguments, same bits).
+/// offsets need about a quarter of the evaluations of a direct sum; where they differ,
+/// both are kept and the values are those of a direct evaluation anyway (same arguments,
+/// same bits).
 struct PrimitiveLattice {
-    /// Index into the distinct arguments of lΔ + s (`[l][0]`) and lΔ − s (`[l][1]`).
-    argument_index: Vec<[usize; 2]>,
-    /// Φ(a_i, a_j), `[i * count + j]`: evaluated on the lower triangle and mirrored (Φ is
-    /// symmetric bit for bit), stored square so that a row of the kernel reads it in order.
+    /// Index into the distinct x arguments of lΔx + a (`[l][0]`) and lΔx − a (`[l][1]`).
+    x_index: Vec<[usize; 2]>,
+    /// Index into the distinct y arguments of mΔy ± b, likewise.
+    y_index: Vec<[usize; 2]>,
+    /// Φ(x_j, y_i), `[i * x_count + j]`, stored so that a row of the kernel reads it in
+    /// order. On a square grid the two argument lists are one: Φ is then evaluated on the
+    /// lower triangle and mirrored (it is symmetric bit for bit).
     table: Vec<f64>,
-    count: usize,
+    x_count: usize,
 }
 
 impl PrimitiveLattice {
-    fn new(n: usize, delta: f64, s: f64) -> Self {
-        let argument = |l: usize, sign: usize| {
-            let x = l as f64 * delta;
-            if sign == 0 {
-                x + s
-            } else {
-                x - s
-            }
-        };
-        let mut distinct: Vec<f64> = (0..n).flat_map(|l| [argument(l, 0), argument(l, 1)]).collect();
-        distinct.sort_by(f64::total_cmp);
-        distinct.dedup_by(|a, b| a.to_bits() == b.to_bits());
-        let position = |value: f64| {
-            distinct
-                .binary_search_by(|probe| probe.total_cmp(&value))
-                .expect("every argument is in the list")
-        };
-        let argument_index = (0..n)
-            .map(|l| [position(argument(l, 0)), position(argument(l, 1))])
-            .collect();
-        let count = distinct.len();
-        let mut table = vec![0.0; count * count];
-        table.par_chunks_mut(count).enumerate().for_each(|(i, row)| {
-            for (j, value) in row.iter_mut().enumerate().take(i + 1) {
-                *value = love_primitive(distinct[i], distinct[j]);
+    fn new(counts: (usize, usize), spacing: (f64, f64)) -> Self {
+        let (x_arguments, x_index) = corner_arguments(counts.0, spacing.0);
+        let (y_arguments, y_index) = corner_arguments(counts.1, spacing.1);
+        let (x_count, y_count) = (x_arguments.len(), y_arguments.len());
+        let mut table = vec![0.0; x_count * y_count];
+        let symmetric = x_arguments.len() == y_arguments.len()
+            && x_arguments
+                .iter()
+                .zip(&y_arguments)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        table.par_chunks_mut(x_count).enumerate().for_each(|(i, row)| {
+            let columns = if symmetric { i + 1 } else { x_count };
+            for (j, value) in row.iter_mut().enumerate().take(columns) {
+                // Φ(x, y) as `love_rectangle` evaluates it; the square's triangle keeps the
+                // order it always had (the same bits: Φ is symmetric bitwise).
+                *value = if symmetric {
+                    love_primitive(y_arguments[i], x_arguments[j])
+                } else {
+                    love_primitive(x_arguments[j], y_arguments[i])
+                };
             }
         });
-        for i in 0..count {
-            for j in 0..i {
-                table[j * count + i] = table[i * count + j];
+        if symmetric {
+            for i in 0..x_count {
+                for j in 0..i {
+                    table[j * x_count + i] = table[i * x_count + j];
+                }
             }
         }
         Self {
-            argument_index,
+            x_index,
+            y_index,
             table,
-            count,
+            x_count,
         }
     }
 
-    /// Φ(lΔ ± s, mΔ ± s), sign index 0 for + and 1 for −.
+    /// Φ(lΔx ± a, mΔy ± b), sign index 0 for + and 1 for −.
     #[cfg(test)]
     fn value(&self, l: usize, sign_l: usize, m: usize, sign_m: usize) -> f64 {
-        self.table[self.argument_index[m][sign_m] * self.count + self.argument_index[l][sign_l]]
+        self.table[self.y_index[m][sign_m] * self.x_count + self.x_index[l][sign_l]]
     }
 }
 
@@ -137,8 +166,9 @@ impl PrimitiveLattice {
 ///
 /// Liu, Wang & Liu (2000), "A versatile method of discrete convolution and FFT (DC-FFT)
 /// for contact analyses", *Wear* 243, 101–111, doi:10.1016/S0043-1648(00)00427-0.
-/// Love's exact coefficients K(mΔ, nΔ), |m|,|n| < N, are wrapped into a 2N×2N array and
-/// the pressure is zero-padded, so the cyclic convolution equals the exact linear one.
+/// Love's exact coefficients K(lΔx, mΔy) of the rectangular element, |l| < Nx, |m| < Ny, are
+/// wrapped into a 2Ny×2Nx array and the pressure is zero-padded, so the cyclic convolution
+/// equals the exact linear one.
 pub struct FreeOperator {
     grid: Grid,
     contact_modulus: f64,
@@ -155,28 +185,26 @@ pub struct FreeOperator {
 impl FreeOperator {
     /// Plans the transforms and computes the kernel spectrum for `grid` and `material`.
     pub fn new(grid: Grid, material: ElasticMaterial) -> Self {
-        let n = grid.n();
-        let padded = 2 * n;
-        let delta = grid.element_size();
+        let (nx, ny) = (grid.nx(), grid.ny());
         let modulus = material.contact_modulus();
-        // (|offset| in elements, sign index) for a wrapped index; row n of the padded array
-        // is zero.
+        // (|offset| in elements, sign index) for a wrapped row index; row ny of the padded
+        // array is zero.
         let wrap = |i: usize| -> Option<(usize, usize)> {
             match i {
-                i if i < n => Some((i, 0)),
-                i if i == n => None,
-                i => Some((padded - i, 1)),
+                i if i < ny => Some((i, 0)),
+                i if i == ny => None,
+                i => Some((2 * ny - i, 1)),
             }
         };
-        let images = LoveImages::new(n, delta, modulus);
-        let engine = SpectralConvolution::new(n, padded, |i, row| match wrap(i) {
+        let images = LoveImages::new((nx, ny), (grid.dx(), grid.dy()), modulus);
+        let engine = SpectralConvolution::new((nx, ny), (2 * nx, 2 * ny), |i, row| match wrap(i) {
             Some((m, sign_m)) => images.fill_row(m, sign_m, row),
             None => row.fill(0.0),
         });
         Self {
             grid,
             contact_modulus: modulus,
-            self_compliance: love_coefficient(0.0, 0.0, delta, modulus),
+            self_compliance: love_rectangle(0.0, 0.0, grid.dx(), grid.dy(), modulus),
             single: None,
             engine,
             applications: 0,
@@ -327,11 +355,19 @@ mod tests {
         // Every signed offset of the padded kernel, against a direct evaluation: for element
         // sizes whose corner arguments round differently from one element to the next
         // (0.013, 0.3/64) and for a power of two, where neighbours share their corners.
-        for (n, delta, modulus) in [(12, 0.013, 2.5), (10, 0.3 / 64.0, 1.0), (16, 1.0 / 64.0, 0.7)] {
-            let images = LoveImages::new(n, delta, modulus);
-            for m in -(n as i64 - 1)..n as i64 {
+        // Rectangles: a different count and spacing along y (issue #26 item 2).
+        let cases = [
+            (12, 12, 0.013, 0.013, 2.5),
+            (10, 10, 0.3 / 64.0, 0.3 / 64.0, 1.0),
+            (16, 16, 1.0 / 64.0, 1.0 / 64.0, 0.7),
+            (12, 7, 0.013, 0.021, 1.3),
+            (6, 11, 1.0 / 64.0, 1.0 / 16.0, 0.9),
+        ];
+        for (n, ny, delta, delta_y, modulus) in cases {
+            let images = LoveImages::new((n, ny), (delta, delta_y), modulus);
+            for m in -(ny as i64 - 1)..ny as i64 {
                 for l in -(n as i64 - 1)..n as i64 {
-                    let direct = love_coefficient(l as f64 * delta, m as f64 * delta, delta, modulus);
+                    let direct = love_rectangle(l as f64 * delta, m as f64 * delta_y, delta, delta_y, modulus);
                     let (sign_m, sign_l) = (usize::from(m < 0), usize::from(l < 0));
                     let tabulated = images.value(m.unsigned_abs() as usize, sign_m, l.unsigned_abs() as usize, sign_l);
                     assert_eq!(tabulated.to_bits(), direct.to_bits(), "n = {n}, offset ({l}, {m})");
@@ -339,7 +375,7 @@ mod tests {
             }
             // The rows of the padded kernel as `FreeOperator::new` fills them.
             let mut row = vec![f64::NAN; 2 * n];
-            for (m, sign_m) in (0..n).map(|m| (m, 0)).chain((1..n).map(|m| (m, 1))) {
+            for (m, sign_m) in (0..ny).map(|m| (m, 0)).chain((1..ny).map(|m| (m, 1))) {
                 images.fill_row(m, sign_m, &mut row);
                 for (j, &entry) in row.iter().enumerate() {
                     let offset = match j {
@@ -351,7 +387,7 @@ mod tests {
                         j => -((2 * n - j) as f64),
                     };
                     let y = if sign_m == 1 { -(m as f64) } else { m as f64 };
-                    let direct = love_coefficient(offset * delta, y * delta, delta, modulus);
+                    let direct = love_rectangle(offset * delta, y * delta_y, delta, delta_y, modulus);
                     assert_eq!(
                         entry.to_bits(),
                         direct.to_bits(),
@@ -359,9 +395,9 @@ mod tests {
                     );
                 }
             }
-            let lattice = PrimitiveLattice::new(n, delta, 0.5 * delta);
-            let arguments = lattice.argument_index.iter().flatten().max().unwrap() + 1;
-            if delta == 1.0 / 64.0 {
+            let lattice = PrimitiveLattice::new((n, ny), (delta, delta_y));
+            let arguments = lattice.x_index.iter().flatten().max().unwrap() + 1;
+            if delta == 1.0 / 64.0 && n == ny {
                 assert_eq!(arguments, n + 1, "a power-of-two size shares every corner");
             }
         }

@@ -23,14 +23,23 @@ pub(crate) fn love_primitive(x: f64, y: f64) -> f64 {
 
 /// Surface displacement at offset (ξ, η) from the centre of a square element of side
 /// `element_size` carrying unit uniform pressure, on a half-space of contact modulus E*:
-///
-/// K(ξ,η) = [Φ(ξ+s,η+s) − Φ(ξ+s,η−s) − Φ(ξ−s,η+s) + Φ(ξ−s,η−s)] / (πE*),  s = Δ/2.
+/// [`love_rectangle`] with Δx = Δy = Δ (the same operations, so the same bits).
 ///
 /// K(0,0) = 4 ln(1+√2)·Δ/(πE*); far away K → Δ²/(πE* r) (Boussinesq).
 pub fn love_coefficient(xi: f64, eta: f64, element_size: f64, contact_modulus: f64) -> f64 {
-    let s = 0.5 * element_size;
-    (love_primitive(xi + s, eta + s) - love_primitive(xi + s, eta - s) - love_primitive(xi - s, eta + s)
-        + love_primitive(xi - s, eta - s))
+    love_rectangle(xi, eta, element_size, element_size, contact_modulus)
+}
+
+/// Surface displacement at offset (ξ, η) from the centre of a Δx × Δy rectangular element
+/// carrying unit uniform pressure, on a half-space of contact modulus E* (Love 1929):
+///
+/// K(ξ,η) = [Φ(ξ+a,η+b) − Φ(ξ+a,η−b) − Φ(ξ−a,η+b) + Φ(ξ−a,η−b)] / (πE*),  a = Δx/2, b = Δy/2.
+///
+/// K(0,0) = 4[a·asinh(b/a) + b·asinh(a/b)]/(πE*); far away K → ΔxΔy/(πE* r) (Boussinesq).
+pub fn love_rectangle(xi: f64, eta: f64, element_x: f64, element_y: f64, contact_modulus: f64) -> f64 {
+    let (a, b) = (0.5 * element_x, 0.5 * element_y);
+    (love_primitive(xi + a, eta + b) - love_primitive(xi + a, eta - b) - love_primitive(xi - a, eta + b)
+        + love_primitive(xi - a, eta - b))
         / (std::f64::consts::PI * contact_modulus)
 }
 
@@ -41,6 +50,13 @@ pub const SELF_COMPLIANCE_FACTOR: f64 = 1.1221997046783603;
 /// divisions² sub-squares (test helper).
 #[cfg(test)]
 pub(crate) fn square_quadrature(side: f64, divisions: usize, f: impl Fn(f64, f64) -> f64) -> f64 {
+    rectangle_quadrature(side, side, divisions, f)
+}
+
+/// ∫∫ f over the rectangle [−wx/2, wx/2] × [−wy/2, wy/2], composite 8-point
+/// Gauss–Legendre on divisions² sub-rectangles (test helper).
+#[cfg(test)]
+pub(crate) fn rectangle_quadrature(wx: f64, wy: f64, divisions: usize, f: impl Fn(f64, f64) -> f64) -> f64 {
     const NODES: [f64; 4] = [
         0.183_434_642_495_649_8,
         0.525_532_409_916_329,
@@ -53,18 +69,18 @@ pub(crate) fn square_quadrature(side: f64, divisions: usize, f: impl Fn(f64, f64
         0.222_381_034_453_374_5,
         0.101_228_536_290_376_3,
     ];
-    let h = side / divisions as f64;
+    let (hx, hy) = (wx / divisions as f64, wy / divisions as f64);
     let mut sum = 0.0;
     for a in 0..divisions {
         for b in 0..divisions {
-            let cx = -0.5 * side + (a as f64 + 0.5) * h;
-            let cy = -0.5 * side + (b as f64 + 0.5) * h;
+            let cx = -0.5 * wx + (a as f64 + 0.5) * hx;
+            let cy = -0.5 * wy + (b as f64 + 0.5) * hy;
             for (i, &ni) in NODES.iter().enumerate() {
                 for si in [-1.0, 1.0] {
                     for (j, &nj) in NODES.iter().enumerate() {
                         for sj in [-1.0, 1.0] {
-                            let (x, y) = (cx + 0.5 * si * ni * h, cy + 0.5 * sj * nj * h);
-                            sum += WEIGHTS[i] * WEIGHTS[j] * 0.25 * h * h * f(x, y);
+                            let (x, y) = (cx + 0.5 * si * ni * hx, cy + 0.5 * sj * nj * hy);
+                            sum += WEIGHTS[i] * WEIGHTS[j] * 0.25 * hx * hy * f(x, y);
                         }
                     }
                 }
@@ -119,5 +135,31 @@ mod tests {
             love_coefficient(-3.0, 2.0, 1.0, 1.0)
         );
         assert!((love_coefficient(3.0, 2.0, 1.0, 1.0) - love_coefficient(2.0, 3.0, 1.0, 1.0)).abs() < 1e-16);
+    }
+
+    #[test]
+    fn rectangle_matches_its_closed_form_and_quadrature() {
+        // Centre: K(0,0) = 4[a·asinh(b/a) + b·asinh(a/b)]/(πE*), a = Δx/2, b = Δy/2.
+        let (wx, wy, modulus): (f64, f64, f64) = (0.5, 2.0, 1.5);
+        let (a, b) = (0.5 * wx, 0.5 * wy);
+        let centre = 4.0 * (a * (b / a).asinh() + b * (a / b).asinh()) / (std::f64::consts::PI * modulus);
+        assert!((love_rectangle(0.0, 0.0, wx, wy, modulus) / centre - 1.0).abs() < 1e-14);
+        // Away from the element the integrand is smooth: composite Gauss to ~1e-10.
+        for &(xi, eta) in &[(0.5, 0.0), (0.0, 2.0), (1.0, -4.0), (-2.5, 3.0)] {
+            let closed = love_rectangle(xi, eta, wx, wy, modulus);
+            let numeric = rectangle_quadrature(wx, wy, 16, |x, y| 1.0 / ((xi - x).powi(2) + (eta - y).powi(2)).sqrt())
+                / (std::f64::consts::PI * modulus);
+            assert!(
+                (closed / numeric - 1.0).abs() < 1e-10,
+                "({xi},{eta}): {closed} vs {numeric}"
+            );
+        }
+        // Boussinesq far away: ΔxΔy/(πE*r)(1 + O(Δ²/r²)), 1e-4 at r = 100·max(Δx, Δy).
+        let r = 200.0;
+        let ratio = love_rectangle(0.0, r, wx, wy, modulus) / (wx * wy / (std::f64::consts::PI * modulus * r));
+        assert!((ratio - 1.0).abs() < 1e-4, "{ratio}");
+        // Exchanging the element's sides exchanges the offsets.
+        let swapped = love_rectangle(2.0, 1.0, wy, wx, modulus);
+        assert!((love_rectangle(1.0, 2.0, wx, wy, modulus) - swapped).abs() < 1e-15);
     }
 }

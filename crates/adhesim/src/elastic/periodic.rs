@@ -20,7 +20,7 @@ pub enum PeriodicKernel {
     Continuous,
 }
 
-/// Periodic half-space (period L = NΔ in x and y) as a Fourier multiplier.
+/// Periodic half-space (periods Lx = NxΔx and Ly = NyΔy) as a Fourier multiplier.
 ///
 /// Stanley & Kato (1997), "An FFT-based method for rough surface contact",
 /// *J. Tribol.* 119, 481–485, doi:10.1115/1.2833523; element-consistent aliasing as in
@@ -47,25 +47,22 @@ fn sinc(t: f64) -> f64 {
 impl PeriodicOperator {
     /// Plans the transforms and computes the kernel spectrum.
     pub fn new(grid: Grid, material: ElasticMaterial, kernel: PeriodicKernel) -> Self {
-        let n = grid.n();
-        let delta = grid.element_size();
+        let (nx, ny) = (grid.nx(), grid.ny());
         let modulus = material.contact_modulus();
-        let mut engine = SpectralConvolution::<f64>::planned(n, n);
-        let frequency = |index: usize| -> f64 {
+        let mut engine = SpectralConvolution::<f64>::planned((nx, ny), (nx, ny));
+        let aliases: Vec<i32> = match kernel {
+            PeriodicKernel::ElementConsistent => (-ALIASES..=ALIASES).collect(),
+            PeriodicKernel::Continuous => vec![0],
+        };
+        // Per-axis tables: shifted wavenumbers q + 2πm/Δ and form factors sinc((q+G)Δ/2),
+        // for the wave `index` of an axis of n elements of side `delta` and period `size`.
+        let table = |index: usize, n: usize, delta: f64, size: f64| -> Vec<(f64, f64)> {
             let k = if index <= n / 2 {
                 index as f64
             } else {
                 index as f64 - n as f64
             };
-            TAU * k / grid.size()
-        };
-        let aliases: Vec<i32> = match kernel {
-            PeriodicKernel::ElementConsistent => (-ALIASES..=ALIASES).collect(),
-            PeriodicKernel::Continuous => vec![0],
-        };
-        // Per-axis tables: shifted wavenumbers q + 2πm/Δ and form factors sinc((q+G)Δ/2).
-        let table = |index: usize| -> Vec<(f64, f64)> {
-            let q = frequency(index);
+            let q = TAU * k / size;
             aliases
                 .iter()
                 .map(|&m| {
@@ -78,11 +75,16 @@ impl PeriodicOperator {
                 })
                 .collect()
         };
-        let tables: Vec<Vec<(f64, f64)>> = (0..n).map(table).collect();
-        let normalisation = 1.0 / (n as f64 * n as f64);
-        // K̂ is even in q_y: evaluate rows 0..=N/2 once (in parallel), mirror the rest.
-        let half_rows = n / 2 + 1;
-        let columns = n / 2 + 1;
+        let columns = nx / 2 + 1;
+        // K̂ is even in q_y: evaluate rows 0..=Ny/2 once (in parallel), mirror the rest.
+        let half_rows = ny / 2 + 1;
+        let x_tables: Vec<Vec<(f64, f64)>> = (0..columns)
+            .map(|index| table(index, nx, grid.dx(), grid.size_x()))
+            .collect();
+        let y_tables: Vec<Vec<(f64, f64)>> = (0..half_rows)
+            .map(|index| table(index, ny, grid.dy(), grid.size_y()))
+            .collect();
+        let normalisation = 1.0 / (nx as f64 * ny as f64);
         let mut half = vec![0.0; half_rows * columns];
         {
             use rayon::prelude::*;
@@ -92,8 +94,8 @@ impl PeriodicOperator {
                         continue;
                     }
                     let mut sum = 0.0;
-                    for &(qx2, sx) in &tables[column] {
-                        for &(qy2, sy) in &tables[row] {
+                    for &(qx2, sx) in &x_tables[column] {
+                        for &(qy2, sy) in &y_tables[row] {
                             sum += sx * sy / (qx2 + qy2).sqrt();
                         }
                     }
@@ -102,7 +104,7 @@ impl PeriodicOperator {
             });
         }
         engine.set_kernel_spectrum(|row, column| {
-            let row = if row > n / 2 { n - row } else { row };
+            let row = if row > ny / 2 { ny - row } else { row };
             half[row * columns + column]
         });
         let mut operator = Self {
@@ -114,10 +116,11 @@ impl PeriodicOperator {
             applications: 0,
         };
         let mut unit = vec![0.0; grid.len()];
-        unit[(n / 2) * n + n / 2] = 1.0;
+        let centre = (ny / 2) * nx + nx / 2;
+        unit[centre] = 1.0;
         let mut response = vec![0.0; grid.len()];
         operator.apply(&unit, &mut response);
-        operator.self_compliance = response[(n / 2) * n + n / 2];
+        operator.self_compliance = response[centre];
         operator.applications = 0;
         operator
     }

@@ -3,7 +3,7 @@ use crate::grid::Grid;
 use std::f64::consts::TAU;
 
 /// Approximate inverse of the half-space compliance, r ↦ F⁻¹[(E*/2)·√(|q|² + q0²)·F r]
-/// on the unpadded N×N grid (q0 = 2π/L keeps the mean mode invertible).
+/// on the unpadded Nx×Ny grid (q0 = 2π/max(Lx, Ly) keeps the mean mode invertible).
 ///
 /// The compliance is ≈ 2/(E*|q|) in Fourier space, so this stiffness multiplier clusters
 /// the spectrum of the compliance restricted to a contact set: the |q| spectral
@@ -17,11 +17,10 @@ pub struct SpectralPreconditioner {
 impl SpectralPreconditioner {
     /// Plans the transforms for `grid` and contact modulus E*.
     pub fn new(grid: &Grid, contact_modulus: f64) -> Self {
-        let n = grid.n();
+        let (nx, ny) = (grid.nx(), grid.ny());
         // Single precision: an approximate inverse gains nothing from f64.
-        let mut engine = SpectralConvolution::<f32>::planned(n, n);
-        let size = grid.size();
-        let frequency = |index: usize| -> f64 {
+        let mut engine = SpectralConvolution::<f32>::planned((nx, ny), (nx, ny));
+        let frequency = |index: usize, n: usize, size: f64| -> f64 {
             let k = if index <= n / 2 {
                 index as f64
             } else {
@@ -29,10 +28,11 @@ impl SpectralPreconditioner {
             };
             TAU * k / size
         };
-        let lowest = TAU / size;
-        let normalisation = 1.0 / (n as f64 * n as f64);
+        // q0: the lowest wavenumber of the longer side.
+        let lowest = TAU / grid.size_x().max(grid.size_y());
+        let normalisation = 1.0 / (nx as f64 * ny as f64);
         engine.set_kernel_spectrum(|row, column| {
-            let (qy, qx) = (frequency(row), frequency(column));
+            let (qy, qx) = (frequency(row, ny, grid.size_y()), frequency(column, nx, grid.size_x()));
             0.5 * contact_modulus * (qx * qx + qy * qy + lowest * lowest).sqrt() * normalisation
         });
         Self { engine }

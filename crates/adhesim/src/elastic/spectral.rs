@@ -46,22 +46,26 @@ impl Precision for f32 {
 }
 
 pub(crate) struct SpectralConvolution<T: Precision = f64> {
-    /// Data rows/columns of input and output (N).
-    n: usize,
-    /// Padded row length and column length (2N free, N periodic).
-    padded: usize,
-    /// Complex columns after the row transform: padded/2 + 1.
+    /// Data columns (row length) of input and output (Nx).
+    nx: usize,
+    /// Data rows of input and output (Ny).
+    ny: usize,
+    /// Padded row length (2Nx free, Nx periodic).
+    padded_x: usize,
+    /// Padded column length (2Ny free, Ny periodic).
+    padded_y: usize,
+    /// Complex columns after the row transform: padded_x/2 + 1.
     spectrum_columns: usize,
-    /// Kernel spectrum, real, transposed: `[column * padded + row]`, normalised.
+    /// Kernel spectrum, real, transposed: `[column * padded_y + row]`, normalised.
     kernel: Vec<T>,
     forward_rows: Arc<dyn RealToComplex<T>>,
     inverse_rows: Arc<dyn ComplexToReal<T>>,
     forward_columns: Arc<dyn Fft<T>>,
     inverse_columns: Arc<dyn Fft<T>>,
-    /// Row spectra, `[row * spectrum_columns + column]` for the N data rows.
+    /// Row spectra, `[row * spectrum_columns + column]` for the Ny data rows.
     row_spectra: Vec<Complex<T>>,
     /// The convolved spectrum on the kept output rows, tile by tile: tile t (columns
-    /// t·TILE..) holds `[row * TILE + column − t·TILE]` for the N rows.
+    /// t·TILE..) holds `[row * TILE + column − t·TILE]` for the Ny rows.
     kept: Vec<Complex<T>>,
     blocks: Vec<BlockScratch<T>>,
 }
@@ -70,7 +74,7 @@ struct BlockScratch<T> {
     real_row: Vec<T>,
     real_scratch: Vec<Complex<T>>,
     complex_scratch: Vec<Complex<T>>,
-    /// TILE full-length columns, `[column * padded + row]`: small enough to stay in cache
+    /// TILE full-length columns, `[column * padded_y + row]`: small enough to stay in cache
     /// from the gather through both column transforms to the scatter.
     tile: Vec<Complex<T>>,
     /// One spectrum row gathered from the tiles for the inverse row transform.
@@ -85,16 +89,18 @@ fn block_len(total: usize, blocks: usize) -> usize {
 }
 
 impl<T: Precision> SpectralConvolution<T> {
-    /// Plans the transforms and allocates the buffers for N data rows in a padded×padded
-    /// transform; the kernel spectrum is zero until set.
-    pub(crate) fn planned(n: usize, padded: usize) -> Self {
+    /// Plans the transforms and allocates the buffers for Ny data rows of Nx values in a
+    /// padded_y × padded_x transform (`data` = (Nx, Ny), `padded` = (padded_x, padded_y));
+    /// the kernel spectrum is zero until set.
+    pub(crate) fn planned(data: (usize, usize), padded: (usize, usize)) -> Self {
+        let ((nx, ny), (padded_x, padded_y)) = (data, padded);
         let mut planner = RealFftPlanner::<T>::new();
-        let forward_rows = planner.plan_fft_forward(padded);
-        let inverse_rows = planner.plan_fft_inverse(padded);
+        let forward_rows = planner.plan_fft_forward(padded_x);
+        let inverse_rows = planner.plan_fft_inverse(padded_x);
         let mut complex_planner = FftPlanner::<T>::new();
-        let forward_columns = complex_planner.plan_fft_forward(padded);
-        let inverse_columns = complex_planner.plan_fft_inverse(padded);
-        let spectrum_columns = padded / 2 + 1;
+        let forward_columns = complex_planner.plan_fft_forward(padded_y);
+        let inverse_columns = complex_planner.plan_fft_inverse(padded_y);
+        let spectrum_columns = padded_x / 2 + 1;
         let threads = rayon::current_num_threads().max(1);
         let scratch_len = forward_rows.get_scratch_len().max(inverse_rows.get_scratch_len());
         let complex_scratch_len = forward_columns
@@ -102,24 +108,26 @@ impl<T: Precision> SpectralConvolution<T> {
             .max(inverse_columns.get_inplace_scratch_len());
         let blocks = (0..threads)
             .map(|_| BlockScratch {
-                real_row: vec![T::zero(); padded],
+                real_row: vec![T::zero(); padded_x],
                 real_scratch: vec![Complex::default(); scratch_len],
                 complex_scratch: vec![Complex::default(); complex_scratch_len],
-                tile: vec![Complex::default(); TILE * padded],
+                tile: vec![Complex::default(); TILE * padded_y],
                 spectrum: vec![Complex::default(); spectrum_columns],
             })
             .collect();
         Self {
-            n,
-            padded,
+            nx,
+            ny,
+            padded_x,
+            padded_y,
             spectrum_columns,
-            kernel: vec![T::zero(); spectrum_columns * padded],
+            kernel: vec![T::zero(); spectrum_columns * padded_y],
             forward_rows,
             inverse_rows,
             forward_columns,
             inverse_columns,
-            row_spectra: vec![Complex::default(); n * spectrum_columns],
-            kept: vec![Complex::default(); spectrum_columns.div_ceil(TILE) * n * TILE],
+            row_spectra: vec![Complex::default(); ny * spectrum_columns],
+            kept: vec![Complex::default(); spectrum_columns.div_ceil(TILE) * ny * TILE],
             blocks,
         }
     }
@@ -127,7 +135,7 @@ impl<T: Precision> SpectralConvolution<T> {
     /// A single-precision engine with the same sizes and this engine's kernel spectrum
     /// (rounded once from the f64 values).
     pub(crate) fn to_single(&self) -> SpectralConvolution<f32> {
-        let mut single = SpectralConvolution::<f32>::planned(self.n, self.padded);
+        let mut single = SpectralConvolution::<f32>::planned((self.nx, self.ny), (self.padded_x, self.padded_y));
         for (target, &value) in single.kernel.iter_mut().zip(&self.kernel) {
             *target = f32::narrow(value.widen());
         }
@@ -135,9 +143,9 @@ impl<T: Precision> SpectralConvolution<T> {
     }
 
     /// Overwrites the kernel spectrum with `value(row_frequency, column_frequency)`
-    /// (already normalised by padded²).
+    /// (already normalised by padded_x·padded_y).
     pub(crate) fn set_kernel_spectrum(&mut self, value: impl Fn(usize, usize) -> f64 + Sync) {
-        let padded = self.padded;
+        let padded = self.padded_y;
         self.kernel.par_chunks_mut(padded).enumerate().for_each(|(c, out)| {
             for (r, o) in out.iter_mut().enumerate() {
                 *o = T::narrow(value(r, c));
@@ -145,9 +153,9 @@ impl<T: Precision> SpectralConvolution<T> {
         });
     }
 
-    /// output = kernel ∗ input on the N×N data window.
+    /// output = kernel ∗ input on the Nx×Ny data window.
     pub(crate) fn convolve(&mut self, input: &[f64], output: &mut [f64]) {
-        let n = self.n;
+        let (n, rows) = (self.nx, self.ny);
         // Rows holding a nonzero value, first to last: the transforms of the others are
         // skipped with the bits unchanged ([`convolve_rows`](Self::convolve_rows)). An
         // all-zero input keeps every row, so that even the signs of its zeros stay.
@@ -155,9 +163,9 @@ impl<T: Precision> SpectralConvolution<T> {
         let last = input.iter().rposition(|&v| v != 0.0).map(|k| k / n + 1);
         let input_rows = match (first, last) {
             (Some(first), Some(last)) => first..last,
-            _ => 0..n,
+            _ => 0..rows,
         };
-        self.convolve_rows(input, output, input_rows, 0..n);
+        self.convolve_rows(input, output, input_rows, 0..rows);
     }
 
     /// output = kernel ∗ input on the output rows `output_rows`, for an input that is zero
@@ -178,16 +186,17 @@ impl<T: Precision> SpectralConvolution<T> {
         input_rows: Range<usize>,
         output_rows: Range<usize>,
     ) {
-        let (n, padded, columns) = (self.n, self.padded, self.spectrum_columns);
-        assert_eq!(input.len(), n * n, "input field does not match the grid");
-        assert_eq!(output.len(), n * n, "output field does not match the grid");
+        let (n, rows, columns) = (self.nx, self.ny, self.spectrum_columns);
+        let (padded_x, padded) = (self.padded_x, self.padded_y);
+        assert_eq!(input.len(), n * rows, "input field does not match the grid");
+        assert_eq!(output.len(), n * rows, "output field does not match the grid");
         assert!(
-            input_rows.start <= input_rows.end && input_rows.end <= n,
-            "input rows {input_rows:?} outside 0..{n}"
+            input_rows.start <= input_rows.end && input_rows.end <= rows,
+            "input rows {input_rows:?} outside 0..{rows}"
         );
         assert!(
-            output_rows.start <= output_rows.end && output_rows.end <= n,
-            "output rows {output_rows:?} outside 0..{n}"
+            output_rows.start <= output_rows.end && output_rows.end <= rows,
+            "output rows {output_rows:?} outside 0..{rows}"
         );
         let blocks = self.blocks.len();
 
@@ -278,7 +287,7 @@ impl<T: Precision> SpectralConvolution<T> {
                     }
                     // Exactly real in exact arithmetic; drop round-off so c2r accepts it.
                     spectrum[0].im = T::zero();
-                    if padded % 2 == 0 {
+                    if padded_x % 2 == 0 {
                         spectrum[columns - 1].im = T::zero();
                     }
                     inverse_rows
@@ -293,30 +302,34 @@ impl<T: Precision> SpectralConvolution<T> {
 }
 
 impl SpectralConvolution<f64> {
-    /// `kernel_row(i, row)` writes row i of the padded×padded kernel (already wrapped)
-    /// into `row`; its spectrum is computed here once.
-    pub(crate) fn new(n: usize, padded: usize, kernel_row: impl Fn(usize, &mut [f64]) + Sync) -> Self {
-        let mut engine = Self::planned(n, padded);
+    /// `kernel_row(i, row)` writes row i of the padded_y × padded_x kernel (already
+    /// wrapped) into `row`; its spectrum is computed here once.
+    pub(crate) fn new(
+        data: (usize, usize),
+        padded: (usize, usize),
+        kernel_row: impl Fn(usize, &mut [f64]) + Sync,
+    ) -> Self {
+        let mut engine = Self::planned(data, padded);
         engine.kernel = engine.kernel_spectrum(kernel_row);
         engine
     }
 
     /// Full 2-D forward transform of the padded kernel; keeps the real part (the kernel
-    /// is even in both directions, so its spectrum is real) divided by padded².
+    /// is even in both directions, so its spectrum is real) divided by padded_x·padded_y.
     fn kernel_spectrum(&mut self, kernel_row: impl Fn(usize, &mut [f64]) + Sync) -> Vec<f64> {
-        let padded = self.padded;
+        let (padded_x, padded) = (self.padded_x, self.padded_y);
         let columns = self.spectrum_columns;
         let forward_rows = &self.forward_rows;
         let mut rows: Vec<Complex<f64>> = vec![Complex::default(); padded * columns];
         rows.par_chunks_mut(columns).enumerate().for_each(|(i, spectrum)| {
-            let mut real = vec![0.0; padded];
+            let mut real = vec![0.0; padded_x];
             kernel_row(i, &mut real);
             forward_rows
                 .process(&mut real, spectrum)
                 .expect("row transform of the kernel");
         });
         let forward_columns = &self.forward_columns;
-        let normalisation = 1.0 / (padded as f64 * padded as f64);
+        let normalisation = 1.0 / (padded_x as f64 * padded as f64);
         let mut spectrum = vec![0.0; columns * padded];
         spectrum.par_chunks_mut(padded).enumerate().for_each(|(c, out)| {
             let mut column: Vec<Complex<f64>> = (0..padded).map(|i| rows[i * columns + c]).collect();

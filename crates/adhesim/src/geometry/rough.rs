@@ -46,8 +46,8 @@ impl RoughBase {
 ///
 /// ## Sampling
 /// The map holds one height per element of a [`Grid`], sample (row i, column j) at the
-/// element centre ((j − N/2)·Δ, (i − N/2)·Δ), the grid's own convention (the origin is
-/// the centre of element (N/2, N/2)). This differs by half an element from
+/// element centre ((j − Nx/2)·Δx, (i − Ny/2)·Δy), the grid's own convention (the origin
+/// is the centre of element (Ny/2, Nx/2)). This differs by half an element from
 /// [`Topography`](super::Topography), whose map centre (the middle of its samples) is on
 /// the axis; a `RoughProfile` therefore reproduces the samples exactly at the element
 /// centres of its grid with the axis at the origin ([`Profile::fill_heights`] with offset
@@ -58,8 +58,10 @@ impl RoughBase {
 pub struct RoughProfile {
     base: RoughBase,
     roughness: Vec<f64>,
-    n: usize,
-    spacing: f64,
+    /// Samples along x and y (the grid's Nx, Ny).
+    counts: (usize, usize),
+    /// Sample spacings Δx, Δy.
+    spacing: (f64, f64),
     periodic: bool,
     lowest: f64,
     highest_roughness: f64,
@@ -74,15 +76,15 @@ impl RoughProfile {
                 "roughness map has {} values, the grid has {} elements ({}×{})",
                 roughness.len(),
                 grid.len(),
-                grid.n(),
-                grid.n()
+                grid.nx(),
+                grid.ny()
             )));
         }
         if let Some(bad) = roughness.iter().position(|h| !h.is_finite()) {
             return Err(GeometryError::Topography(format!(
                 "roughness at index {bad} (row {}, column {}) is not finite ({})",
-                bad / grid.n(),
-                bad % grid.n(),
+                bad / grid.nx(),
+                bad % grid.nx(),
                 roughness[bad]
             )));
         }
@@ -98,8 +100,8 @@ impl RoughProfile {
         Ok(Self {
             base,
             roughness,
-            n: grid.n(),
-            spacing: grid.element_size(),
+            counts: (grid.nx(), grid.ny()),
+            spacing: (grid.dx(), grid.dy()),
             periodic: grid.boundary() == Boundary::Periodic,
             lowest,
             highest_roughness,
@@ -131,10 +133,11 @@ impl RoughProfile {
         self.lowest
     }
 
-    /// Sample index along one axis for a fractional index: wrapped (periodic) or clamped.
+    /// Sample index along an axis of `n` samples for a fractional index: wrapped
+    /// (periodic) or clamped.
     #[inline]
-    fn sample_index(&self, index: isize) -> usize {
-        let n = self.n as isize;
+    fn sample_index(&self, index: isize, n: usize) -> usize {
+        let n = n as isize;
         if self.periodic {
             index.rem_euclid(n) as usize
         } else {
@@ -148,8 +151,9 @@ impl RoughProfile {
         let (c, r) = (column.floor(), row.floor());
         let (fc, fr) = (column - c, row - r);
         let (c, r) = (c as isize, r as isize);
-        let (c0, c1) = (self.sample_index(c), self.sample_index(c + 1));
-        let (r0, r1) = (self.sample_index(r), self.sample_index(r + 1));
+        let (nx, ny) = self.counts;
+        let (c0, c1) = (self.sample_index(c, nx), self.sample_index(c + 1, nx));
+        let (r0, r1) = (self.sample_index(r, ny), self.sample_index(r + 1, ny));
         (r0, r1, c0, c1, fr, fc)
     }
 
@@ -158,7 +162,7 @@ impl RoughProfile {
     #[inline]
     fn roughness_at(&self, column: f64, row: f64) -> f64 {
         let (r0, r1, c0, c1, fr, fc) = self.cell(column, row);
-        let at = |r: usize, c: usize| self.roughness[r * self.n + c];
+        let at = |r: usize, c: usize| self.roughness[r * self.counts.0 + c];
         if fr == 0.0 && fc == 0.0 {
             return at(r0, c0);
         }
@@ -168,8 +172,11 @@ impl RoughProfile {
     /// Fractional sample indices of the point (x, y) relative to the axis.
     #[inline]
     fn indices(&self, x: f64, y: f64) -> (f64, f64) {
-        let centre = (self.n / 2) as f64;
-        (x / self.spacing + centre, y / self.spacing + centre)
+        let (nx, ny) = self.counts;
+        (
+            x / self.spacing.0 + (nx / 2) as f64,
+            y / self.spacing.1 + (ny / 2) as f64,
+        )
     }
 }
 
@@ -187,22 +194,22 @@ impl Profile for RoughProfile {
         }
     }
 
-    /// On the map's own lattice (same N and Δ) the roughness is looked up by element index
+    /// On the map's own lattice (same Nx, Ny, Δx and Δy) the roughness is looked up by element index
     /// shifted by offset/Δ, so that with the axis at the origin the samples are used
     /// exactly; on any other grid, the analytic height at each element centre.
     fn fill_heights(&self, grid: &Grid, offset: (f64, f64), heights: &mut [f64]) {
         assert_eq!(heights.len(), grid.len(), "heights buffer does not match the grid");
-        if grid.n() != self.n || grid.element_size() != self.spacing {
+        if (grid.nx(), grid.ny()) != self.counts || (grid.dx(), grid.dy()) != self.spacing {
             for (k, height) in heights.iter_mut().enumerate() {
                 let (x, y) = grid.centre(k);
                 *height = self.height(x - offset.0, y - offset.1);
             }
             return;
         }
-        let (shift_column, shift_row) = (offset.0 / self.spacing, offset.1 / self.spacing);
+        let (shift_column, shift_row) = (offset.0 / self.spacing.0, offset.1 / self.spacing.1);
         for (k, height) in heights.iter_mut().enumerate() {
             let (x, y) = grid.centre(k);
-            let (row, column) = ((k / self.n) as f64, (k % self.n) as f64);
+            let (row, column) = ((k / self.counts.0) as f64, (k % self.counts.0) as f64);
             let roughness = self.roughness_at(column - shift_column, row - shift_row);
             *height = self.base.height(x - offset.0, y - offset.1) - roughness - self.lowest;
         }
@@ -221,8 +228,8 @@ impl Profile for RoughProfile {
         let (column, row) = self.indices(x, y);
         let cell_slope = |column: f64| {
             let (r0, r1, c0, c1, fr, _) = self.cell(column, row);
-            let at = |r: usize, c: usize| self.roughness[r * self.n + c];
-            ((1.0 - fr) * (at(r0, c1) - at(r0, c0)) + fr * (at(r1, c1) - at(r1, c0))) / self.spacing
+            let at = |r: usize, c: usize| self.roughness[r * self.counts.0 + c];
+            ((1.0 - fr) * (at(r0, c1) - at(r0, c0)) + fr * (at(r1, c1) - at(r1, c0))) / self.spacing.0
         };
         let roughness_slope = if column.fract() == 0.0 {
             0.5 * (cell_slope(column) + cell_slope(column - 1.0))

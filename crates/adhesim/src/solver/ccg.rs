@@ -122,11 +122,11 @@ impl Ccg {
             });
         }
         let current = state.force(grid.element_area());
-        // First guess: the stiffness of full contact is of order E*·L.
+        // First guess: the stiffness of full contact is of order E*·L (the longer side).
         let mut load = if current > 0.0 {
             current
         } else {
-            grid.size() * operator.contact_modulus() * (depth - lowest)
+            grid.size_x().max(grid.size_y()) * operator.contact_modulus() * (depth - lowest)
         };
         let mut total = SolveReport::default();
         let mut solve_at = |ccg: &mut Self, load: f64, state: &mut ContactState| {

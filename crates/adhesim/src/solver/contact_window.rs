@@ -33,7 +33,8 @@ pub(super) struct Bounds {
 }
 
 impl Bounds {
-    /// The bounding box of the elements in contact of an n×n grid (None without contact).
+    /// The bounding box of the elements in contact of a grid of rows of n elements (None
+    /// without contact).
     pub(super) fn of_contact(contact: &[bool], n: usize) -> Option<Self> {
         let first = contact.iter().position(|&c| c)?;
         let last = contact.iter().rposition(|&c| c)?;
@@ -71,7 +72,8 @@ fn smooth_side(side: usize) -> usize {
         .expect("5-smooth numbers are unbounded")
 }
 
-/// A square window `[row, row + side) × [column, column + side)` of an n×n grid.
+/// A window `[row, row + side) × [column, column + side)` of elements (side × side
+/// elements, each of the grid's Δx × Δy) of an nx × ny grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Window {
     row: usize,
@@ -80,28 +82,29 @@ pub(super) struct Window {
 }
 
 impl Window {
-    /// The window of side `side` centred on `bounds`, moved inside the grid.
-    fn place(bounds: &Bounds, side: usize, n: usize) -> Self {
-        let start = |(low, high): (usize, usize)| (low + high).div_ceil(2).saturating_sub(side / 2).min(n - side);
+    /// The window of side `side` centred on `bounds`, moved inside the nx × ny grid.
+    fn place(bounds: &Bounds, side: usize, (nx, ny): (usize, usize)) -> Self {
+        let start =
+            |(low, high): (usize, usize), n: usize| (low + high).div_ceil(2).saturating_sub(side / 2).min(n - side);
         Self {
-            row: start(bounds.rows),
-            column: start(bounds.columns),
+            row: start(bounds.rows, ny),
+            column: start(bounds.columns, nx),
             side,
         }
     }
 
-    /// Index in the full grid of window element (i, j).
-    fn full_index(&self, i: usize, j: usize, n: usize) -> usize {
-        (self.row + i) * n + self.column + j
+    /// Index in the full grid (rows of nx elements) of window element (i, j).
+    fn full_index(&self, i: usize, j: usize, nx: usize) -> usize {
+        (self.row + i) * nx + self.column + j
     }
 
     /// Whether an element in contact (in window numbering) lies within the margin of an
     /// edge of the window that is not an edge of the grid: the front may want to grow out.
-    fn contact_near_open_edge(&self, contact: &[bool], n: usize) -> bool {
+    fn contact_near_open_edge(&self, contact: &[bool], (nx, ny): (usize, usize)) -> bool {
         let guard = WINDOW_MARGIN / 2;
-        let open = |start: usize| (start > 0, start + self.side < n);
-        let (rows_low, rows_high) = open(self.row);
-        let (columns_low, columns_high) = open(self.column);
+        let open = |start: usize, n: usize| (start > 0, start + self.side < n);
+        let (rows_low, rows_high) = open(self.row, ny);
+        let (columns_low, columns_high) = open(self.column, nx);
         contact.chunks(self.side).enumerate().any(|(i, chunk)| {
             chunk.iter().enumerate().any(|(j, &c)| {
                 c && ((rows_low && i < guard)
@@ -111,6 +114,18 @@ impl Window {
             })
         })
     }
+}
+
+/// The free grid of side × side elements of `grid`'s Δx × Δy (on a square grid the
+/// square of side side·Δ).
+fn window_grid(side: usize, grid: &Grid) -> Result<Grid, crate::grid::GridError> {
+    Grid::rectangular(
+        side,
+        side,
+        side as f64 * grid.dx(),
+        side as f64 * grid.dy(),
+        Boundary::Free,
+    )
 }
 
 /// The window's grid, operator and copies of the fields, kept between solves and remade
@@ -139,18 +154,17 @@ impl WindowLevel {
         heights: &[f64],
         state: &ContactState,
     ) -> Option<&'a mut WindowLevel> {
-        let n = grid.n();
+        let (n, counts) = (grid.nx(), (grid.nx(), grid.ny()));
         let bounds = Bounds::of_contact(&state.contact, n)?;
         let side = smooth_side(bounds.extent() + 2 * WINDOW_MARGIN);
-        if side as f64 > MAX_WINDOW_FRACTION * n as f64 {
+        if side as f64 > MAX_WINDOW_FRACTION * n.min(grid.ny()) as f64 {
             return None;
         }
         let reusable = cache
             .as_ref()
             .is_some_and(|level| level.side() >= side && level.side() <= 2 * side);
         if !reusable {
-            let window_grid = Grid::new(side, side as f64 * grid.element_size(), Boundary::Free)
-                .expect("a window of a valid free grid is valid");
+            let window_grid = window_grid(side, grid).expect("a window of a valid free grid is valid");
             *cache = Some(WindowLevel {
                 operator: FreeOperator::new(window_grid, material),
                 heights: vec![0.0; window_grid.len()],
@@ -164,7 +178,7 @@ impl WindowLevel {
             });
         }
         let level = cache.as_mut()?;
-        level.window = Window::place(&bounds, level.side(), n);
+        level.window = Window::place(&bounds, level.side(), counts);
         let window = level.window;
         for i in 0..window.side {
             for j in 0..window.side {
@@ -180,7 +194,7 @@ impl WindowLevel {
     /// Copies the window's contact and pressures back into `state` (elements outside the
     /// window are out of contact: the window holds the whole contact) and tells whether
     /// the contact reached an open edge of the window.
-    pub(super) fn leave(&self, n: usize, state: &mut ContactState) -> bool {
+    pub(super) fn leave(&self, (n, ny): (usize, usize), state: &mut ContactState) -> bool {
         state.contact.fill(false);
         state.pressure.fill(0.0);
         let window = self.window;
@@ -191,7 +205,7 @@ impl WindowLevel {
                 state.pressure[full] = self.state.pressure[k];
             }
         }
-        window.contact_near_open_edge(&self.state.contact, n)
+        window.contact_near_open_edge(&self.state.contact, (n, ny))
     }
 }
 
@@ -223,7 +237,7 @@ mod tests {
             }
         );
         assert_eq!(bounds.extent(), 8);
-        let window = Window::place(&bounds, 20, n);
+        let window = Window::place(&bounds, 20, (n, n));
         // Centred on rows 5..=12 (start 9 − 10 → 0) and moved inside on the right.
         assert_eq!(
             window,

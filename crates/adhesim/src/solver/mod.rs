@@ -16,8 +16,8 @@ mod peel_predictor;
 mod state;
 
 pub use adhesive::{
-    critical_stress, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, PredictedGrowth, StepReport,
-    ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
+    critical_stress, detachment_element_size, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, PredictedGrowth,
+    StepReport, ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;
@@ -210,9 +210,9 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
         response,
         mask,
     } = buffers;
-    let n = operator.grid().n();
+    let (n, rows) = (operator.grid().nx(), operator.grid().ny());
     // The directions vanish outside the set's rows: their row transforms are skipped.
-    let (support, rows) = (mask_rows(mask, n), 0..n);
+    let (support, rows) = (mask_rows(mask, n), 0..rows);
     let set = support.start * n..support.end * n;
     let mut apply_preconditioner = |residual: &[f64], preconditioned: &mut [f64]| -> f64 {
         precondition(residual, preconditioned, support.clone());

@@ -119,11 +119,13 @@ impl NestedActiveSet {
     pub fn new(grid: Grid, material: ElasticMaterial, params: NestedParams) -> Self {
         let modulus = material.contact_modulus();
         let mut coarse = Vec::new();
-        let mut n = grid.n();
+        let (mut nx, mut ny) = (grid.nx(), grid.ny());
         if grid.boundary() == Boundary::Free {
-            while n.is_multiple_of(2) && n / 2 >= params.coarsest.max(2) {
-                n /= 2;
-                let level_grid = Grid::new(n, grid.size(), Boundary::Free).expect("a halved grid is valid");
+            let coarsest = params.coarsest.max(2);
+            while nx.is_multiple_of(2) && ny.is_multiple_of(2) && nx / 2 >= coarsest && ny / 2 >= coarsest {
+                (nx, ny) = (nx / 2, ny / 2);
+                let level_grid = Grid::rectangular(nx, ny, grid.size_x(), grid.size_y(), Boundary::Free)
+                    .expect("a halved grid is valid");
                 coarse.push(CoarseLevel {
                     grid: level_grid,
                     heights: vec![0.0; level_grid.len()],
@@ -190,11 +192,11 @@ impl NestedActiveSet {
     /// level needs it.
     fn solve_coarse_levels(&mut self, heights: &[f64], depth: f64) -> Result<(), SolveError> {
         let mut finer: &[f64] = heights;
-        let mut finer_n = self.grid.n();
+        let mut finer_n = (self.grid.nx(), self.grid.ny());
         for level in self.coarse.iter_mut() {
             restrict(finer, finer_n, &mut level.heights);
             finer = &level.heights;
-            finer_n /= 2;
+            finer_n = (finer_n.0 / 2, finer_n.1 / 2);
         }
         let levels = self.coarse.len();
         let tolerance = self.params.relative_tolerance.max(COARSE_TOLERANCE);
@@ -204,7 +206,12 @@ impl NestedActiveSet {
             if index + 1 == levels {
                 cold_start(&level.heights, depth, &mut level.state);
             } else {
-                prolong(&tail[0].state, &level.heights, level.grid.n(), &mut level.state);
+                prolong(
+                    &tail[0].state,
+                    &level.heights,
+                    (level.grid.nx(), level.grid.ny()),
+                    &mut level.state,
+                );
             }
             let window = solve_in_window(
                 &mut level.window,
@@ -289,7 +296,7 @@ impl NestedActiveSet {
         self.last_depth = None;
         if !warm && !self.coarse.is_empty() {
             self.solve_coarse_levels(heights, depth)?;
-            prolong(&self.coarse[0].state, heights, self.grid.n(), state);
+            prolong(&self.coarse[0].state, heights, (self.grid.nx(), self.grid.ny()), state);
         } else if !warm {
             cold_start(heights, depth, state);
         }
@@ -374,7 +381,7 @@ fn solve_in_window(
         );
         work.applications += level.operator.applications() - before;
         work.iterations += result?.0;
-        work.settled = !level.leave(grid.n(), state);
+        work.settled = !level.leave((grid.nx(), grid.ny()), state);
         if work.settled {
             break;
         }
@@ -397,9 +404,9 @@ fn cold_start(heights: &[f64], depth: f64, state: &mut ContactState) {
 }
 
 /// Coarse heights as means of 2×2 fine blocks (+∞ where any is +∞).
-fn restrict(fine: &[f64], fine_n: usize, coarse: &mut [f64]) {
+fn restrict(fine: &[f64], (fine_n, fine_rows): (usize, usize), coarse: &mut [f64]) {
     let n = fine_n / 2;
-    for i in 0..n {
+    for i in 0..fine_rows / 2 {
         for j in 0..n {
             let at = |a: usize, b: usize| fine[(2 * i + a) * fine_n + 2 * j + b];
             coarse[i * n + j] = 0.25 * (at(0, 0) + at(0, 1) + at(1, 0) + at(1, 1));
@@ -409,9 +416,9 @@ fn restrict(fine: &[f64], fine_n: usize, coarse: &mut [f64]) {
 
 /// Injects a coarse solution into the finer grid: each coarse element's pressure and
 /// contact flag go to its four children (where the fine surface exists).
-fn prolong(coarse: &ContactState, fine_heights: &[f64], fine_n: usize, fine: &mut ContactState) {
+fn prolong(coarse: &ContactState, fine_heights: &[f64], (fine_n, fine_rows): (usize, usize), fine: &mut ContactState) {
     let n = fine_n / 2;
-    for i in 0..fine_n {
+    for i in 0..fine_rows {
         for j in 0..fine_n {
             let parent = (i / 2) * n + j / 2;
             let k = i * fine_n + j;

@@ -97,8 +97,15 @@ impl RoughSurface {
     /// samples and leaves the first row and column off the map (height +∞): to press the
     /// surface onto that grid use [`Self::to_rough_profile`].
     pub fn to_topography(&self) -> Result<Topography, GeometryError> {
-        let n = self.grid.n();
-        Topography::new(self.heights.clone(), n, n, self.grid.element_size())
+        let grid = &self.grid;
+        if grid.dx() != grid.dy() {
+            return Err(GeometryError::Topography(format!(
+                "a topography has one spacing; the grid's elements are {} × {}",
+                grid.dx(),
+                grid.dy()
+            )));
+        }
+        Topography::new(self.heights.clone(), grid.ny(), grid.nx(), grid.dx())
     }
 
     /// The surface on a base shape, peaks towards the half-space (`rough_flat` with
@@ -149,7 +156,7 @@ impl SelfAffine {
 
     /// Checks the parameters against `grid` without generating anything.
     pub fn validate(&self, grid: &Grid) -> Result<(), SurfaceError> {
-        self.plan(grid).map(|_| ())
+        self.plan(&enclosing_square(grid)?).map(|_| ())
     }
 
     /// Patch size (points, side) and the band (q_r, q_s) in patch index units
@@ -167,9 +174,9 @@ impl SelfAffine {
             Boundary::Free if self.patch_factor == 0 => return Err(SurfaceError::PatchFactor(0)),
             Boundary::Free => self.patch_factor,
         };
-        let points = factor * grid.n();
-        let patch = grid.size() * factor as f64;
-        let spacing = grid.element_size();
+        let points = factor * grid.nx();
+        let patch = grid.size_x() * factor as f64;
+        let spacing = grid.dx();
         let cutoff = match self.cutoff_wavelength {
             Some(wavelength) => {
                 positive("cutoff_wavelength", wavelength)?;
@@ -219,7 +226,25 @@ impl SelfAffine {
     /// are identical for any rayon pool. The phases depend only on the seed and the patch
     /// size: surfaces with the same seed and grid but another H, rms or band are the same
     /// realisation with another spectrum.
+    ///
+    /// On a free rectangular grid of square elements the surface is drawn on the square
+    /// grid of the longer side (same spacing, so the same realisation as that square
+    /// grid's) and its first Nx columns of its first Ny rows are kept.
     pub fn generate(&self, grid: &Grid, seed: u64) -> Result<RoughSurface, SurfaceError> {
+        let square = enclosing_square(grid)?;
+        let mut surface = self.generate_square(&square, seed)?;
+        if square != *grid {
+            let (nx, ny, n) = (grid.nx(), grid.ny(), square.nx());
+            for row in 0..ny {
+                surface.heights.copy_within(row * n..row * n + nx, row * nx);
+            }
+            surface.heights.truncate(nx * ny);
+            surface.grid = *grid;
+        }
+        Ok(surface)
+    }
+
+    fn generate_square(&self, grid: &Grid, seed: u64) -> Result<RoughSurface, SurfaceError> {
         let plan = self.plan(grid)?;
         let m = plan.points;
         let columns = m / 2 + 1;
@@ -288,7 +313,7 @@ impl SelfAffine {
         }
         enforce_hermitian(&mut spectrum, m, self.amplitudes);
         let mut patch_heights = inverse_transform(&mut spectrum, m);
-        let n = grid.n();
+        let n = grid.nx();
         let heights = if m == n {
             patch_heights
         } else {
@@ -308,6 +333,31 @@ impl SelfAffine {
             patch_size: plan.patch,
         })
     }
+}
+
+/// The square grid a surface for `grid` is drawn on: `grid` itself when square; for a
+/// free rectangle of square elements, the square of its longer side. Periodic rectangles
+/// and rectangular elements are refused (the generator's spectrum lives on a square
+/// lattice of square cells).
+fn enclosing_square(grid: &Grid) -> Result<Grid, SurfaceError> {
+    if grid.is_square() {
+        return Ok(*grid);
+    }
+    let refuse = || SurfaceError::RectangularGrid {
+        nx: grid.nx(),
+        ny: grid.ny(),
+        size_x: grid.size_x(),
+        size_y: grid.size_y(),
+    };
+    if grid.boundary() == Boundary::Periodic || grid.dx() != grid.dy() {
+        return Err(refuse());
+    }
+    let square = if grid.nx() >= grid.ny() {
+        Grid::new(grid.nx(), grid.size_x(), Boundary::Free)
+    } else {
+        Grid::new(grid.ny(), grid.size_y(), Boundary::Free)
+    };
+    square.map_err(|_| refuse())
 }
 
 struct Plan {

@@ -92,6 +92,20 @@ pub enum SurfaceError {
         /// Side of the periodic patch.
         patch: f64,
     },
+    /// The generator needs square elements, and a square grid when periodic.
+    #[error(
+        "a generated surface needs square elements (and, on a periodic grid, a square grid): the grid is {nx} × {ny} elements over {size_x} × {size_y}"
+    )]
+    RectangularGrid {
+        /// Elements along x.
+        nx: usize,
+        /// Elements along y.
+        ny: usize,
+        /// Side along x.
+        size_x: f64,
+        /// Side along y.
+        size_y: f64,
+    },
     /// The free-grid patch factor must be at least 1.
     #[error("patch_factor must be >= 1, got {0}")]
     PatchFactor(usize),

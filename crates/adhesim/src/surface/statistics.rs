@@ -1,4 +1,4 @@
-use super::map::forward_transform;
+use super::map::{forward_transform, HeightMap};
 use super::SurfaceError;
 use crate::grid::{Boundary, Grid};
 use std::f64::consts::{PI, TAU};
@@ -37,12 +37,32 @@ fn check(grid: &Grid, heights: &[f64]) -> Result<(), SurfaceError> {
     if let Some(index) = heights.iter().position(|h| !h.is_finite()) {
         return Err(SurfaceError::NonFiniteHeight {
             index,
-            row: index / grid.n(),
-            column: index % grid.n(),
+            row: index / grid.nx(),
+            column: index % grid.nx(),
             value: heights[index],
         });
     }
     Ok(())
+}
+
+/// A rectangular grid's heights as a [`HeightMap`]: the grid functions below hand
+/// rectangles to it (SurfaceTopography's stencils with Δx and Δy, the spectral sums with
+/// q = 2π(k_x/L_x, k_y/L_y)); square grids keep their own forms, bit for bit as before.
+fn rectangle<'a>(grid: &Grid, heights: &'a [f64]) -> Option<Result<HeightMap<'a>, SurfaceError>> {
+    (!grid.is_square()).then(|| {
+        HeightMap::new(
+            (grid.nx(), grid.ny()),
+            (grid.dx(), grid.dy()),
+            heights,
+            None,
+            grid.boundary() == Boundary::Periodic,
+        )
+    })
+}
+
+/// A statistic of a map too small for its stencil.
+fn too_small(grid: &Grid) -> SurfaceError {
+    SurfaceError::TooSmall(grid.nx().min(grid.ny()))
 }
 
 fn mean(values: &[f64]) -> f64 {
@@ -63,6 +83,14 @@ pub fn rms_height(grid: &Grid, heights: &[f64]) -> Result<f64, SurfaceError> {
 /// normalises. Free grid: [`rms_slope_finite_differences`].
 pub fn rms_slope(grid: &Grid, heights: &[f64]) -> Result<f64, SurfaceError> {
     check(grid, heights)?;
+    if let Some(map) = rectangle(grid, heights) {
+        let map = map?;
+        return match grid.boundary() {
+            Boundary::Periodic => map.spectral_slope_and_curvature().map(|(slope, _)| slope),
+            Boundary::Free => map.rms_slope_finite_differences(),
+        }
+        .ok_or_else(|| too_small(grid));
+    }
     match grid.boundary() {
         Boundary::Periodic => Ok(spectral_moment(grid, heights, 1).sqrt()),
         Boundary::Free => rms_slope_finite_differences(grid, heights),
@@ -75,9 +103,12 @@ pub fn rms_slope(grid: &Grid, heights: &[f64]) -> Result<f64, SurfaceError> {
 /// slope 2 sin(qΔ/2)/Δ instead of q (−10 % at half the Nyquist wavevector, −36 % at it).
 pub fn rms_slope_finite_differences(grid: &Grid, heights: &[f64]) -> Result<f64, SurfaceError> {
     check(grid, heights)?;
-    let n = grid.n();
+    if let Some(map) = rectangle(grid, heights) {
+        return map?.rms_slope_finite_differences().ok_or_else(|| too_small(grid));
+    }
+    let n = grid.nx();
     let periodic = grid.boundary() == Boundary::Periodic;
-    let spacing = grid.element_size();
+    let spacing = grid.dx();
     let (mut sum_x, mut sum_y, mut count) = (0.0, 0.0, 0usize);
     let last = if periodic { n } else { n - 1 };
     for row in 0..n {
@@ -99,14 +130,22 @@ pub fn rms_slope_finite_differences(grid: &Grid, heights: &[f64]) -> Result<f64,
 /// Laplacian on the (N − 2)² interior samples (second order; needs N ≥ 3).
 pub fn rms_curvature(grid: &Grid, heights: &[f64]) -> Result<f64, SurfaceError> {
     check(grid, heights)?;
+    if let Some(map) = rectangle(grid, heights) {
+        let map = map?;
+        return match grid.boundary() {
+            Boundary::Periodic => map.spectral_slope_and_curvature().map(|(_, curvature)| curvature),
+            Boundary::Free => map.rms_curvature_finite_differences(),
+        }
+        .ok_or_else(|| too_small(grid));
+    }
     if grid.boundary() == Boundary::Periodic {
         return Ok(spectral_moment(grid, heights, 2).sqrt() / 2.0);
     }
-    let n = grid.n();
+    let n = grid.nx();
     if n < 3 {
         return Err(SurfaceError::TooSmall(n));
     }
-    let spacing = grid.element_size();
+    let spacing = grid.dx();
     let mut sum = 0.0;
     for row in 1..n - 1 {
         for column in 1..n - 1 {
@@ -140,7 +179,10 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
     if bins == 0 {
         return Err(SurfaceError::NoBins);
     }
-    let n = grid.n();
+    if let Some(map) = rectangle(grid, heights) {
+        return map?.isotropic_psd(bins);
+    }
+    let n = grid.nx();
     let average = mean(heights);
     let mut centred: Vec<f64> = heights.iter().map(|h| h - average).collect();
     if grid.boundary() == Boundary::Free {
@@ -155,8 +197,8 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
     }
     let spectrum = forward_transform(&centred, n, n);
     let columns = n / 2 + 1;
-    let wavenumber = TAU / grid.size();
-    let area = grid.size() * grid.size();
+    let wavenumber = TAU / grid.size_x();
+    let area = grid.size_x() * grid.size_x();
     let normalisation = area / (n as f64).powi(4);
     let (lowest, highest) = (1.0f64, n as f64 / 2.0);
     let log_span = (highest / lowest).ln().max(f64::MIN_POSITIVE);
@@ -200,10 +242,10 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
 
 /// (1/N⁴)·Σ_q |q|^(2·order)·|H(q)|² over every lattice mode (periodic maps).
 fn spectral_moment(grid: &Grid, heights: &[f64], order: i32) -> f64 {
-    let n = grid.n();
+    let n = grid.nx();
     let spectrum = forward_transform(heights, n, n);
     let columns = n / 2 + 1;
-    let wavenumber = TAU / grid.size();
+    let wavenumber = TAU / grid.size_x();
     let mut sum = 0.0;
     for row in 0..n {
         let ky = if row <= n / 2 {
@@ -252,7 +294,7 @@ mod tests {
                 "curvature",
             );
             // forward differences: 2 sin(qΔ/2)/Δ exactly on the periodic grid
-            let delta = grid.element_size();
+            let delta = grid.dx();
             let difference = rms_slope_finite_differences(&grid, &heights).unwrap();
             let exact = amplitude * 2.0 * (q * delta / 2.0).sin() / delta / 2f64.sqrt();
             let tolerance = if boundary == Boundary::Periodic { 1e-12 } else { 0.02 };

@@ -22,7 +22,13 @@ impl AdhesiveSolver {
         state: &ContactState,
         retry_high_water: usize,
     ) -> StopRule {
-        if first || self.params.reference_rule || self.params.detachment != Detachment::AllViolators {
+        // The certificates' lattice bounds are those of square elements: rectangular ones
+        // converge every solve.
+        if first
+            || self.params.reference_rule
+            || self.params.detachment != Detachment::AllViolators
+            || self.grid.dx() != self.grid.dy()
+        {
             return StopRule::Converge;
         }
         if self.params.attachment != Attachment::Trial {
@@ -32,7 +38,7 @@ impl AdhesiveSolver {
             self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
         // A trial element lies within `trial_ring_layers` rows of the contact's rows (on a
         // free grid; a periodic one wraps, so every row is looked at).
-        let (n, len) = (self.grid.n(), self.grid.len());
+        let (n, len) = (self.grid.nx(), self.grid.len());
         let near = match self.grid.boundary() {
             Boundary::Free => {
                 let reach = self.params.trial_ring_layers.get() * n;
@@ -96,9 +102,9 @@ impl AdhesiveSolver {
         } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
         {
             // Only the rows where p changed are transformed forward (the same bits).
-            let n = self.grid.n();
+            let n = self.grid.nx();
             let rows = changed.start / n..changed.end.div_ceil(n);
-            operator.apply_single_rows(&self.direction, &mut self.response, rows, 0..n);
+            operator.apply_single_rows(&self.direction, &mut self.response, rows, 0..self.grid.ny());
             state
                 .displacement
                 .par_chunks_mut(PARALLEL_CHUNK)
@@ -133,7 +139,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
     ) -> Result<usize, SolveError> {
-        let span = contact_span(&state.contact, self.grid.n());
+        let span = contact_span(&state.contact, self.grid.nx());
         let (_, uncertain) = count_releases(
             &state.pressure[span.clone()],
             &state.contact[span.clone()],
@@ -256,7 +262,7 @@ impl AdhesiveSolver {
             self.params.front_tolerance
                 * SELF_COMPLIANCE_FACTOR
                 * self.minimum_critical_stress
-                * self.grid.element_size()
+                * self.bound_element_size()
                 / contact_modulus
         } else {
             f64::INFINITY
@@ -295,9 +301,9 @@ impl AdhesiveSolver {
             StopRule::Output => (OUTPUT_TOLERANCE_SCALE, self.params.max_cg_iterations),
             _ => (1.0, self.params.max_cg_iterations),
         };
-        let (contact_modulus, element_size) = (operator.contact_modulus(), self.grid.element_size());
+        let (contact_modulus, element_size) = (operator.contact_modulus(), self.bound_element_size());
         self.last_solve_certified = false;
-        let span = contact_span(&state.contact, self.grid.n());
+        let span = contact_span(&state.contact, self.grid.nx());
         let (target_norm, residual_norm) = self.set_residual(heights, depth, state, span.clone());
         if target_norm == 0.0 {
             // d − z = 0 on all of C (a flat face exactly at the depth, e.g. a punch retracted
@@ -320,7 +326,7 @@ impl AdhesiveSolver {
         self.fill_mask(&state.contact, span.clone());
         let contact = &state.contact;
         let critical_stress = &self.critical_stress;
-        let n = self.grid.n();
+        let n = self.grid.nx();
         let mut certified = false;
         let mut preconditioner = self.preconditioner.as_mut();
         let applications = &mut self.preconditioner_applications;

@@ -266,7 +266,7 @@ impl AdhesiveSolver {
         let Some(mut peel) = self.local_peel.take() else {
             return;
         };
-        let n = self.grid.n();
+        let n = self.grid.nx();
         for &k in &self.ring_members {
             if self.trial[k] {
                 peel.lower[k] = -state.pressure[k];

@@ -10,8 +10,8 @@ mod release;
 mod ring;
 
 pub use params::{
-    critical_stress, AdhesiveParams, Attachment, Detachment, PredictedGrowth, StepReport, ELEMENT_ENERGY_FACTOR,
-    PREDICTION_MIN_ELEMENTS,
+    critical_stress, detachment_element_size, AdhesiveParams, Attachment, Detachment, PredictedGrowth, StepReport,
+    ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
 };
 
 use super::local_peel::LocalPeel;
@@ -137,13 +137,15 @@ impl AdhesiveSolver {
     /// If `work_of_adhesion` does not have one value per element.
     pub fn new(grid: Grid, contact_modulus: f64, work_of_adhesion: Vec<f64>, params: AdhesiveParams) -> Self {
         assert_eq!(work_of_adhesion.len(), grid.len(), "one work of adhesion per element");
-        let delta = grid.element_size();
+        let delta = detachment_element_size(grid.dx(), grid.dy());
         let critical_stress: Vec<f64> = work_of_adhesion
             .iter()
             .map(|&gamma| critical_stress(contact_modulus, gamma, delta))
             .collect();
         let minimum_critical_stress = front_critical_stress(&critical_stress);
         let len = grid.len();
+        // The local rises are tabulated for square elements on a free grid.
+        let local_bounds_hold = grid.boundary() == Boundary::Free && grid.dx() == grid.dy();
         Self {
             params,
             grid,
@@ -183,9 +185,7 @@ impl AdhesiveSolver {
             certified_stops: 0,
             tie_refinements: 0,
             unresolved_ties: 0,
-            local_peel: (grid.boundary() == Boundary::Free
-                && !params.reference_rule
-                && params.detachment == Detachment::AllViolators)
+            local_peel: (local_bounds_hold && !params.reference_rule && params.detachment == Detachment::AllViolators)
                 .then(|| LocalPeel::new(len)),
             local_releases: 0,
             ring_members: Vec::new(),
@@ -193,7 +193,7 @@ impl AdhesiveSolver {
             ring_solved_displacement: vec![0.0; len],
             ring_solved_bounds: (0.0, 0.0, false),
             predicted_failures: Vec::new(),
-            peel_predictor: (grid.boundary() == Boundary::Free
+            peel_predictor: (local_bounds_hold
                 && !params.reference_rule
                 && params.detachment == Detachment::AllViolators)
                 .then(|| PeelPredictor::new(len)),
@@ -238,6 +238,12 @@ impl AdhesiveSolver {
     /// (the decision was then taken on that iterate), over the solver's life.
     pub fn unresolved_ties(&self) -> u64 {
         self.unresolved_ties
+    }
+
+    /// The element size Δ of the tolerance and error-bound scales (E*/Δ, σ_c·Δ/E*): the
+    /// shorter side of a rectangular element (the larger stiffness, the stricter scale).
+    fn bound_element_size(&self) -> f64 {
+        self.grid.dx().min(self.grid.dy())
     }
 
     /// The parameters.

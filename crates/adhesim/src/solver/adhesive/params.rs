@@ -14,6 +14,25 @@ pub fn critical_stress(contact_modulus: f64, work_of_adhesion: f64, element_size
     (contact_modulus * work_of_adhesion / (ELEMENT_ENERGY_FACTOR * element_size)).sqrt()
 }
 
+/// The element size Δ that [`critical_stress`] takes for a grid of Δx × Δy elements: Δx
+/// itself on square elements, and on rectangles the side Δ_e of the square element that
+/// stores the same elastic energy per area under uniform tension σ. Love's element of
+/// sides A × B stores U = I σ²/(2πE*) with the double area integral of 1/|r − r′|
+///
+/// I = 2[A²B·asinh(B/A) + AB²·asinh(A/B)] + (2/3)[A³ + B³ − (A² + B²)^{3/2}],
+///
+/// which is 2π c_U Δ³ for A = B = Δ; U = γAB then gives σ_c = √(E*γ/(c_U Δ_e)) with
+/// Δ_e = I/(2π c_U AB) (docs/physics.md §2.2).
+pub fn detachment_element_size(element_x: f64, element_y: f64) -> f64 {
+    if element_x == element_y {
+        return element_x;
+    }
+    let (a, b) = (element_x, element_y);
+    let integral = 2.0 * (a * a * b * (b / a).asinh() + a * b * b * (a / b).asinh())
+        + 2.0 / 3.0 * (a.powi(3) + b.powi(3) - (a * a + b * b).powf(1.5));
+    integral / (std::f64::consts::TAU * ELEMENT_ENERGY_FACTOR * a * b)
+}
+
 /// Over-stress ratio −p/σ_c of an element in contact: > 1 exactly when it violates
 /// p < −σ_c. An element without adhesion (σ_c = 0, γ = 0) detaches under any tension, so
 /// its ratio is +∞ for p < 0 and 0 otherwise (never NaN): such elements are violators
@@ -229,5 +248,24 @@ mod tests {
             "{}",
             0.5 * mean
         );
+    }
+
+    #[test]
+    fn rectangular_elements_store_the_energy_of_their_quadrature() {
+        use crate::elastic::influence::{love_rectangle, rectangle_quadrature};
+        // U/σ² = (1/2)∫∫K over the element; with Δ_e: c_U Δ_e³·(AB/Δ_e²)/E* = c_U Δ_e AB/E*.
+        // Composite Gauss on the log-singular integrand converges to ~1e-6 at 32² cells.
+        for (a, b) in [(1.0, 2.0), (0.3, 0.1), (1.0, 1.0 + 1e-9)] {
+            let energy = 0.5 * rectangle_quadrature(a, b, 32, |x, y| love_rectangle(x, y, a, b, 1.0));
+            let size = detachment_element_size(a, b);
+            let expected = ELEMENT_ENERGY_FACTOR * size * a * b;
+            assert!(
+                (energy / expected - 1.0).abs() < 1e-5,
+                "{a}×{b}: {energy} vs {expected}"
+            );
+        }
+        // Continuous at the square and exact there.
+        assert!((detachment_element_size(1.0, 1.0 + 1e-9) - 1.0).abs() < 1e-8);
+        assert_eq!(detachment_element_size(0.25, 0.25), 0.25);
     }
 }

@@ -23,7 +23,7 @@ impl AdhesiveSolver {
             }
             return 0;
         };
-        let n = self.grid.n();
+        let n = self.grid.nx();
         for k in crate::solver::contact_span(&state.contact, n) {
             if state.contact[k] && (self.trial[k] || !trial_only) {
                 peel.lower[k] = -state.pressure[k] - self.pressure_error_bound;
@@ -119,7 +119,7 @@ impl AdhesiveSolver {
         let Some(mut peel) = self.local_peel.take() else {
             return;
         };
-        let n = self.grid.n();
+        let n = self.grid.nx();
         let centre = ((released / n) as i64, (released % n) as i64);
         peel.contact_rises(n, centre, |k| state.contact[k]);
         for &(k, rise) in &peel.rises {
@@ -144,7 +144,7 @@ impl AdhesiveSolver {
         let mut any_violator = false;
         let mut smallest = f64::INFINITY;
         let mut largest: f64 = 0.0;
-        let span = crate::solver::contact_span(&state.contact, self.grid.n());
+        let span = crate::solver::contact_span(&state.contact, self.grid.nx());
         for k in span.clone() {
             if state.contact[k] {
                 let ratio = over_stress_ratio(state.pressure[k], self.critical_stress[k]);
