@@ -4,8 +4,6 @@
 //! included (docs/cli.md).
 
 mod commands;
-mod error_text;
-mod fields;
 mod figure;
 mod log_ticks;
 mod map_key;
@@ -17,9 +15,9 @@ mod rough_sphere_plots;
 mod summary;
 mod tangential_plots;
 
+use adhesim_scenario::error_text::error_line;
 use clap::{Parser, Subcommand};
 use commands::{experiment, reference, run, study, sweep, topography};
-use error_text::error_line;
 
 /// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
 ///

@@ -3,10 +3,12 @@
 
 use adhesim::analysis::reference::Jkr;
 use adhesim::{Grid, Observer, StepRecord, StepView};
-use adhesim_scenario::{CurveColumns, SnapshotPlan, ValidScenario};
+use adhesim_scenario::output::curve_csv::CurveCsv;
+use adhesim_scenario::output::timings::PhaseTimings;
+use adhesim_scenario::{SnapshotPlan, ValidScenario};
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::fs::File;
 use std::io::{BufWriter, IsTerminal, Write};
 use std::ops::ControlFlow;
@@ -18,67 +20,6 @@ const STAYING: [u8; 3] = [70, 70, 70];
 const ATTACHED: [u8; 3] = [215, 25, 28];
 const DETACHED: [u8; 3] = [30, 90, 220];
 const FREE: [u8; 3] = [255, 255, 255];
-
-/// `curve.csv` (its columns are the scenario crate's [`CurveColumns`]): one row per step, flushed as it comes into `curve.csv.partial` (a killed
-/// run keeps its steps there), renamed to `curve.csv` when the run ends: a `curve.csv`
-/// is always whole, never cut mid-line by a full disk. I/O errors name the file.
-pub struct CurveCsv {
-    writer: csv::Writer<BufWriter<File>>,
-    columns: CurveColumns,
-    partial: PathBuf,
-    path: PathBuf,
-}
-
-impl CurveCsv {
-    /// Creates `PATH.partial` and writes its header.
-    pub fn create(path: &Path, jkr: Option<Jkr>) -> Result<Self> {
-        let mut partial = path.as_os_str().to_owned();
-        partial.push(".partial");
-        let partial = PathBuf::from(partial);
-        let file = File::create(&partial).with_context(|| format!("cannot create {}", partial.display()))?;
-        let writer = csv::Writer::from_writer(BufWriter::new(file));
-        let columns = CurveColumns::new(jkr);
-        let mut csv = Self {
-            writer,
-            columns,
-            partial,
-            path: path.to_path_buf(),
-        };
-        let header: Vec<&str> = csv.columns.names().collect();
-        csv.writer
-            .write_record(header)
-            .map_err(anyhow::Error::from)
-            .and_then(|()| csv.flush())
-            .with_context(|| format!("cannot write {}", csv.partial.display()))?;
-        Ok(csv)
-    }
-
-    /// Writes the row of one step.
-    pub fn write(&mut self, record: &StepRecord) -> Result<()> {
-        self.writer
-            .write_record(self.columns.row(record).map(|cell| cell.to_string()))
-            .map_err(anyhow::Error::from)
-            .and_then(|()| self.flush())
-            .with_context(|| format!("cannot write {}", self.partial.display()))
-    }
-
-    /// Flushes the file.
-    pub fn flush(&mut self) -> Result<()> {
-        self.writer.flush()?;
-        Ok(())
-    }
-
-    /// Flushes the rows to disk and renames the file to its final name.
-    pub fn commit(&mut self) -> Result<()> {
-        self.writer
-            .flush()
-            .map_err(anyhow::Error::from)
-            .and_then(|()| Ok(self.writer.get_ref().get_ref().sync_all()?))
-            .with_context(|| format!("cannot write {}", self.partial.display()))?;
-        std::fs::rename(&self.partial, &self.path)
-            .with_context(|| format!("cannot rename {} to {}", self.partial.display(), self.path.display()))
-    }
-}
 
 /// The progress bar (hidden when quiet or when stderr is not a terminal) with the
 /// current depth and force, normalised by the JKR scales where they exist.
@@ -121,41 +62,6 @@ impl Progress {
     }
 }
 
-/// Wall time per phase: the solver's (time between steps, without the output) and the
-/// output's own.
-pub struct PhaseTimings {
-    /// Solver wall time per phase.
-    pub phase_seconds: BTreeMap<&'static str, f64>,
-    /// Steps per phase.
-    pub phase_steps: BTreeMap<&'static str, usize>,
-    /// Wall time spent writing curve.csv rows and snapshots.
-    pub output_seconds: f64,
-    last_tick: Instant,
-}
-
-impl PhaseTimings {
-    fn new() -> Self {
-        Self {
-            phase_seconds: BTreeMap::new(),
-            phase_steps: BTreeMap::new(),
-            output_seconds: 0.0,
-            last_tick: Instant::now(),
-        }
-    }
-
-    /// A step of `phase` has been solved (since the last tick).
-    fn solver_step(&mut self, phase: &'static str) {
-        *self.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
-        *self.phase_steps.entry(phase).or_default() += 1;
-    }
-
-    /// The output of a step, begun at `start`, is written.
-    fn output_done(&mut self, start: Instant) {
-        self.output_seconds += start.elapsed().as_secs_f64();
-        self.last_tick = Instant::now();
-    }
-}
-
 /// Writes the outputs of each step.
 pub struct RunObserver {
     csv: CurveCsv,
@@ -180,7 +86,7 @@ pub struct RunObserver {
     /// Solver and output wall time per phase.
     pub timings: PhaseTimings,
     /// `fields.npz` of the snapshot steps (crate::fields), when set.
-    pub fields: Option<crate::fields::FieldsRecorder>,
+    pub fields: Option<adhesim_scenario::output::fields::FieldsRecorder>,
 }
 
 impl RunObserver {

@@ -23,5 +23,5 @@ pub fn write(path: &Path, summary: &Summary<'_>) -> Result<()> {
     let text = summary
         .to_json()
         .with_context(|| format!("cannot write {}", path.display()))?;
-    crate::commands::batch::write_atomically(path, text.as_bytes())
+    adhesim_scenario::batch::write_atomically(path, text.as_bytes())
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 mod common;
-use common::{assert_fails_with, read_json, stderr, write, BIN};
+use common::{assert_fails_with, npy_bytes, read_json, stderr, write, BIN};
 
 fn adhesim(args: &[&str], memory: Option<&str>) -> Output {
     let mut command = Command::new(BIN);
@@ -221,25 +221,6 @@ fn a_sweep_whose_concurrent_cases_exceed_the_memory_is_refused() {
     );
 }
 
-/// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
-fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
-    let mut header = format!(
-        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
-        shape.0, shape.1
-    );
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    bytes.extend_from_slice(header.as_bytes());
-    for v in values {
-        bytes.extend_from_slice(&v.to_le_bytes());
-    }
-    bytes
-}
-
 const TOPOGRAPHY: &str = r#"
 [grid]
 n = 16
@@ -350,6 +331,39 @@ fn a_bad_adhesion_map_is_an_error_naming_the_key() {
         let out = format!("out-{file}");
         let output = run_in(temp.path(), &map_scenario(file), &out);
         assert_fails_with(&output, &["adhesion.field.file", file, fragment]);
+        assert!(!temp.path().join(out).exists(), "nothing written for a refused run");
+    }
+}
+
+/// Issue #29: map values that keep γ finite and ≥ 0 but put one element's critical stress σ_c
+/// outside the solver's single-precision range (1e296 overflowed mid-run; 1e-303 ended in a
+/// "did not converge" whose residual was below its tolerance) are refused before the run,
+/// naming the element, its γ and the map.
+#[test]
+fn adhesion_maps_beyond_single_precision_are_refused_naming_the_element() {
+    let temp = tempfile::tempdir().unwrap();
+    let n = 32;
+    for (name, value) in [("strong.npy", 1e296), ("faint.npy", 1e-303)] {
+        let mut values = vec![1.0; n * n];
+        values[40] = value;
+        std::fs::write(temp.path().join(name), npy_bytes((n, n), &values)).unwrap();
+        let scenario = JKR.replace(
+            "work_of_adhesion = 0.001",
+            &format!("work_of_adhesion = 0.001\nfield = {{ kind = \"map\", file = \"{name}\" }}"),
+        );
+        let out = format!("out-{name}");
+        let output = run_in(temp.path(), &scenario, &out);
+        let gamma = format!("γ = {:e}", 0.001 * value);
+        assert_fails_with(
+            &output,
+            &[
+                "the critical stress σ_c",
+                "(element 40, ",
+                &gamma,
+                "single-precision",
+                "adhesion.field",
+            ],
+        );
         assert!(!temp.path().join(out).exists(), "nothing written for a refused run");
     }
 }

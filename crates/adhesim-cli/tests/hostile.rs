@@ -8,7 +8,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{adhesim, assert_fails_with, read_json, scenarios_dir, stderr, write, BIN};
+use common::{adhesim, assert_fails_with, npy_bytes, read_json, scenarios_dir, stderr, write, BIN};
 
 fn hertz() -> String {
     scenarios_dir().join("hertz.toml").to_str().unwrap().to_string()
@@ -295,24 +295,6 @@ fn heights_beyond_the_solver_range_are_refused_naming_the_keys() {
         let expected = format!("roughness.rms_height = {value} lies outside the magnitudes 1e-150..1e150");
         assert_fails_with(&output, &[&expected]);
     }
-}
-
-fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
-    let mut header = format!(
-        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
-        shape.0, shape.1
-    );
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    bytes.extend_from_slice(header.as_bytes());
-    for v in values {
-        bytes.extend_from_slice(&v.to_le_bytes());
-    }
-    bytes
 }
 
 /// Runs `adhesim ARGS` with `ADHESIM_MEMORY_AVAILABLE` = `bytes`.

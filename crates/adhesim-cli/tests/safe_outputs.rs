@@ -8,7 +8,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{adhesim, assert_fails_with, assert_ok, read_json, scenarios_dir, stderr, write, BIN};
+use common::{adhesim, assert_fails_with, assert_ok, npy_bytes, read_json, scenarios_dir, stderr, write, BIN};
 
 /// A Hertz indentation of a few milliseconds (16×16 grid).
 const SMALL: &str = r#"
@@ -428,4 +428,62 @@ fn a_locked_study_folder_is_refused() {
     assert_fails_with(&output, &[".adhesim-lock", &format!("pid {}", holder.id())]);
     assert!(!out.join("table.csv").exists());
     holder.stop();
+}
+
+/// Issue #29: a PNG that fails to write (the disk fills, here a file-size limit of 64 KiB
+/// under `ulimit -f`, which the ~100 KiB height map of a 128² map passes first) is named in
+/// the error, and neither it nor its temporary file is left; the smaller files written
+/// before it are whole (the PSD's PNG has the bytes of an unlimited run).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_png_that_cannot_be_written_whole_is_named_and_not_left_cut() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 128;
+    // white-noise heights: a map whose PNG barely compresses
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let heights: Vec<f64> = (0..n * n)
+        .map(|_| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 1e-6
+        })
+        .collect();
+    let map = dir.path().join("noise.npy");
+    std::fs::write(&map, npy_bytes((n, n), &heights)).unwrap();
+    let analyse = |out: &Path, limit: &str| {
+        let script = format!(
+            "trap '' XFSZ; {limit} exec '{BIN}' topography '{}' --spacing 1e-6 --height-unit m --out '{}'",
+            map.display(),
+            out.display()
+        );
+        Command::new("sh").args(["-c", &script]).output().unwrap()
+    };
+    let whole = dir.path().join("whole");
+    let output = analyse(&whole, "");
+    assert_ok(&output);
+    let heights_png = std::fs::metadata(whole.join("heights.png")).unwrap().len();
+    let psd_png = std::fs::metadata(whole.join("psd.png")).unwrap().len();
+    assert!(
+        psd_png < 64 * 1024 && heights_png > 64 * 1024,
+        "{psd_png} and {heights_png} bytes"
+    );
+
+    let cut = dir.path().join("cut");
+    // 128 blocks of 512 bytes (sh's unit)
+    let output = analyse(&cut, "ulimit -f 128;");
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let target = cut.join("heights.png");
+    assert_fails_with(&output, &["cannot write", &target.display().to_string()]);
+    assert!(!target.exists(), "a failed write left heights.png");
+    let leftovers: Vec<_> = std::fs::read_dir(&cut)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    assert_eq!(
+        std::fs::read(cut.join("psd.png")).unwrap(),
+        std::fs::read(whole.join("psd.png")).unwrap()
+    );
 }

@@ -274,3 +274,25 @@ fn a_travel_beyond_the_domain_is_refused() {
     assert!(error.contains("a ≈ 7.07"), "{error}");
     assert!(error.contains("protocol.distance at most 1.29"), "{error}");
 }
+
+#[test]
+fn per_element_critical_stresses_beyond_single_precision_are_refused() {
+    // Issue #29: a quadratic field of edge/centre ratio 1e296 keeps every γ finite (so the
+    // field check passes), but σ_c of the outer elements leaves the single-precision range
+    // (it overflowed mid-run). `check_field_stresses` must name the element, its γ and the
+    // field's keys. (Maps with such values: the CLI test `guards.rs`
+    // `adhesion_maps_beyond_single_precision_are_refused_naming_the_element`.)
+    let overrides = [
+        "adhesion.field.kind=\"quadratic\"",
+        "adhesion.field.ratio_edge_to_centre=1e296",
+        "adhesion.field.half_length=0.5",
+    ];
+    let error = error_of(MINIMAL, &overrides);
+    assert!(error.contains("the critical stress σ_c = "), "{error}");
+    assert!(error.contains("of the element at x = "), "{error}");
+    assert!(error.contains("adhesion.field.ratio_edge_to_centre = 1e296"), "{error}");
+    assert!(error.contains("single-precision"), "{error}");
+    // A moderate ratio of the same field passes the check.
+    let fine: Vec<String> = overrides.iter().map(|s| s.replace("1e296", "13")).collect();
+    assert!(load(MINIMAL, "test", Path::new("."), &fine).is_ok());
+}

@@ -37,18 +37,22 @@
 //! assert_eq!(error.to_string(), "indenter.radius must be > 0, got -1");
 //! ```
 
+pub mod batch;
 mod cohesive;
 mod curve;
+pub mod error_text;
 mod files;
 mod guards;
 pub mod memory;
 mod model;
+pub mod output;
 mod parse;
 mod pipeline;
 mod results;
 mod roughness;
 mod snapshots;
 mod summary;
+pub mod sweep;
 mod translation;
 mod validate;
 

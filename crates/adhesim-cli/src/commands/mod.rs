@@ -1,8 +1,6 @@
 //! One module per subcommand; `main.rs` parses the command line and calls them.
 
-pub mod batch;
 pub mod experiment;
-pub mod folder;
 pub mod reference;
 pub mod run;
 pub mod study;

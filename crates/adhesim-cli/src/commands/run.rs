@@ -2,10 +2,10 @@
 //! run pipeline (`adhesim_scenario::run`) with the CLI's observer writing `curve.csv`,
 //! snapshots and the progress bar; then the figures of the protocol and `summary.json`.
 
-use crate::commands::folder;
 use crate::{output, plots, resources, summary, tangential_plots};
 use adhesim::analysis::reference::Hertz;
 use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
+use adhesim_scenario::output::folder;
 use adhesim_scenario::{
     ProtocolReport, ProtocolSetup, RunOutcome, RunResults, SnapshotPlan, SnapshotRecorder, TranslationSetup,
     ValidScenario,
@@ -131,7 +131,7 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         options.quiet,
     )?;
     observer.capture(strip);
-    observer.fields = Some(crate::fields::FieldsRecorder::new(
+    observer.fields = Some(adhesim_scenario::output::fields::FieldsRecorder::new(
         SnapshotRecorder::new(SnapshotPlan::new(&scenario)),
         options.fields == Some(FieldsFormat::Netcdf),
     ));
@@ -147,7 +147,7 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             // One message, not an error chain: `ProtocolError::Solve` shows its source in its
             // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
             return Err(
-                anyhow!(crate::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
+                anyhow!(adhesim_scenario::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
                     "run failed; {} holds the steps done",
                     out.join("curve.csv").display()
                 )),

@@ -1,20 +1,18 @@
 //! `adhesim sweep`: parameter studies of many scenarios (docs/sweeps.md).
 //!
 //! A sweep file names a base scenario and the keys to vary; the cases run on the batch
-//! engine ([`crate::commands::batch`]) in parallel (`--jobs`), each into `DIR/cases/<id>/`,
+//! engine ([`adhesim_scenario::batch`]) in parallel (`--jobs`), each into `DIR/cases/<id>/`,
 //! written atomically (a temporary folder under `DIR/tmp/` renamed when the case is
 //! finished, with a `done` marker holding the case's hash). A re-run skips finished cases
 //! and redoes broken ones; `--shard I/N` runs the cases whose index modulo N is I. Every run (and `sweep merge DIR`) rebuilds
 //! `DIR/table.csv` and the master-curve plots from all finished case folders.
 
-pub mod plan;
-pub mod table;
-
-use crate::commands::batch::{self, write_atomically, Batch, BatchCase};
-use crate::commands::folder::{self, FolderLock, Shard};
 use crate::commands::run::{run, RunOptions};
 use crate::resources;
 use adhesim_scenario as scenario;
+use adhesim_scenario::batch::{self, write_atomically, Batch, BatchCase};
+use adhesim_scenario::output::folder::{self, FolderLock, Shard};
+use adhesim_scenario::sweep::{plan, table};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

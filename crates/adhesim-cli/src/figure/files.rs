@@ -5,7 +5,6 @@
 //! memory, written to a temporary file beside it with every write checked, and renamed.
 
 use anyhow::{anyhow, Context, Result};
-use std::io::Write;
 use std::path::Path;
 
 /// Writes `bytes` to `path` through `.NAME.PID.tmp` in the same folder: every write is
@@ -14,35 +13,7 @@ use std::path::Path;
 /// fsync: figures are many and are redone by rerunning; what a full disk gives is the
 /// write's own error.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
-    write_through_temp(path, bytes, false)
-}
-
-/// Writes `bytes` to a temporary sibling of `path`, checked through its flush (and synced
-/// to disk where `durable`: the batch engine's markers and tables), then renames it into
-/// place; a failed write removes the temporary file and names both.
-pub fn write_through_temp(path: &Path, bytes: &[u8], durable: bool) -> Result<()> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let written = std::fs::File::create(&temp).and_then(|mut file| {
-        file.write_all(bytes)?;
-        if durable {
-            file.sync_all()
-        } else {
-            file.flush()
-        }
-    });
-    if let Err(error) = written {
-        let _ = std::fs::remove_file(&temp);
-        return Err(anyhow!(error).context(format!(
-            "cannot write {} (through the temporary file {})",
-            path.display(),
-            temp.display()
-        )));
-    }
-    std::fs::rename(&temp, path).with_context(|| format!("cannot write {}", path.display()))
+    adhesim_scenario::output::write_through_temp(path, bytes, false)
 }
 
 /// Writes the RGB `pixels` of a figure drawn by plotters' bitmap backend as a PNG with the

@@ -118,3 +118,22 @@ pub fn synth_experiment(dir: &Path, frames: usize) {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// A 2-D little-endian f64 `.npy` file claiming `shape` and holding `values`.
+pub fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
+    let mut header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+        shape.0, shape.1
+    );
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    for v in values {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}

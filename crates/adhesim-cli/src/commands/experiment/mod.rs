@@ -298,7 +298,7 @@ impl FrameContext<'_> {
                             eprintln!(
                                 "skipping unreadable frame {}: {}",
                                 name_of(path),
-                                crate::error_text::error_line(e.chain())
+                                adhesim_scenario::error_text::error_line(e.chain())
                             )
                         });
                         None

@@ -12,9 +12,9 @@ mod plots;
 mod runs;
 mod tables;
 
-use crate::commands::batch::{self, Batch, BatchCase, CaseState};
 use adhesim::analysis::johnson::amplitude_for_johnson_parameter;
 use adhesim::analysis::reference::Jkr;
+use adhesim_scenario::batch::{self, Batch, BatchCase, CaseState};
 use adhesim_scenario::{self as scenario, ProtocolKind, ValidScenario};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, ValueEnum};

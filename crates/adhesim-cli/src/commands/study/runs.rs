@@ -4,7 +4,7 @@
 //! a killed study resumes where it stopped. The hash covers the exact scenario it ran (base
 //! after `set`, plus the run's overrides) and the library's results revision.
 
-use crate::commands::batch::{results_hash, Batch, BatchCase};
+use adhesim_scenario::batch::{results_hash, Batch, BatchCase};
 use adhesim_scenario::{RunResults, TranslationResults, ValidScenario};
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};

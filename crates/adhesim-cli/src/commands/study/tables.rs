@@ -98,7 +98,7 @@ pub fn write_csv<T: Serialize>(path: &Path, rows: &[T]) -> Result<()> {
     let bytes = w
         .into_inner()
         .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    crate::commands::batch::write_atomically(path, &bytes)
+    adhesim_scenario::batch::write_atomically(path, &bytes)
 }
 
 /// A case's α index and its analysed results.

@@ -14,7 +14,7 @@ mod pool;
 #[cfg(test)]
 mod tests;
 
-use crate::commands::folder::{FolderLock, Shard};
+use crate::output::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
 pub use cases::{case_state, fnv1a, results_hash, CaseState};
 use std::path::{Path, PathBuf};
@@ -201,5 +201,5 @@ pub fn parse_shard(text: Option<&str>) -> Result<Shard> {
 /// Writes a file through a temporary sibling and a rename, so readers never see half of it
 /// (a full disk leaves the previous file or none, and an error naming the path).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    crate::figure::files::write_through_temp(path, bytes, true)
+    crate::output::write_through_temp(path, bytes, true)
 }

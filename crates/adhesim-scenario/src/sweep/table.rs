@@ -8,8 +8,8 @@
 //! sharded sweep is byte-identical to an uninterrupted one.
 
 use super::plan::Plan;
-use crate::commands::batch::write_atomically;
-use crate::commands::batch::{case_state, CaseState};
+use crate::batch::write_atomically;
+use crate::batch::{case_state, CaseState};
 use anyhow::{Context, Result};
 use serde::de::{Deserializer, MapAccess, Visitor};
 use serde::Deserialize;

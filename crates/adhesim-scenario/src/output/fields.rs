@@ -7,8 +7,8 @@
 //! writes them at the end of the run with `adhesim_topography::write_npz` (DEFLATE),
 //! through a `.partial` file renamed when complete.
 
+use crate::{SnapshotFields, SnapshotRecorder, ValidScenario};
 use adhesim::StepView;
-use adhesim_scenario::{SnapshotFields, SnapshotRecorder, ValidScenario};
 use adhesim_topography::{write_netcdf, write_npz, NetcdfGrid};
 use anyhow::{Context, Result};
 use std::path::Path;

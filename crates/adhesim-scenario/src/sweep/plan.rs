@@ -2,12 +2,12 @@
 //! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
 //! the deterministic case list.
 
-use crate::commands::batch::{fnv1a, results_hash};
+use crate as scenario;
+use crate::batch::{fnv1a, results_hash};
 use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
 use adhesim::rng::SplitMix64;
 use adhesim::ElasticMaterial;
-use adhesim_scenario as scenario;
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
