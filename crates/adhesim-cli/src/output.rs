@@ -140,7 +140,7 @@ impl RunObserver {
         let r = view.record;
         self.csv.write(r)?;
         let step = r.step;
-        let n = self.grid.n();
+        let n = (self.grid.ny(), self.grid.nx());
         let changed = r.report.attached + r.report.detached;
         if self.plan.is_chosen(step) {
             let name = SnapshotPlan::step_name(step);
@@ -243,16 +243,17 @@ fn pixel_scale(n: usize) -> usize {
 }
 
 /// A PNG contact map: staying contact dark grey, newly attached red, just detached blue,
-/// free white; one square of pixels per element, y upwards.
+/// free white; one block of pixels per element, y upwards. The blocks are square on
+/// square elements and keep the elements' aspect ratio Δy/Δx (to the pixel) otherwise.
 pub fn write_contact_map(path: &Path, grid: &Grid, contact: &[bool], previous: &[bool]) -> Result<()> {
-    let n = grid.n();
-    let scale = pixel_scale(n);
-    let side = (n * scale) as u32;
-    let mut image = image::RgbImage::new(side, side);
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let scale = pixel_scale(nx.max(ny));
+    let scale_y = ((scale as f64 * grid.dy() / grid.dx()).round() as usize).max(1);
+    let mut image = image::RgbImage::new((nx * scale) as u32, (ny * scale_y) as u32);
     for (px, py, pixel) in image.enumerate_pixels_mut() {
         let column = px as usize / scale;
-        let row = n - 1 - py as usize / scale;
-        let k = row * n + column;
+        let row = ny - 1 - py as usize / scale_y;
+        let k = row * nx + column;
         pixel.0 = match (previous[k], contact[k]) {
             (true, true) => STAYING,
             (false, true) => ATTACHED,
@@ -261,14 +262,15 @@ pub fn write_contact_map(path: &Path, grid: &Grid, contact: &[bool], previous: &
         };
     }
     let legend = [(STAYING, "in contact"), (ATTACHED, "attached"), (DETACHED, "detached")];
-    let pixels_per_length = scale as f64 / grid.element_size();
+    let pixels_per_length = scale as f64 / grid.dx();
     let keyed = crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?;
     crate::figure::files::save_image(&keyed, path)
 }
 
-fn write_field(path: &Path, n: usize, values: &[f64]) -> Result<()> {
+/// A field as an .npy array of `shape` = (rows, columns) = (Ny, Nx).
+fn write_field(path: &Path, shape: (usize, usize), values: &[f64]) -> Result<()> {
     use ndarray_npy::WriteNpyExt;
-    let array = ndarray::Array2::from_shape_vec((n, n), values.to_vec())?;
+    let array = ndarray::Array2::from_shape_vec(shape, values.to_vec())?;
     let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     let mut writer = BufWriter::new(file);
     array

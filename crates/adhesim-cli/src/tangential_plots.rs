@@ -114,7 +114,7 @@ const AXIS: [u8; 3] = [40, 170, 40];
 /// the moving indenter axis as a green vertical line (motion in +x, to the right: the
 /// leading edge is on the right, the trailing edge on the left).
 pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<bool>, f64)]) -> Result<()> {
-    let n = grid.n();
+    let (n, rows) = (grid.nx(), grid.ny());
     let (mut c0, mut c1, mut r0, mut r1) = (usize::MAX, 0, usize::MAX, 0);
     for (contact, previous, _) in frames {
         for (k, (&a, &b)) in contact.iter().zip(previous).enumerate() {
@@ -128,11 +128,11 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
         }
     }
     if c0 == usize::MAX {
-        (c0, c1, r0, r1) = (0, n - 1, 0, n - 1);
+        (c0, c1, r0, r1) = (0, n - 1, 0, rows - 1);
     }
     let margin = 2;
     let (c0, r0) = (c0.saturating_sub(margin), r0.saturating_sub(margin));
-    let (c1, r1) = ((c1 + margin).min(n - 1), (r1 + margin).min(n - 1));
+    let (c1, r1) = ((c1 + margin).min(n - 1), (r1 + margin).min(rows - 1));
     let (w, h) = (c1 - c0 + 1, r1 - r0 + 1);
     let scale = (400 / w.max(h)).clamp(1, 16);
     let gap = 8;
@@ -140,11 +140,11 @@ pub fn write_snapshot_strip(path: &Path, grid: &Grid, frames: &[(Vec<bool>, Vec<
     let width = (count * w * scale + (count - 1) * gap) as u32;
     let height = (h * scale) as u32;
     let mut image = image::RgbImage::from_pixel(width, height, image::Rgb([255, 255, 255]));
-    let delta = grid.element_size();
+    let delta = grid.dx();
     for (i, (contact, previous, offset)) in frames.iter().enumerate() {
         let left = i * (w * scale + gap);
         // Column of the indenter axis: element centres are at (c + 0.5)Δ − L/2.
-        let axis_column = ((offset + 0.5 * grid.size()) / delta - 0.5).round() as i64 - c0 as i64;
+        let axis_column = ((offset + 0.5 * grid.size_x()) / delta - 0.5).round() as i64 - c0 as i64;
         for py in 0..h * scale {
             let row = r1 - py / scale;
             for px in 0..w * scale {

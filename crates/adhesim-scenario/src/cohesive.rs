@@ -128,7 +128,8 @@ pub(crate) fn zone_resolution_warning(
     };
     let point = model.at_max_adhesive_force();
     let width = point.zone_radius - point.contact_radius;
-    let delta = grid.element_size();
+    // The longer element side: the coarser direction decides the resolution.
+    let delta = grid.dx().max(grid.dy());
     let elements = width / delta;
     (elements < MIN_ZONE_ELEMENTS).then(|| {
         format!(

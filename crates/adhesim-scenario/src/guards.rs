@@ -70,7 +70,7 @@ impl ScenarioFile {
         let material = material_keys(&self.material);
         let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
         let radius = format!("indenter.radius = {}", show(self.indenter.radius().unwrap_or(f64::NAN)));
-        let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
+        let element = format!("grid.size = {}, grid.n = {}", self.grid.size.show(show), self.grid.n);
         let waviness = format!(
             "indenter.wavelength = {}, indenter.amplitude = {}",
             show(self.indenter.waviness().map_or(f64::NAN, |(_, wavelength)| wavelength)),
@@ -118,7 +118,7 @@ impl ScenarioFile {
         let material = material_keys(&self.material);
         let gamma = format!("adhesion.work_of_adhesion = {}", show(self.adhesion.work_of_adhesion));
         let radius = format!("indenter.radius = {}", show(self.indenter.radius().unwrap_or(f64::NAN)));
-        let element = format!("grid.size = {}, grid.n = {}", show(self.grid.size), self.grid.n);
+        let element = format!("grid.size = {}, grid.n = {}", self.grid.size.show(show), self.grid.n);
         let delta = derived.element_size;
         let scales = [
             (
@@ -175,7 +175,7 @@ impl ScenarioFile {
                 _ => {}
             }
         }
-        keys.push(format!("grid.size = {}", show(self.grid.size)));
+        keys.push(format!("grid.size = {}", self.grid.size.show(show)));
         bail!(
             "the indenter's heights span {span:e} above its lowest point on the grid, beyond the {SINGLE_PRECISION_MAGNITUDE:e} the solver's single-precision FFTs hold; it comes from {}: bring these inputs to commensurate units",
             keys.join(", ")
@@ -195,7 +195,9 @@ impl ScenarioFile {
         // The largest pressure of the run is at most that of one element pushed through the
         // whole depth range, E*·(range)/Δ.
         let range = (end_depth - start_depth).abs();
-        let element_size = self.grid.size / self.grid.n as f64;
+        // The shorter element side (the larger pressure): size/n on a square.
+        let ((nx, ny), (sx, sy)) = (self.grid.n.pair(), self.grid.size.pair());
+        let element_size = (sx / nx as f64).min(sy / ny as f64);
         let depth_keys = format!("{keys}, {}", material_keys(&self.material));
         single_precision_scale("the depth range", range, keys)?;
         single_precision_scale(
@@ -203,7 +205,7 @@ impl ScenarioFile {
             contact_modulus(&self.material) * range / element_size,
             &format!(
                 "{depth_keys}, grid.size = {}, grid.n = {}",
-                show(self.grid.size),
+                self.grid.size.show(show),
                 self.grid.n
             ),
         )?;
@@ -297,7 +299,7 @@ impl ScenarioFile {
     /// (3.9e-34) was below its tolerance (the single-precision search directions underflow).
     pub(crate) fn check_field_stresses(&self, grid: &Grid, gamma: &[f64]) -> Result<()> {
         let contact_modulus = contact_modulus(&self.material);
-        let delta = grid.element_size();
+        let delta = adhesim::solver::detachment_element_size(grid.dx(), grid.dy());
         let window = 1.0 / SINGLE_PRECISION_MAGNITUDE..=SINGLE_PRECISION_MAGNITUDE;
         let stress = |g: f64| adhesim::solver::critical_stress(contact_modulus, g, delta);
         let Some(bad) = gamma.iter().position(|&g| g > 0.0 && !window.contains(&stress(g))) else {
@@ -310,7 +312,7 @@ impl ScenarioFile {
             gamma[bad],
             field_keys(&self.adhesion),
             material_keys(&self.material),
-            show(self.grid.size),
+            self.grid.size.show(show),
             self.grid.n
         )
     }
@@ -319,7 +321,8 @@ impl ScenarioFile {
 /// Resolution warnings: fewer than [`MIN_ELEMENTS_PER_FEATURE`] elements per waviness
 /// wavelength, across a punch, or per JKR radius a_JKR.
 pub(crate) fn resolution_warnings(grid: &Grid, indenter: &Indenter, derived: &Derived) -> Vec<String> {
-    let delta = grid.element_size();
+    // The longer element side: the coarser direction decides the resolution.
+    let delta = grid.dx().max(grid.dy());
     let mut features = Vec::new();
     match indenter {
         Indenter::WavySphere(w) if w.waviness().amplitude() > 0.0 => {
@@ -373,7 +376,8 @@ pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
         Some(jkr) if valid.gamma0 > 0.0 => (jkr.radius_at_depth(depth)?, "JKR"),
         _ => ((radius * depth).sqrt(), "Hertz"),
     };
-    let delta = valid.grid.element_size();
+    // The longer element side: the coarser direction decides the resolution.
+    let delta = valid.grid.dx().max(valid.grid.dy());
     let elements = a / delta;
     (elements < MIN_CONTACT_RADIUS_ELEMENTS).then(|| {
         format!(
@@ -388,20 +392,26 @@ pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
 /// 32 f64 fields of n² (heights, γ, pressure, displacement, gap, the conjugate-gradient
 /// vectors and the observer's copies).
 pub fn memory_estimate(n: u64, boundary: BoundaryName) -> u64 {
-    let padded = match boundary {
-        BoundaryName::Free => 2 * n,
-        BoundaryName::Periodic => n,
+    memory_estimate_rectangle(n, n, boundary)
+}
+
+/// [`memory_estimate`] of an `nx` × `ny` grid.
+pub fn memory_estimate_rectangle(nx: u64, ny: u64, boundary: BoundaryName) -> u64 {
+    let (padded_x, padded_y) = match boundary {
+        BoundaryName::Free => (2 * nx, 2 * ny),
+        BoundaryName::Periodic => (nx, ny),
     };
-    let spectrum = padded * (padded / 2 + 1) * 16;
-    let real = padded * padded * 8;
-    3 * spectrum + 2 * real + 32 * n * n * 8
+    let spectrum = padded_y * (padded_x / 2 + 1) * 16;
+    let real = padded_x * padded_y * 8;
+    3 * spectrum + 2 * real + 32 * nx * ny * 8
 }
 
 impl ScenarioFile {
     /// [`memory_estimate`] of this scenario's grid (0 for a `grid.n` that validation refuses).
     pub fn memory_estimate(&self) -> u64 {
-        if (2..=MAX_GRID_N).contains(&self.grid.n) {
-            memory_estimate(self.grid.n as u64, self.grid.boundary)
+        let (nx, ny) = self.grid.n.pair();
+        if (2..=MAX_GRID_N).contains(&nx) && (2..=MAX_GRID_N).contains(&ny) {
+            memory_estimate_rectangle(nx as u64, ny as u64, self.grid.boundary)
         } else {
             0
         }

@@ -58,7 +58,7 @@ mod validate;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
 pub use files::{check_regular_file, read_input_text};
-pub use guards::{memory_estimate, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
+pub use guards::{memory_estimate, memory_estimate_rectangle, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use memory::{memory_available, MemoryLimit};
 pub use model::*;
 pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};

@@ -6,7 +6,9 @@ use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+mod per_axis;
 mod roughness;
+pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, RoughnessMode, RoughnessSection};
 
 /// The whole scenario file.
@@ -56,9 +58,11 @@ impl AnalysisSection {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSection {
-    /// Elements per side (kept signed so that a negative value gets our own message).
-    pub n: i64,
-    pub size: f64,
+    /// Elements per side, or `[nx, ny]` (kept signed so that a negative value gets our own
+    /// message).
+    pub n: PerAxis<i64>,
+    /// Side length, or `[sx, sy]`.
+    pub size: PerAxis<f64>,
     #[serde(default)]
     pub boundary: BoundaryName,
 }
@@ -516,7 +520,11 @@ pub struct Derived {
     pub d_jkr: Option<f64>,
     pub a_jkr: Option<f64>,
     pub johnson_parameter: Option<f64>,
+    /// Δx (the element side on square elements).
     pub element_size: f64,
+    /// Δy where it differs from Δx (rectangular elements; absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub element_size_y: Option<f64>,
     pub critical_stress: Option<f64>,
     /// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of `adhesion.law = "dugdale"` on a curved
     /// indenter (absent otherwise).

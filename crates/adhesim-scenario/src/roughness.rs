@@ -5,7 +5,7 @@
 
 use crate::guards::usable_positive;
 use crate::model::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection, RoughnessStatistics};
-use crate::validate::positive;
+use crate::validate::{grid_keys, positive};
 use adhesim::surface::{fill_invalid_harmonic, statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
 use adhesim::Grid;
 use adhesim_topography::{read_topography, ReadOptions, Topography, TopographyError};
@@ -205,18 +205,19 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
         map.detrend_mean_plane()
             .map_err(|e| anyhow!("{key} = {}: detrending: {e}", file.display()))?;
     }
-    let (n, spacing) = (grid.n(), grid.element_size());
-    let resampled = map.resample_to(n, n, spacing, spacing).map_err(|e| {
-        anyhow!(
-            "{key} = {}: the grid (grid.n = {n}, grid.size = {}) does not fit in the {}×{} map of spacing {:e} × {:e}: {e}",
-            file.display(),
-            grid.size(),
-            map.nx,
-            map.ny,
-            map.dx,
-            map.dy
-        )
-    })?;
+    let resampled = map
+        .resample_to(grid.nx(), grid.ny(), grid.dx(), grid.dy())
+        .map_err(|e| {
+            anyhow!(
+                "{key} = {}: the grid ({}) does not fit in the {}×{} map of spacing {:e} × {:e}: {e}",
+                file.display(),
+                grid_keys(grid),
+                map.nx,
+                map.ny,
+                map.dx,
+                map.dy
+            )
+        })?;
     let warnings = resampled
         .undersampling
         .map(|u| format!("{key} = {}: {u}", file.display()))

@@ -170,8 +170,12 @@ impl SnapshotRecorder {
 /// the indenter has no surface) and contact.
 #[derive(Debug, Clone)]
 pub struct SnapshotFields {
-    n: usize,
-    centres: Vec<f64>,
+    /// Columns Nx and rows Ny of the fields.
+    nx: usize,
+    ny: usize,
+    /// Element centres along x (columns) and y (rows).
+    x: Vec<f64>,
+    y: Vec<f64>,
     heights: Vec<f64>,
     surface: Vec<bool>,
     steps: Vec<f64>,
@@ -187,7 +191,6 @@ impl SnapshotFields {
     /// `scenario`.
     pub fn new(scenario: &ValidScenario, snapshots: Vec<FieldSnapshot>) -> Self {
         let grid = scenario.grid;
-        let n = grid.n();
         let moving: Option<&TranslatingContact> = match scenario.protocol_setup() {
             ProtocolSetup::Translation(setup) => Some(&setup.contact),
             ProtocolSetup::Indentation(_) => None,
@@ -216,8 +219,10 @@ impl SnapshotFields {
             })
             .collect();
         Self {
-            n,
-            centres: (0..n).map(|i| grid.centre(i).0).collect(),
+            nx: grid.nx(),
+            ny: grid.ny(),
+            x: (0..grid.nx()).map(|column| grid.x(column)).collect(),
+            y: (0..grid.ny()).map(|row| grid.y(row)).collect(),
             heights,
             surface,
             steps: snapshots.iter().map(|s| s.step as f64).collect(),
@@ -232,14 +237,19 @@ impl SnapshotFields {
         }
     }
 
-    /// The grid's side N.
-    pub fn n(&self) -> usize {
-        self.n
+    /// The grid's columns Nx and rows Ny.
+    pub fn counts(&self) -> (usize, usize) {
+        (self.nx, self.ny)
     }
 
-    /// The element centres along x (and y) relative to the axis, (j − N/2)·Δ.
-    pub fn centres(&self) -> &[f64] {
-        &self.centres
+    /// The element centres along x relative to the axis, (j − Nx/2)·Δx.
+    pub fn x(&self) -> &[f64] {
+        &self.x
+    }
+
+    /// The element centres along y relative to the axis, (i − Ny/2)·Δy.
+    pub fn y(&self) -> &[f64] {
+        &self.y
     }
 
     /// The snapshots, by step.
@@ -282,18 +292,19 @@ impl SnapshotFields {
     /// `shapes` holds the shapes the arrays borrow (see [`Self::shapes`]).
     pub fn npz_arrays<'a>(&'a self, shapes: &'a FieldShapes) -> Vec<NamedArray<'a>> {
         let mut arrays = vec![
-            NamedArray::f64("x", &shapes.axis, &self.centres).with_unit("length"),
-            NamedArray::f64("y", &shapes.axis, &self.centres).with_unit("length"),
+            NamedArray::f64("x", &shapes.x, &self.x).with_unit("length"),
+            NamedArray::f64("y", &shapes.y, &self.y).with_unit("length"),
         ];
         arrays.extend(self.field_arrays(&shapes.field, &shapes.count));
         arrays
     }
 
-    /// The shapes of the arrays: (N,), (N, N) and (K,).
+    /// The shapes of the arrays: (Nx,), (Ny,), (Ny, Nx) (rows along y) and (K,).
     pub fn shapes(&self) -> FieldShapes {
         FieldShapes {
-            axis: [self.n],
-            field: [self.n, self.n],
+            x: [self.nx],
+            y: [self.ny],
+            field: [self.ny, self.nx],
             count: [self.snapshots.len()],
         }
     }
@@ -302,9 +313,11 @@ impl SnapshotFields {
 /// The shapes [`SnapshotFields`]'s arrays borrow.
 #[derive(Debug, Clone, Copy)]
 pub struct FieldShapes {
-    /// (N,): `x`, `y`.
-    pub axis: [usize; 1],
-    /// (N, N): the fields.
+    /// (Nx,): `x`.
+    pub x: [usize; 1],
+    /// (Ny,): `y`.
+    pub y: [usize; 1],
+    /// (Ny, Nx): the fields, row i at y_i.
     pub field: [usize; 2],
     /// (K,): `steps`, `depths`, `offsets`.
     pub count: [usize; 1],
@@ -378,7 +391,7 @@ mod tests {
         // and the pull-off step (27) of this case shows 2.5e-9 = 1.0e-6 of the largest
         // depth in contact, more than the solvers' 1e-10 relative tolerance suggests (an
         // open question, reported; not a property of the snapshot code, which copies u).
-        let area = scenario.grid.element_size().powi(2);
+        let area = scenario.grid.dx().powi(2);
         let length = 1e-5 * scenario.max_depth.abs();
         for (index, s) in fields.snapshots().iter().enumerate() {
             let record = &records[s.step];

@@ -145,7 +145,7 @@ impl ScenarioFile {
         let name = kind.name();
         let wavy = match indenter {
             Indenter::WavySphere(w) => *w,
-            Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size(), 0.0)?,
+            Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size_x(), 0.0)?,
             _ => bail!(
                 "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
                 self.indenter.shape().name()
@@ -203,7 +203,8 @@ fn check_travel_inside(
             "the Hertz contact radius √(R·d) at protocol.depth",
         ),
     };
-    let half_width = 0.5 * grid.size();
+    // The indenter moves along x.
+    let half_width = 0.5 * grid.size_x();
     let front = distance + contact_radius;
     let inside = front.is_finite() && front <= half_width;
     if !inside {

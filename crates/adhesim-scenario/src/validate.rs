@@ -16,6 +16,22 @@ use adhesim::{Axis, Boundary, ElasticMaterial, Grid, Indenter, Profile, WorkOfAd
 use anyhow::{anyhow, bail, Result};
 use std::path::Path;
 
+/// The grid as its keys give it: `grid.n = 64, grid.size = 0.8` for a square,
+/// `grid.n = [96, 64], grid.size = [1.5, 1]` for a rectangle.
+pub(crate) fn grid_keys(grid: &Grid) -> String {
+    if grid.is_square() {
+        format!("grid.n = {}, grid.size = {}", grid.nx(), grid.size_x())
+    } else {
+        format!(
+            "grid.n = [{}, {}], grid.size = [{}, {}]",
+            grid.nx(),
+            grid.ny(),
+            grid.size_x(),
+            grid.size_y()
+        )
+    }
+}
+
 pub(crate) fn positive(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
@@ -266,20 +282,44 @@ impl ScenarioFile {
 
 /// `[grid]`.
 fn validate_grid(section: &GridSection) -> Result<Grid> {
-    let n = section.n;
-    if n < 2 {
-        bail!("grid.n must be >= 2, got {n}");
-    }
-    if n > MAX_GRID_N {
-        bail!("grid.n must be <= {MAX_GRID_N}, got {n}");
-    }
-    let n = n as usize;
-    let size = positive("grid.size", section.size)?;
+    let count = |key: &str, n: i64| -> Result<usize> {
+        if n < 2 {
+            bail!("{key} must be >= 2, got {n}");
+        }
+        if n > MAX_GRID_N {
+            bail!("{key} must be <= {MAX_GRID_N}, got {n}");
+        }
+        Ok(n as usize)
+    };
     let boundary = match section.boundary {
         BoundaryName::Free => Boundary::Free,
         BoundaryName::Periodic => Boundary::Periodic,
     };
-    Grid::new(n, size, boundary).map_err(|e| anyhow!("[grid]: {e}"))
+    let grid = match (section.n, section.size) {
+        // The square of every scenario before issue #26, built as it always was.
+        (PerAxis::Both(n), PerAxis::Both(size)) => {
+            Grid::new(count("grid.n", n)?, positive("grid.size", size)?, boundary)
+        }
+        (n, size) => {
+            let keys = |key: &str, per_axis: bool| match per_axis {
+                false => [key.to_string(), key.to_string()],
+                true => [format!("{key}[0]"), format!("{key}[1]")],
+            };
+            let ([nx_key, ny_key], [sx_key, sy_key]) = (
+                keys("grid.n", matches!(n, PerAxis::Axes(..))),
+                keys("grid.size", matches!(size, PerAxis::Axes(..))),
+            );
+            let ((nx, ny), (sx, sy)) = (n.pair(), size.pair());
+            Grid::rectangular(
+                count(&nx_key, nx)?,
+                count(&ny_key, ny)?,
+                positive(&sx_key, sx)?,
+                positive(&sy_key, sy)?,
+                boundary,
+            )
+        }
+    };
+    grid.map_err(|e| anyhow!("[grid]: {e}"))
 }
 
 /// `[material]`: E* directly, or E and ν.
@@ -367,10 +407,9 @@ fn validate_indenter(
         .fold(f64::INFINITY, f64::min);
     if !start_depth.is_finite() {
         bail!(
-            "the indenter (indenter.shape = \"{}\") has no surface inside the domain: enlarge grid.size ({}) or grid.n ({})",
+            "the indenter (indenter.shape = \"{}\") has no surface inside the domain ({}): enlarge grid.size or grid.n",
             shape.name(),
-            grid.size(),
-            grid.n()
+            grid_keys(grid)
         );
     }
     Ok((indenter, heights, start_depth))
@@ -429,7 +468,6 @@ fn validate_adhesion(
     shape: ShapeName,
     base: &Path,
 ) -> Result<(f64, Vec<f64>)> {
-    let n = grid.n();
     let gamma0 = non_negative("adhesion.work_of_adhesion", section.work_of_adhesion)?;
     let adhesion = match &section.field {
         None => WorkOfAdhesion::Uniform(gamma0),
@@ -466,10 +504,13 @@ fn validate_adhesion(
         }
         Some(FieldSpec::Map { file }) => {
             let (values, rows, columns) = read_npy_2d(&base.join(file), "adhesion.field.file")?;
-            if rows != n || columns != n {
+            if rows != grid.ny() || columns != grid.nx() {
                 bail!(
-                    "adhesion.field.file = {}: the map is {rows}×{columns}, the grid is {n}×{n} (grid.n = {n})",
-                    file.display()
+                    "adhesion.field.file = {}: the map is {rows}×{columns}, the grid is {}×{} (rows × columns; {})",
+                    file.display(),
+                    grid.ny(),
+                    grid.nx(),
+                    grid_keys(grid)
                 );
             }
             if let Some(bad) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
@@ -495,7 +536,9 @@ fn validate_adhesion(
 /// The JKR scales and the other derived numbers of `summary.json`.
 fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, gamma0: f64) -> (Option<Jkr>, Derived) {
     let contact_modulus = material.contact_modulus();
-    let delta = grid.element_size();
+    let delta = grid.dx();
+    // σ_c of rectangular elements: that of the energy-equivalent square (physics.md §2.2).
+    let detachment_size = adhesim::solver::detachment_element_size(grid.dx(), grid.dy());
     let jkr = match (gamma0 > 0.0, indenter.radius_of_curvature()) {
         (true, Some(radius)) => Some(Jkr {
             radius,
@@ -519,7 +562,8 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
         a_jkr: jkr.map(|j| j.critical_radius()),
         johnson_parameter: johnson,
         element_size: delta,
-        critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, delta)),
+        element_size_y: (grid.dy() != delta).then(|| grid.dy()),
+        critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, detachment_size)),
         maugis_parameter: None,
         roughness: None,
         substrate_roughness: None,

@@ -351,10 +351,10 @@ fn from_scenario(args: &TopographyArgs) -> Result<Surface> {
     )];
     let grid = &scenario.grid;
     Ok(Surface {
-        nx: grid.n(),
-        ny: grid.n(),
-        dx: grid.element_size(),
-        dy: grid.element_size(),
+        nx: grid.nx(),
+        ny: grid.ny(),
+        dx: grid.dx(),
+        dy: grid.dy(),
         heights,
         valid: None,
         periodic: grid.boundary() == Boundary::Periodic,

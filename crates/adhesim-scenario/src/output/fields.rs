@@ -40,23 +40,22 @@ impl FieldsRecorder {
         })?;
         written.push("fields.npz".to_string());
         if self.netcdf {
-            let spacing = scenario.grid.element_size();
-            let n = fields.n();
+            let (nx, ny) = fields.counts();
             let grid = NetcdfGrid {
-                nx: n,
-                ny: n,
-                dx: spacing,
-                dy: spacing,
+                nx,
+                ny,
+                dx: scenario.grid.dx(),
+                dy: scenario.grid.dy(),
             };
-            let origin = format!("{:e}", fields.centres()[0]);
+            let (x_origin, y_origin) = (format!("{:e}", fields.x()[0]), format!("{:e}", fields.y()[0]));
             let attributes = [
                 ("title", "adhesim contact fields"),
                 (
                     "coordinates",
                     "x, y start at 0; the element centre is x + x_origin, y + y_origin",
                 ),
-                ("x_origin", origin.as_str()),
-                ("y_origin", origin.as_str()),
+                ("x_origin", x_origin.as_str()),
+                ("y_origin", y_origin.as_str()),
             ];
             let arrays = fields.field_arrays(&shapes.field, &shapes.count);
             write_renamed(&out.join("fields.nc"), |path| {
