@@ -96,12 +96,12 @@ impl AdhesiveSolver {
             WorkOfAdhesion::Uniform(non_negative("work_of_adhesion", value)?)
         } else {
             let mut map = Vec::new();
-            read_field(work_of_adhesion, "work_of_adhesion", grid.n(), false, &mut map)?;
+            read_field(work_of_adhesion, "work_of_adhesion", &grid, false, &mut map)?;
             if let Some(k) = map.iter().position(|&gamma| gamma < 0.0) {
                 return Err(PyValueError::new_err(format!(
                     "work_of_adhesion[{}, {}] must be >= 0, got {}",
-                    k / grid.n(),
-                    k % grid.n(),
+                    k / grid.nx(),
+                    k % grid.nx(),
                     map[k]
                 )));
             }
@@ -139,7 +139,7 @@ impl AdhesiveSolver {
     ) -> PyResult<StepReport> {
         let depth = finite("depth", depth)?;
         state.borrow().check_grid(&self.grid)?;
-        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
         self.step_inner(py, depth, state)
     }
 
@@ -178,7 +178,7 @@ impl AdhesiveSolver {
             )));
         }
         state.borrow().check_grid(&self.grid)?;
-        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
         let mut rows = Vec::with_capacity(depths.len());
         for (index, &depth) in depths.iter().enumerate() {
             let report = self.step_inner(py, depth, state)?;
@@ -208,6 +208,6 @@ impl AdhesiveSolver {
     /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (n, n).
     #[getter]
     fn critical_stress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        crate::convert::field(py, self.inner.critical_stresses(), self.grid.n())
+        crate::convert::field(py, self.inner.critical_stresses(), &self.grid)
     }
 }

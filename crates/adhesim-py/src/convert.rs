@@ -109,16 +109,21 @@ pub fn as_float64<'py>(value: &Bound<'py, PyAny>, name: &str) -> PyResult<Bound<
 pub fn read_field(
     value: &Bound<'_, PyAny>,
     name: &str,
-    n: usize,
+    grid: &adhesim::Grid,
     allow_infinity: bool,
     buffer: &mut Vec<f64>,
 ) -> PyResult<()> {
-    let expected = format!("({n}, {n})");
+    let (n, rows) = (grid.nx(), grid.ny());
     let value = &as_float64(value, name)?;
     let untyped = value.cast::<PyUntypedArray>()?;
-    if untyped.shape() != [n, n] {
+    if untyped.shape() != [rows, n] {
+        let elements = if grid.nx() == grid.ny() {
+            "the grid's n × n elements"
+        } else {
+            "the grid's ny rows × nx columns"
+        };
         return Err(PyValueError::new_err(format!(
-            "{name} must have shape {expected} (the grid's n × n elements), got shape {:?}",
+            "{name} must have shape ({rows}, {n}) ({elements}), got shape {:?}",
             untyped.shape()
         )));
     }
@@ -147,13 +152,13 @@ pub fn read_field(
     Ok(())
 }
 
-/// A row-major field as a new `(n, n)` numpy array.
+/// A row-major field as a new `(ny, nx)` numpy array (rows along y).
 pub fn field<'py, T: numpy::Element + Copy>(
     py: Python<'py>,
     values: &[T],
-    n: usize,
+    grid: &adhesim::Grid,
 ) -> PyResult<Bound<'py, PyArray2<T>>> {
-    PyArray1::from_slice(py, values).reshape([n, n])
+    PyArray1::from_slice(py, values).reshape([grid.ny(), grid.nx()])
 }
 
 /// Reads a 1-D array_like (any strides, any real dtype, a list) into a Vec of float64.
@@ -188,18 +193,17 @@ pub fn fits_in_memory(what: &str, bytes: u128) -> PyResult<()> {
 
 /// Elements of `grid`, N², as u128 (sizes in bytes are computed without overflow).
 pub fn elements(grid: &adhesim::Grid) -> u128 {
-    let n = grid.n() as u128;
-    n * n
+    grid.nx() as u128 * grid.ny() as u128
 }
 
 /// Bytes of a half-space operator and the solvers on it, an upper estimate as the scenario
 /// crate's `memory_estimate`: three complex half spectra and two real buffers on the padded
 /// grid (2N per side free, N periodic) and 32 f64 fields of N².
 pub fn half_space_bytes(grid: &adhesim::Grid) -> u128 {
-    let n = grid.n() as u128;
-    let padded = match grid.boundary() {
-        adhesim::Boundary::Free => 2 * n,
-        adhesim::Boundary::Periodic => n,
+    let (nx, ny) = (grid.nx() as u128, grid.ny() as u128);
+    let (padded_x, padded_y) = match grid.boundary() {
+        adhesim::Boundary::Free => (2 * nx, 2 * ny),
+        adhesim::Boundary::Periodic => (nx, ny),
     };
-    3 * padded * (padded / 2 + 1) * 16 + 2 * padded * padded * 8 + 32 * n * n * 8
+    3 * padded_y * (padded_x / 2 + 1) * 16 + 2 * padded_x * padded_y * 8 + 32 * nx * ny * 8
 }

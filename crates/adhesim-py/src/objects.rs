@@ -6,34 +6,72 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-/// An N×N grid of square boundary elements covering a square of side `size`.
+/// A grid of boundary elements: `Grid(n, size)` is n × n square elements covering a square
+/// of side `size`; `Grid(nx, ny, size_x, size_y)` is nx columns (along x) and ny rows (along
+/// y) of Δx × Δy elements covering size_x × size_y.
 ///
-/// Element side Δ = size/n. Fields are (n, n) arrays indexed [row, column]: row i is the
-/// coordinate y, column j the coordinate x; element centres sit at (j − n//2)·Δ, so the
-/// origin is the centre of element (n//2, n//2).
+/// Δx = size_x/nx, Δy = size_y/ny. Fields are (ny, nx) arrays indexed [row, column]: row i is
+/// the coordinate y, column j the coordinate x; element centres sit at (j − nx//2)·Δx,
+/// (i − ny//2)·Δy, so the origin is the centre of element (ny//2, nx//2).
 ///
 /// Args:
-///     n: elements per side (integer ≥ 2).
-///     size: side length L (> 0, any length unit).
-///     boundary: "free" (one contact on an infinite half-space) or "periodic" (the square
-///         is one period of an infinite surface).
+///     n, size: elements per side (integer ≥ 2) and side length L (> 0, any length unit);
+///         or nx, ny, size_x, size_y.
+///     boundary: "free" (one contact on an infinite half-space) or "periodic" (the
+///         rectangle is one period of an infinite surface); positional after the sizes, or
+///         a keyword.
 ///
 /// Raises:
-///     ValueError: n < 2, size not finite and > 0, or an unknown boundary.
+///     ValueError: a count < 2, a size not finite and > 0, an unknown boundary, or another
+///         number of arguments.
 #[pyclass(module = "adhesim._adhesim", frozen, eq, from_py_object)]
 #[derive(Clone, Copy, PartialEq)]
 pub struct Grid {
     pub inner: adhesim::Grid,
 }
 
+impl Grid {
+    /// `ValueError` naming `what` unless the grid is square (n × n square elements).
+    fn square(&self, what: &str) -> PyResult<()> {
+        if self.inner.is_square() {
+            Ok(())
+        } else {
+            Err(PyValueError::new_err(format!(
+                "Grid.{what} is for square grids; {} has nx, ny, size_x, size_y, dx, dy",
+                self.__repr__()
+            )))
+        }
+    }
+}
+
+/// The centres (index − count//2)·spacing of one axis, as a numpy array.
+fn axis<'py>(
+    py: Python<'py>,
+    what: &str,
+    count: usize,
+    centre: impl Fn(usize) -> f64,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    // The values and numpy's copy.
+    fits_in_memory(what, count as u128 * 16)?;
+    Ok(PyArray1::from_vec(py, (0..count).map(centre).collect()))
+}
+
 #[pymethods]
 impl Grid {
     #[new]
-    #[pyo3(signature = (n, size, boundary = "free"))]
-    fn new(n: i64, size: f64, boundary: &str) -> PyResult<Self> {
-        let n = count("n", n, 2)?;
-        let size = positive("size", size)?;
-        let boundary = match boundary {
+    #[pyo3(signature = (*args, boundary = None))]
+    fn new(args: &Bound<'_, pyo3::types::PyTuple>, boundary: Option<String>) -> PyResult<Self> {
+        let mut values: Vec<Bound<'_, PyAny>> = args.iter().collect();
+        let positional = match values.len() {
+            3 | 5 => Some(values.pop().expect("an argument").extract::<String>()?),
+            _ => None,
+        };
+        let boundary = match (positional, boundary) {
+            (Some(_), Some(_)) => return Err(PyValueError::new_err("boundary given twice")),
+            (Some(name), None) | (None, Some(name)) => name,
+            (None, None) => "free".to_string(),
+        };
+        let boundary = match boundary.as_str() {
             "free" => Boundary::Free,
             "periodic" => Boundary::Periodic,
             other => {
@@ -42,21 +80,73 @@ impl Grid {
                 )))
             }
         };
+        let grid = match values.as_slice() {
+            [n, size] => adhesim::Grid::new(
+                count("n", n.extract()?, 2)?,
+                positive("size", size.extract()?)?,
+                boundary,
+            ),
+            [nx, ny, size_x, size_y] => adhesim::Grid::rectangular(
+                count("nx", nx.extract()?, 2)?,
+                count("ny", ny.extract()?, 2)?,
+                positive("size_x", size_x.extract()?)?,
+                positive("size_y", size_y.extract()?)?,
+                boundary,
+            ),
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "Grid takes (n, size) or (nx, ny, size_x, size_y), then the boundary; got {} arguments",
+                    other.len()
+                )))
+            }
+        };
         Ok(Self {
-            inner: adhesim::Grid::new(n, size, boundary).map_err(value_error)?,
+            inner: grid.map_err(value_error)?,
         })
     }
 
-    /// Elements per side, n.
+    /// Elements per side, n (square grids).
     #[getter]
-    fn n(&self) -> usize {
-        self.inner.n()
+    fn n(&self) -> PyResult<usize> {
+        self.square("n")?;
+        Ok(self.inner.nx())
     }
 
-    /// Side length L of the square.
+    /// Elements along x (columns), nx.
     #[getter]
-    fn size(&self) -> f64 {
-        self.inner.size()
+    fn nx(&self) -> usize {
+        self.inner.nx()
+    }
+
+    /// Elements along y (rows), ny.
+    #[getter]
+    fn ny(&self) -> usize {
+        self.inner.ny()
+    }
+
+    /// The fields' shape (ny, nx).
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        (self.inner.ny(), self.inner.nx())
+    }
+
+    /// Side length L of the square (square grids).
+    #[getter]
+    fn size(&self) -> PyResult<f64> {
+        self.square("size")?;
+        Ok(self.inner.size_x())
+    }
+
+    /// Side length along x.
+    #[getter]
+    fn size_x(&self) -> f64 {
+        self.inner.size_x()
+    }
+
+    /// Side length along y.
+    #[getter]
+    fn size_y(&self) -> f64 {
+        self.inner.size_y()
     }
 
     /// "free" or "periodic".
@@ -65,35 +155,82 @@ impl Grid {
         boundary_name(self.inner.boundary())
     }
 
-    /// Element side Δ = L/n.
+    /// Element side Δ = L/n (square elements; see dx, dy).
     #[getter]
-    fn element_size(&self) -> f64 {
-        self.inner.element_size()
+    fn element_size(&self) -> PyResult<f64> {
+        if self.inner.dx() != self.inner.dy() {
+            return Err(PyValueError::new_err(format!(
+                "Grid.element_size is for square elements; {} has dx = {}, dy = {}",
+                self.__repr__(),
+                self.inner.dx(),
+                self.inner.dy()
+            )));
+        }
+        Ok(self.inner.dx())
     }
 
-    /// Element area Δ² (force = Δ²·Σp).
+    /// Element side along x, Δx = size_x/nx.
+    #[getter]
+    fn dx(&self) -> f64 {
+        self.inner.dx()
+    }
+
+    /// Element side along y, Δy = size_y/ny.
+    #[getter]
+    fn dy(&self) -> f64 {
+        self.inner.dy()
+    }
+
+    /// Element area Δx·Δy (force = Δx·Δy·Σp).
     #[getter]
     fn element_area(&self) -> f64 {
         self.inner.element_area()
     }
 
-    /// Centre coordinates of the columns (x) or rows (y): a 1-D array (j − n//2)·Δ.
+    /// Centre coordinates of the columns (x) or rows (y) of a square grid: a 1-D array
+    /// (j − n//2)·Δ.
     fn coordinates<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        // The values and numpy's copy.
-        fits_in_memory(
-            &format!("{}.coordinates()", self.__repr__()),
-            self.inner.n() as u128 * 16,
-        )?;
-        let values: Vec<f64> = (0..self.inner.n()).map(|j| self.inner.coordinate(j)).collect();
-        Ok(PyArray1::from_vec(py, values))
+        self.square("coordinates()")?;
+        let grid = self.inner;
+        axis(py, &format!("{}.coordinates()", self.__repr__()), grid.nx(), |j| {
+            grid.x(j)
+        })
+    }
+
+    /// Centre coordinates of the columns: a 1-D array (j − nx//2)·Δx.
+    fn x<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let grid = self.inner;
+        axis(py, &format!("{}.x()", self.__repr__()), grid.nx(), |j| grid.x(j))
+    }
+
+    /// Centre coordinates of the rows: a 1-D array (i − ny//2)·Δy.
+    fn y<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let grid = self.inner;
+        axis(py, &format!("{}.y()", self.__repr__()), grid.ny(), |i| grid.y(i))
     }
 
     fn __repr__(&self) -> String {
+        describe(&self.inner)
+    }
+}
+
+/// `Grid(n=…, size=…, boundary=…)`, or with nx, ny, size_x, size_y for a rectangle.
+pub fn describe(grid: &adhesim::Grid) -> String {
+    if grid.is_square() {
         format!(
             "Grid(n={}, size={}, boundary={:?})",
-            self.inner.n(),
-            self.inner.size(),
-            boundary_name(self.inner.boundary())
+            grid.nx(),
+            grid.size_x(),
+            boundary_name(grid.boundary())
+        )
+    } else {
+        format!(
+            "Grid(nx={}, ny={}, size_x={}, size_y={}, boundary={:?})",
+            grid.nx(),
+            grid.ny(),
+            grid.size_x(),
+            grid.size_y(),
+            boundary_name(grid.boundary())
         )
     }
 }
@@ -198,13 +335,13 @@ impl HalfSpace {
     /// Raises:
     ///     TypeError: not a float64 numpy array.  ValueError: wrong shape or non-finite.
     fn apply<'py>(&mut self, py: Python<'py>, pressure: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let n = self.grid.n();
-        read_field(pressure, "pressure", n, false, &mut self.scratch)?;
+        let grid = self.grid;
+        read_field(pressure, "pressure", &grid, false, &mut self.scratch)?;
         let Self {
             inner, scratch, output, ..
         } = self;
         py.detach(|| inner.apply(scratch, output));
-        field(py, &self.output, n)
+        field(py, &self.output, &grid)
     }
 
     /// The grid the operator acts on.
@@ -233,10 +370,8 @@ impl HalfSpace {
 
     fn __repr__(&self) -> String {
         format!(
-            "HalfSpace(grid=Grid(n={}, size={}, boundary={:?}), contact_modulus={})",
-            self.grid.n(),
-            self.grid.size(),
-            boundary_name(self.grid.boundary()),
+            "HalfSpace(grid={}, contact_modulus={})",
+            describe(&self.grid),
             self.material.contact_modulus()
         )
     }
@@ -271,13 +406,9 @@ impl ContactState {
             Ok(())
         } else {
             Err(PyValueError::new_err(format!(
-                "state is for a grid of n={}, size={}, {:?}; the solver's grid has n={}, size={}, {:?}",
-                self.grid.n(),
-                self.grid.size(),
-                self.grid.boundary(),
-                grid.n(),
-                grid.size(),
-                grid.boundary()
+                "state is for {}; the solver's grid is {}",
+                describe(&self.grid),
+                describe(grid)
             )))
         }
     }
@@ -305,19 +436,19 @@ impl ContactState {
     /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n).
     #[getter]
     fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.pressure, self.grid.n())
+        field(py, &self.inner.pressure, &self.grid)
     }
 
     /// Normal surface displacement u = K p (> 0 into the body), shape (n, n).
     #[getter]
     fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.displacement, self.grid.n())
+        field(py, &self.inner.displacement, &self.grid)
     }
 
     /// Contact mask (True in contact), shape (n, n).
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        field(py, &self.inner.contact, self.grid.n())
+        field(py, &self.inner.contact, &self.grid)
     }
 
     /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
@@ -338,7 +469,7 @@ impl ContactState {
             .zip(&self.inner.displacement)
             .map(|(z, u)| z - depth + u)
             .collect();
-        field(py, &gap, self.grid.n())
+        field(py, &gap, &self.grid)
     }
 
     /// Depth d of the last solve or step (prescribed, or found under load control), or None.
@@ -390,8 +521,8 @@ impl ContactState {
 
     fn __repr__(&self) -> String {
         format!(
-            "ContactState(n={}, contact_elements={}, force={:e})",
-            self.grid.n(),
+            "ContactState({}, contact_elements={}, force={:e})",
+            describe(&self.grid),
             self.inner.contact_elements(),
             self.inner.force(self.grid.element_area())
         )
@@ -407,7 +538,7 @@ pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult
         &format!("sphere_heights({})", grid.__repr__()),
         elements(&grid.inner) * 16,
     )?;
-    field(py, &sphere.heights(&grid.inner), grid.inner.n())
+    field(py, &sphere.heights(&grid.inner), &grid.inner)
 }
 
 /// Heights of a flat circular punch of radius a: 0 on the face, +inf outside (no surface
@@ -419,7 +550,7 @@ pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyRe
         &format!("flat_punch_heights({})", grid.__repr__()),
         elements(&grid.inner) * 16,
     )?;
-    field(py, &punch.heights(&grid.inner), grid.inner.n())
+    field(py, &punch.heights(&grid.inner), &grid.inner)
 }
 
 /// Heights of the paper's wavy sphere (Eq. 1), z = (x² + y²)/(2R) + h·sin(2πx′/λ)·sin(2πy′/λ)
@@ -440,7 +571,7 @@ pub fn wavy_sphere_heights<'py>(
         &format!("wavy_sphere_heights({})", grid.__repr__()),
         elements(&grid.inner) * 16,
     )?;
-    field(py, &profile.heights(&grid.inner), grid.inner.n())
+    field(py, &profile.heights(&grid.inner), &grid.inner)
 }
 
 /// Heights of a flat punch with an elliptic face of semi-axes (a, b) rotated by
@@ -459,5 +590,5 @@ pub fn elliptic_punch_heights<'py>(
         &format!("elliptic_punch_heights({})", grid.__repr__()),
         elements(&grid.inner) * 16,
     )?;
-    field(py, &punch.heights(&grid.inner), grid.inner.n())
+    field(py, &punch.heights(&grid.inner), &grid.inner)
 }

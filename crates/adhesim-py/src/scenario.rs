@@ -3,7 +3,6 @@
 //! `summary.json` content as the command line, with the GIL released during the run and
 //! Python's signal handlers and the progress callback run between steps.
 
-use crate::convert::field;
 use adhesim::{Observer, StepView};
 use adhesim_scenario::{
     CurveCell, CurveColumns, CurveKind, PhaseTimes, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
@@ -201,21 +200,31 @@ fn curve_text(columns: &CurveColumns, records: &[adhesim::StepRecord]) -> String
 /// where the indenter has no surface), contact (bool), and `chosen` (the step is one of
 /// `[output]`'s, with `.npy` files in `snapshots/`).
 fn snapshot_dicts<'py>(py: Python<'py>, plan: &SnapshotPlan, fields: &SnapshotFields) -> PyResult<Bound<'py, PyList>> {
-    let n = fields.n();
+    let (nx, ny) = fields.counts();
     let list = PyList::empty(py);
     for (index, snapshot) in fields.snapshots().iter().enumerate() {
         let dict = PyDict::new(py);
         dict.set_item("step", snapshot.step)?;
         dict.set_item("depth", snapshot.depth)?;
         dict.set_item("offset", snapshot.offset)?;
-        dict.set_item("pressure", field(py, &snapshot.pressure, n)?)?;
-        dict.set_item("displacement", field(py, &snapshot.displacement, n)?)?;
-        dict.set_item("gap", field(py, fields.gap(index), n)?)?;
-        dict.set_item("contact", field(py, &snapshot.contact, n)?)?;
+        dict.set_item("pressure", shaped(py, &snapshot.pressure, (ny, nx))?)?;
+        dict.set_item("displacement", shaped(py, &snapshot.displacement, (ny, nx))?)?;
+        dict.set_item("gap", shaped(py, fields.gap(index), (ny, nx))?)?;
+        dict.set_item("contact", shaped(py, &snapshot.contact, (ny, nx))?)?;
         dict.set_item("chosen", plan.is_chosen(snapshot.step))?;
         list.append(dict)?;
     }
     Ok(list)
+}
+
+/// A row-major field as a new (rows, columns) numpy array.
+fn shaped<'py, T: numpy::Element + Copy>(
+    py: Python<'py>,
+    values: &[T],
+    (rows, columns): (usize, usize),
+) -> PyResult<Bound<'py, numpy::PyArray2<T>>> {
+    use numpy::PyArrayMethods;
+    numpy::PyArray1::from_slice(py, values).reshape([rows, columns])
 }
 
 /// The `fields.npz` arrays of a run (`adhesim.run` writes them into `out`).

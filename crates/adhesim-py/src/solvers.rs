@@ -163,7 +163,7 @@ impl Ccg {
                 )))
             }
         };
-        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
         let state = state_for(py, state, &self.grid)?;
         let solver = &mut self.inner;
         solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
@@ -253,7 +253,7 @@ impl NestedActiveSet {
         state: Option<Py<ContactState>>,
     ) -> PyResult<SolveReport> {
         let depth = finite("depth", depth)?;
-        read_field(heights, "heights", self.grid.n(), true, &mut self.heights)?;
+        read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
         let state = state_for(py, state, &self.grid)?;
         let solver = &mut self.inner;
         solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {

@@ -56,8 +56,7 @@ pub fn _self_affine<'py>(
     let surface = py
         .detach(|| generator.generate(&grid.inner, seed))
         .map_err(value_error)?;
-    let n = grid.inner.n();
-    PyArray1::from_slice(py, &surface.heights).reshape([n, n])
+    PyArray1::from_slice(py, &surface.heights).reshape([grid.inner.ny(), grid.inner.nx()])
 }
 
 /// A height map copied from numpy: (ny, nx), row-major values, an optional validity mask.

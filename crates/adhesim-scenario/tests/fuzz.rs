@@ -372,7 +372,7 @@ fn check_case(
                 "error names no key or file: `{message}` ({origin} --set {all:?})"
             );
         }
-        Ok(valid) if valid.grid.n() <= RUN_MAX_N && valid.expected_steps() <= RUN_MAX_STEPS => {
+        Ok(valid) if valid.grid.nx().max(valid.grid.ny()) <= RUN_MAX_N && valid.expected_steps() <= RUN_MAX_STEPS => {
             let started = std::time::Instant::now();
             let checked = check_finite(&valid);
             let seconds = started.elapsed().as_secs_f64();
