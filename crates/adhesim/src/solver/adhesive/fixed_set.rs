@@ -22,12 +22,12 @@ impl AdhesiveSolver {
         state: &ContactState,
         retry_high_water: usize,
     ) -> StopRule {
-        // The certificates' lattice bounds are those of square elements: rectangular ones
-        // converge every solve.
+        // The certificates' lattice bounds are those of square elements on a square grid:
+        // rectangles converge every solve.
         if first
             || self.params.reference_rule
             || self.params.detachment != Detachment::AllViolators
-            || self.grid.dx() != self.grid.dy()
+            || !self.grid.is_square()
         {
             return StopRule::Converge;
         }

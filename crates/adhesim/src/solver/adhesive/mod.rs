@@ -144,8 +144,9 @@ impl AdhesiveSolver {
             .collect();
         let minimum_critical_stress = front_critical_stress(&critical_stress);
         let len = grid.len();
-        // The local rises are tabulated for square elements on a free grid.
-        let local_bounds_hold = grid.boundary() == Boundary::Free && grid.dx() == grid.dy();
+        // The local rises are tabulated for square elements, and their windows are
+        // indexed on an n × n grid: free square grids only.
+        let local_bounds_hold = grid.boundary() == Boundary::Free && grid.is_square();
         Self {
             params,
             grid,
