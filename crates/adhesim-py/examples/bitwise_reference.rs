@@ -22,7 +22,7 @@ fn main() {
     let material = ElasticMaterial::new(1.0).expect("modulus");
     let mut operator = HalfSpace::new(grid, material);
     let heights = Sphere::new(1.0).expect("radius").heights(&grid);
-    let a = 32.0 * grid.element_size();
+    let a = 32.0 * grid.dx();
     let depth = a * a;
     let mut state = ContactState::new(&grid);
     let report = NestedActiveSet::new(grid, material, NestedParams::default())

@@ -62,8 +62,11 @@ impl Grid {
     #[pyo3(signature = (*args, boundary = None))]
     fn new(args: &Bound<'_, pyo3::types::PyTuple>, boundary: Option<String>) -> PyResult<Self> {
         let mut values: Vec<Bound<'_, PyAny>> = args.iter().collect();
-        let positional = match values.len() {
-            3 | 5 => Some(values.pop().expect("an argument").extract::<String>()?),
+        // A string after the sizes is the boundary.
+        let positional = match values.last() {
+            Some(last) if matches!(values.len(), 3 | 5) && last.is_instance_of::<pyo3::types::PyString>() => {
+                Some(values.pop().expect("an argument").extract::<String>()?)
+            }
             _ => None,
         };
         let boundary = match (positional, boundary) {

@@ -28,7 +28,7 @@ def test_rectangular_grid_attributes():
     assert adhesim.Grid(8, 4, 2.0, 1.0, boundary="periodic") == periodic
     square = adhesim.Grid(16, 1.0)
     assert (square.n, square.size, square.nx, square.ny) == (16, 1.0, 16, 16)
-    assert repr(square) == 'Grid(n=16, size=1.0, boundary="free")'
+    assert repr(square) == 'Grid(n=16, size=1, boundary="free")'
 
 
 @pytest.mark.parametrize(
