@@ -12,7 +12,6 @@ mod output;
 mod plots;
 mod resources;
 mod rough_sphere_plots;
-mod summary;
 mod tangential_plots;
 
 use adhesim_scenario::error_text::error_line;
