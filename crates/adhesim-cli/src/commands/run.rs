@@ -70,7 +70,7 @@ pub fn run_default() -> Result<()> {
     folder::prepare_run_folder(&out, false).context(
         "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
     )?;
-    run(scenario, &out, &RunOptions::default())
+    run(&scenario, &out, &RunOptions::default())
 }
 
 /// `adhesim run SCENARIO`.
@@ -94,14 +94,14 @@ pub fn command(args: &RunArgs) -> Result<()> {
     })?;
     let out = folder::output_dir(args.out.as_deref(), path, "scenario")?;
     folder::prepare_run_folder(&out, args.force)?;
-    run(scenario, &out, &args.options)
+    run(&scenario, &out, &args.options)
 }
 
 /// Runs a validated scenario into `out` through the scenario crate's pipeline
 /// ([`run_into_folder`]) with the command line's pictures and progress bar: curve.csv,
 /// snapshots, plots, summary.json. `out` is new, or made ready by
 /// [`folder::prepare_run_folder`]; it gets the run marker.
-pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
+pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
     if let Some(threads) = options.threads {
         let threads = resources::clamp_threads(threads)?;
         rayon::ThreadPoolBuilder::new()
@@ -117,7 +117,7 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
         pictures: Some(&output::CliPictures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
     };
-    let done = run_into_folder(&scenario, out, folder_options, &mut progress)?;
+    let done = run_into_folder(scenario, out, folder_options, &mut progress)?;
     let outcome = &done.outcome;
     if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
         eprintln!("warning: {warning}");
@@ -125,8 +125,8 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
     if !options.quiet {
         let wall_seconds = done.wall_seconds;
         match &outcome.report {
-            ProtocolReport::Indentation(summary) => print_indentation(&scenario, summary, wall_seconds),
-            ProtocolReport::Translation(summary) => print_translation(&scenario, summary, outcome, wall_seconds),
+            ProtocolReport::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
+            ProtocolReport::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
         }
         println!("outputs in {}/", out.display());
         println!(
