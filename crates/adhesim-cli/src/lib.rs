@@ -12,7 +12,6 @@ mod output;
 mod plots;
 mod resources;
 mod rough_sphere_plots;
-mod summary;
 mod tangential_plots;
 
 use adhesim_scenario::error_text::error_line;
@@ -83,3 +82,10 @@ where
         }
     }
 }
+
+/// The runner of a sweep case (`adhesim run --quiet` into the case folder, figures
+/// included), for the Python package's `adhesim.sweep`: its case folders are the command
+/// line's.
+pub use commands::sweep::run_case as run_sweep_case;
+/// `table.csv` and the master-curve plots of a sweep folder, as `adhesim sweep merge`.
+pub use commands::sweep::table_and_plots as sweep_table_and_plots;

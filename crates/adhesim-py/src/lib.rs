@@ -15,6 +15,7 @@ mod reference;
 mod scenario;
 mod solvers;
 mod surface;
+mod sweep;
 
 use pyo3::prelude::*;
 
@@ -51,6 +52,9 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenario::_curve_column_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_value, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_document, m)?)?;
+    m.add_class::<sweep::SweepFolder>()?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_open, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep_run_case, m)?)?;
     m.add_function(wrap_pyfunction!(surface::_self_affine, m)?)?;
     m.add_function(wrap_pyfunction!(surface::_height_map_statistics, m)?)?;
     m.add_function(wrap_pyfunction!(surface::_isotropic_psd, m)?)?;

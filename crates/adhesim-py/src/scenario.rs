@@ -3,44 +3,34 @@
 //! `summary.json` content as the command line, with the GIL released during the run and
 //! Python's signal handlers and the progress callback run between steps.
 
+use adhesim::StepRecord;
 use adhesim::{Observer, StepView};
+use adhesim_scenario::output::folder::prepare_run_folder;
+use adhesim_scenario::output::observer::RunProgress;
+use adhesim_scenario::output::run::{performance, run_into_folder, FolderRunOptions};
+use adhesim_scenario::output::timings::PhaseTimings;
 use adhesim_scenario::{
-    CurveCell, CurveColumns, CurveKind, PhaseTimes, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
+    CurveCell, CurveColumns, CurveKind, RunOutcome, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
 };
 use numpy::PyArray1;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::ops::ControlFlow;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The observer of a Python run: keeps the snapshot fields (the scenario crate's
-/// [`SnapshotRecorder`], as the command line's `fields.npz`), raises the border warning,
-/// and between steps runs the signal handlers and the progress callback (with the GIL).
-struct PythonObserver {
+/// Between steps, with the GIL: Python's signal handlers (Ctrl-C) and the progress
+/// callback `progress(step, total)`; the first exception stops the run.
+struct PythonProgress {
     progress: Option<Py<PyAny>>,
     expected_steps: usize,
-    recorder: SnapshotRecorder,
-    warnings: Vec<String>,
     /// The Python exception (KeyboardInterrupt, or the callback's) that stopped the run.
     error: Option<PyErr>,
-    times: PhaseTimes,
-    last_tick: Instant,
 }
 
-impl Observer for PythonObserver {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        let record = view.record;
-        let phase = record.phase.map_or("unknown", |p| p.name());
-        *self.times.phase_seconds.entry(phase).or_default() += self.last_tick.elapsed().as_secs_f64();
-        *self.times.phase_steps.entry(phase).or_default() += 1;
-        let output_start = Instant::now();
-        let step = record.step;
-        self.recorder.observe(&view);
-        if record.touches_border && self.warnings.is_empty() {
-            self.warnings.push(adhesim_scenario::border_warning(step, record.depth));
-        }
+impl PythonProgress {
+    fn between_steps(&mut self, step: usize) -> ControlFlow<()> {
         let total = self.expected_steps.max(step + 1);
         let result = Python::attach(|py| {
             py.check_signals()?;
@@ -49,8 +39,6 @@ impl Observer for PythonObserver {
                 None => Ok(()),
             }
         });
-        self.times.output_seconds += output_start.elapsed().as_secs_f64();
-        self.last_tick = Instant::now();
         match result {
             Ok(()) => ControlFlow::Continue(()),
             Err(error) => {
@@ -58,6 +46,42 @@ impl Observer for PythonObserver {
                 ControlFlow::Break(())
             }
         }
+    }
+}
+
+/// The progress of a run into a folder (the scenario crate's observer writes the files).
+impl RunProgress for PythonProgress {
+    fn step(&mut self, record: &StepRecord) -> anyhow::Result<()> {
+        match self.between_steps(record.step) {
+            ControlFlow::Continue(()) => Ok(()),
+            ControlFlow::Break(()) => Err(anyhow::anyhow!("stopped by Python")),
+        }
+    }
+}
+
+/// The observer of an in-memory Python run: keeps the snapshot fields (the scenario
+/// crate's [`SnapshotRecorder`], as in `fields.npz`), raises the border warning, times the
+/// phases as the command line does ([`PhaseTimings`]) and runs [`PythonProgress`].
+struct PythonObserver {
+    progress: PythonProgress,
+    recorder: SnapshotRecorder,
+    warnings: Vec<String>,
+    timings: PhaseTimings,
+}
+
+impl Observer for PythonObserver {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        let record = view.record;
+        self.timings.solver_step(record.phase.map_or("unknown", |p| p.name()));
+        let output_start = Instant::now();
+        self.recorder.observe(&view);
+        if record.touches_border && self.warnings.is_empty() {
+            self.warnings
+                .push(adhesim_scenario::border_warning(record.step, record.depth));
+        }
+        let flow = self.progress.between_steps(record.step);
+        self.timings.output_done(output_start);
+        flow
     }
 }
 
@@ -91,12 +115,15 @@ fn load(
 /// Runs a scenario given as TOML text (see `adhesim.run`, which prepares the arguments).
 ///
 /// `check_memory` refuses a scenario whose memory estimate exceeds the memory available,
-/// as the command line does. Returns a dict: `columns` (list of (name, numpy
-/// array) in `curve.csv` order), `csv`
-/// (the text of `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of
-/// dicts of the selected steps' fields).
+/// as the command line does. With `out`, the run goes into that folder through the
+/// scenario crate's run into a folder (the command line's pipeline, without figures):
+/// the folder is made ready as `adhesim run --out` does (`force` as `--force`). Returns a
+/// dict: `columns` (list of (name, numpy array) in `curve.csv` order), `csv` (the text of
+/// `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of dicts of the
+/// selected steps' fields).
 #[pyfunction]
-#[pyo3(signature = (text, origin, base, overrides, progress = None, check_memory = false))]
+#[pyo3(signature = (text, origin, base, overrides, progress = None, check_memory = false, out = None, force = false))]
+#[allow(clippy::too_many_arguments)]
 pub fn _run_scenario<'py>(
     py: Python<'py>,
     text: &str,
@@ -105,40 +132,80 @@ pub fn _run_scenario<'py>(
     overrides: Vec<String>,
     progress: Option<Py<PyAny>>,
     check_memory: bool,
+    out: Option<PathBuf>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scenario = load(text, origin, &base, &overrides, check_memory)?;
-    let start = Instant::now();
-    let mut observer = PythonObserver {
+    let progress = PythonProgress {
         progress,
         expected_steps: scenario.expected_steps(),
-        recorder: SnapshotRecorder::new(SnapshotPlan::new(&scenario)),
-        warnings: Vec::new(),
         error: None,
-        times: PhaseTimes::default(),
-        last_tick: Instant::now(),
     };
-    let outcome = py.detach(|| adhesim_scenario::run(&scenario, &mut observer));
-    let outcome = match (outcome, observer.error.take()) {
-        (_, Some(error)) => return Err(error),
-        (Ok(outcome), None) => outcome,
-        (Err(error), None) => return Err(crate::convert::SolveError::new_err(format!("run failed: {error}"))),
+    let (outcome, summary, fields) = match out {
+        Some(out) => run_in_folder(py, &scenario, &out, force, progress)?,
+        None => run_in_memory(py, &scenario, progress)?,
     };
-    let wall_seconds = start.elapsed().as_secs_f64();
-    let counters = outcome.report.counters();
-    let times = std::mem::take(&mut observer.times);
-    let performance = adhesim_scenario::Performance::new(wall_seconds, &counters, times);
-    let summary = adhesim_scenario::Summary::new(&scenario, &outcome, performance, &observer.warnings);
-    let summary = summary.to_json().map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
-
     let columns = CurveColumns::new(scenario.jkr);
     let result = PyDict::new(py);
     result.set_item("columns", curve_arrays(py, &columns, &outcome.records)?)?;
     result.set_item("csv", curve_text(&columns, &outcome.records))?;
     result.set_item("summary", summary)?;
-    let fields = SnapshotFields::new(&scenario, observer.recorder.take_snapshots());
-    result.set_item("snapshots", snapshot_dicts(py, observer.recorder.plan(), &fields)?)?;
+    let plan = SnapshotPlan::new(&scenario);
+    result.set_item("snapshots", snapshot_dicts(py, &plan, &fields)?)?;
     result.set_item("fields", RunFields(fields))?;
     Ok(result)
+}
+
+/// A run in memory: (outcome, summary.json text, snapshot fields).
+fn run_in_memory(
+    py: Python<'_>,
+    scenario: &ValidScenario,
+    progress: PythonProgress,
+) -> PyResult<(RunOutcome, String, SnapshotFields)> {
+    let start = Instant::now();
+    let mut observer = PythonObserver {
+        progress,
+        recorder: SnapshotRecorder::new(SnapshotPlan::new(scenario)),
+        warnings: Vec::new(),
+        timings: PhaseTimings::new(),
+    };
+    let outcome = py.detach(|| adhesim_scenario::run(scenario, &mut observer));
+    let outcome = match (outcome, observer.progress.error.take()) {
+        (_, Some(error)) => return Err(error),
+        (Ok(outcome), None) => outcome,
+        (Err(error), None) => return Err(crate::convert::SolveError::new_err(format!("run failed: {error}"))),
+    };
+    let performance = performance(start.elapsed().as_secs_f64(), &outcome, &observer.timings);
+    let summary = adhesim_scenario::Summary::new(scenario, &outcome, performance, &observer.warnings);
+    let summary = summary.to_json().map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
+    let fields = SnapshotFields::new(scenario, observer.recorder.take_snapshots());
+    Ok((outcome, summary, fields))
+}
+
+/// A run into the folder `out` by the scenario crate's pipeline (marker, curve.csv,
+/// snapshots/*.npy, fields.npz, summary.json; no figures): (outcome, summary.json text,
+/// snapshot fields).
+fn run_in_folder(
+    py: Python<'_>,
+    scenario: &ValidScenario,
+    out: &Path,
+    force: bool,
+    mut progress: PythonProgress,
+) -> PyResult<(RunOutcome, String, SnapshotFields)> {
+    prepare_run_folder(out, force).map_err(|e| {
+        PyValueError::new_err(format!(
+            "{} (in Python: out=..., force=True)",
+            adhesim_scenario::error_text::error_line(e.chain())
+        ))
+    })?;
+    let done = py.detach(|| run_into_folder(scenario, out, FolderRunOptions::default(), &mut progress));
+    match (done, progress.error.take()) {
+        (_, Some(error)) => Err(error),
+        (Ok(done), None) => Ok((done.outcome, done.summary_json, done.fields)),
+        (Err(error), None) => Err(crate::convert::SolveError::new_err(
+            adhesim_scenario::error_text::error_line(error.chain()),
+        )),
+    }
 }
 
 /// The `curve.csv` columns as numpy arrays: int64 counts and flags, float64 quantities,

@@ -17,8 +17,9 @@ pub(crate) fn law_name(section: &AdhesionSection) -> LawName {
 
 impl ScenarioFile {
     /// Checks `adhesion.law` with its keys, the grid and protocol it runs on, and returns
-    /// Maugis' parameter of a Dugdale law on a curved indenter (for `derived`).
-    pub(crate) fn validate_law(&self, indenter: &Indenter, contact_modulus: f64) -> Result<Option<f64>> {
+    /// Maugis' parameter of a Dugdale law and Tabor's of an exponential law on a curved
+    /// indenter (for `derived`).
+    pub(crate) fn validate_law(&self, indenter: &Indenter, contact_modulus: f64) -> Result<(Option<f64>, Option<f64>)> {
         let section = &self.adhesion;
         let law = law_name(section);
         let name = law.name();
@@ -33,7 +34,7 @@ impl ScenarioFile {
                 if section.range.is_some() {
                     stray("range")?;
                 }
-                return Ok(None);
+                return Ok((None, None));
             }
             LawName::Dugdale => {
                 if section.range.is_some() {
@@ -52,7 +53,6 @@ impl ScenarioFile {
                     bail!("adhesion.law = \"exponential\" needs adhesion.range (ρ > 0)");
                 };
                 positive("adhesion.range", range)?;
-                bail!("adhesion.law = \"exponential\" is not available in scenarios yet: its solver rounds do not converge through the jumps of a pull-off (docs/physics.md §2.6); use \"dugdale\" or \"jkr\"");
             }
         }
         if section.work_of_adhesion <= 0.0 {
@@ -71,16 +71,31 @@ impl ScenarioFile {
                 kind.name()
             );
         }
-        Ok(match (law, section.cohesive_stress, indenter.radius_of_curvature()) {
-            (LawName::Dugdale, Some(stress), Some(radius)) => Some(maugis_parameter(
-                radius,
-                contact_modulus,
-                section.work_of_adhesion,
-                stress,
-            )),
-            _ => None,
+        let radius = indenter.radius_of_curvature();
+        let gamma = section.work_of_adhesion;
+        Ok(match (law, radius) {
+            (LawName::Dugdale, Some(radius)) => (
+                section
+                    .cohesive_stress
+                    .map(|stress| maugis_parameter(radius, contact_modulus, gamma, stress)),
+                None,
+            ),
+            (LawName::Exponential, Some(radius)) => (
+                None,
+                section
+                    .range
+                    .map(|range| tabor_parameter(radius, contact_modulus, gamma, range)),
+            ),
+            _ => (None, None),
         })
     }
+}
+
+/// Tabor's parameter μ = (Rγ0²/(E*²ρ³))^(1/3) of the exponential law of range ρ on a
+/// sphere of radius R (Tabor 1977, *J. Colloid Interface Sci.* 58, 2, with ρ for the
+/// equilibrium spacing): DMT-like for μ → 0, JKR-like for μ → ∞.
+pub(crate) fn tabor_parameter(radius: f64, contact_modulus: f64, work_of_adhesion: f64, range: f64) -> f64 {
+    (radius * work_of_adhesion * work_of_adhesion / (contact_modulus * contact_modulus * range.powi(3))).cbrt()
 }
 
 /// The cohesive solver of a scenario whose law is not `jkr` (None for `jkr`), with the

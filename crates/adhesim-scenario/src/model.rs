@@ -530,6 +530,10 @@ pub struct Derived {
     /// indenter (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub maugis_parameter: Option<f64>,
+    /// Tabor's μ = (Rγ0²/(E*²ρ³))^(1/3) of `adhesion.law = "exponential"` on a curved
+    /// indenter (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tabor_parameter: Option<f64>,
     /// Statistics of the `[roughness]` as sampled on the grid (absent without one).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roughness: Option<RoughnessStatistics>,

@@ -93,7 +93,8 @@ impl ScenarioFile {
         let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
-        derived.maugis_parameter = self.validate_law(&indenter, material.contact_modulus())?;
+        (derived.maugis_parameter, derived.tabor_parameter) =
+            self.validate_law(&indenter, material.contact_modulus())?;
         self.check_derived(&derived)?;
         self.check_field_stresses(&grid, &gamma)?;
         let mut warnings = resolution_warnings(&grid, &indenter, &derived);
@@ -565,6 +566,7 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
         element_size_y: (grid.dy() != delta).then(|| grid.dy()),
         critical_stress: (gamma0 > 0.0).then(|| critical_stress(contact_modulus, gamma0, detachment_size)),
         maugis_parameter: None,
+        tabor_parameter: None,
         roughness: None,
         substrate_roughness: None,
     };

@@ -9,8 +9,8 @@
 //! `max depth` are those of the validation tests (`maugis_case` below).
 use adhesim::analysis::reference::{cohesive_stress_for, MaugisDugdale};
 use adhesim::{
-    Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Profile, Sphere, StepRecord,
+    Acceleration, Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential,
+    FreeOperator, Grid, IndentPulloff, NormalSolver, Profile, Sphere, StepRecord,
 };
 use std::time::Instant;
 
@@ -46,6 +46,11 @@ fn main() {
         max_rounds: std::env::var("ADHESIM_MAX_ROUNDS")
             .map(|v| v.parse().expect("rounds"))
             .unwrap_or(CohesiveParams::default().max_rounds),
+        // ADHESIM_ACCELERATION=plain: a smooth law's rounds without Anderson mixing.
+        acceleration: match std::env::var("ADHESIM_ACCELERATION").as_deref() {
+            Ok("plain") => Acceleration::Plain,
+            _ => Acceleration::Anderson,
+        },
         ..CohesiveParams::default()
     };
     let mut solver = NormalSolver::Cohesive(Box::new(CohesiveSolver::new(grid, material, law, params)));
@@ -62,6 +67,18 @@ fn main() {
         .run(&mut operator, &heights, &mut solver, &mut records)
         .unwrap();
     let seconds = start.elapsed().as_secs_f64();
+    let mut costly: Vec<&StepRecord> = records.iter().collect();
+    costly.sort_by_key(|r| std::cmp::Reverse(r.report.solves));
+    for r in costly.iter().take(3) {
+        println!(
+            "step {} ({}) at depth {:.4e}: {} rounds, {} FFT pairs",
+            r.step,
+            r.phase.map(|p| p.name()).unwrap_or("-"),
+            r.depth,
+            r.report.solves,
+            r.report.operator_applications
+        );
+    }
     let expected = model.max_adhesive_force();
     let at = model.at_max_adhesive_force();
     let mut area = 0.5 * records[0].force_normal * records[0].depth;

@@ -92,8 +92,8 @@ pub use protocol::{
     TranslationSummary,
 };
 pub use solver::{
-    AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams, CohesiveSolver,
-    ContactState, Control, Detachment, Dugdale, Exponential, NestedActiveSet, NestedParams, SolveError, SolveReport,
-    StepReport,
+    Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,
+    CohesiveSolver, ContactState, Control, Detachment, Dugdale, Exponential, NestedActiveSet, NestedParams, SolveError,
+    SolveReport, StepReport,
 };
 pub use surface::{Amplitudes, PsdBin, RmsTarget, RoughSurface, SelfAffine, SurfaceError, SurfaceStatistics};

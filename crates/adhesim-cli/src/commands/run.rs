@@ -1,25 +1,18 @@
-//! `adhesim run` (and `adhesim` without a subcommand): one scenario through the library's
-//! run pipeline (`adhesim_scenario::run`) with the CLI's observer writing `curve.csv`,
-//! snapshots and the progress bar; then the figures of the protocol and `summary.json`.
+//! `adhesim run` (and `adhesim` without a subcommand): one scenario through the scenario
+//! crate's run into a folder (`adhesim_scenario::output::run`), with the command line's
+//! pictures and progress bar (`crate::output`), then the report on stdout.
 
-use crate::{output, plots, resources, summary, tangential_plots};
-use adhesim::analysis::reference::Hertz;
-use adhesim::{Profile, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
+use crate::{output, resources};
+use adhesim::{ProtocolSummary, TranslationSummary};
 use adhesim_scenario::output::folder;
-use adhesim_scenario::{
-    ProtocolReport, ProtocolSetup, RunOutcome, RunResults, SnapshotPlan, SnapshotRecorder, TranslationSetup,
-    ValidScenario,
-};
-use anyhow::{anyhow, Context, Result};
+use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
+use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
+use anyhow::{Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// The built-in default scenario (the paper's Fig. 1 case).
 const DEFAULT_SCENARIO: &str = include_str!("../../../../scenarios/fig1.toml");
-
-/// Consecutive steps shown in the snapshot strip of a translation by default.
-const STRIP_FRAMES: usize = 4;
 
 #[derive(Args)]
 pub struct RunArgs {
@@ -77,7 +70,7 @@ pub fn run_default() -> Result<()> {
     folder::prepare_run_folder(&out, false).context(
         "`adhesim` without a subcommand writes into out/default; `adhesim run SCENARIO --out DIR` chooses the folder",
     )?;
-    run(scenario, &out, &RunOptions::default())
+    run(&scenario, &out, &RunOptions::default())
 }
 
 /// `adhesim run SCENARIO`.
@@ -101,12 +94,14 @@ pub fn command(args: &RunArgs) -> Result<()> {
     })?;
     let out = folder::output_dir(args.out.as_deref(), path, "scenario")?;
     folder::prepare_run_folder(&out, args.force)?;
-    run(scenario, &out, &args.options)
+    run(&scenario, &out, &args.options)
 }
 
-/// Runs a validated scenario into `out`: curve.csv, snapshots, plots, summary.json. `out`
-/// is new, or made ready by [`folder::prepare_run_folder`]; it gets the run marker.
-pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
+/// Runs a validated scenario into `out` through the scenario crate's pipeline
+/// ([`run_into_folder`]) with the command line's pictures and progress bar: curve.csv,
+/// snapshots, plots, summary.json. `out` is new, or made ready by
+/// [`folder::prepare_run_folder`]; it gets the run marker.
+pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
     if let Some(threads) = options.threads {
         let threads = resources::clamp_threads(threads)?;
         rayon::ThreadPoolBuilder::new()
@@ -114,170 +109,39 @@ pub fn run(scenario: ValidScenario, out: &Path, options: &RunOptions) -> Result<
             .build_global()
             .context("cannot set up the thread pool")?;
     }
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
-    folder::write_run_marker(out)?;
     for warning in &scenario.warnings {
         eprintln!("warning: {warning}");
     }
-    let start = Instant::now();
-    let plan = SnapshotPlan::new(&scenario);
-    let strip = strip_steps(&scenario);
-    let mut observer = output::RunObserver::new(
-        out,
-        scenario.grid,
-        scenario.jkr,
-        plan,
-        scenario.expected_steps(),
-        options.quiet,
-    )?;
-    observer.capture(strip);
-    observer.fields = Some(adhesim_scenario::output::fields::FieldsRecorder::new(
-        SnapshotRecorder::new(SnapshotPlan::new(&scenario)),
-        options.fields == Some(FieldsFormat::Netcdf),
-    ));
-    let outcome = adhesim_scenario::run(&scenario, &mut observer);
-    observer.finish(&scenario)?;
-    let outcome = match outcome {
-        Ok(outcome) => outcome,
-        Err(ProtocolError::Interrupted(step)) => {
-            let cause = observer.error.take().unwrap_or_else(|| anyhow!("interrupted"));
-            return Err(cause.context(format!("run stopped at step {step}")));
-        }
-        Err(error) => {
-            // One message, not an error chain: `ProtocolError::Solve` shows its source in its
-            // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
-            return Err(
-                anyhow!(adhesim_scenario::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
-                    "run failed; {} holds the steps done",
-                    out.join("curve.csv").display()
-                )),
-            );
-        }
+    let mut progress = output::TerminalProgress::new(scenario.expected_steps(), options.quiet, scenario.jkr);
+    let folder_options = FolderRunOptions {
+        pictures: Some(&output::CliPictures),
+        netcdf: options.fields == Some(FieldsFormat::Netcdf),
     };
-    let plot_files = match (&outcome.report, scenario.protocol_setup()) {
-        (ProtocolReport::Translation(summary), ProtocolSetup::Translation(setup)) => translation_plots(
-            &scenario,
-            setup,
-            summary,
-            &outcome.records,
-            &observer,
-            &out.join("plots"),
-        )?,
-        _ => indentation_plots(&scenario, &outcome, &out.join("plots"))?,
-    };
-    let wall_seconds = start.elapsed().as_secs_f64();
-    let counters = outcome.report.counters();
-    let performance = summary::performance(wall_seconds, &counters, &observer);
-    let summary = adhesim_scenario::Summary::new(&scenario, &outcome, performance, &observer.warnings);
+    let done = run_into_folder(scenario, out, folder_options, &mut progress)?;
+    let outcome = &done.outcome;
     if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
         eprintln!("warning: {warning}");
     }
-    summary::write(&out.join("summary.json"), &summary)?;
     if !options.quiet {
+        let wall_seconds = done.wall_seconds;
         match &outcome.report {
-            ProtocolReport::Indentation(summary) => print_indentation(&scenario, summary, wall_seconds),
-            ProtocolReport::Translation(summary) => print_translation(&scenario, summary, &outcome, wall_seconds),
+            ProtocolReport::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
+            ProtocolReport::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
         }
         println!("outputs in {}/", out.display());
         println!(
             "  summary.json, curve.csv, fields.npz{}",
             if options.fields.is_some() { ", fields.nc" } else { "" }
         );
-        println!("  {}", plot_files.join(", "));
+        println!("  {}", done.plot_files.join(", "));
         if matches!(outcome.report, ProtocolReport::Indentation(_)) {
             println!(
                 "  snapshots/: {} contact maps (largest_contact.png, max_depth.png, pull_off.png, jump_*.png, step_*.png)",
-                observer.snapshot_files.len()
+                done.snapshot_files.len()
             );
         }
     }
     Ok(())
-}
-
-/// The steps whose contact sets the observer keeps for the snapshot strip of a
-/// translation (paper Figs. 6b, 9): the chosen steps (at most 8), else consecutive steps
-/// in the middle of the stationary part.
-fn strip_steps(scenario: &ValidScenario) -> Vec<usize> {
-    let o = &scenario.file.output;
-    let ProtocolSetup::Translation(setup) = scenario.protocol_setup() else {
-        return Vec::new();
-    };
-    let protocol = &setup.protocol;
-    let forward_end = protocol.approach_steps + protocol.steps;
-    if o.snapshot_steps.is_empty() {
-        let first = protocol.approach_steps
-            + ((protocol.stationary_from + 0.5 * (1.0 - protocol.stationary_from)) * protocol.steps as f64) as usize;
-        (first..first + STRIP_FRAMES).filter(|&s| s < forward_end).collect()
-    } else {
-        o.snapshot_steps.iter().map(|&s| s as usize).take(8).collect()
-    }
-}
-
-/// The force–depth and force–radius figures of an indentation (with Hertz or JKR
-/// references and the fitted JKR curves of γ1, γ2).
-fn indentation_plots(scenario: &ValidScenario, outcome: &RunOutcome, dir: &Path) -> Result<Vec<String>> {
-    let hertz = match (scenario.gamma0 > 0.0, scenario.indenter.radius_of_curvature()) {
-        (false, Some(radius)) => Some(Hertz {
-            radius,
-            contact_modulus: scenario.material.contact_modulus(),
-        }),
-        _ => None,
-    };
-    let figures = plots::figures(
-        &outcome.records,
-        &plots::PlotContext {
-            jkr: scenario.jkr,
-            hertz,
-            max_depth: scenario.max_depth,
-        },
-    );
-    let overlays = match (scenario.jkr, &outcome.results) {
-        (Some(jkr), RunResults::Indentation(results)) => vec![(
-            "force_radius",
-            plots::fitted_jkr_overlays(
-                &jkr,
-                &outcome.records,
-                results.fits.gamma_approach,
-                results.fits.gamma_pulloff,
-            ),
-        )],
-        _ => Vec::new(),
-    };
-    plots::write_all_with_overlays(dir, &figures, &overlays)
-}
-
-/// The force–distance figure of a translation (Fig. 6a) and the strip of consecutive
-/// contact maps (Figs. 6b, 9).
-fn translation_plots(
-    scenario: &ValidScenario,
-    setup: &TranslationSetup,
-    summary: &TranslationSummary,
-    records: &[StepRecord],
-    observer: &output::RunObserver,
-    dir: &Path,
-) -> Result<Vec<String>> {
-    let protocol = &setup.protocol;
-    let charts = tangential_plots::force_distance(
-        records,
-        scenario.jkr,
-        setup.wavelength,
-        (summary.mean_tangential_force, summary.mean_tangential_force_work),
-        protocol.stationary_from * protocol.distance,
-    );
-    let mut plot_files = tangential_plots::write_panels(dir, "force_distance", &charts)?;
-    if !observer.captured.is_empty() {
-        let frames: Vec<(Vec<bool>, Vec<bool>, f64)> = observer
-            .captured
-            .iter()
-            .map(|(step, contact, previous)| {
-                let offset = records.get(*step).map_or(0.0, |r| r.offset);
-                (contact.clone(), previous.clone(), offset)
-            })
-            .collect();
-        tangential_plots::write_snapshot_strip(&dir.join("contact_snapshots.png"), &scenario.grid, &frames)?;
-        plot_files.push("plots/contact_snapshots.png".into());
-    }
-    Ok(plot_files)
 }
 
 fn print_indentation(scenario: &ValidScenario, summary: &ProtocolSummary, wall_seconds: f64) {

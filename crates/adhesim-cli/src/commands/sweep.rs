@@ -9,14 +9,14 @@
 
 use crate::commands::run::{run, RunOptions};
 use crate::resources;
-use adhesim_scenario as scenario;
-use adhesim_scenario::batch::{self, write_atomically, Batch, BatchCase};
+use adhesim_scenario::batch::{self, Batch};
 use adhesim_scenario::output::folder::{self, FolderLock, Shard};
-use adhesim_scenario::sweep::{plan, table};
+use adhesim_scenario::sweep::{check_memory, plan, read_plan, table, write_plan, SweepCase};
+use adhesim_scenario::ValidScenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use plan::{Case, Plan};
+use plan::Plan;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -111,108 +111,6 @@ pub fn command(args: &SweepArgs) -> Result<()> {
     execute(&plan, &out, shard, jobs, threads, args.quiet, args.retry_failed)
 }
 
-/// Refuses a plan whose largest grid, run `jobs` at a time, needs more memory than is
-/// available (before any case allocates its FFT buffers).
-fn check_memory(plan: &Plan, jobs: usize, limit: &resources::MemoryLimit) -> Result<()> {
-    let mut largest: Option<(u64, &Case, adhesim_scenario::ScenarioFile)> = None;
-    for case in &plan.cases {
-        let table = adhesim_scenario::parse_toml(&case.scenario, &case.id)?;
-        let file = adhesim_scenario::deserialize(&table)?;
-        let estimate = file.memory_estimate();
-        if largest.as_ref().is_none_or(|(e, _, _)| estimate > *e) {
-            largest = Some((estimate, case, file));
-        }
-    }
-    let Some((_, case, file)) = largest else { return Ok(()) };
-    let runs = jobs.min(plan.cases.len()) as u64;
-    file.check_memory(limit, runs)
-        .with_context(|| format!("case {} (pass --allow-large to run anyway, or lower --jobs)", case.id))
-}
-
-/// Writes `DIR/sweep.json` (the plan), refusing a folder that holds another sweep.
-fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
-    std::fs::create_dir_all(dir.join("cases")).with_context(|| format!("cannot create {}", dir.display()))?;
-    let path = dir.join("sweep.json");
-    let text = serde_json::to_string_pretty(plan)? + "\n";
-    if let Ok(existing) = std::fs::read_to_string(&path) {
-        let same = serde_json::from_str::<Plan>(&existing)
-            .map(|old| {
-                // The same cases, whatever results revision hashed them: finished cases of
-                // an older revision are then redone (their markers' hashes differ).
-                let same_case = |a: &Case, b: &Case| {
-                    (a.index, &a.id, &a.values, &a.scenario) == (b.index, &b.id, &b.values, &b.scenario)
-                };
-                old.keys == plan.keys
-                    && old.cases.len() == plan.cases.len()
-                    && old.cases.iter().zip(&plan.cases).all(|(a, b)| same_case(a, b))
-            })
-            .unwrap_or(false);
-        if !same {
-            bail!(
-                "{} holds a different sweep (its sweep.json lists other cases); choose another --out or delete that folder",
-                dir.display()
-            );
-        }
-        if existing == text {
-            return Ok(());
-        }
-    }
-    write_atomically(&path, text.as_bytes())
-}
-
-fn read_plan(dir: &Path) -> Result<Plan> {
-    let path = dir.join("sweep.json");
-    let text = std::fs::read_to_string(&path)
-        .with_context(|| format!("cannot read {} (is {} a sweep folder?)", path.display(), dir.display()))?;
-    serde_json::from_str(&text).with_context(|| format!("{} is not a sweep plan", path.display()))
-}
-
-/// One case of a sweep, as the batch engine runs it: `adhesim run` of the case's scenario
-/// into its folder, with `scenario.toml` and `case.json` beside the run's files.
-struct SweepCase<'a> {
-    plan: &'a Plan,
-    case: &'a Case,
-}
-
-impl BatchCase for SweepCase<'_> {
-    fn id(&self) -> &str {
-        &self.case.id
-    }
-
-    fn hash(&self) -> &str {
-        &self.case.hash
-    }
-
-    fn describe(&self, folder: &Path) -> Result<()> {
-        let (plan, case) = (self.plan, self.case);
-        std::fs::write(folder.join("scenario.toml"), &case.scenario)
-            .with_context(|| format!("cannot write {}", folder.display()))?;
-        let values = plan.keys.iter().zip(&case.values);
-        let case_info = serde_json::json!({
-            "index": case.index,
-            "id": case.id,
-            "hash": case.hash,
-            "series": plan.series,
-            "values": values.map(|(k, v)| (k.clone(), serde_json::Value::String(v.clone()))).collect::<serde_json::Map<_, _>>(),
-        });
-        std::fs::write(
-            folder.join("case.json"),
-            serde_json::to_string_pretty(&case_info)? + "\n",
-        )?;
-        Ok(())
-    }
-
-    fn run(&self, folder: &Path) -> Result<()> {
-        let case = self.case;
-        let scenario = scenario::load(&case.scenario, &format!("case {}", case.id), &self.plan.base_dir, &[])?;
-        let options = RunOptions {
-            quiet: true,
-            ..RunOptions::default()
-        };
-        run(scenario, folder, &options)
-    }
-}
-
 fn execute(
     plan: &Plan,
     dir: &Path,
@@ -224,7 +122,15 @@ fn execute(
 ) -> Result<()> {
     let batch = Batch::open(dir, shard)?;
     write_plan(dir, plan)?;
-    let cases: Vec<SweepCase> = plan.cases.iter().map(|case| SweepCase { plan, case }).collect();
+    let cases: Vec<SweepCase> = plan
+        .cases
+        .iter()
+        .map(|case| SweepCase {
+            plan,
+            case,
+            runner: &run_case,
+        })
+        .collect();
     let pending = batch.pending(&cases, retry_failed)?;
     let todo = pending.todo.len();
     let progress = if quiet || !std::io::stderr().is_terminal() || todo == 0 {
@@ -255,8 +161,7 @@ fn execute(
             return Err(error);
         }
     };
-    let summary = table::rebuild(dir, plan)?;
-    let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
+    let (summary, plots) = table_and_plots(dir, plan)?;
     if !quiet {
         println!(
             "adhesim sweep: {} cases in the plan, shard {}/{}: {} run now, {} already finished, {} failed",
@@ -270,6 +175,24 @@ fn execute(
         print_table_and_plots(dir, plan, &summary, &plots);
     }
     outcome.failure_status(dir, "cases")
+}
+
+/// Runs one sweep case's scenario into its folder: `adhesim run --quiet`, figures
+/// included (the runner of the command line's sweeps and of Python's `adhesim.sweep`).
+pub fn run_case(scenario: &ValidScenario, folder: &Path) -> Result<()> {
+    let options = RunOptions {
+        quiet: true,
+        ..RunOptions::default()
+    };
+    run(scenario, folder, &options)
+}
+
+/// Rebuilds `DIR/table.csv` of a sweep and its master-curve plots (after
+/// [`adhesim_scenario::sweep::table::rebuild`]).
+pub fn table_and_plots(dir: &Path, plan: &Plan) -> Result<(table::TableSummary, Vec<String>)> {
+    let summary = table::rebuild(dir, plan)?;
+    let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
+    Ok((summary, plots))
 }
 
 /// The report on the table and the plots of a sweep.
@@ -288,8 +211,7 @@ fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary,
 pub fn merge(dir: &Path, quiet: bool) -> Result<()> {
     let plan = read_plan(dir)?;
     let _lock = FolderLock::acquire(dir, Shard::ALL)?;
-    let summary = table::rebuild(dir, &plan)?;
-    let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
+    let (summary, plots) = table_and_plots(dir, &plan)?;
     if !quiet {
         print_table_and_plots(dir, &plan, &summary, &plots);
     }

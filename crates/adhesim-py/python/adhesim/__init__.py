@@ -26,7 +26,8 @@ run(scenario, out=None, progress=None, **overrides) -> RunResult (.curve, .summa
 
 from . import fit, geometry, reference, surface
 from .topography import Topography, read_topography
-from ._run import RunResult, Snapshot, load, run, sweep, sweep_table
+from ._run import RunResult, Snapshot, load, run, sweep_table
+from ._sweep import SweepResult, sweep
 from ._adhesim import (
     RESULTS_REVISION,
     __version__,
@@ -65,5 +66,6 @@ __all__ = [
     "run",
     "surface",
     "sweep",
+    "SweepResult",
     "sweep_table",
 ]

@@ -1,4 +1,4 @@
-"""One-call runs of a scenario: ``run``, ``load``, ``sweep``.
+"""One-call runs of a scenario: ``run``, ``load`` (``sweep`` is ``_sweep.py``).
 
 A scenario is the TOML file of the command line (docs/cli.md), given as a path, as TOML
 text, or as a nested dict with the same keys. ``run`` goes through the same Rust code as
@@ -10,11 +10,9 @@ the command line's.
 from __future__ import annotations
 
 import csv
-import itertools
 import json
 import os
 import re
-import threading
 import warnings
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
@@ -23,7 +21,7 @@ import numpy as np
 
 from . import _adhesim
 
-__all__ = ["RunResult", "Snapshot", "run", "load", "sweep"]
+__all__ = ["RunResult", "Snapshot", "run", "load", "sweep_table"]
 
 ScenarioLike = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
@@ -190,75 +188,6 @@ def _progress_callback(progress):
     raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
 
 
-# The run folder's marker and outputs, as the command line keeps them
-# (crates/adhesim-cli/src/commands/folder.rs): a folder that is not empty must hold the
-# marker, and the previous run's outputs are removed before the new ones are written.
-RUN_MARKER = ".adhesim-run"
-RUN_OUTPUTS = (
-    "curve.csv",
-    "curve.csv.partial",
-    "summary.json",
-    "plots",
-    "snapshots",
-    "fields.npz",
-    "fields.npz.partial",
-    "fields.nc",
-    "fields.nc.partial",
-)
-
-
-def _check_run_folder(out: Path, force: bool):
-    """Refuses, before the run, a non-empty folder that is not a run folder."""
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"out={str(out)!r} exists and is not a folder")
-    if out.is_dir() and any(out.iterdir()) and not (out / RUN_MARKER).is_file() and not force:
-        raise ValueError(
-            f"output folder {out} is not empty and is not an adhesim run folder (no {RUN_MARKER}); "
-            "choose another out, or pass force=True to write into it (its curve.csv, summary.json, "
-            "plots/ and snapshots/ are then replaced)"
-        )
-
-
-def _write_outputs(out: Path, columns_csv: str, summary_json: str, raw_snapshots, fields):
-    """The run marker, curve.csv, summary.json, fields.npz (the command line's bytes) and
-    snapshots/step_*_{pressure,displacement}.npy of the chosen steps, each written to a
-    temporary name and renamed (a file is always whole), after removing the previous
-    run's outputs."""
-    import shutil
-
-    out.mkdir(parents=True, exist_ok=True)
-    for name in RUN_OUTPUTS:
-        path = out / name
-        if path.is_dir() and not path.is_symlink():
-            shutil.rmtree(path)
-        elif path.exists() or path.is_symlink():
-            path.unlink()
-    version = json.loads(summary_json)["adhesim_version"]
-    (out / RUN_MARKER).write_text(
-        f"adhesim run folder\nresults_revision = {_adhesim.RESULTS_REVISION}\nadhesim_version = {version}\n"
-    )
-
-    def atomic(path: Path, write: Callable[[Any], None], mode: str):
-        partial = path.with_name(path.name + ".partial")
-        with open(partial, mode) as handle:
-            write(handle)
-        os.replace(partial, path)
-
-    atomic(out / "curve.csv", lambda f: f.write(columns_csv), "w")
-    atomic(out / "summary.json", lambda f: f.write(summary_json), "w")
-    npz_partial = out / "fields.npz.partial"
-    fields.write_npz(str(npz_partial))
-    os.replace(npz_partial, out / "fields.npz")
-    chosen = [s for s in raw_snapshots if s["chosen"]]
-    if chosen:
-        folder = out / "snapshots"
-        folder.mkdir(exist_ok=True)
-        for s in chosen:
-            for name in ("pressure", "displacement"):
-                array = s[name]
-                atomic(folder / f"step_{s['step']:06d}_{name}.npy", lambda f: np.save(f, array), "wb")
-
-
 def run(
     scenario: ScenarioLike,
     out: Union[str, "os.PathLike[str]", None] = None,
@@ -312,11 +241,15 @@ def run(
     """
     text, origin, base = _scenario_text(scenario)
     items = _override_items(overrides, keyword_overrides)
-    if out is not None:
-        _check_run_folder(Path(out), force)
+    folder = None if out is None else Path(out)
     callback, bar = _progress_callback(progress)
     try:
-        raw = _adhesim._run_scenario(text, origin, str(base), items, callback, not allow_large)
+        # With `out`, the Rust run pipeline makes the folder ready (marker, clearing) and
+        # writes the files as `adhesim run --out` does, without the figures.
+        raw = _adhesim._run_scenario(
+            text, origin, str(base), items, callback, not allow_large,
+            None if folder is None else str(folder), force,
+        )
     finally:
         if bar is not None:
             bar.close()
@@ -325,10 +258,6 @@ def run(
         Snapshot(s["step"], s["depth"], s["pressure"], s["displacement"], s["gap"], s["contact"], s["offset"])
         for s in raw["snapshots"]
     ]
-    folder = None
-    if out is not None:
-        folder = Path(out)
-        _write_outputs(folder, raw["csv"], raw["summary"], raw["snapshots"], raw["fields"])
     return RunResult(curve, json.loads(raw["summary"]), snapshots, folder)
 
 
@@ -423,122 +352,6 @@ def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
     except json.JSONDecodeError as error:
         raise ValueError(f"{summary_path}: {error}") from None
     return RunResult(curve, summary, _read_snapshots(folder, curve), folder)
-
-
-class _Stopped(Exception):
-    """Raised inside a case's run (through its progress callback) when the sweep stops."""
-
-
-def sweep(
-    scenario: ScenarioLike,
-    vary: Mapping[str, Iterable[Any]],
-    out: Union[str, "os.PathLike[str]", None] = None,
-    progress: Union[Callable[[int, int, Dict[str, Any]], Any], None] = None,
-    overrides: Optional[Mapping[str, Any]] = None,
-    allow_large: bool = False,
-    jobs: int = 1,
-    **keyword_overrides: Any,
-) -> List[RunResult]:
-    """Runs a scenario for every combination of the values in ``vary``.
-
-    Each case is ``run(scenario, overrides=common | case)``: the cases are the Cartesian
-    product of the lists in ``vary`` (dotted keys, in the dict's order, the last key
-    varying fastest). With ``jobs=1`` they run one after another (each case already uses
-    every core for its FFTs); ``jobs > 1`` runs that many cases at once in threads (the
-    GIL is released during a run; worth it for many small grids). The results are the
-    same bits either way. Resumable case folders, sampling and shards are the command
-    line's ``adhesim sweep``.
-
-    Args:
-        scenario: as for ``run``.
-        vary: dict of dotted key -> list of values, e.g. ``{"adhesion.work_of_adhesion":
-            [1e-5, 2e-5], "grid.n": [64, 128]}``.
-        out: optional folder; case k is written into ``out/case_KKKK/`` as ``run`` does.
-        progress: optional callable ``progress(done, total, case)`` after each case
-            (in the calling thread).
-        overrides, allow_large, **keyword_overrides: as for ``run``, the same for every case.
-        jobs: cases run at once (>= 1).
-
-    Returns:
-        list of RunResult in case order; ``result.case`` holds the case's overrides.
-        ``adhesim.sweep_table(results, "results.gamma_pulloff")`` makes columns of them.
-
-    Raises:
-        TypeError: ``vary`` not a mapping of dotted keys to lists, ``overrides`` not a
-            mapping.
-        ValueError: an empty ``vary``, a bad ``jobs`` or a bad case (the message names the
-            case); the first failing case stops the sweep.
-        KeyboardInterrupt: Ctrl-C; with ``jobs > 1`` the running cases stop at their
-            next step.
-    """
-    if not isinstance(vary, Mapping):
-        raise TypeError(
-            "vary must be a mapping of dotted keys to lists of values like "
-            f"{{'grid.n': [32, 64]}}, got {type(vary).__name__} {vary!r}"
-        )
-    if not vary:
-        raise ValueError("vary must name at least one key with a list of values")
-    if not isinstance(jobs, int) or jobs < 1:
-        raise ValueError(f"jobs must be an integer >= 1, got {jobs!r}")
-    _check_overrides(overrides)
-    keys = list(vary)
-    for key in keys:
-        # A string is iterable but is one value, not a list of them.
-        if not isinstance(key, str):
-            raise TypeError(f"vary keys must be dotted keys (str) like 'grid.n', got {key!r}")
-        if isinstance(vary[key], (str, bytes, Mapping)) or not isinstance(vary[key], Iterable):
-            raise TypeError(f"vary[{key!r}] must be a list of values, got {type(vary[key]).__name__} {vary[key]!r}")
-    values = [list(vary[key]) for key in keys]
-    for key, options in zip(keys, values):
-        if not options:
-            raise ValueError(f"vary[{key!r}] is empty")
-    cases = [dict(zip(keys, combo)) for combo in itertools.product(*values)]
-    common = dict(overrides or {})
-    common.update(keyword_overrides)
-    stop = threading.Event()
-
-    def stop_when_asked(step, total):
-        if stop.is_set():
-            raise _Stopped()
-
-    def one(k):
-        folder = None if out is None else Path(out) / f"case_{k:04d}"
-        # In a worker thread, the signal check of run() cannot see Ctrl-C: the main
-        # thread sets `stop` instead and this callback ends the case at its next step.
-        watch = stop_when_asked if jobs > 1 else None
-        try:
-            result = run(scenario, out=folder, progress=watch, overrides={**common, **cases[k]},
-                         allow_large=allow_large)
-        except ValueError as error:
-            raise ValueError(f"sweep case {k} {cases[k]}: {error}") from None
-        result.case = cases[k]
-        return result
-
-    results: List[Optional[RunResult]] = [None] * len(cases)
-    if jobs == 1:
-        for k in range(len(cases)):
-            results[k] = one(k)
-            if progress is not None:
-                progress(k + 1, len(cases), cases[k])
-        return results
-    from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
-
-    pool = ThreadPoolExecutor(max_workers=jobs)
-    pending = {pool.submit(one, k): k for k in range(len(cases))}
-    try:
-        while pending:
-            finished, _ = wait(pending, timeout=0.1, return_when=FIRST_COMPLETED)
-            for future in finished:
-                k = pending.pop(future)
-                results[k] = future.result()
-                if progress is not None:
-                    progress(sum(r is not None for r in results), len(cases), cases[k])
-    except BaseException:
-        stop.set()
-        pool.shutdown(wait=True, cancel_futures=True)
-        raise
-    pool.shutdown()
-    return results
 
 
 def sweep_table(results: List[RunResult], *columns: str) -> Dict[str, np.ndarray]:

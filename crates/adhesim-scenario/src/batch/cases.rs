@@ -52,7 +52,7 @@ pub(super) fn remove_temp_folders(temp_root: &Path, id: &str) {
 /// Runs one case into a temporary folder and renames it into place. `Ok(Some(message))`
 /// is a failed case (recorded in its folder's `error.txt`); `Err` is a failure of the
 /// batch itself (the output folder cannot be written).
-pub(super) fn run_case<C: BatchCase>(dir: &Path, case: &C) -> Result<Option<String>> {
+pub fn run_case<C: BatchCase>(dir: &Path, case: &C) -> Result<Option<String>> {
     let id = case.id();
     let temp = dir.join("tmp").join(format!("{id}.{}", std::process::id()));
     if temp.exists() {

@@ -16,7 +16,7 @@ mod tests;
 
 use crate::output::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
-pub use cases::{case_state, fnv1a, results_hash, CaseState};
+pub use cases::{case_state, fnv1a, results_hash, run_case, CaseState};
 use std::path::{Path, PathBuf};
 
 /// One case of a batch.

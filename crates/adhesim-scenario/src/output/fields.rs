@@ -30,15 +30,13 @@ impl FieldsRecorder {
         self.recorder.observe(view);
     }
 
-    /// Writes `fields.npz` (and `fields.nc`) into `out`; returns the file names written.
-    pub fn write(&mut self, scenario: &ValidScenario, out: &Path) -> Result<Vec<String>> {
+    /// Writes `fields.npz` (and `fields.nc`) into `out`; returns the fields written.
+    pub fn write(&mut self, scenario: &ValidScenario, out: &Path) -> Result<SnapshotFields> {
         let fields = SnapshotFields::new(scenario, self.recorder.take_snapshots());
         let shapes = fields.shapes();
-        let mut written = Vec::new();
         write_renamed(&out.join("fields.npz"), |path| {
             Ok(write_npz(path, &fields.npz_arrays(&shapes))?)
         })?;
-        written.push("fields.npz".to_string());
         if self.netcdf {
             let (nx, ny) = fields.counts();
             let grid = NetcdfGrid {
@@ -61,9 +59,8 @@ impl FieldsRecorder {
             write_renamed(&out.join("fields.nc"), |path| {
                 Ok(write_netcdf(path, &grid, &arrays, &attributes)?)
             })?;
-            written.push("fields.nc".to_string());
         }
-        Ok(written)
+        Ok(fields)
     }
 }
 

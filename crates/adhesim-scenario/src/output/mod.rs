@@ -5,6 +5,8 @@
 pub mod curve_csv;
 pub mod fields;
 pub mod folder;
+pub mod observer;
+pub mod run;
 pub mod timings;
 
 use anyhow::{anyhow, Context, Result};

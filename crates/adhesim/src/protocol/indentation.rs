@@ -70,10 +70,13 @@ impl IndentPulloff {
         let grid = *operator.grid();
         solver.reset();
         let acts_across_gaps = solver.acts_across_gaps();
+        let released_fraction = solver.released_force(1.0);
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
         let mut summary = ProtocolSummary::default();
-        let approach_steps = ((self.max_depth - self.start_depth) / self.depth_step).ceil() as usize;
+        // A law of unbounded support approaches from where its pull is negligible.
+        let start_depth = self.start_depth - solver.approach_margin();
+        let approach_steps = ((self.max_depth - start_depth) / self.depth_step).ceil() as usize;
         let mut step = 0usize;
         let mut run_step = |depth: f64,
                             phase: Phase,
@@ -124,7 +127,7 @@ impl IndentPulloff {
             Ok(record)
         };
         for i in 1..=approach_steps {
-            let depth = (self.start_depth + i as f64 * self.depth_step).min(self.max_depth);
+            let depth = (start_depth + i as f64 * self.depth_step).min(self.max_depth);
             run_step(depth, Phase::Approach, &mut state, &mut previous, &mut summary)?;
         }
         let mut depth = self.max_depth;
@@ -132,9 +135,11 @@ impl IndentPulloff {
         for _ in 0..self.max_retract_steps {
             depth -= self.depth_step;
             let record = run_step(depth, Phase::Retract, &mut state, &mut previous, &mut summary)?;
+            let released_force = released_fraction * summary.max_adhesive_force;
             // Without contact, a cohesive law may still pull (a tensile force): retraction
-            // goes on until it lets go.
-            let holds_across_gap = acts_across_gaps && record.force_normal < 0.0;
+            // goes on until it lets go (for a law of unbounded support, until the tension
+            // is negligible).
+            let holds_across_gap = acts_across_gaps && -record.force_normal > released_force;
             if record.contact_elements == 0 && !holds_across_gap {
                 summary.pull_off_depth = last_in_contact;
                 return Ok(summary);

@@ -219,6 +219,25 @@ impl NormalSolver {
         matches!(self, Self::Cohesive(_))
     }
 
+    /// The tensile force at or below which a pull-off has let go, given the largest
+    /// adhesive force seen: a fraction of it for a cohesive law of unbounded support
+    /// (whose tension never vanishes), 0 otherwise.
+    pub fn released_force(&self, max_adhesive_force: f64) -> f64 {
+        match self {
+            Self::Cohesive(solver) => solver.released_force(max_adhesive_force),
+            _ => 0.0,
+        }
+    }
+
+    /// How far above the first contact an indentation starts: for a cohesive law of
+    /// unbounded support the separation at which its pull is negligible, 0 otherwise.
+    pub fn approach_margin(&self) -> f64 {
+        match self {
+            Self::Cohesive(solver) => solver.law().negligible_separation(),
+            _ => 0.0,
+        }
+    }
+
     /// Whether a cohesive law's zone (elements carrying a traction) reached the border of
     /// a free grid at the last step; false for the other solvers.
     pub fn zone_touches_border(&self) -> bool {

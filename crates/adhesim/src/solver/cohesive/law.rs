@@ -27,6 +27,30 @@ pub trait CohesiveLaw: Send {
 
     /// The largest traction of the law over all elements (σ0 for Dugdale).
     fn max_traction(&self) -> f64;
+
+    /// Whether the traction is continuous and non-increasing in the gap on every element
+    /// (φ concave and smooth): the solver then accelerates its rounds, with the energy as
+    /// merit (docs/physics.md §2.6). False (the default) keeps the plain rounds, which a
+    /// law with jumps in its traction (Dugdale) needs.
+    fn smooth(&self) -> bool {
+        false
+    }
+
+    /// For a law of unbounded support: the fraction of [`max_traction`](Self::max_traction)
+    /// at or below which an element counts as outside the cohesive zone, and of the
+    /// largest adhesive force below which a pull-off has let go (0, the default, for laws
+    /// of finite range: any traction is in the zone, any tension holds).
+    fn negligible_fraction(&self) -> f64 {
+        0.0
+    }
+
+    /// For a law of unbounded support: the gap at which its traction has fallen to
+    /// [`negligible_fraction`](Self::negligible_fraction) of the largest; an indentation
+    /// starts this far above first contact (0, the default: laws of finite range start at
+    /// first contact).
+    fn negligible_separation(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Maugis–Dugdale law: the constant traction σ0 for g < δc = γ/σ0, nothing beyond

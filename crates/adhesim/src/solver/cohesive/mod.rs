@@ -2,6 +2,7 @@
 //! (docs/physics.md §2.6). Adding a law is adding a module with a type that implements
 //! the trait; the solver and the protocols stay as they are.
 
+mod anderson;
 mod exponential;
 mod law;
 
@@ -28,6 +29,19 @@ pub struct CohesiveParams {
     /// Solve the compressive part by the nested active set on free grids (default true;
     /// false: Polonsky–Keer CCG, which also runs on periodic grids).
     pub nested: bool,
+    /// How the rounds of a smooth law are accelerated (laws with jumps in their traction
+    /// always use the plain rounds).
+    pub acceleration: Acceleration,
+}
+
+/// The iteration of a smooth law's rounds (docs/physics.md §2.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Acceleration {
+    /// Plain majorise–minimise rounds (for comparison).
+    Plain,
+    /// Anderson mixing with the energy as safeguard (the default).
+    #[default]
+    Anderson,
 }
 
 impl Default for CohesiveParams {
@@ -36,6 +50,7 @@ impl Default for CohesiveParams {
             max_rounds: 500,
             traction_tolerance: 1e-9,
             nested: true,
+            acceleration: Acceleration::default(),
         }
     }
 }
@@ -111,21 +126,35 @@ impl CohesiveSolver {
         &self.traction
     }
 
-    /// Elements carrying a traction at the end of the last step (the cohesive zone,
-    /// contact included).
+    /// Elements carrying a traction above the law's negligible one at the end of the last
+    /// step (the cohesive zone, contact included; [`CohesiveLaw::negligible_fraction`]).
     pub fn zone_elements(&self) -> usize {
-        self.traction.iter().filter(|&&t| t > 0.0).count()
+        let negligible = self.negligible_traction();
+        self.traction.iter().filter(|&&t| t > negligible).count()
     }
 
-    /// Whether an element on the border of a free grid carries a traction: the domain cuts
-    /// the cohesive zone.
+    /// Whether an element on the border of a free grid carries a traction above the law's
+    /// negligible one: the domain cuts the cohesive zone.
     pub fn zone_touches_border(&self) -> bool {
+        let negligible = self.negligible_traction();
         self.grid.boundary() == Boundary::Free
             && self
                 .traction
                 .iter()
                 .enumerate()
-                .any(|(k, &t)| t > 0.0 && self.grid.is_border(k))
+                .any(|(k, &t)| t > negligible && self.grid.is_border(k))
+    }
+
+    /// Tractions at or below this count as outside the zone (0 for laws of finite range).
+    fn negligible_traction(&self) -> f64 {
+        self.law.negligible_fraction() * self.law.max_traction()
+    }
+
+    /// The tensile force at or below which a pull-off has let go, given the largest
+    /// adhesive force seen: 0 for laws of finite range (any tension holds), a fraction of
+    /// it for laws of unbounded support ([`CohesiveLaw::negligible_fraction`]).
+    pub fn released_force(&self, max_adhesive_force: f64) -> f64 {
+        self.law.negligible_fraction() * max_adhesive_force
     }
 
     /// Forgets the previous load path.
@@ -159,31 +188,62 @@ impl CohesiveSolver {
         self.start_contact.copy_from_slice(&state.contact);
         let element_area = self.grid.element_area();
         let mut report = StepReport::default();
-        for round in 0..self.params.max_rounds {
-            let inner = self.solve_compressive(operator, heights, depth, state)?;
-            report.solves += 1;
-            report.cg_iterations += inner.iterations;
-            // One application for the tractions' displacement, and the compressive solve's.
-            report.operator_applications += 1 + inner.operator_applications;
-            let change = self.update_traction(heights, depth, state);
-            if round == 0 {
-                before_change(state);
-                report.force_before_change = state.force(element_area);
-                report.energy_before_change = self.energy(state, heights, depth);
+        let mut rounds = 0;
+        let change = self.round(operator, heights, depth, state, &mut report, &mut rounds)?;
+        before_change(state);
+        report.force_before_change = state.force(element_area);
+        report.energy_before_change = self.energy(state, heights, depth, Interface::Held);
+        let acceleration = if self.law.smooth() {
+            self.params.acceleration
+        } else {
+            Acceleration::Plain
+        };
+        if acceleration == Acceleration::Anderson {
+            self.converge_anderson(operator, heights, depth, state, &mut report, &mut rounds, change)?;
+        } else {
+            let mut change = change;
+            while change > self.tolerance() {
+                report.attachment_rounds += 1;
+                change = self.round(operator, heights, depth, state, &mut report, &mut rounds)?;
             }
-            if change <= self.params.traction_tolerance * self.law.max_traction() {
-                // The state was computed with the tractions now in `traction` (unchanged).
-                report.force = state.force(element_area);
-                report.energy = self.energy(state, heights, depth);
-                report.dissipated_energy = report.energy_before_change - report.energy;
-                (report.attached, report.detached) = state.changes_from(&self.start_contact);
-                return Ok(report);
-            }
-            report.attachment_rounds += 1;
         }
-        Err(SolveError::TooManyRounds {
-            rounds: self.params.max_rounds,
-        })
+        // The state was computed with the tractions now in `traction` (to the tolerance).
+        report.force = state.force(element_area);
+        report.energy = self.energy(state, heights, depth, Interface::Held);
+        report.dissipated_energy = report.energy_before_change - report.energy;
+        (report.attached, report.detached) = state.changes_from(&self.start_contact);
+        Ok(report)
+    }
+
+    /// The largest traction change that ends a step.
+    fn tolerance(&self) -> f64 {
+        self.params.traction_tolerance * self.law.max_traction()
+    }
+
+    /// One round (the `rounds`-th of the step, counted): solves for q under the tractions
+    /// in `traction`, then sets them from the new gaps; returns the largest change, or
+    /// [`SolveError::TooManyRounds`] when the step has used its rounds.
+    fn round<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        report: &mut StepReport,
+        rounds: &mut usize,
+    ) -> Result<f64, SolveError> {
+        if *rounds == self.params.max_rounds {
+            return Err(SolveError::TooManyRounds {
+                rounds: self.params.max_rounds,
+            });
+        }
+        *rounds += 1;
+        let inner = self.solve_compressive(operator, heights, depth, state)?;
+        report.solves += 1;
+        report.cg_iterations += inner.iterations;
+        // One application for the tractions' displacement, and the compressive solve's.
+        report.operator_applications += 1 + inner.operator_applications;
+        Ok(self.update_traction(heights, depth, state))
     }
 
     /// Solves for q under the current tractions and writes the whole state p = q − t,
@@ -248,9 +308,10 @@ impl CohesiveSolver {
         change
     }
 
-    /// Π = ½Δ²Σp·u + Δ²Σφ(g), each element's interface energy on the piece of the law its
-    /// applied traction belongs to.
-    fn energy(&self, state: &ContactState, heights: &[f64], depth: f64) -> f64 {
+    /// Π = ½Δ²Σp·u + Δ²Σφ(g): with [`Interface::Held`] each element's interface energy is
+    /// that of the piece of the law its applied traction belongs to, with
+    /// [`Interface::Law`] the law's φ(g) (the merit of the accelerated rounds).
+    fn energy(&self, state: &ContactState, heights: &[f64], depth: f64, interface_energy: Interface) -> f64 {
         let mut elastic = 0.0;
         let mut interface = 0.0;
         for k in 0..self.grid.len() {
@@ -261,12 +322,24 @@ impl CohesiveSolver {
                 } else {
                     (heights[k] - depth + state.displacement[k]).max(0.0)
                 };
-                // The state was computed with the traction −(tensile pressure).
-                interface += self.law.held_energy(k, gap, -self.tensile_pressure[k]);
+                interface += match interface_energy {
+                    // The state was computed with the traction −(tensile pressure).
+                    Interface::Held => self.law.held_energy(k, gap, -self.tensile_pressure[k]),
+                    Interface::Law => self.law.energy(k, gap),
+                };
             }
         }
         self.grid.element_area() * (0.5 * elastic + interface)
     }
+}
+
+/// Which interface energy [`CohesiveSolver::energy`] sums.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Interface {
+    /// The piece of the law the applied traction belongs to (booked energies).
+    Held,
+    /// φ(g) of the law.
+    Law,
 }
 
 #[cfg(test)]

@@ -1,0 +1,187 @@
+//! `adhesim.sweep` on the scenario crate's sweep engine (`adhesim_scenario::sweep`,
+//! `adhesim_scenario::batch`): the same plan, case folders, `done` markers, resume and
+//! `table.csv` as `adhesim sweep`, with the command line's runner
+//! (`adhesim_cli::run_sweep_case`), so a case folder is the same whoever ran it.
+//!
+//! The parent process opens the folder ([`_sweep_open`]: plan, lock, `sweep.json`) and
+//! lists the cases to do; each case is then a picklable unit, the folder and the case
+//! index, that any process runs with [`_sweep_run_case`] (a `concurrent.futures`
+//! executor's worker, a Dask worker); the parent rebuilds `table.csv` at the end.
+
+use adhesim_scenario::batch::{self, case_state, Batch, CaseState};
+use adhesim_scenario::error_text::error_line;
+use adhesim_scenario::output::folder::Shard;
+use adhesim_scenario::sweep::{self, plan, Plan, SweepCase};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::{Path, PathBuf};
+
+/// An error of the sweep engine as a `ValueError` with its causes on one line.
+fn value_error(error: anyhow::Error) -> PyErr {
+    PyValueError::new_err(error_line(error.chain()))
+}
+
+/// A sweep folder held open (locked) by the parent process of a Python sweep.
+#[pyclass(name = "_SweepFolder", module = "adhesim._adhesim")]
+pub struct SweepFolder {
+    dir: PathBuf,
+    plan: Plan,
+    /// The folder lock; `None` once closed.
+    batch: Option<Batch>,
+}
+
+/// The sweep's cases as batch cases run by the command line's runner.
+fn sweep_cases(plan: &Plan) -> Vec<SweepCase<'_>> {
+    plan.cases
+        .iter()
+        .map(|case| SweepCase {
+            plan,
+            case,
+            runner: &adhesim_cli::run_sweep_case,
+        })
+        .collect()
+}
+
+/// Opens (creating) the sweep folder `out` for the sweep of `scenario_text` with the
+/// tables of `sweep_text` (`vary`, `zip`, `random`, `set`, `derived`, as in a sweep
+/// file): builds and checks the plan, takes the folder's lock and writes `sweep.json`
+/// (refused where `out` holds another sweep). `base` resolves the scenario's relative
+/// paths; `series` labels the table's rows.
+#[pyfunction]
+#[pyo3(signature = (out, sweep_text, scenario_text, origin, base, series, check_memory, jobs))]
+#[allow(clippy::too_many_arguments)]
+pub fn _sweep_open(
+    out: PathBuf,
+    sweep_text: &str,
+    scenario_text: &str,
+    origin: &str,
+    base: PathBuf,
+    series: &str,
+    check_memory: bool,
+    jobs: usize,
+) -> PyResult<SweepFolder> {
+    let mut sweep_table = adhesim_scenario::parse_toml(sweep_text, "the sweep's arguments").map_err(value_error)?;
+    let scenario = adhesim_scenario::parse_toml(scenario_text, origin).map_err(value_error)?;
+    sweep_table.insert("scenario".into(), toml::Value::Table(scenario));
+    sweep_table.insert("series".into(), toml::Value::String(series.into()));
+    let text = toml::to_string(&sweep_table).map_err(|e| PyValueError::new_err(format!("sweep: {e}")))?;
+    let plan = plan::from_text(&text, origin, &base, series).map_err(value_error)?;
+    if check_memory {
+        if let Some(limit) = adhesim_scenario::memory_available().map_err(value_error)? {
+            sweep::check_memory(&plan, jobs, &limit)
+                .map_err(|e| value_error(e.context("refused before allocating (allow_large=True runs anyway)")))?;
+        }
+    }
+    let batch = Batch::open(&out, Shard::ALL).map_err(value_error)?;
+    sweep::write_plan(&out, &plan).map_err(value_error)?;
+    Ok(SweepFolder {
+        dir: out,
+        plan,
+        batch: Some(batch),
+    })
+}
+
+#[pymethods]
+impl SweepFolder {
+    /// The cases in order: dicts of `index`, `id` and `values` (varied key → table cell).
+    fn cases<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let mut list = Vec::with_capacity(self.plan.cases.len());
+        for case in &self.plan.cases {
+            let dict = PyDict::new(py);
+            dict.set_item("index", case.index)?;
+            dict.set_item("id", &case.id)?;
+            let values = PyDict::new(py);
+            for (key, value) in self.plan.keys.iter().zip(&case.values) {
+                values.set_item(key, value)?;
+            }
+            dict.set_item("values", values)?;
+            list.push(dict);
+        }
+        Ok(list)
+    }
+
+    /// Indices of the cases still to run (missing, broken, of another hash; failed ones
+    /// too with `retry_failed`); removes what killed runs of them left.
+    fn pending(&self, retry_failed: bool) -> PyResult<Vec<usize>> {
+        let batch = self.batch()?;
+        let cases = sweep_cases(&self.plan);
+        let pending = batch.pending(&cases, retry_failed).map_err(value_error)?;
+        Ok(pending.todo.iter().map(|case| case.case.index).collect())
+    }
+
+    /// Rebuilds `table.csv` and the master-curve plots from the finished case folders;
+    /// returns (path of table.csv, ids of the cases that finished with an error).
+    fn finish(&self, py: Python<'_>) -> PyResult<(PathBuf, Vec<String>)> {
+        self.batch()?;
+        let (summary, _plots) = py
+            .detach(|| adhesim_cli::sweep_table_and_plots(&self.dir, &self.plan))
+            .map_err(value_error)?;
+        let failed = self
+            .plan
+            .cases
+            .iter()
+            .filter(|case| case_state(&self.dir, &case.id, &case.hash) == CaseState::Finished { ok: false })
+            .map(|case| case.id.clone())
+            .collect();
+        Ok((summary.path, failed))
+    }
+
+    /// Releases the folder's lock.
+    fn close(&mut self) {
+        self.batch = None;
+    }
+}
+
+impl SweepFolder {
+    fn batch(&self) -> PyResult<&Batch> {
+        self.batch
+            .as_ref()
+            .ok_or_else(|| PyValueError::new_err(format!("the sweep folder {} is closed", self.dir.display())))
+    }
+}
+
+/// Runs case `index` of the sweep in `out` (opened by `_sweep_open`) into
+/// `out/cases/<id>/`, computed in `out/tmp/` and renamed into place with its `done`
+/// marker; a case already finished there is not run again. Returns (ran, error message
+/// of a failed case or None). The GIL is released while it runs.
+#[pyfunction]
+pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(bool, Option<String>)> {
+    let plan = sweep::read_plan(&out).map_err(value_error)?;
+    let Some(case) = plan.cases.get(index) else {
+        return Err(PyValueError::new_err(format!(
+            "case index {index}: the sweep in {} has {} cases",
+            out.display(),
+            plan.cases.len()
+        )));
+    };
+    if let CaseState::Finished { ok } = case_state(&out, &case.id, &case.hash) {
+        let message = (!ok).then(|| error_text(&out, &case.id));
+        return Ok((false, message));
+    }
+    let sweep_case = SweepCase {
+        plan: &plan,
+        case,
+        runner: &adhesim_cli::run_sweep_case,
+    };
+    // A pool of its own, not rayon's global one: a worker forked from a process whose
+    // global pool was already running (a fork-started ProcessPoolExecutor) inherits that
+    // pool without its threads, and a case on it would wait for them forever.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| PyValueError::new_err(format!("cannot build a thread pool: {e}")))?;
+    let failure = py
+        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case)))
+        .map_err(|e| value_error(e.context(format!("case {}", case.id))))?;
+    Ok((true, failure))
+}
+
+/// The `error.txt` of a failed case (its message), or a note that it is missing.
+fn error_text(out: &Path, id: &str) -> String {
+    let path = out.join("cases").join(id).join("error.txt");
+    std::fs::read_to_string(&path)
+        .map(|text| text.trim_end().to_string())
+        .unwrap_or_else(|_| format!("failed (no {})", path.display()))
+}

@@ -1,0 +1,150 @@
+"""`adhesim.sweep` on the command line's sweep engine: the same cases, folders and
+table.csv as `adhesim sweep`, run on concurrent.futures and Dask executors, resumed
+without computing a finished case again."""
+
+import concurrent.futures
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import adhesim
+
+# A wavy sphere on a 32 × 32 grid (sweeps/tiny.toml's scenario): seconds per case.
+BASE = """
+[grid]
+n = 32
+size = 0.8
+[material]
+contact_modulus = 1.0
+[adhesion]
+work_of_adhesion = 6.16850275068085e-4
+[indenter]
+shape = "wavy_sphere"
+radius = 1.0
+amplitude = 0.0025
+wavelength = 0.1
+[protocol]
+kind = "indent_pulloff"
+max_depth = 6.0
+depth_unit = "jkr"
+steps = 12
+[output]
+jump_force_threshold = 0.01
+"""
+
+ALPHAS = {"alpha": [0.8, 1.2]}
+
+
+def cli_binary():
+    path = os.environ.get("ADHESIM_BIN")
+    if path and Path(path).is_file():
+        return Path(path)
+    pytest.skip("ADHESIM_BIN does not name the adhesim binary")
+
+
+@pytest.fixture(scope="module")
+def command_line_sweep(tmp_path_factory):
+    """`adhesim sweep` of base.toml with [vary] alpha = [0.8, 1.2] (series "s")."""
+    folder = tmp_path_factory.mktemp("cli")
+    (folder / "base.toml").write_text(BASE)
+    (folder / "sweep.toml").write_text('base = "base.toml"\nseries = "s"\n[vary]\nalpha = [0.8, 1.2]\n')
+    out = folder / "out"
+    subprocess.run(
+        [str(cli_binary()), "sweep", str(folder / "sweep.toml"), "--out", str(out), "--jobs", "1", "--quiet"],
+        check=True,
+    )
+    return folder, out
+
+
+def without_timings(summary_path):
+    summary = json.loads(Path(summary_path).read_text())
+    summary.pop("performance")
+    return summary
+
+
+def assert_same_sweep(python_out, cli_out):
+    """table.csv byte-identical; per case curve.csv, fields.npz, scenario.toml, case.json
+    byte-identical and summary.json equal apart from its timings."""
+    assert (python_out / "table.csv").read_bytes() == (cli_out / "table.csv").read_bytes()
+    cli_cases = sorted(p.name for p in (cli_out / "cases").iterdir())
+    assert sorted(p.name for p in (python_out / "cases").iterdir()) == cli_cases
+    for case in cli_cases:
+        mine, theirs = python_out / "cases" / case, cli_out / "cases" / case
+        assert sorted(p.name for p in mine.rglob("*")) == sorted(p.name for p in theirs.rglob("*"))
+        for name in ("curve.csv", "fields.npz", "scenario.toml", "case.json", "done"):
+            assert (mine / name).read_bytes() == (theirs / name).read_bytes(), f"{case}/{name}"
+        assert without_timings(mine / "summary.json") == without_timings(theirs / "summary.json")
+
+
+def done_markers(out):
+    return {p.parent.name: p.stat().st_mtime_ns for p in (out / "cases").glob("*/done")}
+
+
+def test_a_process_pool_sweep_equals_the_command_line_and_resumes(command_line_sweep):
+    folder, cli_out = command_line_sweep
+    out = folder / "python"
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        cases = adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s", executor=pool)
+    assert len(cases) == 2 and cases.ran == 2
+    assert [c.case for c in cases] == [{"alpha": 0.8}, {"alpha": 1.2}]
+    assert_same_sweep(out, cli_out)
+    # The JKR-type pull-off force of each case is the command line's table value.
+    assert cases.table["case"] == [c.case_id for c in cases]
+    assert [float(v) for v in cases.table["max_adhesive_force"]] == [
+        c.results["max_adhesive_force"] for c in cases
+    ]
+    # A second call with the same folder computes no case again.
+    markers = done_markers(out)
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        again = adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s", executor=pool)
+    assert again.ran == 0
+    assert done_markers(out) == markers
+    assert [c.summary["results"] for c in again] == [c.summary["results"] for c in cases]
+
+
+def test_a_lost_case_is_the_only_one_run_again(command_line_sweep, tmp_path):
+    folder, cli_out = command_line_sweep
+    out = tmp_path / "sweep"
+    adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s")
+    first, second = sorted((out / "cases").iterdir())
+    # A worker killed mid-case leaves no case folder, only its temporary one.
+    os.rename(second, out / "tmp" / f"{second.name}.99999")
+    markers = done_markers(out)
+    cases = adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s")
+    assert cases.ran == 1
+    assert done_markers(out)[first.name] == markers[first.name]
+    assert not list((out / "tmp").iterdir())
+    assert_same_sweep(out, cli_out)
+
+
+def test_a_dask_cluster_runs_the_sweep(command_line_sweep):
+    distributed = pytest.importorskip("dask.distributed")
+    folder, cli_out = command_line_sweep
+    out = folder / "dask"
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            cases = adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s",
+                                  executor=client.get_executor())
+    assert cases.ran == 2
+    assert_same_sweep(out, cli_out)
+
+
+def test_sweep_errors_name_the_argument(tmp_path):
+    base = tmp_path / "base.toml"
+    base.write_text(BASE)
+    with pytest.raises(TypeError, match=r"vary must be a mapping.*\[0.8\]"):
+        adhesim.sweep(base, vary=[0.8], out=tmp_path / "a")
+    with pytest.raises(ValueError, match=r"unknown sweep key `alpah`"):
+        adhesim.sweep(base, vary={"alpah": [0.8]}, out=tmp_path / "a")
+    with pytest.raises(ValueError, match=r"case 0 \(grid.n = -4\).*grid.n"):
+        adhesim.sweep(base, vary={"grid.n": [-4]}, out=tmp_path / "a")
+    adhesim.sweep(base, vary={"alpha": [0.8]}, out=tmp_path / "b")
+    with pytest.raises(ValueError, match="holds a different sweep"):
+        adhesim.sweep(base, vary={"alpha": [1.2]}, out=tmp_path / "b")
+    # An alpha sweep of a scenario without amplitude-bearing indenter names the problem.
+    with pytest.raises(ValueError, match="alpha"):
+        adhesim.sweep(base, vary={"alpha": [0.8]}, derived={"alpha": "indenter.radius"}, out=tmp_path / "c")

@@ -1,0 +1,250 @@
+//! The observer of a run into a folder: writes `curve.csv` rows as the steps come, the
+//! snapshot fields (`snapshots/*.npy`, `fields.npz`), hands the contact maps to the
+//! [`RunPictures`] it was given (the command line draws them; Python runs without), drives
+//! a [`RunProgress`], times the phases and watches for contact at the domain border.
+
+use super::curve_csv::CurveCsv;
+use super::fields::FieldsRecorder;
+use super::timings::PhaseTimings;
+use crate::{RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
+use adhesim::analysis::reference::Jkr;
+use adhesim::{Grid, Observer, StepRecord, StepView};
+use anyhow::{Context, Result};
+use std::collections::BTreeSet;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The contact sets of one step kept for a composite picture: (step, contact, previous
+/// contact).
+pub type CapturedStep = (usize, Vec<bool>, Vec<bool>);
+
+/// The pictures of a run folder. The scenario crate draws nothing: the command line
+/// implements this with its figure builder (contact maps, force curves); a run without
+/// pictures (Python's `adhesim.run`) writes every other file alike.
+pub trait RunPictures: Sync {
+    /// Writes the contact map of one step (`contact` against `previous`) as a PNG at `path`.
+    fn contact_map(&self, path: &Path, grid: &Grid, contact: &[bool], previous: &[bool]) -> Result<()>;
+    /// Writes the figures of a finished run into `dir` (`plots/`); returns their names
+    /// relative to the run folder.
+    fn figures(
+        &self,
+        scenario: &ValidScenario,
+        outcome: &RunOutcome,
+        captured: &[CapturedStep],
+        dir: &Path,
+    ) -> Result<Vec<String>>;
+}
+
+/// Shows the progress of a run (the command line's bar, Python's callback). An error from
+/// [`RunProgress::step`] stops the run after that step (Ctrl-C in Python).
+pub trait RunProgress {
+    /// A step has been solved and its outputs written.
+    fn step(&mut self, _record: &StepRecord) -> Result<()> {
+        Ok(())
+    }
+    /// A warning for the user (also kept in `summary.json`).
+    fn warning(&mut self, _message: &str) {}
+    /// The run has ended.
+    fn finish(&mut self) {}
+}
+
+/// No progress shown.
+impl RunProgress for () {}
+
+/// Writes the outputs of each step.
+pub struct RunObserver<'a> {
+    csv: CurveCsv,
+    grid: Grid,
+    snapshots: PathBuf,
+    plan: SnapshotPlan,
+    jump_snapshots: usize,
+    progress: &'a mut dyn RunProgress,
+    pictures: Option<&'a dyn RunPictures>,
+    largest: (usize, usize, Vec<bool>),
+    last_in_contact: Option<(usize, Vec<bool>, Vec<bool>)>,
+    /// Warnings for the summary (also printed to stderr).
+    pub warnings: Vec<String>,
+    border_warned: bool,
+    /// The first I/O error; the protocol is stopped when it happens.
+    pub error: Option<anyhow::Error>,
+    /// Snapshot files written, relative to the output folder.
+    pub snapshot_files: Vec<String>,
+    /// Steps whose contact sets are kept in `captured` (see [`RunObserver::capture`]).
+    capture_steps: BTreeSet<usize>,
+    /// (step, contact, previous contact) of the captured steps, in step order.
+    pub captured: Vec<(usize, Vec<bool>, Vec<bool>)>,
+    /// Solver and output wall time per phase.
+    pub timings: PhaseTimings,
+    /// `fields.npz` of the snapshot steps (crate::output::fields), when set.
+    pub fields: Option<FieldsRecorder>,
+    /// The snapshot fields once written (for Python's in-memory result).
+    pub written_fields: Option<SnapshotFields>,
+}
+
+impl<'a> RunObserver<'a> {
+    /// Creates `curve.csv` (with its header) and `snapshots/` in `out`; contact maps are
+    /// drawn by `pictures` (none without).
+    pub fn new(
+        out: &Path,
+        grid: Grid,
+        jkr: Option<Jkr>,
+        plan: SnapshotPlan,
+        progress: &'a mut dyn RunProgress,
+        pictures: Option<&'a dyn RunPictures>,
+    ) -> Result<Self> {
+        let snapshots = out.join("snapshots");
+        std::fs::create_dir_all(&snapshots).with_context(|| format!("cannot create {}", snapshots.display()))?;
+        let csv = CurveCsv::create(&out.join("curve.csv"), jkr)?;
+        Ok(Self {
+            csv,
+            grid,
+            snapshots,
+            plan,
+            jump_snapshots: 0,
+            progress,
+            pictures,
+            largest: (0, 0, Vec::new()),
+            last_in_contact: None,
+            warnings: Vec::new(),
+            border_warned: false,
+            error: None,
+            snapshot_files: Vec::new(),
+            capture_steps: BTreeSet::new(),
+            captured: Vec::new(),
+            timings: PhaseTimings::new(),
+            fields: None,
+            written_fields: None,
+        })
+    }
+
+    /// Keeps the contact sets of these steps in memory (for composite pictures such as
+    /// the consecutive sliding snapshots of the paper's Fig. 9).
+    pub fn capture(&mut self, steps: impl IntoIterator<Item = usize>) {
+        self.capture_steps.extend(steps);
+    }
+
+    fn snapshot(&mut self, name: &str, contact: &[bool], previous: &[bool]) -> Result<()> {
+        let Some(pictures) = self.pictures else {
+            return Ok(());
+        };
+        let path = self.snapshots.join(format!("{name}.png"));
+        pictures.contact_map(&path, &self.grid, contact, previous)?;
+        self.snapshot_files.push(format!("snapshots/{name}.png"));
+        Ok(())
+    }
+
+    fn handle(&mut self, view: &StepView<'_>) -> Result<()> {
+        let r = view.record;
+        self.csv.write(r)?;
+        let step = r.step;
+        let n = (self.grid.ny(), self.grid.nx());
+        let changed = r.report.attached + r.report.detached;
+        if self.plan.is_chosen(step) {
+            let name = SnapshotPlan::step_name(step);
+            self.snapshot(&name, &view.state.contact, view.previous_contact)?;
+            write_field(
+                &self.snapshots.join(format!("{name}_pressure.npy")),
+                n,
+                &view.state.pressure,
+            )?;
+            write_field(
+                &self.snapshots.join(format!("{name}_displacement.npy")),
+                n,
+                &view.state.displacement,
+            )?;
+        }
+        if r.jumped && changed >= self.plan.jump_elements && self.jump_snapshots < self.plan.max_jump_snapshots {
+            self.jump_snapshots += 1;
+            self.snapshot(&format!("jump_{step:06}"), &view.state.contact, view.previous_contact)?;
+        }
+        if step == self.plan.max_depth_step {
+            self.snapshot("max_depth", &view.state.contact, view.previous_contact)?;
+        }
+        if let Some(fields) = &mut self.fields {
+            fields.observe(view);
+        }
+        if self.capture_steps.contains(&step) {
+            self.captured
+                .push((step, view.state.contact.clone(), view.previous_contact.to_vec()));
+        }
+        if r.contact_elements > self.largest.0 {
+            self.largest = (r.contact_elements, step, view.state.contact.clone());
+        }
+        if r.contact_elements > 0 {
+            match &mut self.last_in_contact {
+                Some((s, contact, previous)) => {
+                    *s = step;
+                    contact.copy_from_slice(&view.state.contact);
+                    previous.copy_from_slice(view.previous_contact);
+                }
+                None => {
+                    self.last_in_contact = Some((step, view.state.contact.clone(), view.previous_contact.to_vec()));
+                }
+            }
+        }
+        if r.touches_border && !self.border_warned {
+            self.border_warned = true;
+            let message = crate::border_warning(step, r.depth);
+            self.progress.warning(&message);
+            self.warnings.push(message);
+        }
+        self.progress.step(r)
+    }
+
+    /// Writes the contact maps of the largest contact and of the last configuration before
+    /// contact was lost, and closes the CSV and the progress bar.
+    /// Then `fields.npz` of the snapshot steps of `scenario` (the one run).
+    /// After an I/O error (in `error`) the partial `curve.csv` is left as it is.
+    pub fn finish(&mut self, scenario: &ValidScenario) -> Result<()> {
+        self.progress.finish();
+        if self.error.is_some() {
+            return Ok(());
+        }
+        self.csv.commit()?;
+        if self.largest.0 > 0 {
+            let contact = std::mem::take(&mut self.largest.2);
+            // Shown without change colours: the map of the contact itself.
+            self.snapshot("largest_contact", &contact, &contact)?;
+        }
+        if let Some((_, contact, previous)) = self.last_in_contact.take() {
+            self.snapshot("pull_off", &contact, &previous)?;
+        }
+        if let (Some(fields), Some(out)) = (&mut self.fields, self.snapshots.parent()) {
+            self.written_fields = Some(fields.write(scenario, out)?);
+        }
+        Ok(())
+    }
+}
+
+impl Observer for RunObserver<'_> {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        self.timings
+            .solver_step(view.record.phase.map_or("unknown", |p| p.name()));
+        let output_start = Instant::now();
+        let result = self.handle(&view);
+        self.timings.output_done(output_start);
+        match result {
+            Ok(()) => ControlFlow::Continue(()),
+            Err(error) => {
+                self.error = Some(error);
+                ControlFlow::Break(())
+            }
+        }
+    }
+}
+
+/// A field as an .npy array of `shape` = (rows, columns) = (Ny, Nx).
+fn write_field(path: &Path, shape: (usize, usize), values: &[f64]) -> Result<()> {
+    use ndarray_npy::WriteNpyExt;
+    let array = ndarray::Array2::from_shape_vec(shape, values.to_vec())?;
+    let file = File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut writer = BufWriter::new(file);
+    array
+        .write_npy(&mut writer)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    writer.flush()?;
+    Ok(())
+}

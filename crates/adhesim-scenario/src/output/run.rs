@@ -1,0 +1,144 @@
+//! A run into a folder, the one pipeline of `adhesim run`, of every sweep case and of
+//! Python's `adhesim.run(out=...)`: the run marker, the observer's `curve.csv`, snapshots
+//! and field files, the pictures (when given), then `summary.json` with the phase timings,
+//! written atomically. The folder is new, or made ready by
+//! [`super::folder::prepare_run_folder`].
+
+use super::folder;
+use super::observer::{RunObserver, RunPictures, RunProgress};
+use super::timings::PhaseTimings;
+use crate::{
+    Performance, PhaseTimes, ProtocolSetup, RunOutcome, SnapshotFields, SnapshotPlan, SnapshotRecorder, Summary,
+    ValidScenario,
+};
+use adhesim::ProtocolError;
+use anyhow::{anyhow, Context, Result};
+use std::path::Path;
+use std::time::Instant;
+
+/// Consecutive steps shown in the snapshot strip of a translation by default.
+const STRIP_FRAMES: usize = 4;
+
+/// What a run into a folder writes besides `curve.csv`, `summary.json` and `fields.npz`.
+#[derive(Clone, Copy, Default)]
+pub struct FolderRunOptions<'a> {
+    /// Contact maps and figures; none without (the scenario crate draws nothing).
+    pub pictures: Option<&'a dyn RunPictures>,
+    /// Also `fields.nc` (NetCDF-3) beside `fields.npz`.
+    pub netcdf: bool,
+}
+
+/// What a finished run into a folder gives back.
+pub struct FolderRun {
+    /// The run's records, results and counters.
+    pub outcome: RunOutcome,
+    /// The text of `summary.json` as written.
+    pub summary_json: String,
+    /// The snapshot fields written to `fields.npz`.
+    pub fields: SnapshotFields,
+    /// Contact-map files written, relative to the folder.
+    pub snapshot_files: Vec<String>,
+    /// Figure files written, relative to the folder.
+    pub plot_files: Vec<String>,
+    /// Wall time of the run, figures included.
+    pub wall_seconds: f64,
+}
+
+/// Runs a validated scenario into `out`: the marker, `curve.csv`, snapshots, field files,
+/// pictures, `summary.json`. A solver failure or an interruption is an error naming the
+/// step; `curve.csv.partial` then holds the steps done.
+pub fn run_into_folder(
+    scenario: &ValidScenario,
+    out: &Path,
+    options: FolderRunOptions<'_>,
+    progress: &mut dyn RunProgress,
+) -> Result<FolderRun> {
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
+    folder::write_run_marker(out)?;
+    let start = Instant::now();
+    let mut observer = RunObserver::new(
+        out,
+        scenario.grid,
+        scenario.jkr,
+        SnapshotPlan::new(scenario),
+        progress,
+        options.pictures,
+    )?;
+    observer.capture(strip_steps(scenario));
+    observer.fields = Some(super::fields::FieldsRecorder::new(
+        SnapshotRecorder::new(SnapshotPlan::new(scenario)),
+        options.netcdf,
+    ));
+    let outcome = crate::run(scenario, &mut observer);
+    observer.finish(scenario)?;
+    let outcome = match outcome {
+        Ok(outcome) => outcome,
+        Err(ProtocolError::Interrupted(step)) => {
+            let cause = observer.error.take().unwrap_or_else(|| anyhow!("interrupted"));
+            return Err(cause.context(format!("run stopped at step {step}")));
+        }
+        Err(error) => {
+            // One message, not an error chain: `ProtocolError::Solve` shows its source in its
+            // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
+            return Err(
+                anyhow!(crate::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
+                    "run failed; {} holds the steps done",
+                    out.join("curve.csv").display()
+                )),
+            );
+        }
+    };
+    let plot_files = match options.pictures {
+        Some(pictures) => pictures.figures(scenario, &outcome, &observer.captured, &out.join("plots"))?,
+        None => Vec::new(),
+    };
+    let wall_seconds = start.elapsed().as_secs_f64();
+    let performance = performance(wall_seconds, &outcome, &observer.timings);
+    let summary = Summary::new(scenario, &outcome, performance, &observer.warnings);
+    let path = out.join("summary.json");
+    let summary_json = summary
+        .to_json()
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    crate::batch::write_atomically(&path, summary_json.as_bytes())?;
+    let fields = observer
+        .written_fields
+        .take()
+        .ok_or_else(|| anyhow!("the snapshot fields of {} were not written", out.display()))?;
+    Ok(FolderRun {
+        outcome,
+        summary_json,
+        fields,
+        snapshot_files: std::mem::take(&mut observer.snapshot_files),
+        plot_files,
+        wall_seconds,
+    })
+}
+
+/// Counters of a run, with the per-step averages and the observer's phase timings.
+pub fn performance(wall_seconds: f64, outcome: &RunOutcome, timings: &PhaseTimings) -> Performance {
+    let times = PhaseTimes {
+        phase_seconds: timings.phase_seconds.clone(),
+        phase_steps: timings.phase_steps.clone(),
+        output_seconds: timings.output_seconds,
+    };
+    Performance::new(wall_seconds, &outcome.report.counters(), times)
+}
+
+/// The steps whose contact sets the observer keeps for the snapshot strip of a
+/// translation (paper Figs. 6b, 9): the chosen steps (at most 8), else consecutive steps
+/// in the middle of the stationary part.
+fn strip_steps(scenario: &ValidScenario) -> Vec<usize> {
+    let o = &scenario.file.output;
+    let ProtocolSetup::Translation(setup) = scenario.protocol_setup() else {
+        return Vec::new();
+    };
+    let protocol = &setup.protocol;
+    let forward_end = protocol.approach_steps + protocol.steps;
+    if o.snapshot_steps.is_empty() {
+        let first = protocol.approach_steps
+            + ((protocol.stationary_from + 0.5 * (1.0 - protocol.stationary_from)) * protocol.steps as f64) as usize;
+        (first..first + STRIP_FRAMES).filter(|&s| s < forward_end).collect()
+    } else {
+        o.snapshot_steps.iter().map(|&s| s as usize).take(8).collect()
+    }
+}

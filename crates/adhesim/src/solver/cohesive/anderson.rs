@@ -1,0 +1,273 @@
+//! The rounds of a smooth cohesive law, accelerated by Anderson mixing with the energy as
+//! safeguard.
+//!
+//! For a smooth law φ is concave (t non-increasing in g), so the tangent of φ at the
+//! current gaps lies above φ: a round, which solves the contact problem under the tangent's
+//! fixed tractions exactly, minimises a majoriser of the energy Π that touches Π at the
+//! current state. The plain rounds are thus a majorise–minimise (concave–convex) iteration
+//! t ↦ F(t) whose energy never rises (Yuille & Rangarajan 2003, *Neural Comput.* 15, 915;
+//! Hunter & Lange 2004, *Am. Stat.* 58, 30). Linearised, F contracts at the spectral radius
+//! of diag(t/ρ)·K, which tends to 1 on the approach to a jump and stays close to it while a
+//! detached surface still bulges towards the indenter. Anderson mixing (Anderson 1965,
+//! *J. ACM* 12, 547; Walker & Ni 2011, *SIAM J. Numer. Anal.* 49, 1715) combines the last
+//! [`MEMORY`] rounds: on a linear map it is GMRES on the residual t − F(t). A mixed
+//! traction field is kept only if the energy of its state is no higher than that of the
+//! state before it (to [`ENERGY_ROUNDING`]). Otherwise the memory is cleared and the plain
+//! round taken, extended by a forward-tracking line search along it: near a state that lost
+//! its stability mixing extrapolates back towards it, while the plain round escapes slowly.
+//! The energy so decreases along the rounds from the previous step's state, and the step
+//! ends in a local minimum reached along the load path: the jumps and
+//! the hysteresis are kept.
+
+use super::{CohesiveSolver, Interface};
+use crate::elastic::ElasticOperator;
+use crate::solver::{ContactState, SolveError, StepReport};
+use std::collections::VecDeque;
+
+/// Rounds combined by one mixing.
+pub(super) const MEMORY: usize = 5;
+
+/// Energy rises relative to |Π| below this count as rounding, not as a rise (the energies of
+/// successive rounds near convergence differ by less than the rounding of their sums).
+const ENERGY_ROUNDING: f64 = 1e-8;
+
+/// Differences of the residuals f = F(t) − t and of the images F(t) of successive rounds.
+struct History {
+    residual_changes: VecDeque<Vec<f64>>,
+    image_changes: VecDeque<Vec<f64>>,
+}
+
+impl History {
+    fn new() -> Self {
+        Self {
+            residual_changes: VecDeque::with_capacity(MEMORY),
+            image_changes: VecDeque::with_capacity(MEMORY),
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.residual_changes.is_empty()
+    }
+
+    fn clear(&mut self) {
+        self.residual_changes.clear();
+        self.image_changes.clear();
+    }
+
+    fn push(&mut self, residual_change: Vec<f64>, image_change: Vec<f64>) {
+        if self.residual_changes.len() == MEMORY {
+            self.residual_changes.pop_front();
+            self.image_changes.pop_front();
+        }
+        self.residual_changes.push_back(residual_change);
+        self.image_changes.push_back(image_change);
+    }
+
+    /// The mixed iterate F(t) − ΔG·c with c the least-squares solution of ΔF·c ≈ f (normal
+    /// equations with a relative Tikhonov shift of 1e-12 against rank loss).
+    fn mix(&self, residual: &[f64], image: &[f64], out: &mut [f64]) {
+        let m = self.residual_changes.len();
+        out.copy_from_slice(image);
+        if m == 0 {
+            return;
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let mut matrix = vec![0.0; m * m];
+        let mut rhs = vec![0.0; m];
+        for i in 0..m {
+            rhs[i] = dot(&self.residual_changes[i], residual);
+            for j in 0..=i {
+                let value = dot(&self.residual_changes[i], &self.residual_changes[j]);
+                matrix[i * m + j] = value;
+                matrix[j * m + i] = value;
+            }
+        }
+        let shift = 1e-12 * (0..m).map(|i| matrix[i * m + i]).fold(0.0, f64::max);
+        for i in 0..m {
+            matrix[i * m + i] += shift;
+        }
+        let Some(coefficients) = solve_symmetric(&mut matrix, &mut rhs, m) else {
+            return;
+        };
+        for (c, change) in coefficients.iter().zip(&self.image_changes) {
+            for (o, d) in out.iter_mut().zip(change) {
+                *o -= c * d;
+            }
+        }
+    }
+}
+
+/// Solves the symmetric positive definite m×m system in place by Cholesky; None if it is not
+/// numerically positive definite.
+fn solve_symmetric(matrix: &mut [f64], rhs: &mut [f64], m: usize) -> Option<Vec<f64>> {
+    for j in 0..m {
+        let mut d = matrix[j * m + j];
+        for k in 0..j {
+            d -= matrix[j * m + k] * matrix[j * m + k];
+        }
+        if d.is_nan() || d <= 0.0 {
+            return None;
+        }
+        let d = d.sqrt();
+        matrix[j * m + j] = d;
+        for i in j + 1..m {
+            let mut s = matrix[i * m + j];
+            for k in 0..j {
+                s -= matrix[i * m + k] * matrix[j * m + k];
+            }
+            matrix[i * m + j] = s / d;
+        }
+    }
+    for i in 0..m {
+        let mut s = rhs[i];
+        for k in 0..i {
+            s -= matrix[i * m + k] * rhs[k];
+        }
+        rhs[i] = s / matrix[i * m + i];
+    }
+    for i in (0..m).rev() {
+        let mut s = rhs[i];
+        for k in i + 1..m {
+            s -= matrix[k * m + i] * rhs[k];
+        }
+        rhs[i] = s / matrix[i * m + i];
+    }
+    Some(rhs.to_vec())
+}
+
+impl CohesiveSolver {
+    /// Iterates from a state computed under the applied tractions −`tensile_pressure`,
+    /// whose round set `traction` = F(applied) with the largest change `change`, to a
+    /// converged state (no traction changing by more than the tolerance).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn converge_anderson<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        report: &mut StepReport,
+        rounds: &mut usize,
+        mut change: f64,
+    ) -> Result<(), SolveError> {
+        let tolerance = self.tolerance();
+        let len = self.grid.len();
+        let mut history = History::new();
+        let mut merit = self.energy(state, heights, depth, Interface::Law);
+        // The image F(t) and residual F(t) − t of the current state.
+        let mut image = self.traction.clone();
+        let mut residual: Vec<f64> = image.iter().zip(&self.tensile_pressure).map(|(g, p)| g + p).collect();
+        let mut applied: Vec<f64> = self.tensile_pressure.iter().map(|p| -p).collect();
+        let mut mixed = vec![0.0; len];
+        while change > tolerance {
+            let mut accepted = false;
+            let mut rejected = false;
+            if !history.is_empty() {
+                history.mix(&residual, &image, &mut mixed);
+                self.set_within_law(&mixed, &image);
+                report.attachment_rounds += 1;
+                change = self.round(operator, heights, depth, state, report, rounds)?;
+                let new_merit = self.energy(state, heights, depth, Interface::Law);
+                accepted = new_merit <= merit + ENERGY_ROUNDING * merit.abs();
+                if accepted {
+                    merit = new_merit;
+                } else {
+                    history.clear();
+                    rejected = true;
+                }
+            }
+            if rejected {
+                (change, merit) =
+                    self.forward_tracking(operator, heights, depth, state, report, rounds, &applied, &image, merit)?;
+            } else if !accepted {
+                // The first round of the mixing (empty memory) is the plain one.
+                self.traction.copy_from_slice(&image);
+                report.attachment_rounds += 1;
+                change = self.round(operator, heights, depth, state, report, rounds)?;
+                merit = self.energy(state, heights, depth, Interface::Law);
+            }
+            // The applied tractions were −tensile_pressure; their image is in `traction`.
+            let mut residual_change = vec![0.0; len];
+            let mut image_change = vec![0.0; len];
+            for k in 0..len {
+                let new_applied = -self.tensile_pressure[k];
+                let new_image = self.traction[k];
+                let new_residual = new_image - new_applied;
+                residual_change[k] = new_residual - residual[k];
+                image_change[k] = new_image - image[k];
+                residual[k] = new_residual;
+                image[k] = new_image;
+                applied[k] = new_applied;
+            }
+            history.push(residual_change, image_change);
+        }
+        Ok(())
+    }
+
+    /// Sets `traction` to `tractions` kept within the law's [0, t(0)] (0 where the image is 0:
+    /// elements outside the indenter or without adhesion).
+    fn set_within_law(&mut self, tractions: &[f64], image: &[f64]) {
+        for k in 0..tractions.len() {
+            let upper = if image[k] > 0.0 { self.law.traction(k, 0.0) } else { 0.0 };
+            self.traction[k] = tractions[k].clamp(0.0, upper);
+        }
+    }
+
+    /// The plain round from `applied` (whose image is `image` and energy `merit`), then
+    /// rounds from applied + β·(image − applied) for β = 2, 4, … while the energy of their
+    /// states decreases: a line search that crosses the slow escape from a state that lost
+    /// its stability (where the plain round moves by little and mixing extrapolates back
+    /// towards the unstable state). Ends on the state of the best β; returns the last
+    /// round's change and that state's energy.
+    #[allow(clippy::too_many_arguments)]
+    fn forward_tracking<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        heights: &[f64],
+        depth: f64,
+        state: &mut ContactState,
+        report: &mut StepReport,
+        rounds: &mut usize,
+        applied: &[f64],
+        image: &[f64],
+        merit: f64,
+    ) -> Result<(f64, f64), SolveError> {
+        self.traction.copy_from_slice(image);
+        report.attachment_rounds += 1;
+        let mut change = self.round(operator, heights, depth, state, report, rounds)?;
+        let mut best = (1.0, self.energy(state, heights, depth, Interface::Law));
+        // A plain round that barely moves the energy is converging, not escaping.
+        if merit - best.1 <= ENERGY_ROUNDING * merit.abs() {
+            return Ok((change, best.1));
+        }
+        let mut trial = vec![0.0; applied.len()];
+        let mut beta = 2.0;
+        loop {
+            for k in 0..trial.len() {
+                trial[k] = applied[k] + beta * (image[k] - applied[k]);
+            }
+            self.set_within_law(&trial, image);
+            report.attachment_rounds += 1;
+            change = self.round(operator, heights, depth, state, report, rounds)?;
+            let energy = self.energy(state, heights, depth, Interface::Law);
+            if energy < best.1 {
+                best = (beta, energy);
+                beta *= 2.0;
+            } else if energy <= merit {
+                // Past the best, but still below the start: kept (the energy still decreases
+                // from round to round), saving the round that would return to the best.
+                return Ok((change, energy));
+            } else {
+                break;
+            }
+        }
+        for k in 0..trial.len() {
+            trial[k] = applied[k] + best.0 * (image[k] - applied[k]);
+        }
+        self.set_within_law(&trial, image);
+        report.attachment_rounds += 1;
+        change = self.round(operator, heights, depth, state, report, rounds)?;
+        best.1 = self.energy(state, heights, depth, Interface::Law);
+        Ok((change, best.1))
+    }
+}
