@@ -12,6 +12,44 @@ pyo3::create_exception!(
     "A solver did not converge (iteration or round limit reached, or a non-finite value appeared). The message states the iterations and the residual reached."
 );
 
+pyo3::create_exception!(
+    _adhesim,
+    ScenarioError,
+    pyo3::exceptions::PyValueError,
+    "A scenario that cannot be read or run (a ValueError). `key` is the dotted key at fault (None when the error is not about one key), `value` its value as written, `requirement` what it must satisfy (None where unknown), `kind` one of syntax, unknown_key, missing_key, invalid_value, file, resources."
+);
+
+/// The scenario crate's typed error as `adhesim.ScenarioError` (a `ValueError`) with
+/// `.key`, `.value`, `.requirement` and `.kind`; `hint` is appended to the message.
+pub fn scenario_error(error: &adhesim_scenario::ScenarioError, hint: &str) -> PyErr {
+    let exception = ScenarioError::new_err(format!("{}{hint}", error.message()));
+    Python::attach(|py| {
+        let value = exception.value(py);
+        let fields = [
+            ("key", error.key.clone()),
+            ("value", error.value.clone()),
+            ("requirement", error.requirement.clone()),
+            ("kind", Some(error.kind.name().to_string())),
+        ];
+        for (name, field) in fields {
+            if let Err(failure) = value.setattr(name, field) {
+                return failure;
+            }
+        }
+        exception.clone_ref(py)
+    })
+}
+
+/// An error of the sweep engine or the run folder: `adhesim.ScenarioError` where a
+/// scenario key is at fault (a sweep case's bad value), else `ValueError`; the message is
+/// the chain on one line.
+pub fn engine_error(error: anyhow::Error) -> PyErr {
+    match adhesim_scenario::ScenarioError::find(&error) {
+        Some(typed) => scenario_error(&typed, ""),
+        None => PyValueError::new_err(adhesim_scenario::error_text::error_line(error.chain())),
+    }
+}
+
 /// Maps a library solve error to `ValueError` (bad input) or `adhesim.SolveError`
 /// (non-convergence).
 pub fn solve_error(error: adhesim::SolveError) -> PyErr {

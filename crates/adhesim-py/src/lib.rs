@@ -25,6 +25,7 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     m.add("SolveError", m.py().get_type::<convert::SolveError>())?;
+    m.add("ScenarioError", m.py().get_type::<convert::ScenarioError>())?;
     m.add_class::<objects::Grid>()?;
     m.add_class::<objects::Material>()?;
     m.add_class::<objects::HalfSpace>()?;

@@ -103,12 +103,12 @@ fn load(
         None
     };
     adhesim_scenario::load_within(text, origin, base, overrides, limit.as_ref()).map_err(|e| {
-        let hint = if e.to_string().contains("of memory available") {
+        let hint = if e.kind == adhesim_scenario::ErrorKind::Resources {
             " (refused before allocating; pass allow_large=True to run anyway)"
         } else {
             ""
         };
-        PyValueError::new_err(format!("{e:#}{hint}"))
+        crate::convert::scenario_error(&e, hint)
     })
 }
 

@@ -9,7 +9,6 @@
 //! executor's worker, a Dask worker); the parent rebuilds `table.csv` at the end.
 
 use adhesim_scenario::batch::{self, case_state, Batch, CaseState};
-use adhesim_scenario::error_text::error_line;
 use adhesim_scenario::output::folder::Shard;
 use adhesim_scenario::sweep::{self, plan, Plan, SweepCase};
 use pyo3::exceptions::PyValueError;
@@ -17,10 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 
-/// An error of the sweep engine as a `ValueError` with its causes on one line.
-fn value_error(error: anyhow::Error) -> PyErr {
-    PyValueError::new_err(error_line(error.chain()))
-}
+use crate::convert::engine_error as value_error;
 
 /// A sweep folder held open (locked) by the parent process of a Python sweep.
 #[pyclass(name = "_SweepFolder", module = "adhesim._adhesim")]
@@ -61,8 +57,10 @@ pub fn _sweep_open(
     check_memory: bool,
     jobs: usize,
 ) -> PyResult<SweepFolder> {
-    let mut sweep_table = adhesim_scenario::parse_toml(sweep_text, "the sweep's arguments").map_err(value_error)?;
-    let scenario = adhesim_scenario::parse_toml(scenario_text, origin).map_err(value_error)?;
+    let mut sweep_table = adhesim_scenario::parse_toml(sweep_text, "the sweep's arguments")
+        .map_err(|e| crate::convert::scenario_error(&e, ""))?;
+    let scenario =
+        adhesim_scenario::parse_toml(scenario_text, origin).map_err(|e| crate::convert::scenario_error(&e, ""))?;
     sweep_table.insert("scenario".into(), toml::Value::Table(scenario));
     sweep_table.insert("series".into(), toml::Value::String(series.into()));
     let text = toml::to_string(&sweep_table).map_err(|e| PyValueError::new_err(format!("sweep: {e}")))?;

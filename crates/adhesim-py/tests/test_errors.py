@@ -193,3 +193,36 @@ def test_issue29_hostile_object_sizes_raise_python_exceptions(monkeypatch):
                 make()
             except (ValueError, MemoryError):
                 pass
+
+
+def test_scenario_errors_carry_the_key_value_and_requirement():
+    """A bad scenario raises adhesim.ScenarioError, a ValueError whose fields name the key
+    at fault, its value, the requirement and the kind (no message parsing needed)."""
+    scenario = {
+        "grid": {"n": 32, "size": 0.25},
+        "material": {"contact_modulus": 1.0},
+        "adhesion": {"work_of_adhesion": 0.0},
+        "indenter": {"shape": "sphere", "radius": 1.0},
+        "protocol": {"kind": "indent_pulloff", "max_depth": 0.01, "depth_unit": "length", "steps": 2},
+    }
+    with pytest.raises(adhesim.ScenarioError, match=r"grid.n must be >= 2, got -4") as info:
+        adhesim.run(scenario, **{"grid.n": -4})
+    assert isinstance(info.value, ValueError)
+    error = info.value
+    assert (error.key, error.value, error.requirement, error.kind) == ("grid.n", "-4", ">= 2", "invalid_value")
+    with pytest.raises(adhesim.ScenarioError) as info:
+        adhesim.run(scenario, **{"indenter.radius": -1.0})
+    assert (info.value.key, info.value.value, info.value.requirement) == ("indenter.radius", "-1", "> 0")
+    with pytest.raises(adhesim.ScenarioError, match="unknown key `grid.nn`") as info:
+        adhesim.run(scenario, **{"grid.nn": 3})
+    assert (info.value.key, info.value.kind) == ("grid.nn", "unknown_key")
+    with pytest.raises(adhesim.ScenarioError, match="malformed TOML") as info:
+        adhesim.run("[grid\nn = 3\n")
+    assert (info.value.key, info.value.kind) == (None, "syntax")
+    with pytest.raises(adhesim.ScenarioError, match=r"grid.n = \"many\"") as info:
+        adhesim.run(scenario, **{"grid.n": "many"})
+    assert (info.value.key, info.value.value, info.value.kind) == ("grid.n", '"many"', "invalid_value")
+    # A sweep names the case and keeps the key.
+    with pytest.raises(adhesim.ScenarioError, match=r"case 1 \(grid.n = -4\)") as info:
+        adhesim.sweep(scenario, vary={"grid.n": [32, -4]})
+    assert info.value.key == "grid.n"

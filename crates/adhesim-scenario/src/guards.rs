@@ -420,7 +420,7 @@ impl ScenarioFile {
     /// Refuses, naming `grid.n`, the estimate and the limit, a scenario of which `runs`
     /// concurrent runs need more than `limit` allows. Call it before
     /// [`ScenarioFile::validate`], which allocates the grid's fields.
-    pub fn check_memory(&self, limit: &MemoryLimit, runs: u64) -> Result<()> {
+    pub(crate) fn check_memory_of_runs(&self, limit: &MemoryLimit, runs: u64) -> Result<()> {
         let need = self.memory_estimate().saturating_mul(runs.max(1));
         if need > limit.bytes {
             let each = if runs > 1 {
@@ -431,10 +431,17 @@ impl ScenarioFile {
             } else {
                 String::new()
             };
-            bail!(
+            let message = format!(
                 "grid.n = {} needs about {}{each}, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
                 self.grid.n,
                 gibibytes(need),
+            );
+            return Err(
+                crate::error::ScenarioError::new(crate::error::ErrorKind::Resources, message)
+                    .with_key("grid.n")
+                    .with_value(self.grid.n.to_string())
+                    .with_requirement(format!("at most {limit}"))
+                    .into(),
             );
         }
         Ok(())

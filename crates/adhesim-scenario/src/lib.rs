@@ -40,6 +40,7 @@
 pub mod batch;
 mod cohesive;
 mod curve;
+mod error;
 pub mod error_text;
 mod files;
 mod guards;
@@ -57,11 +58,12 @@ mod translation;
 mod validate;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
+pub use error::{ErrorKind, ScenarioError};
 pub use files::{check_regular_file, read_input_text};
 pub use guards::{memory_estimate, memory_estimate_rectangle, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
 pub use memory::{memory_available, MemoryLimit};
 pub use model::*;
-pub use parse::{apply_override, apply_overrides, deserialize, parse_toml, read_height_map, read_npy_2d};
+pub use parse::{read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
@@ -70,7 +72,6 @@ pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes,
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 
 pub use adhesim::analysis::friction::TranslationResults;
-use anyhow::Result;
 use std::path::Path;
 
 /// A scenario as read: its TOML table (overrides applied) and where it came from. Not yet
@@ -83,7 +84,7 @@ pub struct Scenario {
 
 impl Scenario {
     /// Parses TOML text; `origin` (a file name) goes into error messages.
-    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self> {
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ScenarioError> {
         Ok(Self {
             table: parse_toml(text, origin)?,
             origin: origin.to_string(),
@@ -92,13 +93,13 @@ impl Scenario {
 
     /// Sets a dotted key (`grid.n`) to a value given as TOML text (`64`, `"free"`,
     /// `[1, 2]`; a bare word is a string), as `adhesim run --set KEY=VALUE` does.
-    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<()> {
+    pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), ScenarioError> {
         apply_override(&mut self.table, key, value)
     }
 
     /// Checks every value and builds the library objects; relative file paths (height
     /// maps, adhesion maps) are resolved against `base`. Errors name the key and value.
-    pub fn validate(&self, base: &Path) -> Result<ValidScenario> {
+    pub fn validate(&self, base: &Path) -> Result<ValidScenario, ScenarioError> {
         deserialize(&self.table)?.validate(base)
     }
 
@@ -113,8 +114,46 @@ impl Scenario {
     }
 }
 
+/// Parses TOML text into a table (with `origin`, the file name, in the message on failure).
+pub fn parse_toml(text: &str, origin: &str) -> Result<toml::Table, ScenarioError> {
+    parse::parse_toml(text, origin).map_err(ScenarioError::from_anyhow)
+}
+
+/// Applies `KEY=VALUE` overrides, as `--set` does; VALUE is read as a TOML value (`3`,
+/// `0.5`, `"free"`, `[1, 2]`), and as a bare string when it does not parse as one.
+pub fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<(), ScenarioError> {
+    parse::apply_overrides(table, overrides).map_err(ScenarioError::from_anyhow)
+}
+
+/// Sets one dotted `key` to `raw`, read as a TOML value (a bare string when it does not
+/// parse as one); missing tables on the way are created.
+pub fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> Result<(), ScenarioError> {
+    parse::apply_override(table, key, raw).map_err(ScenarioError::from_anyhow)
+}
+
+/// Deserialises the table section by section; every error names the dotted key.
+pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile, ScenarioError> {
+    parse::deserialize(table).map_err(ScenarioError::from_anyhow)
+}
+
+impl ScenarioFile {
+    /// Checks every value and builds the library objects, one section after the other.
+    /// `base` resolves relative file paths. Errors name the key and the value.
+    pub fn validate(self, base: &Path) -> Result<ValidScenario, ScenarioError> {
+        self.validate_sections(base).map_err(ScenarioError::from_anyhow)
+    }
+
+    /// Refuses ([`ErrorKind::Resources`], naming `grid.n`, the estimate and the limit) a
+    /// scenario of which `runs` concurrent runs need more than `limit` allows. Call it
+    /// before [`ScenarioFile::validate`], which allocates the grid's fields.
+    pub fn check_memory(&self, limit: &MemoryLimit, runs: u64) -> Result<(), ScenarioError> {
+        self.check_memory_of_runs(limit, runs)
+            .map_err(ScenarioError::from_anyhow)
+    }
+}
+
 /// Reads, overrides (`KEY=VALUE` items), deserialises and validates a scenario.
-pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Result<ValidScenario> {
+pub fn load(text: &str, origin: &str, base: &Path, overrides: &[String]) -> Result<ValidScenario, ScenarioError> {
     load_within(text, origin, base, overrides, None)
 }
 
@@ -127,7 +166,7 @@ pub fn load_within(
     base: &Path,
     overrides: &[String],
     available_memory: Option<&MemoryLimit>,
-) -> Result<ValidScenario> {
+) -> Result<ValidScenario, ScenarioError> {
     let mut table = parse_toml(text, origin)?;
     apply_overrides(&mut table, overrides)?;
     let file = deserialize(&table)?;

@@ -1,24 +1,27 @@
 //! Reading a scenario: TOML text into a table, `--set KEY=VALUE` overrides on it, and
 //! section-by-section deserialisation whose errors name the dotted key.
 
+use crate::error::{ErrorKind, ScenarioError};
 use crate::model::ScenarioFile;
 use adhesim_topography::{read_topography, ReadOptions, Topography};
 use anyhow::{anyhow, bail, Result};
 use std::path::Path;
 
 /// Parses TOML text into a table (with the file name in the message on failure).
-pub fn parse_toml(text: &str, origin: &str) -> Result<toml::Table> {
-    text.parse::<toml::Table>()
-        .map_err(|e| anyhow!("{origin}: malformed TOML: {}", e.to_string().trim_end()))
+pub(crate) fn parse_toml(text: &str, origin: &str) -> Result<toml::Table> {
+    text.parse::<toml::Table>().map_err(|e| {
+        let message = format!("{origin}: malformed TOML: {}", e.to_string().trim_end());
+        ScenarioError::new(ErrorKind::Syntax, message).into()
+    })
 }
 
 /// Applies `KEY=VALUE` overrides; VALUE is read as a TOML value (`3`, `0.5`, `"free"`,
 /// `[1, 2]`), and as a bare string when it does not parse as one.
-pub fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<()> {
+pub(crate) fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<()> {
     for item in overrides {
-        let (key, raw) = item
-            .split_once('=')
-            .ok_or_else(|| anyhow!("--set expects KEY=VALUE, got `{item}`"))?;
+        let (key, raw) = item.split_once('=').ok_or_else(|| {
+            ScenarioError::new(ErrorKind::Syntax, format!("--set expects KEY=VALUE, got `{item}`")).with_value(item)
+        })?;
         apply_override(table, key, raw)?;
     }
     Ok(())
@@ -26,12 +29,16 @@ pub fn apply_overrides(table: &mut toml::Table, overrides: &[String]) -> Result<
 
 /// Sets one dotted `key` to `raw`, read as a TOML value (a bare string when it does not
 /// parse as one); missing tables on the way are created.
-pub fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> Result<()> {
+pub(crate) fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> Result<()> {
     {
         let key = key.trim();
         let raw = raw.trim();
         if key.is_empty() || key.split('.').any(str::is_empty) {
-            bail!("--set: invalid key `{key}`");
+            return Err(
+                ScenarioError::new(ErrorKind::Syntax, format!("--set: invalid key `{key}`"))
+                    .with_key(key)
+                    .into(),
+            );
         }
         let value = match format!("v = {raw}").parse::<toml::Table>() {
             Ok(mut t) => t.remove("v").expect("parsed table holds v"),
@@ -43,9 +50,11 @@ pub fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> Result<(
             let entry = current
                 .entry(part.to_string())
                 .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            current = entry
-                .as_table_mut()
-                .ok_or_else(|| anyhow!("--set {key}: `{}` is not a table", parts[..=depth].join(".")))?;
+            current = entry.as_table_mut().ok_or_else(|| {
+                let table = parts[..=depth].join(".");
+                let message = format!("--set {key}: `{table}` is not a table");
+                ScenarioError::new(ErrorKind::InvalidValue, message).with_key(table)
+            })?;
         }
         current.insert(parts[parts.len() - 1].to_string(), value);
     }
@@ -65,24 +74,31 @@ const SECTIONS: [&str; 9] = [
 ];
 
 /// Deserialises the table section by section so that every message names the dotted key.
-pub fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
+pub(crate) fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
     for key in table.keys() {
         if !SECTIONS.contains(&key.as_str()) {
-            bail!(
+            let message = format!(
                 "unknown key `{key}` (expected one of: {})",
                 SECTIONS.map(|s| format!("[{s}]")).join(", ")
             );
+            return Err(ScenarioError::new(ErrorKind::UnknownKey, message).with_key(key).into());
         }
     }
     fn section<T: serde::de::DeserializeOwned>(table: &toml::Table, name: &str, required: bool) -> Result<Option<T>> {
         let Some(value) = table.get(name) else {
             if required {
-                bail!("missing section [{name}]");
+                let message = format!("missing section [{name}]");
+                return Err(ScenarioError::new(ErrorKind::MissingKey, message).with_key(name).into());
             }
             return Ok(None);
         };
         if !value.is_table() {
-            bail!("`{name}` must be a table [{name}], got {value}");
+            let message = format!("`{name}` must be a table [{name}], got {value}");
+            let error = ScenarioError::new(ErrorKind::InvalidValue, message)
+                .with_key(name)
+                .with_value(value.to_string())
+                .with_requirement(format!("a table [{name}]"));
+            return Err(error.into());
         }
         T::deserialize(value.clone())
             .map(Some)
@@ -139,22 +155,26 @@ fn section_error<T: serde::de::DeserializeOwned>(
                 }
                 None => tail,
             };
-            return match (shape.is_empty(), tail.is_empty()) {
-                (true, true) => anyhow!("unknown key `{key}`"),
-                (true, false) => anyhow!("unknown key `{key}` ({tail})"),
-                (false, true) => anyhow!("unknown key `{key}` for {shape}"),
-                (false, false) => anyhow!("unknown key `{key}` for {shape} ({tail})"),
+            let message = match (shape.is_empty(), tail.is_empty()) {
+                (true, true) => format!("unknown key `{key}`"),
+                (true, false) => format!("unknown key `{key}` ({tail})"),
+                (false, true) => format!("unknown key `{key}` for {shape}"),
+                (false, false) => format!("unknown key `{key}` for {shape} ({tail})"),
             };
+            return ScenarioError::new(ErrorKind::UnknownKey, message).with_key(key).into();
         }
     }
     if let Some(rest) = message.strip_prefix("missing field `") {
         if let Some((field, _)) = rest.split_once('`') {
             let shape = tagged_by(name, value);
-            return if shape.is_empty() {
-                anyhow!("missing key `{name}.{field}`")
+            let message = if shape.is_empty() {
+                format!("missing key `{name}.{field}`")
             } else {
-                anyhow!("missing key `{name}.{field}` (needed by {shape})")
+                format!("missing key `{name}.{field}` (needed by {shape})")
             };
+            return ScenarioError::new(ErrorKind::MissingKey, message)
+                .with_key(format!("{name}.{field}"))
+                .into();
         }
     }
     // A type or value error: name the key at fault. serde's message quotes the value, not
@@ -162,8 +182,15 @@ fn section_error<T: serde::de::DeserializeOwned>(
     // is found by trial: the first key without which the error changes.
     let mut leaves = Vec::new();
     collect_leaves(name, value, &mut leaves);
+    let at_fault = |key: &str, item: &toml::Value| -> anyhow::Error {
+        ScenarioError::new(ErrorKind::InvalidValue, format!("{key} = {item}: {message}"))
+            .with_key(key)
+            .with_value(item.to_string())
+            .with_requirement(message.as_str())
+            .into()
+    };
     if let Some((key, item)) = key_at_fault::<T>(name, value, &message, &leaves) {
-        return anyhow!("{key} = {item}: {message}");
+        return at_fault(&key, &item);
     }
     let quoted = leaves.iter().find(|(_, item)| quotes(&message, item));
     let typed = || {
@@ -172,9 +199,12 @@ fn section_error<T: serde::de::DeserializeOwned>(
             .find(|(_, item)| message.contains(&format!("invalid type: {}", serde_kind(item.type_str()))))
     };
     if let Some((key, item)) = quoted.or_else(typed) {
-        return anyhow!("{key} = {item}: {message}");
+        return at_fault(key, item);
     }
-    anyhow!("[{name}]: {message}")
+    ScenarioError::new(ErrorKind::InvalidValue, format!("[{name}]: {message}"))
+        .with_key(name)
+        .with_requirement(message.as_str())
+        .into()
 }
 
 /// The key of section `name` that `message` (serde's, for `value`) is about: a key whose

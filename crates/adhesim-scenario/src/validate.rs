@@ -3,6 +3,7 @@
 //! -1`); nothing here panics on bad input.
 
 use crate::cohesive::zone_resolution_warning;
+use crate::error::ScenarioError;
 use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::{read_height_map, read_npy_2d};
@@ -36,7 +37,7 @@ pub(crate) fn positive(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        bail!("{key} must be > 0, got {value}")
+        Err(ScenarioError::invalid(key, value, "> 0").into())
     }
 }
 
@@ -44,7 +45,7 @@ pub(crate) fn non_negative(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        bail!("{key} must be >= 0, got {value}")
+        Err(ScenarioError::invalid(key, value, ">= 0").into())
     }
 }
 
@@ -52,7 +53,7 @@ pub(crate) fn finite(key: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        bail!("{key} must be finite, got {value}")
+        Err(ScenarioError::invalid(key, value, "finite").into())
     }
 }
 
@@ -84,7 +85,7 @@ pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw:
 impl ScenarioFile {
     /// Checks every value and builds the library objects, one section after the other.
     /// `base` resolves relative file paths.
-    pub fn validate(self, base: &Path) -> Result<ValidScenario> {
+    pub(crate) fn validate_sections(self, base: &Path) -> Result<ValidScenario> {
         let grid = validate_grid(&self.grid)?;
         let material = validate_material(&self.material)?;
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
@@ -285,10 +286,10 @@ impl ScenarioFile {
 fn validate_grid(section: &GridSection) -> Result<Grid> {
     let count = |key: &str, n: i64| -> Result<usize> {
         if n < 2 {
-            bail!("{key} must be >= 2, got {n}");
+            return Err(ScenarioError::invalid(key, n, ">= 2").into());
         }
         if n > MAX_GRID_N {
-            bail!("{key} must be <= {MAX_GRID_N}, got {n}");
+            return Err(ScenarioError::invalid(key, n, &format!("<= {MAX_GRID_N}")).into());
         }
         Ok(n as usize)
     };

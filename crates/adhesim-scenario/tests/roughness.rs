@@ -52,7 +52,7 @@ steps = 4
 approach_steps = 4
 "#;
 
-fn load_with(text: &str, overrides: &[&str]) -> anyhow::Result<ValidScenario> {
+fn load_with(text: &str, overrides: &[&str]) -> Result<ValidScenario, adhesim_scenario::ScenarioError> {
     let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     load(text, "test.toml", Path::new("."), &overrides)
 }

@@ -33,7 +33,7 @@ steps = 2
     )
 }
 
-fn load_text(text: &str) -> anyhow::Result<ValidScenario> {
+fn load_text(text: &str) -> Result<ValidScenario, adhesim_scenario::ScenarioError> {
     load(text, "test.toml", Path::new("."), &[])
 }
 

@@ -86,10 +86,12 @@ pub fn command(args: &RunArgs) -> Result<()> {
         resources::memory_limit(args.options.allow_large)?.as_ref(),
     )
     .map_err(|e| {
-        if e.to_string().contains("of memory available") {
-            e.context("refused before allocating (pass --allow-large to run anyway)")
+        let resources = e.kind == adhesim_scenario::ErrorKind::Resources;
+        let error = anyhow::Error::new(e);
+        if resources {
+            error.context("refused before allocating (pass --allow-large to run anyway)")
         } else {
-            e
+            error
         }
     })?;
     let out = folder::output_dir(args.out.as_deref(), path, "scenario")?;

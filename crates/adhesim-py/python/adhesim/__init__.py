@@ -26,6 +26,7 @@ run(scenario, out=None, progress=None, **overrides) -> RunResult (.curve, .summa
 
 from . import fit, geometry, reference, surface
 from .topography import Topography, read_topography
+from . import _errors  # documents adhesim.ScenarioError's fields
 from ._run import RunResult, Snapshot, load, run, sweep_table
 from ._sweep import SweepResult, sweep
 from ._adhesim import (
@@ -38,6 +39,7 @@ from ._adhesim import (
     HalfSpace,
     Material,
     NestedActiveSet,
+    ScenarioError,
     SolveError,
     SolveReport,
     StepReport,
@@ -53,6 +55,7 @@ __all__ = [
     "Material",
     "NestedActiveSet",
     "RunResult",
+    "ScenarioError",
     "SolveError",
     "Snapshot",
     "SolveReport",

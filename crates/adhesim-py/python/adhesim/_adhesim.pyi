@@ -17,6 +17,12 @@ __version__: str
 
 def cli_main(argv: List[str]) -> int: ...
 
+class ScenarioError(ValueError):
+    key: Optional[str]
+    value: Optional[str]
+    requirement: Optional[str]
+    kind: str
+
 class SolveError(RuntimeError):
     """A solver did not converge (iteration or round limit, or a non-finite value)."""
 

@@ -230,7 +230,9 @@ def run(
 
     Raises:
         ValueError: an unreadable file or a bad value, naming the key and the value
-            (the scenario crate's messages, as the command line prints them).
+            (the scenario crate's messages, as the command line prints them); for a
+            bad scenario an ``adhesim.ScenarioError`` with ``.key``, ``.value``,
+            ``.requirement`` and ``.kind``.
         TypeError: a scenario or override value of an unsupported type.
         KeyboardInterrupt: Ctrl-C, checked between steps (a step itself runs to its end:
             the library has no cancellation hook inside a step).

@@ -109,7 +109,7 @@ fn build(table: &toml::Table, base_dir: &Path, changes: &[String]) -> Result<Val
     if let Some(limit) = crate::resources::memory_limit(false)? {
         file.check_memory(&limit, 1)?;
     }
-    file.validate(base_dir)
+    Ok(file.validate(base_dir)?)
 }
 
 /// The indent_pulloff case of a rolling study: the base with its protocol replaced.

@@ -1,0 +1,31 @@
+"""The fields of ``adhesim.ScenarioError``, documented on the class: the Rust extension
+sets them on each raised instance (``src/convert.rs``, ``scenario_error``)."""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+from ._adhesim import ScenarioError
+
+
+class _Field:
+    """A field read from the instance (set when raised); None on an instance without it."""
+
+    def __init__(self, name: str, doc: str) -> None:
+        self.name = name
+        self.__doc__ = doc
+
+    def __get__(self, instance: Any, owner: Optional[type] = None) -> Any:
+        if instance is None:
+            return self
+        return instance.__dict__.get(self.name)
+
+
+_FIELDS = {
+    "key": "The dotted scenario key at fault (``grid.n``), or None when no single key is.",
+    "value": "The value at fault as written (``-4``, ``\"many\"``), or None where unknown.",
+    "requirement": "What the value must satisfy (``>= 2``), or None where unknown.",
+    "kind": "syntax, unknown_key, missing_key, invalid_value, file or resources.",
+}
+for _name, _doc in _FIELDS.items():
+    setattr(ScenarioError, _name, _Field(_name, _doc))
