@@ -169,7 +169,7 @@ pub(crate) const MIN_RANGE_ELEMENTS: f64 = 2.0;
 pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, contact_modulus: f64) -> Option<String> {
     let range = section.range?;
     let gamma = section.work_of_adhesion;
-    if !(gamma > 0.0) {
+    if gamma.is_nan() || gamma <= 0.0 {
         return None;
     }
     let length = std::f64::consts::PI * contact_modulus * range * range / (4.0 * gamma);

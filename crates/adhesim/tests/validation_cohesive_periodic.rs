@@ -105,9 +105,12 @@ fn energy_mismatch(summary: &ProtocolSummary, records: &[StepRecord]) -> f64 {
     (work - summary.dissipated_energy - held) / summary.dissipated_energy
 }
 
+/// Builds a law for the elements of a grid.
+type LawOnGrid = Box<dyn Fn(&Grid) -> Box<dyn CohesiveLaw>>;
+
 /// The two laws with the same γ0 and largest traction s·p*: Dugdale σ0 = s·p*, and the
 /// exponential law of range ρ = γ0/(s·p*).
-fn laws(alpha: f64, ratio: f64) -> [(&'static str, Box<dyn Fn(&Grid) -> Box<dyn CohesiveLaw>>); 2] {
+fn laws(alpha: f64, ratio: f64) -> [(&'static str, LawOnGrid); 2] {
     let gamma = work_of_adhesion(alpha);
     let stress = ratio * FULL_CONTACT_PRESSURE;
     [
