@@ -54,10 +54,20 @@ fn law_keys_are_checked_by_name() {
     let zero = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0").replace("= 0.01", "= 0.0");
     let error = error_of(&zero.replace("depth_unit = \"jkr\"", "depth_unit = \"length\""));
     assert!(error.contains("needs adhesion.work_of_adhesion > 0, got 0"), "{error}");
-    let periodic = with_adhesion("law = \"dugdale\"\ncohesive_stress = 1.0")
-        .replace("size = 1.0", "size = 1.0\nboundary = \"periodic\"");
-    let error = error_of(&periodic);
-    assert!(error.contains("grid.boundary = \"periodic\""), "{error}");
+}
+
+/// Both cohesive laws build their solver on a periodic grid (depth control is mean-gap
+/// control there, as for the sharp criterion).
+#[test]
+fn cohesive_laws_run_on_periodic_grids() {
+    for keys in [
+        "law = \"dugdale\"\ncohesive_stress = 1.0",
+        "law = \"exponential\"\nrange = 0.1",
+    ] {
+        let periodic = with_adhesion(keys).replace("size = 1.0", "size = 1.0\nboundary = \"periodic\"");
+        let scenario = load(&periodic, "test", Path::new("."), &[]).unwrap();
+        assert!(matches!(scenario.normal_solver(), NormalSolver::Cohesive(_)), "{keys}");
+    }
 }
 
 /// `law` absent is `jkr`: the JKR solver, no Maugis parameter, and the echoed section
@@ -106,6 +116,21 @@ fn an_unresolved_zone_is_warned_about() {
     let warning = coarse.warnings.join("\n");
     assert!(
         warning.contains("spans 5.4 elements") && warning.contains("grid.n"),
+        "{warning}"
+    );
+}
+
+/// An exponential range whose cohesive length πE*ρ²/(4γ0) spans fewer than 2 elements is
+/// warned about, naming the keys; `scenarios/cohesive/exponential_mu1.toml` resolves it.
+#[test]
+fn an_unresolved_exponential_range_is_warned_about() {
+    let text = include_str!("../../../scenarios/cohesive/exponential_mu1.toml");
+    let resolved = load(text, "test", Path::new("."), &[]).unwrap();
+    assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
+    let coarse = load(text, "test", Path::new("."), &["grid.n=16".to_string()]).unwrap();
+    let warning = coarse.warnings.join("\n");
+    assert!(
+        warning.contains("cohesive length") && warning.contains("adhesion.range") && warning.contains("grid.n"),
         "{warning}"
     );
 }

@@ -76,6 +76,10 @@ enum Compressive {
 /// continuation, as in the quasi-static simulations of Maugis' model (e.g. Greenwood 1997,
 /// *Proc. R. Soc. A* 453, 1277). The compressive solve is the library's non-adhesive one
 /// (the nested active set on free grids, or CCG), warm started from the last round.
+///
+/// On a periodic grid the compressive part is CCG's: K̂(0) = 0, so the depth controls the
+/// mean gap mean(z) − d, as for the sharp criterion, and the tractions' displacement
+/// K(−t) has zero mean; the mean pressure −mean(t) + mean(q) is the load per area.
 pub struct CohesiveSolver {
     params: CohesiveParams,
     grid: Grid,
@@ -180,11 +184,6 @@ impl CohesiveSolver {
                 got: heights.len(),
             });
         }
-        if self.grid.boundary() == Boundary::Periodic {
-            return Err(SolveError::PeriodicUnsupported {
-                solver: "CohesiveSolver",
-            });
-        }
         self.start_contact.copy_from_slice(&state.contact);
         let element_area = self.grid.element_area();
         let mut report = StepReport::default();
@@ -271,12 +270,19 @@ impl CohesiveSolver {
             Compressive::Nested(solver) => {
                 solver.solve(operator, &self.shifted_heights, depth, &mut self.compressive_state)?
             }
-            Compressive::Ccg(solver) => solver.solve(
-                operator,
-                &self.shifted_heights,
-                Control::Displacement(depth),
-                &mut self.compressive_state,
-            )?,
+            Compressive::Ccg(solver) => {
+                let control = Control::Displacement(depth);
+                match solver.solve(operator, &self.shifted_heights, control, &mut self.compressive_state) {
+                    // A warm start from the last round can stall Polonsky–Keer's iteration
+                    // on a periodic cell whose contact shrinks to a few rows of a strip (met
+                    // on the 1-D waviness, docs/validation.md §13): once more from cold.
+                    Err(SolveError::NotConverged { .. }) => {
+                        self.compressive_state = ContactState::new(&self.grid);
+                        solver.solve(operator, &self.shifted_heights, control, &mut self.compressive_state)?
+                    }
+                    report => report?,
+                }
+            }
         };
         let q = &self.compressive_state;
         for k in 0..self.grid.len() {
