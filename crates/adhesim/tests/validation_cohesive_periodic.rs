@@ -168,9 +168,10 @@ fn wavy_pull_off_mesh_convergence() {
 }
 
 /// Both laws on the wavy surface at α = 0.3 with the largest traction p*/2, N = 64 (about
-/// 3 s): the work ∮F dd balances the booked dissipation plus the energy held at the end
-/// within 1e-4 relative (measured 1e-5: exact up to the step's trapezoid for Dugdale, the
-/// rounds' 1e-9 traction tolerance for the exponential law), contact is lost, and the
+/// 13 s in the loaded suite): the work ∮F dd balances the booked dissipation plus the
+/// energy held at the end within 1e-4 relative (measured 9.5e-6 for Dugdale, exact up to
+/// the trapezoid over a step; 7.4e-5 for the exponential law, whose tangent booking is
+/// second order in the step), contact is lost, and the
 /// Dugdale pull-off lies within 8 % of Johnson's sharp 0.0959p* (measured +6.5 %; its
 /// zone ℓ = πE*γ0/(4σ0²) = 0.14λ is not small beside a ≈ 0.06λ, and the mesh error is
 /// first order: +2.7 % at N = 128, −0.5 % at N = 256, docs/validation.md §13).
