@@ -3,6 +3,7 @@
 use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
 use crate::objects::{ContactState, HalfSpace};
 use crate::solvers::{adhesive_params, step_columns, step_report, StepReport};
+use crate::views::Cached;
 use adhesim::WorkOfAdhesion;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -38,6 +39,8 @@ pub struct AdhesiveSolver {
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
+    /// The read-only `critical_stress` array (fixed at construction).
+    critical_stress: Cached<f64>,
 }
 
 impl AdhesiveSolver {
@@ -46,10 +49,10 @@ impl AdhesiveSolver {
         let mut operator = self.operator.bind(py).try_borrow_mut()?;
         let mut guard = state.try_borrow_mut()?;
         let (solver, heights) = (&mut self.inner, &self.heights);
-        let (op, st) = (&mut operator.inner, &mut guard.inner);
+        let (op, st) = (&mut operator.inner, guard.fields_mut());
         let report = py.detach(|| solver.step(op, heights, depth, st)).map_err(solve_error)?;
         guard.record(&self.heights, depth);
-        Ok(step_report(depth, &report, &guard.inner))
+        Ok(step_report(depth, &report, guard.fields()))
     }
 }
 
@@ -114,6 +117,7 @@ impl AdhesiveSolver {
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
+            critical_stress: Cached::default(),
         })
     }
 
@@ -182,7 +186,7 @@ impl AdhesiveSolver {
         let mut rows = Vec::with_capacity(depths.len());
         for (index, &depth) in depths.iter().enumerate() {
             let report = self.step_inner(py, depth, state)?;
-            let radius = state.borrow().inner.contact_radius(&self.grid, (0.0, 0.0));
+            let radius = state.borrow().fields().contact_radius(&self.grid, (0.0, 0.0));
             rows.push((report, radius));
             py.check_signals()?;
             if let Some(callback) = progress {
@@ -202,12 +206,15 @@ impl AdhesiveSolver {
     fn energy(&self, state: &Bound<'_, ContactState>) -> PyResult<f64> {
         let state = state.borrow();
         state.check_grid(&self.grid)?;
-        Ok(self.inner.energy(&state.inner))
+        Ok(self.inner.energy(state.fields()))
     }
 
-    /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (n, n).
+    /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (n, n),
+    /// read-only (the same array at every access).
     #[getter]
     fn critical_stress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        crate::convert::field(py, self.inner.critical_stresses(), self.grid.n())
+        let n = self.grid.n();
+        self.critical_stress
+            .get(py, || crate::convert::field(py, self.inner.critical_stresses(), n))
     }
 }

@@ -1,6 +1,7 @@
 //! Grid, material, the elastic half-space operator and the contact state.
 
 use crate::convert::{count, elements, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
+use crate::views::Cached;
 use adhesim::{Boundary, ElasticOperator, Profile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -245,14 +246,29 @@ impl HalfSpace {
 /// Fields of a contact configuration on a grid; also the warm start of the next solve or
 /// step (pass the same object again). Starts with no contact and no load.
 ///
-/// The arrays returned are copies, shape (n, n), [row = y, column = x].
+/// The fields (`pressure`, `displacement`, `contact`, `gap`) are read-only float64 (bool
+/// for `contact`) arrays of shape (n, n), [row = y, column = x]: two accesses between
+/// solves return the same array (no copy), and writing into it raises ValueError. A solve
+/// or step on the state makes new arrays; arrays taken before keep their values (use
+/// `numpy.array(state.pressure)` for a writeable copy).
 #[pyclass(module = "adhesim._adhesim")]
 pub struct ContactState {
-    pub inner: adhesim::ContactState,
+    /// The library's state: change it only through [`ContactState::fields_mut`].
+    inner: adhesim::ContactState,
     pub grid: adhesim::Grid,
     /// Heights and depth of the last solve or step (for the gap).
     pub last_heights: Vec<f64>,
     pub last_depth: Option<f64>,
+    views: StateViews,
+}
+
+/// The read-only arrays handed out since the last change (crate::views).
+#[derive(Default)]
+struct StateViews {
+    pressure: Cached<f64>,
+    displacement: Cached<f64>,
+    contact: Cached<bool>,
+    gap: Cached<f64>,
 }
 
 impl ContactState {
@@ -262,7 +278,20 @@ impl ContactState {
             grid,
             last_heights: Vec::new(),
             last_depth: None,
+            views: StateViews::default(),
         }
+    }
+
+    /// The library's state, read only.
+    pub fn fields(&self) -> &adhesim::ContactState {
+        &self.inner
+    }
+
+    /// The library's state to change (a solve or step): forgets the arrays handed out, so
+    /// the next access to a field gives the new values.
+    pub fn fields_mut(&mut self) -> &mut adhesim::ContactState {
+        self.views = StateViews::default();
+        &mut self.inner
     }
 
     /// `ValueError` unless the state lives on `grid`.
@@ -287,6 +316,7 @@ impl ContactState {
         self.last_heights.clear();
         self.last_heights.extend_from_slice(heights);
         self.last_depth = Some(depth);
+        self.views.gap.clear();
     }
 }
 
@@ -302,26 +332,31 @@ impl ContactState {
         Ok(Self::fresh(grid.inner))
     }
 
-    /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n).
+    /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n), read-only.
     #[getter]
     fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.pressure, self.grid.n())
+        let n = self.grid.n();
+        self.views.pressure.get(py, || field(py, &self.inner.pressure, n))
     }
 
-    /// Normal surface displacement u = K p (> 0 into the body), shape (n, n).
+    /// Normal surface displacement u = K p (> 0 into the body), shape (n, n), read-only.
     #[getter]
     fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.displacement, self.grid.n())
+        let n = self.grid.n();
+        self.views
+            .displacement
+            .get(py, || field(py, &self.inner.displacement, n))
     }
 
-    /// Contact mask (True in contact), shape (n, n).
+    /// Contact mask (True in contact), shape (n, n), read-only.
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        field(py, &self.inner.contact, self.grid.n())
+        let n = self.grid.n();
+        self.views.contact.get(py, || field(py, &self.inner.contact, n))
     }
 
     /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
-    /// solve or step; +inf where the indenter has no surface.
+    /// solve or step; +inf where the indenter has no surface. Read-only, shape (n, n).
     ///
     /// Raises:
     ///     ValueError: the state has not been solved yet.
@@ -332,13 +367,15 @@ impl ContactState {
                 "gap: the state has not been solved yet (no heights and depth)",
             ));
         };
-        let gap: Vec<f64> = self
-            .last_heights
-            .iter()
-            .zip(&self.inner.displacement)
-            .map(|(z, u)| z - depth + u)
-            .collect();
-        field(py, &gap, self.grid.n())
+        self.views.gap.get(py, || {
+            let gap: Vec<f64> = self
+                .last_heights
+                .iter()
+                .zip(&self.inner.displacement)
+                .map(|(z, u)| z - depth + u)
+                .collect();
+            field(py, &gap, self.grid.n())
+        })
     }
 
     /// Depth d of the last solve or step (prescribed, or found under load control), or None.
@@ -385,6 +422,7 @@ impl ContactState {
             grid: self.grid,
             last_heights: self.last_heights.clone(),
             last_depth: self.last_depth,
+            views: StateViews::default(),
         }
     }
 

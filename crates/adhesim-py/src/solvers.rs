@@ -73,7 +73,7 @@ where
 {
     let mut operator = operator.bind(py).try_borrow_mut()?;
     let mut guard = state.bind(py).try_borrow_mut()?;
-    let (op, st) = (&mut operator.inner, &mut guard.inner);
+    let (op, st) = (&mut operator.inner, guard.fields_mut());
     let report = py.detach(|| solve(op, heights, st)).map_err(solve_error)?;
     guard.record(heights, report.depth);
     drop(guard);

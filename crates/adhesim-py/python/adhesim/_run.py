@@ -26,8 +26,20 @@ __all__ = ["RunResult", "Snapshot", "run", "load", "sweep_table"]
 ScenarioLike = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 
+def _read_only(array):
+    """``array`` as a numpy array with ``flags.writeable`` False (None stays None)."""
+    if array is None:
+        return None
+    array = np.asarray(array)
+    array.flags.writeable = False
+    return array
+
+
 class Snapshot:
     """The contact fields of one step, float64 (n, n) arrays indexed [row = y, column = x].
+
+    The arrays are read-only (``flags.writeable`` is False; ``numpy.array(field)`` makes a
+    writeable copy), and each access returns the same array.
 
     The fields are those of ``fields.npz`` (docs/output.md): ``run`` and ``load`` give the
     same snapshots for the same run.
@@ -48,10 +60,10 @@ class Snapshot:
         self.step = int(step)
         self.depth = float(depth)
         self.offset = float(offset)
-        self.pressure = pressure
-        self.displacement = displacement
-        self.gap = gap
-        self.contact = contact
+        self.pressure = _read_only(pressure)
+        self.displacement = _read_only(displacement)
+        self.gap = _read_only(gap)
+        self.contact = _read_only(contact)
 
     def __repr__(self) -> str:
         n = self.pressure.shape[0]
@@ -60,6 +72,9 @@ class Snapshot:
 
 class RunResult:
     """What ``run`` and ``load`` return.
+
+    Its arrays (the ``curve_arrays`` columns, the snapshots' fields) are read-only and the
+    same objects at every access.
 
     Attributes:
         curve_arrays: dict of 1-D numpy arrays, one per ``curve.csv`` column with exactly
@@ -77,7 +92,9 @@ class RunResult:
     """
 
     def __init__(self, curve_arrays, summary, snapshots, out=None):
-        self.curve_arrays: Dict[str, np.ndarray] = curve_arrays
+        self.curve_arrays: Dict[str, np.ndarray] = {
+            name: _read_only(column) for name, column in curve_arrays.items()
+        }
         self.summary: Dict[str, Any] = summary
         self.snapshots: List[Snapshot] = snapshots
         self.out: Optional[Path] = out
