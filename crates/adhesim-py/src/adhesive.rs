@@ -36,6 +36,9 @@ use pyo3::types::PyDict;
 #[pyclass(module = "adhesim._adhesim")]
 pub struct AdhesiveSolver {
     inner: adhesim::AdhesiveSolver,
+    params: adhesim::AdhesiveParams,
+    /// `work_of_adhesion` as the repr shows it: the float, or the map's shape and range.
+    gamma_repr: String,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
@@ -110,10 +113,23 @@ impl AdhesiveSolver {
             }
             WorkOfAdhesion::Map(map)
         };
+        let gamma_repr = match &gamma {
+            WorkOfAdhesion::Uniform(value) => format!("{value:?}"),
+            WorkOfAdhesion::Map(map) => {
+                let (low, high) = map
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| (l.min(g), h.max(g)));
+                format!("<map ({n}, {n}), {low:?} to {high:?}>", n = grid.n())
+            }
+            // Python builds only a float or a map.
+            _ => "<profile>".to_string(),
+        };
         let per_element = gamma.on_grid(&grid).map_err(value_error)?;
         let modulus = material.contact_modulus();
         Ok(Self {
             inner: adhesim::AdhesiveSolver::new(grid, modulus, per_element, params),
+            params,
+            gamma_repr,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
@@ -194,6 +210,33 @@ impl AdhesiveSolver {
             }
         }
         step_columns(py, &rows)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let p = &self.params;
+        let attachment = match p.attachment {
+            adhesim::Attachment::Trial => "'trial'",
+            adhesim::Attachment::PenetrationOnly => "'penetration_only'",
+        };
+        let worst_first = match p.detachment {
+            adhesim::Detachment::WorstFirst { fraction } => format!("{fraction:?}"),
+            _ => "None".to_string(),
+        };
+        let flag = |b: bool| if b { "True" } else { "False" };
+        format!(
+            "AdhesiveSolver({}, work_of_adhesion={}, relative_tolerance={:?}, front_tolerance={:?}, \
+             max_cg_iterations={}, max_rounds={}, attachment={attachment}, worst_first_fraction={worst_first}, \
+             preconditioned={}, carry_bans_when_retracting={}, retry_after_growth={})",
+            crate::solvers::operator_repr(py, &self.operator),
+            self.gamma_repr,
+            p.relative_tolerance,
+            p.front_tolerance,
+            p.max_cg_iterations,
+            p.max_rounds,
+            flag(p.preconditioned),
+            flag(p.carry_bans_when_retracting),
+            flag(p.retry_after_growth)
+        )
     }
 
     /// Forgets the history of previous steps (warm-start extrapolation, carried bans):

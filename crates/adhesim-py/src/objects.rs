@@ -232,7 +232,7 @@ impl HalfSpace {
         self.inner.applications()
     }
 
-    fn __repr__(&self) -> String {
+    pub fn __repr__(&self) -> String {
         format!(
             "HalfSpace(grid=Grid(n={}, size={}, boundary={:?}), contact_modulus={})",
             self.grid.n(),
@@ -427,11 +427,12 @@ impl ContactState {
     }
 
     fn __repr__(&self) -> String {
+        let depth = self.last_depth.map_or("None".to_string(), |d| format!("{d:?}"));
         format!(
-            "ContactState(n={}, contact_elements={}, force={:e})",
-            self.grid.n(),
-            self.inner.contact_elements(),
-            self.inner.force(self.grid.element_area())
+            "ContactState(grid={}, depth={depth}, force={:e}, contact_elements={})",
+            Grid { inner: self.grid }.__repr__(),
+            self.inner.force(self.grid.element_area()),
+            self.inner.contact_elements()
         )
     }
 }

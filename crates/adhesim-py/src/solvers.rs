@@ -103,6 +103,7 @@ fn solve_report(report: adhesim::SolveReport, state: Py<ContactState>) -> SolveR
 #[pyclass(module = "adhesim._adhesim")]
 pub struct Ccg {
     inner: adhesim::Ccg,
+    params: adhesim::CcgParams,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
@@ -121,6 +122,7 @@ impl Ccg {
         let grid = operator.borrow(py).grid;
         Ok(Self {
             inner: adhesim::Ccg::new(params),
+            params,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
@@ -170,6 +172,24 @@ impl Ccg {
             solver.solve(op, heights, control, st)
         })
     }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "Ccg({}, tolerance={:?}, max_iterations={})",
+            operator_repr(py, &self.operator),
+            self.params.tolerance,
+            self.params.max_iterations
+        )
+    }
+}
+
+/// The repr of a solver's operator (its grid and modulus), or `HalfSpace(...)` while a
+/// solve in another thread holds it.
+pub fn operator_repr(py: Python<'_>, operator: &Py<HalfSpace>) -> String {
+    operator
+        .bind(py)
+        .try_borrow()
+        .map_or_else(|_| "HalfSpace(...)".to_string(), |op| op.__repr__())
 }
 
 /// Non-adhesive contact by a preconditioned active set on nested grids (coarse-to-fine
@@ -188,6 +208,7 @@ impl Ccg {
 #[pyclass(module = "adhesim._adhesim")]
 pub struct NestedActiveSet {
     inner: adhesim::NestedActiveSet,
+    params: adhesim::NestedParams,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
@@ -224,6 +245,7 @@ impl NestedActiveSet {
         let inner = py.detach(|| adhesim::NestedActiveSet::new(grid, material, params));
         Ok(Self {
             inner,
+            params,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
@@ -259,6 +281,18 @@ impl NestedActiveSet {
         solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
             solver.solve(op, heights, depth, st)
         })
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let p = &self.params;
+        format!(
+            "NestedActiveSet({}, relative_tolerance={:?}, max_cg_iterations={}, max_rounds={}, coarsest={})",
+            operator_repr(py, &self.operator),
+            p.relative_tolerance,
+            p.max_cg_iterations,
+            p.max_rounds,
+            p.coarsest
+        )
     }
 
     /// Grid levels below the fine one used by the continuation.

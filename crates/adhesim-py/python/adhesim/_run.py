@@ -19,7 +19,7 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
 
 import numpy as np
 
-from . import _adhesim
+from . import _adhesim, _display
 
 __all__ = ["RunResult", "Snapshot", "run", "load", "sweep_table"]
 
@@ -66,8 +66,11 @@ class Snapshot:
         self.contact = _read_only(contact)
 
     def __repr__(self) -> str:
-        n = self.pressure.shape[0]
-        return f"Snapshot(step={self.step}, depth={self.depth:.6g}, fields {n}x{n})"
+        ny, nx = self.pressure.shape
+        return (
+            f"Snapshot(step={self.step}, depth={self.depth:.6g}, offset={self.offset:.6g}, "
+            f"fields={ny}x{nx})"
+        )
 
 
 class RunResult:
@@ -114,9 +117,21 @@ class RunResult:
         return self.summary["results"]
 
     def __repr__(self) -> str:
-        steps = len(next(iter(self.curve_arrays.values()))) if self.curve_arrays else 0
-        where = f", out={str(self.out)!r}" if self.out is not None else ""
-        return f"RunResult({steps} steps, {len(self.snapshots)} snapshots{where})"
+        """The run's grid, steps, snapshots, folder and headline results (those of
+        ``_repr_html_``'s table, not None) in one line."""
+        rows = dict(_display.summary_rows(self))
+        parts = [f"grid={rows.pop('grid')!r}"] if "grid" in rows else []
+        parts += [f"steps={rows.pop('steps')}", f"snapshots={rows.pop('snapshots')}"]
+        if "out" in rows:
+            parts.append(f"out={rows.pop('out')!r}")
+        rows.pop("wall_seconds", None)
+        parts += [f"{name}={value}" for name, value in rows.items()]
+        return f"RunResult({', '.join(parts)})"
+
+    def _repr_html_(self) -> str:
+        """A notebook's display: a table of the grid, steps, snapshots, folder and key
+        results, and the force curve F(d) as an inline PNG when matplotlib is importable."""
+        return _display.run_result_html(self)
 
 
 def _plain(value):
