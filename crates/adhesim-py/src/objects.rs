@@ -404,7 +404,7 @@ impl ContactState {
 
     /// Largest distance from `centre` = (x, y) to the centre of an element in contact
     /// (the paper's contact radius, Sect. 2.3); 0 without contact.
-    #[pyo3(signature = (centre = (0.0, 0.0)))]
+    #[pyo3(signature = (centre = (0.0, 0.0)), text_signature = "($self, centre=(0.0, 0.0))")]
     fn contact_radius(&self, centre: (f64, f64)) -> f64 {
         self.inner.contact_radius(&self.grid, centre)
     }
