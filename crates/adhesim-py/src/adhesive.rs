@@ -2,7 +2,7 @@
 
 use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
 use crate::objects::{ContactState, HalfSpace};
-use crate::solvers::{adhesive_params, step_columns, step_report, StepReport};
+use crate::solvers::{adhesive_params, attachment_name, step_columns, step_report, worst_first_fraction, StepReport};
 use crate::views::Cached;
 use adhesim::WorkOfAdhesion;
 use pyo3::exceptions::PyValueError;
@@ -20,16 +20,19 @@ use pyo3::types::PyDict;
 /// Args:
 ///     operator: the HalfSpace of the grid (free or periodic).
 ///     work_of_adhesion: γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
-///     relative_tolerance: CG stops at ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6) ...
-///     front_tolerance: ... and max|r_i| ≤ this·K(0,0)·σ_c,min (default 1e-4).
-///     max_cg_iterations: CG iterations per solve (default 5000).
-///     max_rounds: attach/detach rounds per step (default 100 000).
-///     attachment: "trial" (default: discrete Griffith closure test) or
-///         "penetration_only" (non-adhesive approach, for comparison).
-///     worst_first_fraction: None (release all over-stressed elements at once, default)
-///         or a fraction: release only those within it of the worst over-stress ratio.
+///     relative_tolerance: CG stops at ‖r‖_C ≤ this·‖d − z‖_C ...
+///     front_tolerance: ... and max|r_i| ≤ this·K(0,0)·σ_c,min.
+///     max_cg_iterations: CG iterations per solve.
+///     max_rounds: attach/detach rounds per step.
+///     attachment: "trial" (discrete Griffith closure test) or "penetration_only"
+///         (non-adhesive approach, for comparison).
+///     worst_first_fraction: None (release all over-stressed elements at once) or a
+///         fraction: release only those within it of the worst over-stress ratio.
 ///     preconditioned, carry_bans_when_retracting, retry_after_growth: as in the Rust
-///         library's AdhesiveParams (all default True).
+///         library's AdhesiveParams.
+///
+/// The defaults are the Rust library's (`AdhesiveParams::default()`):
+/// `AdhesiveSolver.defaults()` lists them.
 ///
 /// Raises:
 ///     ValueError: a negative or non-finite γ, a map of the wrong shape, a bad parameter.
@@ -63,10 +66,16 @@ impl AdhesiveSolver {
 impl AdhesiveSolver {
     #[new]
     #[pyo3(signature = (
-        operator, work_of_adhesion, relative_tolerance = 1e-6, front_tolerance = 1e-4,
-        max_cg_iterations = 5000, max_rounds = 100_000, attachment = "trial",
-        worst_first_fraction = None, preconditioned = true, carry_bans_when_retracting = true,
-        retry_after_growth = true
+        operator, work_of_adhesion,
+        relative_tolerance = adhesim::AdhesiveParams::default().relative_tolerance,
+        front_tolerance = adhesim::AdhesiveParams::default().front_tolerance,
+        max_cg_iterations = adhesim::AdhesiveParams::default().max_cg_iterations as i64,
+        max_rounds = adhesim::AdhesiveParams::default().max_rounds as i64,
+        attachment = attachment_name(adhesim::AdhesiveParams::default().attachment),
+        worst_first_fraction = worst_first_fraction(adhesim::AdhesiveParams::default().detachment),
+        preconditioned = adhesim::AdhesiveParams::default().preconditioned,
+        carry_bans_when_retracting = adhesim::AdhesiveParams::default().carry_bans_when_retracting,
+        retry_after_growth = adhesim::AdhesiveParams::default().retry_after_growth
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -212,16 +221,27 @@ impl AdhesiveSolver {
         step_columns(py, &rows)
     }
 
+    /// The default parameters, from the Rust library's `AdhesiveParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::AdhesiveParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("relative_tolerance", p.relative_tolerance)?;
+        dict.set_item("front_tolerance", p.front_tolerance)?;
+        dict.set_item("max_cg_iterations", p.max_cg_iterations)?;
+        dict.set_item("max_rounds", p.max_rounds)?;
+        dict.set_item("attachment", attachment_name(p.attachment))?;
+        dict.set_item("worst_first_fraction", worst_first_fraction(p.detachment))?;
+        dict.set_item("preconditioned", p.preconditioned)?;
+        dict.set_item("carry_bans_when_retracting", p.carry_bans_when_retracting)?;
+        dict.set_item("retry_after_growth", p.retry_after_growth)?;
+        Ok(dict)
+    }
+
     fn __repr__(&self, py: Python<'_>) -> String {
         let p = &self.params;
-        let attachment = match p.attachment {
-            adhesim::Attachment::Trial => "'trial'",
-            adhesim::Attachment::PenetrationOnly => "'penetration_only'",
-        };
-        let worst_first = match p.detachment {
-            adhesim::Detachment::WorstFirst { fraction } => format!("{fraction:?}"),
-            _ => "None".to_string(),
-        };
+        let attachment = format!("'{}'", attachment_name(p.attachment));
+        let worst_first = worst_first_fraction(p.detachment).map_or("None".to_string(), |f| format!("{f:?}"));
         let flag = |b: bool| if b { "True" } else { "False" };
         format!(
             "AdhesiveSolver({}, work_of_adhesion={}, relative_tolerance={:?}, front_tolerance={:?}, \

@@ -98,8 +98,11 @@ fn solve_report(report: adhesim::SolveReport, state: Py<ContactState>) -> SolveR
 ///
 /// Args:
 ///     operator: the HalfSpace of the grid.
-///     tolerance: stop when Σ|p_new − p_old|/Σ|p| < tolerance (default 1e-10).
-///     max_iterations: iteration limit (default 20 000); reaching it raises SolveError.
+///     tolerance: stop when Σ|p_new − p_old|/Σ|p| < tolerance.
+///     max_iterations: iteration limit; reaching it raises SolveError.
+///
+/// The defaults are the Rust library's (`CcgParams::default()`): `Ccg.defaults()` lists
+/// them.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct Ccg {
     inner: adhesim::Ccg,
@@ -112,7 +115,10 @@ pub struct Ccg {
 #[pymethods]
 impl Ccg {
     #[new]
-    #[pyo3(signature = (operator, tolerance = 1e-10, max_iterations = 20_000))]
+    #[pyo3(signature = (
+        operator, tolerance = adhesim::CcgParams::default().tolerance,
+        max_iterations = adhesim::CcgParams::default().max_iterations as i64
+    ))]
     fn new(py: Python<'_>, operator: Py<HalfSpace>, tolerance: f64, max_iterations: i64) -> PyResult<Self> {
         let params = adhesim::CcgParams {
             tolerance: positive("tolerance", tolerance)?,
@@ -173,6 +179,16 @@ impl Ccg {
         })
     }
 
+    /// The default parameters, from the Rust library's `CcgParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::CcgParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("tolerance", p.tolerance)?;
+        dict.set_item("max_iterations", p.max_iterations)?;
+        Ok(dict)
+    }
+
     fn __repr__(&self, py: Python<'_>) -> String {
         format!(
             "Ccg({}, tolerance={:?}, max_iterations={})",
@@ -198,10 +214,13 @@ pub fn operator_repr(py: Python<'_>, operator: &Py<HalfSpace>) -> String {
 /// Args:
 ///     operator: the HalfSpace of a free grid.
 ///     relative_tolerance: converged when ‖d − z − u‖_C ≤ this·‖d − z‖_C on a contact set
-///         that no longer changes (default 1e-10).
-///     max_cg_iterations: CG iterations per active-set round (default 2000).
-///     max_rounds: active-set rounds per grid level (default 200).
-///     coarsest: coarsest grid of the continuation (default 32; above n disables it).
+///         that no longer changes.
+///     max_cg_iterations: CG iterations per active-set round.
+///     max_rounds: active-set rounds per grid level.
+///     coarsest: coarsest grid of the continuation (above n disables it).
+///
+/// The defaults are the Rust library's (`NestedParams::default()`):
+/// `NestedActiveSet.defaults()` lists them.
 ///
 /// Raises:
 ///     ValueError: a periodic grid (use Ccg) or a bad parameter.
@@ -217,7 +236,12 @@ pub struct NestedActiveSet {
 #[pymethods]
 impl NestedActiveSet {
     #[new]
-    #[pyo3(signature = (operator, relative_tolerance = 1e-10, max_cg_iterations = 2000, max_rounds = 200, coarsest = 32))]
+    #[pyo3(signature = (
+        operator, relative_tolerance = adhesim::NestedParams::default().relative_tolerance,
+        max_cg_iterations = adhesim::NestedParams::default().max_cg_iterations as i64,
+        max_rounds = adhesim::NestedParams::default().max_rounds as i64,
+        coarsest = adhesim::NestedParams::default().coarsest as i64
+    ))]
     fn new(
         py: Python<'_>,
         operator: Py<HalfSpace>,
@@ -281,6 +305,18 @@ impl NestedActiveSet {
         solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
             solver.solve(op, heights, depth, st)
         })
+    }
+
+    /// The default parameters, from the Rust library's `NestedParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::NestedParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("relative_tolerance", p.relative_tolerance)?;
+        dict.set_item("max_cg_iterations", p.max_cg_iterations)?;
+        dict.set_item("max_rounds", p.max_rounds)?;
+        dict.set_item("coarsest", p.coarsest)?;
+        Ok(dict)
     }
 
     fn __repr__(&self, py: Python<'_>) -> String {
@@ -375,6 +411,23 @@ pub fn step_columns<'py>(py: Python<'py>, rows: &[(StepReport, f64)]) -> PyResul
     dict.set_item("dissipated_energy", float(|r| r.0.dissipated_energy))?;
     dict.set_item("cg_iterations", int(|r| r.0.cg_iterations as u64))?;
     Ok(dict)
+}
+
+/// The Python name of an attachment rule.
+pub fn attachment_name(attachment: adhesim::Attachment) -> &'static str {
+    match attachment {
+        adhesim::Attachment::Trial => "trial",
+        adhesim::Attachment::PenetrationOnly => "penetration_only",
+    }
+}
+
+/// `worst_first_fraction` of a detachment rule: the fraction, or None (all violators;
+/// the other rules are not offered in Python).
+pub fn worst_first_fraction(detachment: adhesim::Detachment) -> Option<f64> {
+    match detachment {
+        adhesim::Detachment::WorstFirst { fraction } => Some(fraction),
+        _ => None,
+    }
 }
 
 /// Parameters shared by the constructor of the adhesive solver, checked.

@@ -1,6 +1,7 @@
 """Type stubs of the compiled extension (see the docstrings of the objects for units and
 signs: pressure > 0 compressive, depth > 0 into the body, displacement > 0 into the body,
-fields float64 of shape (n, n) indexed [row = y, column = x])."""
+fields float64 of shape (n, n) indexed [row = y, column = x]). The solvers' default
+parameters are the Rust library's (`Ccg.defaults()`, ...), not repeated here."""
 
 from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Tuple, Union, final
 
@@ -129,7 +130,9 @@ class StepReport:
 
 @final
 class Ccg:
-    def __new__(cls, operator: HalfSpace, tolerance: float = 1e-10, max_iterations: int = 20000) -> "Ccg": ...
+    def __new__(cls, operator: HalfSpace, tolerance: float = ..., max_iterations: int = ...) -> "Ccg": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
     def solve(
         self,
         heights: _FloatField,
@@ -143,11 +146,13 @@ class NestedActiveSet:
     def __new__(
         cls,
         operator: HalfSpace,
-        relative_tolerance: float = 1e-10,
-        max_cg_iterations: int = 2000,
-        max_rounds: int = 200,
-        coarsest: int = 32,
+        relative_tolerance: float = ...,
+        max_cg_iterations: int = ...,
+        max_rounds: int = ...,
+        coarsest: int = ...,
     ) -> "NestedActiveSet": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
     def solve(self, heights: _FloatField, depth: float, state: Optional[ContactState] = None) -> SolveReport: ...
     @property
     def coarse_levels(self) -> int: ...
@@ -158,16 +163,18 @@ class AdhesiveSolver:
         cls,
         operator: HalfSpace,
         work_of_adhesion: Union[float, _FloatField],
-        relative_tolerance: float = 1e-6,
-        front_tolerance: float = 1e-4,
-        max_cg_iterations: int = 5000,
-        max_rounds: int = 100000,
-        attachment: Literal["trial", "penetration_only"] = "trial",
-        worst_first_fraction: Optional[float] = None,
-        preconditioned: bool = True,
-        carry_bans_when_retracting: bool = True,
-        retry_after_growth: bool = True,
+        relative_tolerance: float = ...,
+        front_tolerance: float = ...,
+        max_cg_iterations: int = ...,
+        max_rounds: int = ...,
+        attachment: Literal["trial", "penetration_only"] = ...,
+        worst_first_fraction: Optional[float] = ...,
+        preconditioned: bool = ...,
+        carry_bans_when_retracting: bool = ...,
+        retry_after_growth: bool = ...,
     ) -> "AdhesiveSolver": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
     def step(self, heights: _FloatField, depth: float, state: ContactState) -> StepReport: ...
     def steps(
         self,
