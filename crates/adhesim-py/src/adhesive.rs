@@ -17,25 +17,37 @@ use pyo3::types::PyDict;
 /// (displacement control); the solver remembers the last steps (warm-start extrapolation,
 /// carried bans), so drive one load path per solver, or call `reset()` between paths.
 ///
-/// Args:
-///     operator: the HalfSpace of the grid (free or periodic).
-///     work_of_adhesion: γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
-///     relative_tolerance: CG stops at ‖r‖_C ≤ this·‖d − z‖_C ...
-///     front_tolerance: ... and max|r_i| ≤ this·K(0,0)·σ_c,min.
-///     max_cg_iterations: CG iterations per solve.
-///     max_rounds: attach/detach rounds per step.
-///     attachment: "trial" (discrete Griffith closure test) or "penetration_only"
-///         (non-adhesive approach, for comparison).
-///     worst_first_fraction: None (release all over-stressed elements at once) or a
-///         fraction: release only those within it of the worst over-stress ratio.
-///     preconditioned, carry_bans_when_retracting, retry_after_growth: as in the Rust
-///         library's AdhesiveParams.
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of the grid (free or periodic).
+/// work_of_adhesion
+///     γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
+/// relative_tolerance
+///     CG stops at ‖r‖_C ≤ this·‖d − z‖_C ...
+/// front_tolerance
+///     ... and max|r_i| ≤ this·K(0,0)·σ_c,min.
+/// max_cg_iterations
+///     CG iterations per solve.
+/// max_rounds
+///     attach/detach rounds per step.
+/// attachment
+///     "trial" (discrete Griffith closure test) or "penetration_only"
+///     (non-adhesive approach, for comparison).
+/// worst_first_fraction
+///     None (release all over-stressed elements at once) or a
+///     fraction: release only those within it of the worst over-stress ratio.
+/// preconditioned, carry_bans_when_retracting, retry_after_growth
+///     as in the Rust
+///     library's AdhesiveParams.
 ///
 /// The defaults are the Rust library's (`AdhesiveParams::default()`):
 /// `AdhesiveSolver.defaults()` lists them.
 ///
-/// Raises:
-///     ValueError: a negative or non-finite γ, a map of the wrong shape, a bad parameter.
+/// Raises
+/// ------
+/// ValueError
+///     a negative or non-finite γ, a map of the wrong shape, a bad parameter.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct AdhesiveSolver {
     inner: adhesim::AdhesiveSolver,
@@ -148,17 +160,26 @@ impl AdhesiveSolver {
 
     /// One quasi-static step: brings `state` to a stable configuration at `depth`.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z; +inf where there is no surface.
-    ///     depth: indentation depth d (> 0 into the body, < 0 pulled out).
-    ///     state: ContactState, the configuration of the previous step (updated in place).
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z; +inf where there is no surface.
+    /// depth
+    ///     indentation depth d (> 0 into the body, < 0 pulled out).
+    /// state
+    ///     ContactState, the configuration of the previous step (updated in place).
     ///
-    /// Returns:
-    ///     StepReport (force > 0 compressive, < 0 tensile).
+    /// Returns
+    /// -------
+    /// StepReport
+    ///     Force > 0 compressive, < 0 tensile.
     ///
-    /// Raises:
-    ///     ValueError: bad heights or depth, a state of another grid.
-    ///     SolveError: the step did not converge (the state is then partly updated).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights or depth, a state of another grid.
+    /// SolveError
+    ///     the step did not converge (the state is then partly updated).
     fn step(
         &mut self,
         py: Python<'_>,
@@ -179,14 +200,21 @@ impl AdhesiveSolver {
     /// called when given (return value ignored; an exception it raises stops the
     /// sequence). A single step is not interruptible: the library has no hook inside it.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z.
-    ///     depths: float64 1-D array of depths d, in order.
-    ///     state: ContactState, updated in place.
-    ///     progress: optional callable(index: int, report: StepReport).
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z.
+    /// depths
+    ///     float64 1-D array of depths d, in order.
+    /// state
+    ///     ContactState, updated in place.
+    /// progress
+    ///     optional callable(index: int, report: StepReport).
     ///
-    /// Returns:
-    ///     dict of 1-D numpy arrays, one entry per step: depth, force, force_before_change,
+    /// Returns
+    /// -------
+    /// dict of 1-D numpy arrays, one entry per step
+    ///     depth, force, force_before_change,
     ///     contact_radius (largest distance of a contact element centre from the origin,
     ///     0 without contact), contact_elements, attached, detached, energy,
     ///     dissipated_energy, cg_iterations.

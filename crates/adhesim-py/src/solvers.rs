@@ -96,10 +96,14 @@ fn solve_report(report: adhesim::SolveReport, state: Py<ContactState>) -> SolveR
 /// Non-adhesive frictionless normal contact by constrained conjugate gradients
 /// (Polonsky & Keer 1999, Wear 231, 206–219), on free and periodic grids.
 ///
-/// Args:
-///     operator: the HalfSpace of the grid.
-///     tolerance: stop when Σ|p_new − p_old|/Σ|p| < tolerance.
-///     max_iterations: iteration limit; reaching it raises SolveError.
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of the grid.
+/// tolerance
+///     stop when Σ|p_new − p_old|/Σ|p| < tolerance.
+/// max_iterations
+///     iteration limit; reaching it raises SolveError.
 ///
 /// The defaults are the Rust library's (`CcgParams::default()`): `Ccg.defaults()` lists
 /// them.
@@ -138,21 +142,31 @@ impl Ccg {
     /// Solves p ≥ 0, g ≥ 0, p·g = 0 for indenter heights z under displacement or load
     /// control (exactly one of `depth`, `load`).
     ///
-    /// Args:
-    ///     heights: float64 (n, n), indenter heights z above its reference point; +inf
-    ///         where there is no surface.
-    ///     depth: indentation depth d (> 0 into the body). On a periodic grid it controls
-    ///         the mean gap (K̂(0) = 0).
-    ///     load: normal force F > 0 (compressive) instead of a depth.
-    ///     state: ContactState warm start, updated in place; None starts from no contact.
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n), indenter heights z above its reference point; +inf
+    ///     where there is no surface.
+    /// depth
+    ///     indentation depth d (> 0 into the body). On a periodic grid it controls
+    ///     the mean gap (K̂(0) = 0).
+    /// load
+    ///     normal force F > 0 (compressive) instead of a depth.
+    /// state
+    ///     ContactState warm start, updated in place; None starts from no contact.
     ///
-    /// Returns:
-    ///     SolveReport, with `.state` the solved state.
+    /// Returns
+    /// -------
+    /// SolveReport
+    ///     With `.state` the solved state.
     ///
-    /// Raises:
-    ///     ValueError: bad heights, both or neither of depth/load, a non-positive load.
-    ///     SolveError: no convergence within max_iterations (the state then holds the
-    ///         last iterate: start the next solve from a fresh ContactState).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights, both or neither of depth/load, a non-positive load.
+    /// SolveError
+    ///     no convergence within max_iterations (the state then holds the
+    ///     last iterate: start the next solve from a fresh ContactState).
     #[pyo3(signature = (heights, depth = None, load = None, state = None))]
     fn solve(
         &mut self,
@@ -211,19 +225,27 @@ pub fn operator_repr(py: Python<'_>, operator: &Py<HalfSpace>) -> String {
 /// Non-adhesive contact by a preconditioned active set on nested grids (coarse-to-fine
 /// continuation; Brandt & Lubrecht 1990), under displacement control on free grids.
 ///
-/// Args:
-///     operator: the HalfSpace of a free grid.
-///     relative_tolerance: converged when ‖d − z − u‖_C ≤ this·‖d − z‖_C on a contact set
-///         that no longer changes.
-///     max_cg_iterations: CG iterations per active-set round.
-///     max_rounds: active-set rounds per grid level.
-///     coarsest: coarsest grid of the continuation (above n disables it).
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of a free grid.
+/// relative_tolerance
+///     converged when ‖d − z − u‖_C ≤ this·‖d − z‖_C on a contact set
+///     that no longer changes.
+/// max_cg_iterations
+///     CG iterations per active-set round.
+/// max_rounds
+///     active-set rounds per grid level.
+/// coarsest
+///     coarsest grid of the continuation (above n disables it).
 ///
 /// The defaults are the Rust library's (`NestedParams::default()`):
 /// `NestedActiveSet.defaults()` lists them.
 ///
-/// Raises:
-///     ValueError: a periodic grid (use Ccg) or a bad parameter.
+/// Raises
+/// ------
+/// ValueError
+///     a periodic grid (use Ccg) or a bad parameter.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct NestedActiveSet {
     inner: adhesim::NestedActiveSet,
@@ -279,17 +301,26 @@ impl NestedActiveSet {
     /// Solves at indentation `depth` (> 0 into the body). A `state` with contact is the
     /// warm start (no continuation); otherwise coarse grids supply the first contact set.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z; +inf where there is no surface.
-    ///     depth: indentation depth d.
-    ///     state: ContactState, updated in place; None starts from no contact.
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z; +inf where there is no surface.
+    /// depth
+    ///     indentation depth d.
+    /// state
+    ///     ContactState, updated in place; None starts from no contact.
     ///
-    /// Returns:
-    ///     SolveReport, with `.state` the solved state.
+    /// Returns
+    /// -------
+    /// SolveReport
+    ///     With `.state` the solved state.
     ///
-    /// Raises:
-    ///     ValueError: bad heights or depth.
-    ///     SolveError: no convergence (the state then holds the last iterate).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights or depth.
+    /// SolveError
+    ///     no convergence (the state then holds the last iterate).
     #[pyo3(signature = (heights, depth, state = None))]
     fn solve(
         &mut self,

@@ -40,3 +40,15 @@ def test_the_converted_functions_have_their_sections():
     for function in (adhesim.run, adhesim.load, adhesim.sweep, fit.jkr_work_of_adhesion, reference.hertz):
         doc = inspect.getdoc(function)
         assert "Parameters\n----------" in doc and "Returns\n-------" in doc, function.__name__
+
+
+def test_compiled_solvers_are_numpy_style():
+    """The solvers' docstrings (src/solvers.rs, src/adhesive.rs) and jkr_scales'; Grid,
+    Material, HalfSpace and ContactState (src/objects.rs) still have Google sections."""
+    objects = [adhesim.Ccg, adhesim.NestedActiveSet, adhesim.AdhesiveSolver, adhesim.reference.jkr_scales]
+    for obj in objects:
+        members = [getattr(obj, m) for m in dir(obj) if not m.startswith("_")] if inspect.isclass(obj) else []
+        for item in [obj, *members]:
+            doc = inspect.getdoc(item) or ""
+            assert not GOOGLE.search(doc), f"{getattr(item, '__qualname__', item)}: {GOOGLE.search(doc).group(0)!r}"
+    assert "Parameters\n----------\noperator\n" in inspect.getdoc(adhesim.AdhesiveSolver)
