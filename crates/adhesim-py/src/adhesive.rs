@@ -2,7 +2,8 @@
 
 use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
 use crate::objects::{ContactState, HalfSpace};
-use crate::solvers::{adhesive_params, step_columns, step_report, StepReport};
+use crate::solvers::{adhesive_params, attachment_name, step_columns, step_report, worst_first_fraction, StepReport};
+use crate::views::Cached;
 use adhesim::WorkOfAdhesion;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -16,28 +17,48 @@ use pyo3::types::PyDict;
 /// (displacement control); the solver remembers the last steps (warm-start extrapolation,
 /// carried bans), so drive one load path per solver, or call `reset()` between paths.
 ///
-/// Args:
-///     operator: the HalfSpace of the grid (free or periodic).
-///     work_of_adhesion: γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
-///     relative_tolerance: CG stops at ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6) ...
-///     front_tolerance: ... and max|r_i| ≤ this·K(0,0)·σ_c,min (default 1e-4).
-///     max_cg_iterations: CG iterations per solve (default 5000).
-///     max_rounds: attach/detach rounds per step (default 100 000).
-///     attachment: "trial" (default: discrete Griffith closure test) or
-///         "penetration_only" (non-adhesive approach, for comparison).
-///     worst_first_fraction: None (release all over-stressed elements at once, default)
-///         or a fraction: release only those within it of the worst over-stress ratio.
-///     preconditioned, carry_bans_when_retracting, retry_after_growth: as in the Rust
-///         library's AdhesiveParams (all default True).
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of the grid (free or periodic).
+/// work_of_adhesion
+///     γ (energy per area, ≥ 0): a float, or a float64 (n, n) map.
+/// relative_tolerance
+///     CG stops at ‖r‖_C ≤ this·‖d − z‖_C ...
+/// front_tolerance
+///     ... and max|r_i| ≤ this·K(0,0)·σ_c,min.
+/// max_cg_iterations
+///     CG iterations per solve.
+/// max_rounds
+///     attach/detach rounds per step.
+/// attachment
+///     "trial" (discrete Griffith closure test) or "penetration_only"
+///     (non-adhesive approach, for comparison).
+/// worst_first_fraction
+///     None (release all over-stressed elements at once) or a
+///     fraction: release only those within it of the worst over-stress ratio.
+/// preconditioned, carry_bans_when_retracting, retry_after_growth
+///     as in the Rust
+///     library's AdhesiveParams.
 ///
-/// Raises:
-///     ValueError: a negative or non-finite γ, a map of the wrong shape, a bad parameter.
+/// The defaults are the Rust library's (`AdhesiveParams::default()`):
+/// `AdhesiveSolver.defaults()` lists them.
+///
+/// Raises
+/// ------
+/// ValueError
+///     a negative or non-finite γ, a map of the wrong shape, a bad parameter.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct AdhesiveSolver {
     inner: adhesim::AdhesiveSolver,
+    params: adhesim::AdhesiveParams,
+    /// `work_of_adhesion` as the repr shows it: the float, or the map's shape and range.
+    gamma_repr: String,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
+    /// The read-only `critical_stress` array (fixed at construction).
+    critical_stress: Cached<f64>,
 }
 
 impl AdhesiveSolver {
@@ -46,10 +67,10 @@ impl AdhesiveSolver {
         let mut operator = self.operator.bind(py).try_borrow_mut()?;
         let mut guard = state.try_borrow_mut()?;
         let (solver, heights) = (&mut self.inner, &self.heights);
-        let (op, st) = (&mut operator.inner, &mut guard.inner);
+        let (op, st) = (&mut operator.inner, guard.fields_mut());
         let report = py.detach(|| solver.step(op, heights, depth, st)).map_err(solve_error)?;
         guard.record(&self.heights, depth);
-        Ok(step_report(depth, &report, &guard.inner))
+        Ok(step_report(depth, &report, guard.fields()))
     }
 }
 
@@ -57,10 +78,16 @@ impl AdhesiveSolver {
 impl AdhesiveSolver {
     #[new]
     #[pyo3(signature = (
-        operator, work_of_adhesion, relative_tolerance = 1e-6, front_tolerance = 1e-4,
-        max_cg_iterations = 5000, max_rounds = 100_000, attachment = "trial",
-        worst_first_fraction = None, preconditioned = true, carry_bans_when_retracting = true,
-        retry_after_growth = true
+        operator, work_of_adhesion,
+        relative_tolerance = adhesim::AdhesiveParams::default().relative_tolerance,
+        front_tolerance = adhesim::AdhesiveParams::default().front_tolerance,
+        max_cg_iterations = adhesim::AdhesiveParams::default().max_cg_iterations as i64,
+        max_rounds = adhesim::AdhesiveParams::default().max_rounds as i64,
+        attachment = attachment_name(adhesim::AdhesiveParams::default().attachment),
+        worst_first_fraction = worst_first_fraction(adhesim::AdhesiveParams::default().detachment),
+        preconditioned = adhesim::AdhesiveParams::default().preconditioned,
+        carry_bans_when_retracting = adhesim::AdhesiveParams::default().carry_bans_when_retracting,
+        retry_after_growth = adhesim::AdhesiveParams::default().retry_after_growth
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -107,29 +134,52 @@ impl AdhesiveSolver {
             }
             WorkOfAdhesion::Map(map)
         };
+        let gamma_repr = match &gamma {
+            WorkOfAdhesion::Uniform(value) => format!("{value:?}"),
+            WorkOfAdhesion::Map(map) => {
+                let (low, high) = map
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| (l.min(g), h.max(g)));
+                format!("<map ({n}, {n}), {low:?} to {high:?}>", n = grid.n())
+            }
+            // Python builds only a float or a map.
+            _ => "<profile>".to_string(),
+        };
         let per_element = gamma.on_grid(&grid).map_err(value_error)?;
         let modulus = material.contact_modulus();
         Ok(Self {
             inner: adhesim::AdhesiveSolver::new(grid, modulus, per_element, params),
+            params,
+            gamma_repr,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
+            critical_stress: Cached::default(),
         })
     }
 
     /// One quasi-static step: brings `state` to a stable configuration at `depth`.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z; +inf where there is no surface.
-    ///     depth: indentation depth d (> 0 into the body, < 0 pulled out).
-    ///     state: ContactState, the configuration of the previous step (updated in place).
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z; +inf where there is no surface.
+    /// depth
+    ///     indentation depth d (> 0 into the body, < 0 pulled out).
+    /// state
+    ///     ContactState, the configuration of the previous step (updated in place).
     ///
-    /// Returns:
-    ///     StepReport (force > 0 compressive, < 0 tensile).
+    /// Returns
+    /// -------
+    /// StepReport
+    ///     Force > 0 compressive, < 0 tensile.
     ///
-    /// Raises:
-    ///     ValueError: bad heights or depth, a state of another grid.
-    ///     SolveError: the step did not converge (the state is then partly updated).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights or depth, a state of another grid.
+    /// SolveError
+    ///     the step did not converge (the state is then partly updated).
     fn step(
         &mut self,
         py: Python<'_>,
@@ -150,14 +200,21 @@ impl AdhesiveSolver {
     /// called when given (return value ignored; an exception it raises stops the
     /// sequence). A single step is not interruptible: the library has no hook inside it.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z.
-    ///     depths: float64 1-D array of depths d, in order.
-    ///     state: ContactState, updated in place.
-    ///     progress: optional callable(index: int, report: StepReport).
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z.
+    /// depths
+    ///     float64 1-D array of depths d, in order.
+    /// state
+    ///     ContactState, updated in place.
+    /// progress
+    ///     optional callable(index: int, report: StepReport).
     ///
-    /// Returns:
-    ///     dict of 1-D numpy arrays, one entry per step: depth, force, force_before_change,
+    /// Returns
+    /// -------
+    /// dict of 1-D numpy arrays, one entry per step
+    ///     depth, force, force_before_change,
     ///     contact_radius (largest distance of a contact element centre from the origin,
     ///     0 without contact), contact_elements, attached, detached, energy,
     ///     dissipated_energy, cg_iterations.
@@ -182,7 +239,7 @@ impl AdhesiveSolver {
         let mut rows = Vec::with_capacity(depths.len());
         for (index, &depth) in depths.iter().enumerate() {
             let report = self.step_inner(py, depth, state)?;
-            let radius = state.borrow().inner.contact_radius(&self.grid, (0.0, 0.0));
+            let radius = state.borrow().fields().contact_radius(&self.grid, (0.0, 0.0));
             rows.push((report, radius));
             py.check_signals()?;
             if let Some(callback) = progress {
@@ -190,6 +247,44 @@ impl AdhesiveSolver {
             }
         }
         step_columns(py, &rows)
+    }
+
+    /// The default parameters, from the Rust library's `AdhesiveParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::AdhesiveParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("relative_tolerance", p.relative_tolerance)?;
+        dict.set_item("front_tolerance", p.front_tolerance)?;
+        dict.set_item("max_cg_iterations", p.max_cg_iterations)?;
+        dict.set_item("max_rounds", p.max_rounds)?;
+        dict.set_item("attachment", attachment_name(p.attachment))?;
+        dict.set_item("worst_first_fraction", worst_first_fraction(p.detachment))?;
+        dict.set_item("preconditioned", p.preconditioned)?;
+        dict.set_item("carry_bans_when_retracting", p.carry_bans_when_retracting)?;
+        dict.set_item("retry_after_growth", p.retry_after_growth)?;
+        Ok(dict)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let p = &self.params;
+        let attachment = format!("'{}'", attachment_name(p.attachment));
+        let worst_first = worst_first_fraction(p.detachment).map_or("None".to_string(), |f| format!("{f:?}"));
+        let flag = |b: bool| if b { "True" } else { "False" };
+        format!(
+            "AdhesiveSolver({}, work_of_adhesion={}, relative_tolerance={:?}, front_tolerance={:?}, \
+             max_cg_iterations={}, max_rounds={}, attachment={attachment}, worst_first_fraction={worst_first}, \
+             preconditioned={}, carry_bans_when_retracting={}, retry_after_growth={})",
+            crate::solvers::operator_repr(py, &self.operator),
+            self.gamma_repr,
+            p.relative_tolerance,
+            p.front_tolerance,
+            p.max_cg_iterations,
+            p.max_rounds,
+            flag(p.preconditioned),
+            flag(p.carry_bans_when_retracting),
+            flag(p.retry_after_growth)
+        )
     }
 
     /// Forgets the history of previous steps (warm-start extrapolation, carried bans):
@@ -202,12 +297,14 @@ impl AdhesiveSolver {
     fn energy(&self, state: &Bound<'_, ContactState>) -> PyResult<f64> {
         let state = state.borrow();
         state.check_grid(&self.grid)?;
-        Ok(self.inner.energy(&state.inner))
+        Ok(self.inner.energy(state.fields()))
     }
 
-    /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (n, n).
+    /// Critical tensile stress σ_c = √(E*γ/(c_U·Δ)) per element, float64 (ny, nx),
+    /// read-only (the same array at every access).
     #[getter]
     fn critical_stress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        crate::convert::field(py, self.inner.critical_stresses(), &self.grid)
+        self.critical_stress
+            .get(py, || crate::convert::field(py, self.inner.critical_stresses(), &self.grid))
     }
 }

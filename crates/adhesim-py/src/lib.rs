@@ -16,6 +16,7 @@ mod scenario;
 mod solvers;
 mod surface;
 mod sweep;
+mod views;
 
 use pyo3::prelude::*;
 

@@ -1,6 +1,7 @@
 //! Grid, material, the elastic half-space operator and the contact state.
 
 use crate::convert::{count, elements, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
+use crate::views::Cached;
 use adhesim::{Boundary, ElasticOperator, Profile};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
@@ -371,7 +372,7 @@ impl HalfSpace {
         self.inner.applications()
     }
 
-    fn __repr__(&self) -> String {
+    pub fn __repr__(&self) -> String {
         format!(
             "HalfSpace(grid={}, contact_modulus={})",
             describe(&self.grid),
@@ -383,14 +384,29 @@ impl HalfSpace {
 /// Fields of a contact configuration on a grid; also the warm start of the next solve or
 /// step (pass the same object again). Starts with no contact and no load.
 ///
-/// The arrays returned are copies, shape (n, n), [row = y, column = x].
+/// The fields (`pressure`, `displacement`, `contact`, `gap`) are read-only float64 (bool
+/// for `contact`) arrays of shape (n, n), [row = y, column = x]: two accesses between
+/// solves return the same array (no copy), and writing into it raises ValueError. A solve
+/// or step on the state makes new arrays; arrays taken before keep their values (use
+/// `numpy.array(state.pressure)` for a writeable copy).
 #[pyclass(module = "adhesim._adhesim")]
 pub struct ContactState {
-    pub inner: adhesim::ContactState,
+    /// The library's state: change it only through [`ContactState::fields_mut`].
+    inner: adhesim::ContactState,
     pub grid: adhesim::Grid,
     /// Heights and depth of the last solve or step (for the gap).
     pub last_heights: Vec<f64>,
     pub last_depth: Option<f64>,
+    views: StateViews,
+}
+
+/// The read-only arrays handed out since the last change (crate::views).
+#[derive(Default)]
+struct StateViews {
+    pressure: Cached<f64>,
+    displacement: Cached<f64>,
+    contact: Cached<bool>,
+    gap: Cached<f64>,
 }
 
 impl ContactState {
@@ -400,7 +416,20 @@ impl ContactState {
             grid,
             last_heights: Vec::new(),
             last_depth: None,
+            views: StateViews::default(),
         }
+    }
+
+    /// The library's state, read only.
+    pub fn fields(&self) -> &adhesim::ContactState {
+        &self.inner
+    }
+
+    /// The library's state to change (a solve or step): forgets the arrays handed out, so
+    /// the next access to a field gives the new values.
+    pub fn fields_mut(&mut self) -> &mut adhesim::ContactState {
+        self.views = StateViews::default();
+        &mut self.inner
     }
 
     /// `ValueError` unless the state lives on `grid`.
@@ -421,6 +450,7 @@ impl ContactState {
         self.last_heights.clear();
         self.last_heights.extend_from_slice(heights);
         self.last_depth = Some(depth);
+        self.views.gap.clear();
     }
 }
 
@@ -436,26 +466,28 @@ impl ContactState {
         Ok(Self::fresh(grid.inner))
     }
 
-    /// Pressure per element (> 0 compressive, < 0 tensile), shape (n, n).
+    /// Pressure per element (> 0 compressive, < 0 tensile), shape (ny, nx), read-only.
     #[getter]
     fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.pressure, &self.grid)
+        self.views.pressure.get(py, || field(py, &self.inner.pressure, &self.grid))
     }
 
-    /// Normal surface displacement u = K p (> 0 into the body), shape (n, n).
+    /// Normal surface displacement u = K p (> 0 into the body), shape (ny, nx), read-only.
     #[getter]
     fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        field(py, &self.inner.displacement, &self.grid)
+        self.views
+            .displacement
+            .get(py, || field(py, &self.inner.displacement, &self.grid))
     }
 
-    /// Contact mask (True in contact), shape (n, n).
+    /// Contact mask (True in contact), shape (ny, nx), read-only.
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        field(py, &self.inner.contact, &self.grid)
+        self.views.contact.get(py, || field(py, &self.inner.contact, &self.grid))
     }
 
     /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
-    /// solve or step; +inf where the indenter has no surface.
+    /// solve or step; +inf where the indenter has no surface. Read-only, shape (n, n).
     ///
     /// Raises:
     ///     ValueError: the state has not been solved yet.
@@ -466,13 +498,15 @@ impl ContactState {
                 "gap: the state has not been solved yet (no heights and depth)",
             ));
         };
-        let gap: Vec<f64> = self
-            .last_heights
-            .iter()
-            .zip(&self.inner.displacement)
-            .map(|(z, u)| z - depth + u)
-            .collect();
-        field(py, &gap, &self.grid)
+        self.views.gap.get(py, || {
+            let gap: Vec<f64> = self
+                .last_heights
+                .iter()
+                .zip(&self.inner.displacement)
+                .map(|(z, u)| z - depth + u)
+                .collect();
+            field(py, &gap, &self.grid)
+        })
     }
 
     /// Depth d of the last solve or step (prescribed, or found under load control), or None.
@@ -501,7 +535,7 @@ impl ContactState {
 
     /// Largest distance from `centre` = (x, y) to the centre of an element in contact
     /// (the paper's contact radius, Sect. 2.3); 0 without contact.
-    #[pyo3(signature = (centre = (0.0, 0.0)))]
+    #[pyo3(signature = (centre = (0.0, 0.0)), text_signature = "($self, centre=(0.0, 0.0))")]
     fn contact_radius(&self, centre: (f64, f64)) -> f64 {
         self.inner.contact_radius(&self.grid, centre)
     }
@@ -519,15 +553,17 @@ impl ContactState {
             grid: self.grid,
             last_heights: self.last_heights.clone(),
             last_depth: self.last_depth,
+            views: StateViews::default(),
         }
     }
 
     fn __repr__(&self) -> String {
+        let depth = self.last_depth.map_or("None".to_string(), |d| format!("{d:?}"));
         format!(
-            "ContactState({}, contact_elements={}, force={:e})",
+            "ContactState(grid={}, depth={depth}, force={:e}, contact_elements={})",
             describe(&self.grid),
-            self.inner.contact_elements(),
-            self.inner.force(self.grid.element_area())
+            self.inner.force(self.grid.element_area()),
+            self.inner.contact_elements()
         )
     }
 }

@@ -104,8 +104,10 @@ pub fn _jkr_at_depth<'py>(
 /// a_JKR = (9πγR²/(8E*))^{1/3} at that point, and the depth −9^{1/3}|d_JKR| of the jump
 /// out of contact under displacement control.
 ///
-/// Returns:
-///     dict with keys force, depth, contact_radius, jump_depth.
+/// Returns
+/// -------
+/// dict
+///     Keys force, depth, contact_radius, jump_depth.
 #[pyfunction]
 pub fn jkr_scales<'py>(
     py: Python<'py>,

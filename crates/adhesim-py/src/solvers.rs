@@ -73,7 +73,7 @@ where
 {
     let mut operator = operator.bind(py).try_borrow_mut()?;
     let mut guard = state.bind(py).try_borrow_mut()?;
-    let (op, st) = (&mut operator.inner, &mut guard.inner);
+    let (op, st) = (&mut operator.inner, guard.fields_mut());
     let report = py.detach(|| solve(op, heights, st)).map_err(solve_error)?;
     guard.record(heights, report.depth);
     drop(guard);
@@ -96,13 +96,21 @@ fn solve_report(report: adhesim::SolveReport, state: Py<ContactState>) -> SolveR
 /// Non-adhesive frictionless normal contact by constrained conjugate gradients
 /// (Polonsky & Keer 1999, Wear 231, 206–219), on free and periodic grids.
 ///
-/// Args:
-///     operator: the HalfSpace of the grid.
-///     tolerance: stop when Σ|p_new − p_old|/Σ|p| < tolerance (default 1e-10).
-///     max_iterations: iteration limit (default 20 000); reaching it raises SolveError.
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of the grid.
+/// tolerance
+///     stop when Σ|p_new − p_old|/Σ|p| < tolerance.
+/// max_iterations
+///     iteration limit; reaching it raises SolveError.
+///
+/// The defaults are the Rust library's (`CcgParams::default()`): `Ccg.defaults()` lists
+/// them.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct Ccg {
     inner: adhesim::Ccg,
+    params: adhesim::CcgParams,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
@@ -111,7 +119,10 @@ pub struct Ccg {
 #[pymethods]
 impl Ccg {
     #[new]
-    #[pyo3(signature = (operator, tolerance = 1e-10, max_iterations = 20_000))]
+    #[pyo3(signature = (
+        operator, tolerance = adhesim::CcgParams::default().tolerance,
+        max_iterations = adhesim::CcgParams::default().max_iterations as i64
+    ))]
     fn new(py: Python<'_>, operator: Py<HalfSpace>, tolerance: f64, max_iterations: i64) -> PyResult<Self> {
         let params = adhesim::CcgParams {
             tolerance: positive("tolerance", tolerance)?,
@@ -121,6 +132,7 @@ impl Ccg {
         let grid = operator.borrow(py).grid;
         Ok(Self {
             inner: adhesim::Ccg::new(params),
+            params,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
@@ -130,21 +142,31 @@ impl Ccg {
     /// Solves p ≥ 0, g ≥ 0, p·g = 0 for indenter heights z under displacement or load
     /// control (exactly one of `depth`, `load`).
     ///
-    /// Args:
-    ///     heights: float64 (n, n), indenter heights z above its reference point; +inf
-    ///         where there is no surface.
-    ///     depth: indentation depth d (> 0 into the body). On a periodic grid it controls
-    ///         the mean gap (K̂(0) = 0).
-    ///     load: normal force F > 0 (compressive) instead of a depth.
-    ///     state: ContactState warm start, updated in place; None starts from no contact.
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n), indenter heights z above its reference point; +inf
+    ///     where there is no surface.
+    /// depth
+    ///     indentation depth d (> 0 into the body). On a periodic grid it controls
+    ///     the mean gap (K̂(0) = 0).
+    /// load
+    ///     normal force F > 0 (compressive) instead of a depth.
+    /// state
+    ///     ContactState warm start, updated in place; None starts from no contact.
     ///
-    /// Returns:
-    ///     SolveReport, with `.state` the solved state.
+    /// Returns
+    /// -------
+    /// SolveReport
+    ///     With `.state` the solved state.
     ///
-    /// Raises:
-    ///     ValueError: bad heights, both or neither of depth/load, a non-positive load.
-    ///     SolveError: no convergence within max_iterations (the state then holds the
-    ///         last iterate: start the next solve from a fresh ContactState).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights, both or neither of depth/load, a non-positive load.
+    /// SolveError
+    ///     no convergence within max_iterations (the state then holds the
+    ///     last iterate: start the next solve from a fresh ContactState).
     #[pyo3(signature = (heights, depth = None, load = None, state = None))]
     fn solve(
         &mut self,
@@ -170,24 +192,64 @@ impl Ccg {
             solver.solve(op, heights, control, st)
         })
     }
+
+    /// The default parameters, from the Rust library's `CcgParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::CcgParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("tolerance", p.tolerance)?;
+        dict.set_item("max_iterations", p.max_iterations)?;
+        Ok(dict)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "Ccg({}, tolerance={:?}, max_iterations={})",
+            operator_repr(py, &self.operator),
+            self.params.tolerance,
+            self.params.max_iterations
+        )
+    }
+}
+
+/// The repr of a solver's operator (its grid and modulus), or `HalfSpace(...)` while a
+/// solve in another thread holds it.
+pub fn operator_repr(py: Python<'_>, operator: &Py<HalfSpace>) -> String {
+    operator
+        .bind(py)
+        .try_borrow()
+        .map_or_else(|_| "HalfSpace(...)".to_string(), |op| op.__repr__())
 }
 
 /// Non-adhesive contact by a preconditioned active set on nested grids (coarse-to-fine
 /// continuation; Brandt & Lubrecht 1990), under displacement control on free grids.
 ///
-/// Args:
-///     operator: the HalfSpace of a free grid.
-///     relative_tolerance: converged when ‖d − z − u‖_C ≤ this·‖d − z‖_C on a contact set
-///         that no longer changes (default 1e-10).
-///     max_cg_iterations: CG iterations per active-set round (default 2000).
-///     max_rounds: active-set rounds per grid level (default 200).
-///     coarsest: coarsest grid of the continuation (default 32; above n disables it).
+/// Parameters
+/// ----------
+/// operator
+///     the HalfSpace of a free grid.
+/// relative_tolerance
+///     converged when ‖d − z − u‖_C ≤ this·‖d − z‖_C on a contact set
+///     that no longer changes.
+/// max_cg_iterations
+///     CG iterations per active-set round.
+/// max_rounds
+///     active-set rounds per grid level.
+/// coarsest
+///     coarsest grid of the continuation (above n disables it).
 ///
-/// Raises:
-///     ValueError: a periodic grid (use Ccg) or a bad parameter.
+/// The defaults are the Rust library's (`NestedParams::default()`):
+/// `NestedActiveSet.defaults()` lists them.
+///
+/// Raises
+/// ------
+/// ValueError
+///     a periodic grid (use Ccg) or a bad parameter.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct NestedActiveSet {
     inner: adhesim::NestedActiveSet,
+    params: adhesim::NestedParams,
     operator: Py<HalfSpace>,
     grid: adhesim::Grid,
     heights: Vec<f64>,
@@ -196,7 +258,12 @@ pub struct NestedActiveSet {
 #[pymethods]
 impl NestedActiveSet {
     #[new]
-    #[pyo3(signature = (operator, relative_tolerance = 1e-10, max_cg_iterations = 2000, max_rounds = 200, coarsest = 32))]
+    #[pyo3(signature = (
+        operator, relative_tolerance = adhesim::NestedParams::default().relative_tolerance,
+        max_cg_iterations = adhesim::NestedParams::default().max_cg_iterations as i64,
+        max_rounds = adhesim::NestedParams::default().max_rounds as i64,
+        coarsest = adhesim::NestedParams::default().coarsest as i64
+    ))]
     fn new(
         py: Python<'_>,
         operator: Py<HalfSpace>,
@@ -224,6 +291,7 @@ impl NestedActiveSet {
         let inner = py.detach(|| adhesim::NestedActiveSet::new(grid, material, params));
         Ok(Self {
             inner,
+            params,
             operator,
             grid,
             heights: Vec::with_capacity(grid.len()),
@@ -233,17 +301,26 @@ impl NestedActiveSet {
     /// Solves at indentation `depth` (> 0 into the body). A `state` with contact is the
     /// warm start (no continuation); otherwise coarse grids supply the first contact set.
     ///
-    /// Args:
-    ///     heights: float64 (n, n) indenter heights z; +inf where there is no surface.
-    ///     depth: indentation depth d.
-    ///     state: ContactState, updated in place; None starts from no contact.
+    /// Parameters
+    /// ----------
+    /// heights
+    ///     float64 (n, n) indenter heights z; +inf where there is no surface.
+    /// depth
+    ///     indentation depth d.
+    /// state
+    ///     ContactState, updated in place; None starts from no contact.
     ///
-    /// Returns:
-    ///     SolveReport, with `.state` the solved state.
+    /// Returns
+    /// -------
+    /// SolveReport
+    ///     With `.state` the solved state.
     ///
-    /// Raises:
-    ///     ValueError: bad heights or depth.
-    ///     SolveError: no convergence (the state then holds the last iterate).
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     bad heights or depth.
+    /// SolveError
+    ///     no convergence (the state then holds the last iterate).
     #[pyo3(signature = (heights, depth, state = None))]
     fn solve(
         &mut self,
@@ -259,6 +336,30 @@ impl NestedActiveSet {
         solve_released(py, &self.operator, &self.heights, state, |op, heights, st| {
             solver.solve(op, heights, depth, st)
         })
+    }
+
+    /// The default parameters, from the Rust library's `NestedParams::default()`.
+    #[staticmethod]
+    fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let p = adhesim::NestedParams::default();
+        let dict = PyDict::new(py);
+        dict.set_item("relative_tolerance", p.relative_tolerance)?;
+        dict.set_item("max_cg_iterations", p.max_cg_iterations)?;
+        dict.set_item("max_rounds", p.max_rounds)?;
+        dict.set_item("coarsest", p.coarsest)?;
+        Ok(dict)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let p = &self.params;
+        format!(
+            "NestedActiveSet({}, relative_tolerance={:?}, max_cg_iterations={}, max_rounds={}, coarsest={})",
+            operator_repr(py, &self.operator),
+            p.relative_tolerance,
+            p.max_cg_iterations,
+            p.max_rounds,
+            p.coarsest
+        )
     }
 
     /// Grid levels below the fine one used by the continuation.
@@ -341,6 +442,23 @@ pub fn step_columns<'py>(py: Python<'py>, rows: &[(StepReport, f64)]) -> PyResul
     dict.set_item("dissipated_energy", float(|r| r.0.dissipated_energy))?;
     dict.set_item("cg_iterations", int(|r| r.0.cg_iterations as u64))?;
     Ok(dict)
+}
+
+/// The Python name of an attachment rule.
+pub fn attachment_name(attachment: adhesim::Attachment) -> &'static str {
+    match attachment {
+        adhesim::Attachment::Trial => "trial",
+        adhesim::Attachment::PenetrationOnly => "penetration_only",
+    }
+}
+
+/// `worst_first_fraction` of a detachment rule: the fraction, or None (all violators;
+/// the other rules are not offered in Python).
+pub fn worst_first_fraction(detachment: adhesim::Detachment) -> Option<f64> {
+    match detachment {
+        adhesim::Detachment::WorstFirst { fraction } => Some(fraction),
+        _ => None,
+    }
 }
 
 /// Parameters shared by the constructor of the adhesive solver, checked.

@@ -1,16 +1,30 @@
 """Type stubs of the compiled extension (see the docstrings of the objects for units and
 signs: pressure > 0 compressive, depth > 0 into the body, displacement > 0 into the body,
-fields float64 of shape (ny, nx) indexed [row = y, column = x])."""
+fields float64 of shape (ny, nx) indexed [row = y, column = x]). The solvers' default
+parameters are the Rust library's (`Ccg.defaults()`, ...), not repeated here."""
 
-from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Tuple, Union, final, overload
 
 import numpy as np
 import numpy.typing as npt
 
 # Fields come back as float64 arrays; as inputs any array_like of real numbers (float32,
 # integers, nested lists) is taken as float64.
-FloatField = npt.NDArray[np.float64]
-BoolField = npt.NDArray[np.bool_]
+_FloatField = npt.NDArray[np.float64]
+_BoolField = npt.NDArray[np.bool_]
+
+# The extension module's __all__ (PyO3 lists every name it adds).
+__all__ = [
+    "RESULTS_REVISION", "__version__", "cli_main", "SolveError", "ScenarioError",
+    "Grid", "Material", "HalfSpace", "ContactState", "SolveReport", "StepReport", "Ccg",
+    "NestedActiveSet", "AdhesiveSolver", "sphere_heights", "flat_punch_heights",
+    "wavy_sphere_heights", "elliptic_punch_heights", "_hertz", "_jkr_curve",
+    "_jkr_at_depth", "jkr_scales", "_flat_punch", "johnson_parameter", "_fit_jkr_force",
+    "_fit_jkr_depth", "_fit_power_law", "_RunFields", "_run_scenario",
+    "_curve_column_kinds", "_toml_value", "_toml_document", "_SweepFolder",
+    "_sweep_open", "_sweep_run_case", "_self_affine", "_height_map_statistics",
+    "_isotropic_psd", "_fill_invalid", "_read_topography",
+]
 
 RESULTS_REVISION: int
 __version__: str
@@ -26,14 +40,15 @@ class ScenarioError(ValueError):
 class SolveError(RuntimeError):
     """A solver did not converge (iteration or round limit, or a non-finite value)."""
 
+@final
 class Grid:
     """Grid(n, size) or Grid(nx, ny, size_x, size_y), then the boundary; fields are (ny, nx)."""
     @overload
-    def __init__(self, n: int, size: float, boundary: Literal["free", "periodic"] = "free") -> None: ...
+    def __new__(cls, n: int, size: float, boundary: Literal["free", "periodic"] = "free") -> "Grid": ...
     @overload
-    def __init__(
-        self, nx: int, ny: int, size_x: float, size_y: float, boundary: Literal["free", "periodic"] = "free"
-    ) -> None: ...
+    def __new__(
+        cls, nx: int, ny: int, size_x: float, size_y: float, boundary: Literal["free", "periodic"] = "free"
+    ) -> "Grid": ...
     @property
     def n(self) -> int: ...
     @property
@@ -58,12 +73,13 @@ class Grid:
     def dy(self) -> float: ...
     @property
     def element_area(self) -> float: ...
-    def coordinates(self) -> FloatField: ...
-    def x(self) -> FloatField: ...
-    def y(self) -> FloatField: ...
+    def coordinates(self) -> _FloatField: ...
+    def x(self) -> _FloatField: ...
+    def y(self) -> _FloatField: ...
 
+@final
 class Material:
-    def __init__(self, contact_modulus: float) -> None: ...
+    def __new__(cls, contact_modulus: float) -> "Material": ...
     @staticmethod
     def from_youngs_modulus(youngs_modulus: float, poisson_ratio: float) -> "Material": ...
     @staticmethod
@@ -71,9 +87,10 @@ class Material:
     @property
     def contact_modulus(self) -> float: ...
 
+@final
 class HalfSpace:
-    def __init__(self, grid: Grid, material: Material) -> None: ...
-    def apply(self, pressure: FloatField) -> FloatField: ...
+    def __new__(cls, grid: Grid, material: Material) -> "HalfSpace": ...
+    def apply(self, pressure: _FloatField) -> _FloatField: ...
     @property
     def grid(self) -> Grid: ...
     @property
@@ -83,16 +100,17 @@ class HalfSpace:
     @property
     def applications(self) -> int: ...
 
+@final
 class ContactState:
-    def __init__(self, grid: Grid) -> None: ...
+    def __new__(cls, grid: Grid) -> "ContactState": ...
     @property
-    def pressure(self) -> FloatField: ...
+    def pressure(self) -> _FloatField: ...
     @property
-    def displacement(self) -> FloatField: ...
+    def displacement(self) -> _FloatField: ...
     @property
-    def contact(self) -> BoolField: ...
+    def contact(self) -> _BoolField: ...
     @property
-    def gap(self) -> FloatField: ...
+    def gap(self) -> _FloatField: ...
     @property
     def depth(self) -> Optional[float]: ...
     @property
@@ -106,6 +124,7 @@ class ContactState:
     def grid(self) -> Grid: ...
     def copy(self) -> "ContactState": ...
 
+@final
 class SolveReport:
     iterations: int
     residual: float
@@ -116,6 +135,7 @@ class SolveReport:
     operator_applications: int
     state: ContactState
 
+@final
 class StepReport:
     depth: float
     force: float
@@ -130,48 +150,57 @@ class StepReport:
     cg_iterations: int
     operator_applications: int
 
+@final
 class Ccg:
-    def __init__(self, operator: HalfSpace, tolerance: float = 1e-10, max_iterations: int = 20000) -> None: ...
+    def __new__(cls, operator: HalfSpace, tolerance: float = ..., max_iterations: int = ...) -> "Ccg": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
     def solve(
         self,
-        heights: FloatField,
+        heights: _FloatField,
         depth: Optional[float] = None,
         load: Optional[float] = None,
         state: Optional[ContactState] = None,
     ) -> SolveReport: ...
 
+@final
 class NestedActiveSet:
-    def __init__(
-        self,
+    def __new__(
+        cls,
         operator: HalfSpace,
-        relative_tolerance: float = 1e-10,
-        max_cg_iterations: int = 2000,
-        max_rounds: int = 200,
-        coarsest: int = 32,
-    ) -> None: ...
-    def solve(self, heights: FloatField, depth: float, state: Optional[ContactState] = None) -> SolveReport: ...
+        relative_tolerance: float = ...,
+        max_cg_iterations: int = ...,
+        max_rounds: int = ...,
+        coarsest: int = ...,
+    ) -> "NestedActiveSet": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
+    def solve(self, heights: _FloatField, depth: float, state: Optional[ContactState] = None) -> SolveReport: ...
     @property
     def coarse_levels(self) -> int: ...
 
+@final
 class AdhesiveSolver:
-    def __init__(
-        self,
+    def __new__(
+        cls,
         operator: HalfSpace,
-        work_of_adhesion: Union[float, FloatField],
-        relative_tolerance: float = 1e-6,
-        front_tolerance: float = 1e-4,
-        max_cg_iterations: int = 5000,
-        max_rounds: int = 100000,
-        attachment: Literal["trial", "penetration_only"] = "trial",
-        worst_first_fraction: Optional[float] = None,
-        preconditioned: bool = True,
-        carry_bans_when_retracting: bool = True,
-        retry_after_growth: bool = True,
-    ) -> None: ...
-    def step(self, heights: FloatField, depth: float, state: ContactState) -> StepReport: ...
+        work_of_adhesion: Union[float, _FloatField],
+        relative_tolerance: float = ...,
+        front_tolerance: float = ...,
+        max_cg_iterations: int = ...,
+        max_rounds: int = ...,
+        attachment: Literal["trial", "penetration_only"] = ...,
+        worst_first_fraction: Optional[float] = ...,
+        preconditioned: bool = ...,
+        carry_bans_when_retracting: bool = ...,
+        retry_after_growth: bool = ...,
+    ) -> "AdhesiveSolver": ...
+    @staticmethod
+    def defaults() -> Dict[str, Any]: ...
+    def step(self, heights: _FloatField, depth: float, state: ContactState) -> StepReport: ...
     def steps(
         self,
-        heights: FloatField,
+        heights: _FloatField,
         depths: npt.NDArray[np.float64],
         state: ContactState,
         progress: Optional[Callable[[int, StepReport], object]] = None,
@@ -179,12 +208,12 @@ class AdhesiveSolver:
     def reset(self) -> None: ...
     def energy(self, state: ContactState) -> float: ...
     @property
-    def critical_stress(self) -> FloatField: ...
+    def critical_stress(self) -> _FloatField: ...
 
-def sphere_heights(grid: Grid, radius: float) -> FloatField: ...
-def flat_punch_heights(grid: Grid, radius: float) -> FloatField: ...
-def wavy_sphere_heights(grid: Grid, radius: float, amplitude: float, wavelength: float, angle_degrees: float) -> FloatField: ...
-def elliptic_punch_heights(grid: Grid, semi_axes: Tuple[float, float], angle_degrees: float) -> FloatField: ...
+def sphere_heights(grid: Grid, radius: float) -> _FloatField: ...
+def flat_punch_heights(grid: Grid, radius: float) -> _FloatField: ...
+def wavy_sphere_heights(grid: Grid, radius: float, amplitude: float, wavelength: float, angle_degrees: float) -> _FloatField: ...
+def elliptic_punch_heights(grid: Grid, semi_axes: Tuple[float, float], angle_degrees: float) -> _FloatField: ...
 def jkr_scales(radius: float, contact_modulus: float, work_of_adhesion: float) -> Dict[str, float]: ...
 def johnson_parameter(wavelength: float, amplitude: float, work_of_adhesion: float, contact_modulus: float) -> float: ...
 def _hertz(
@@ -214,11 +243,13 @@ def _run_scenario(
     out: Optional[str] = None,
     force: bool = False,
 ) -> Dict[str, Any]: ...
+@final
 class _RunFields:
     def write_npz(self, path: str) -> None: ...
 
 def _curve_column_kinds() -> Dict[str, str]: ...
 
+@final
 class _SweepFolder:
     def cases(self) -> List[Dict[str, Any]]: ...
     def pending(self, retry_failed: bool) -> List[int]: ...
@@ -247,14 +278,14 @@ def _self_affine(
     rolloff_wavelength: Optional[float] = None,
     cutoff_wavelength: Optional[float] = None,
     mode: str = "random_phase",
-) -> FloatField: ...
+) -> _FloatField: ...
 def _height_map_statistics(
-    heights: FloatField, dx: float, dy: float, valid: Optional[BoolField] = None, periodic: bool = False
+    heights: _FloatField, dx: float, dy: float, valid: Optional[_BoolField] = None, periodic: bool = False
 ) -> Dict[str, Any]: ...
 def _isotropic_psd(
-    heights: FloatField, dx: float, dy: float, bins: int, valid: Optional[BoolField] = None, periodic: bool = False
+    heights: _FloatField, dx: float, dy: float, bins: int, valid: Optional[_BoolField] = None, periodic: bool = False
 ) -> List[npt.NDArray[np.float64]]: ...
-def _fill_invalid(heights: FloatField, valid: BoolField, periodic: bool = False) -> FloatField: ...
+def _fill_invalid(heights: _FloatField, valid: _BoolField, periodic: bool = False) -> _FloatField: ...
 def _read_topography(
     path: str,
     channel: Optional[str] = None,

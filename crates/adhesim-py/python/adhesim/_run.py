@@ -19,65 +19,99 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
 
 import numpy as np
 
-from . import _adhesim
+from . import _adhesim, _display
 
 __all__ = ["RunResult", "Snapshot", "run", "load", "sweep_table"]
 
 ScenarioLike = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 
+def _read_only(array):
+    """``array`` as a numpy array with ``flags.writeable`` False (None stays None)."""
+    if array is None:
+        return None
+    array = np.asarray(array)
+    array.flags.writeable = False
+    return array
+
+
 class Snapshot:
     """The contact fields of one step, float64 (n, n) arrays indexed [row = y, column = x].
+
+    The arrays are read-only (``flags.writeable`` is False; ``numpy.array(field)`` makes a
+    writeable copy), and each access returns the same array.
 
     The fields are those of ``fields.npz`` (docs/output.md): ``run`` and ``load`` give the
     same snapshots for the same run.
 
-    Attributes:
-        step: step number (0-based, as in curve.csv).
-        depth: indentation depth d of the step (> 0 into the body).
-        offset: lateral position X of the indenter axis (0 for indentation).
-        pressure: p (> 0 compressive, < 0 tensile).
-        displacement: u (> 0 into the body).
-        gap: g = u + z - d (0 in contact, > 0 outside; 0 where the indenter has no
-            surface); None only when read back from an old run folder without
-            ``fields.npz``.
-        contact: bool (n, n) contact mask; None as ``gap``.
+    Attributes
+    ----------
+    step : int
+        step number (0-based, as in curve.csv).
+    depth : float
+        indentation depth d of the step (> 0 into the body).
+    offset : float
+        lateral position X of the indenter axis (0 for indentation).
+    pressure : numpy.ndarray
+        p (> 0 compressive, < 0 tensile).
+    displacement : numpy.ndarray
+        u (> 0 into the body).
+    gap : numpy.ndarray or None
+        g = u + z - d (0 in contact, > 0 outside; 0 where the indenter has no
+        surface); None only when read back from an old run folder without
+        ``fields.npz``.
+    contact : numpy.ndarray or None
+        bool (n, n) contact mask; None as ``gap``.
     """
 
     def __init__(self, step, depth, pressure, displacement, gap=None, contact=None, offset=0.0):
         self.step = int(step)
         self.depth = float(depth)
         self.offset = float(offset)
-        self.pressure = pressure
-        self.displacement = displacement
-        self.gap = gap
-        self.contact = contact
+        self.pressure = _read_only(pressure)
+        self.displacement = _read_only(displacement)
+        self.gap = _read_only(gap)
+        self.contact = _read_only(contact)
 
     def __repr__(self) -> str:
-        n = self.pressure.shape[0]
-        return f"Snapshot(step={self.step}, depth={self.depth:.6g}, fields {n}x{n})"
+        ny, nx = self.pressure.shape
+        return (
+            f"Snapshot(step={self.step}, depth={self.depth:.6g}, offset={self.offset:.6g}, "
+            f"fields={ny}x{nx})"
+        )
 
 
 class RunResult:
     """What ``run`` and ``load`` return.
 
-    Attributes:
-        curve_arrays: dict of 1-D numpy arrays, one per ``curve.csv`` column with exactly
-            its name (docs/cli.md): int64 counts and flags, float64 quantities, str phase.
-        curve: a pandas DataFrame of the same columns when pandas is importable, else
-            ``curve_arrays``.
-        summary: dict equal to the content of ``summary.json`` (inputs, derived, results,
-            performance, warnings).
-        snapshots: list of ``Snapshot`` of the snapshot steps, by step: the steps the
-            scenario's ``[output]`` chooses (``snapshot_steps``, ``snapshot_every``; for a
-            translation by default the end of the forward stroke), the deepest step, the
-            last step in contact and the step of the largest contact, each once (the
-            steps of ``fields.npz``, docs/output.md).
-        out: the folder the files were written to, or None.
+    Its arrays (the ``curve_arrays`` columns, the snapshots' fields) are read-only and the
+    same objects at every access.
+
+    Attributes
+    ----------
+    curve_arrays : dict of str to numpy.ndarray
+        dict of 1-D numpy arrays, one per ``curve.csv`` column with exactly
+        its name (docs/cli.md): int64 counts and flags, float64 quantities, str phase.
+    curve : pandas.DataFrame or dict
+        a pandas DataFrame of the same columns when pandas is importable, else
+        ``curve_arrays``.
+    summary : dict
+        dict equal to the content of ``summary.json`` (inputs, derived, results,
+        performance, warnings).
+    snapshots : list of Snapshot
+        list of ``Snapshot`` of the snapshot steps, by step: the steps the
+        scenario's ``[output]`` chooses (``snapshot_steps``, ``snapshot_every``; for a
+        translation by default the end of the forward stroke), the deepest step, the
+        last step in contact and the step of the largest contact, each once (the
+        steps of ``fields.npz``, docs/output.md).
+    out : pathlib.Path or None
+        the folder the files were written to, or None.
     """
 
     def __init__(self, curve_arrays, summary, snapshots, out=None):
-        self.curve_arrays: Dict[str, np.ndarray] = curve_arrays
+        self.curve_arrays: Dict[str, np.ndarray] = {
+            name: _read_only(column) for name, column in curve_arrays.items()
+        }
         self.summary: Dict[str, Any] = summary
         self.snapshots: List[Snapshot] = snapshots
         self.out: Optional[Path] = out
@@ -97,9 +131,21 @@ class RunResult:
         return self.summary["results"]
 
     def __repr__(self) -> str:
-        steps = len(next(iter(self.curve_arrays.values()))) if self.curve_arrays else 0
-        where = f", out={str(self.out)!r}" if self.out is not None else ""
-        return f"RunResult({steps} steps, {len(self.snapshots)} snapshots{where})"
+        """The run's grid, steps, snapshots, folder and headline results (those of
+        ``_repr_html_``'s table, not None) in one line."""
+        rows = dict(_display.summary_rows(self))
+        parts = [f"grid={rows.pop('grid')!r}"] if "grid" in rows else []
+        parts += [f"steps={rows.pop('steps')}", f"snapshots={rows.pop('snapshots')}"]
+        if "out" in rows:
+            parts.append(f"out={rows.pop('out')!r}")
+        rows.pop("wall_seconds", None)
+        parts += [f"{name}={value}" for name, value in rows.items()]
+        return f"RunResult({', '.join(parts)})"
+
+    def _repr_html_(self) -> str:
+        """A notebook's display: a table of the grid, steps, snapshots, folder and key
+        results, and the force curve F(d) as an inline PNG when matplotlib is importable."""
+        return _display.run_result_html(self)
 
 
 def _plain(value):
@@ -199,44 +245,59 @@ def run(
 ) -> RunResult:
     """Runs a scenario as ``adhesim run`` does and returns its results in memory.
 
-    Args:
-        scenario: a path to a scenario TOML file (relative paths inside it, such as height
-            maps, resolve against its folder), a TOML string, or a nested dict with the
-            file's keys (``{"grid": {"n": 64, ...}, ...}``; relative paths then resolve
-            against the working directory).
-        out: optional folder to write ``curve.csv`` and ``summary.json`` into (the same
-            bytes as the command line's, apart from the timings under ``performance``),
-            ``fields.npz`` (the command line's bytes) and the ``.npy`` fields of the
-            chosen snapshot steps (``snapshots/step_NNNNNN_{pressure,displacement}.npy``).
-            ``fields.nc``, figures and the
-            contact-map PNGs are the command line's only. As with ``adhesim run --out``,
-            the folder must be new, empty or a run folder (it gets the ``.adhesim-run``
-            marker; the previous run's outputs are removed first).
-        progress: None; a callable ``progress(step, total)`` called after each step
-            (``total`` is an estimate for indentations: approach steps + as many
-            retraction steps); or True for a tqdm bar when tqdm is installed.
-        overrides: dict of dotted keys to values, like ``--set`` (``{"grid.n": 64}``).
-        allow_large: run even when the memory estimate of the grid exceeds the memory
-            available (the smallest of RLIMIT_AS, the cgroup's ``memory.max`` and
-            ``MemAvailable``, or ``ADHESIM_MEMORY_AVAILABLE``),
-            like the command line's ``--allow-large``; by default such a scenario is
-            refused with a ValueError before anything is allocated.
-        force: write into a non-empty ``out`` that is not a run folder (its outputs are
-            replaced), like ``--force``.
-        **keyword_overrides: more overrides; dotted keys need ``**{"grid.n": 64}``.
+    Parameters
+    ----------
+    scenario : str, os.PathLike or dict
+        a path to a scenario TOML file (relative paths inside it, such as height
+        maps, resolve against its folder), a TOML string, or a nested dict with the
+        file's keys (``{"grid": {"n": 64, ...}, ...}``; relative paths then resolve
+        against the working directory).
+    out : str or os.PathLike, optional
+        optional folder to write ``curve.csv`` and ``summary.json`` into (the same
+        bytes as the command line's, apart from the timings under ``performance``),
+        ``fields.npz`` (the command line's bytes) and the ``.npy`` fields of the
+        chosen snapshot steps (``snapshots/step_NNNNNN_{pressure,displacement}.npy``).
+        ``fields.nc``, figures and the
+        contact-map PNGs are the command line's only. As with ``adhesim run --out``,
+        the folder must be new, empty or a run folder (it gets the ``.adhesim-run``
+        marker; the previous run's outputs are removed first).
+    progress : bool or callable, optional
+        None; a callable ``progress(step, total)`` called after each step
+        (``total`` is an estimate for indentations: approach steps + as many
+        retraction steps); or True for a tqdm bar when tqdm is installed.
+    overrides : dict, optional
+        dict of dotted keys to values, like ``--set`` (``{"grid.n": 64}``).
+    allow_large : bool
+        run even when the memory estimate of the grid exceeds the memory
+        available (the smallest of RLIMIT_AS, the cgroup's ``memory.max`` and
+        ``MemAvailable``, or ``ADHESIM_MEMORY_AVAILABLE``),
+        like the command line's ``--allow-large``; by default such a scenario is
+        refused with a ValueError before anything is allocated.
+    force : bool
+        write into a non-empty ``out`` that is not a run folder (its outputs are
+        replaced), like ``--force``.
+    **keyword_overrides
+        more overrides; dotted keys need ``**{"grid.n": 64}``.
 
-    Returns:
-        RunResult with ``.curve``, ``.curve_arrays``, ``.summary``, ``.snapshots``.
+    Returns
+    -------
+    RunResult
+        With ``.curve``, ``.curve_arrays``, ``.summary``, ``.snapshots``.
 
-    Raises:
-        ValueError: an unreadable file or a bad value, naming the key and the value
-            (the scenario crate's messages, as the command line prints them); for a
-            bad scenario an ``adhesim.ScenarioError`` with ``.key``, ``.value``,
-            ``.requirement`` and ``.kind``.
-        TypeError: a scenario or override value of an unsupported type.
-        KeyboardInterrupt: Ctrl-C, checked between steps (a step itself runs to its end:
-            the library has no cancellation hook inside a step).
-        adhesim.SolveError: a solver did not converge.
+    Raises
+    ------
+    ValueError
+        an unreadable file or a bad value, naming the key and the value
+        (the scenario crate's messages, as the command line prints them); for a
+        bad scenario an ``adhesim.ScenarioError`` with ``.key``, ``.value``,
+        ``.requirement`` and ``.kind``.
+    TypeError
+        a scenario or override value of an unsupported type.
+    KeyboardInterrupt
+        Ctrl-C, checked between steps (a step itself runs to its end:
+        the library has no cancellation hook inside a step).
+    adhesim.SolveError
+        a solver did not converge.
 
     The GIL is released during the run, except for the signal check and the progress
     callback between steps.
@@ -329,19 +390,25 @@ def _read_snapshots(folder: Path, curve: Dict[str, np.ndarray]) -> List[Snapshot
 def load(folder: Union[str, "os.PathLike[str]"]) -> RunResult:
     """Reads a finished run folder (of ``adhesim run`` or ``run(..., out=...)``) back.
 
-    Args:
-        folder: the run folder, holding ``curve.csv`` and ``summary.json``.
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        the run folder, holding ``curve.csv`` and ``summary.json``.
 
-    Returns:
-        RunResult: the curve with the same column kinds as ``run`` gives, the summary,
+    Returns
+    -------
+    RunResult
+        the curve with the same column kinds as ``run`` gives, the summary,
         and the snapshots of ``fields.npz`` (docs/output.md: the same steps and fields
         as ``run`` gives); in a folder without ``fields.npz`` (an older adhesim), the
         chosen steps' ``snapshots/step_NNNNNN_{pressure,displacement}.npy`` (gap and
         contact None).
 
-    Raises:
-        ValueError: a missing or unreadable ``curve.csv`` / ``summary.json``, or a
-            ``fields.npz`` without an array of the contract, naming it.
+    Raises
+    ------
+    ValueError
+        a missing or unreadable ``curve.csv`` / ``summary.json``, or a
+        ``fields.npz`` without an array of the contract, naming it.
     """
     folder = Path(folder)
     curve_path, summary_path = folder / "curve.csv", folder / "summary.json"

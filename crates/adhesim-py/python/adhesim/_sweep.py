@@ -41,6 +41,16 @@ class SweepResult(list):
     table: Dict[str, List[str]]
     ran: int
 
+    def __repr__(self) -> str:
+        """The number of cases, the varied keys, the cases computed by the call and the
+        folder (not the list of results: ``list(result)`` shows those)."""
+        keys = list(getattr(self[0], "case", {})) if self else []
+        out = getattr(self, "out", None)
+        return (
+            f"SweepResult(cases={len(self)}, keys={keys!r}, ran={getattr(self, 'ran', None)}, "
+            f"out={None if out is None else str(out)!r})"
+        )
+
 
 def _run_case(out: str, index: int) -> Tuple[bool, Optional[str]]:
     """Runs case ``index`` of the sweep in ``out`` (in whatever process calls it):

@@ -28,14 +28,21 @@ def jkr_work_of_adhesion(
     """Effective gamma of one branch from force-contact-radius pairs: least squares of
     F = 4E*a^3/(3R) - (8 pi gamma E* a^3)^(1/2), linear in gamma^(1/2).
 
-    Args:
-        contact_radius: a per point (length); points with a <= 0 are skipped.
-        force: F per point (> 0 compressive).
-        radius: R of the indenter (length, > 0).
-        contact_modulus: E* (pressure, > 0).
+    Parameters
+    ----------
+    contact_radius : array_like
+        a per point (length); points with a <= 0 are skipped.
+    force : array_like
+        F per point (> 0 compressive).
+    radius : float
+        R of the indenter (length, > 0).
+    contact_modulus : float
+        E* (pressure, > 0).
 
-    Returns:
-        dict: ``work_of_adhesion`` gamma (>= 0, energy per area), ``residual_rms`` (force),
+    Returns
+    -------
+    dict
+        ``work_of_adhesion`` gamma (>= 0, energy per area), ``residual_rms`` (force),
         ``points`` used.
     """
     return _adhesim._fit_jkr_force(_vector(contact_radius), _vector(force), float(radius), float(contact_modulus))
@@ -54,7 +61,9 @@ def jkr_depth_work_of_adhesion(
 def power_law(t: ArrayLike, y: ArrayLike) -> Tuple[float, float]:
     """y = c t^n by least squares in log-log (paper Eq. 15), over points with t, y > 0.
 
-    Returns:
-        (c, n).
+    Returns
+    -------
+    c, n : float
+        The prefactor and the exponent.
     """
     return _adhesim._fit_power_law(_vector(t), _vector(y))

@@ -28,13 +28,19 @@ def _flat(values: ArrayLike):
 def hertz(radius: float, contact_modulus: float, depth: ArrayLike) -> Dict[str, np.ndarray]:
     """Hertz (1882) contact of a paraboloid of radius R pressed to depth d.
 
-    Args:
-        radius: R (length, > 0).
-        contact_modulus: E* (pressure, > 0).
-        depth: d (length); d <= 0 gives no contact.
+    Parameters
+    ----------
+    radius : float
+        R (length, > 0).
+    contact_modulus : float
+        E* (pressure, > 0).
+    depth : array_like
+        d (length); d <= 0 gives no contact.
 
-    Returns:
-        dict of arrays shaped like `depth`: ``depth``, ``force`` F = (4/3) E* R^(1/2) d^(3/2)
+    Returns
+    -------
+    dict of arrays shaped like `depth`
+        ``depth``, ``force`` F = (4/3) E* R^(1/2) d^(3/2)
         (> 0 compressive), ``contact_radius`` a = (R d)^(1/2).
     """
     flat, shape = _flat(depth)
@@ -57,16 +63,24 @@ def jkr(
     radius a (both branches, stable and unstable), with the paper's normalisation
     (Popov et al. 2021, Eqs. 2-4).
 
-    Args:
-        radius: R (length, > 0).
-        contact_modulus: E* (pressure, > 0).
-        work_of_adhesion: gamma (energy per area, >= 0).
-        contact_radius: a values (length, >= 0); default `points` values from 0 to
-            3 a_JKR.
-        points: number of default a values.
+    Parameters
+    ----------
+    radius : float
+        R (length, > 0).
+    contact_modulus : float
+        E* (pressure, > 0).
+    work_of_adhesion : float
+        gamma (energy per area, >= 0).
+    contact_radius : array_like, optional
+        a values (length, >= 0); default `points` values from 0 to
+        3 a_JKR.
+    points : int
+        number of default a values.
 
-    Returns:
-        dict of arrays: ``contact_radius`` a, ``force`` F = 4E*a^3/(3R) - (8 pi gamma E* a^3)^(1/2)
+    Returns
+    -------
+    dict of arrays
+        ``contact_radius`` a, ``force`` F = 4E*a^3/(3R) - (8 pi gamma E* a^3)^(1/2)
         (< 0 tensile), ``depth`` d = a^2/R - (2 pi gamma a / E*)^(1/2).
     """
     if contact_radius is None:
@@ -83,8 +97,10 @@ def jkr_at_depth(
     """JKR force and contact radius at given depths on the branch that is stable under
     displacement control (a >= 9^(-1/3) a_JKR): what a quasi-static retraction follows.
 
-    Returns:
-        dict of arrays shaped like `depth`: ``depth``, ``force``, ``contact_radius``,
+    Returns
+    -------
+    dict of arrays shaped like `depth`
+        ``depth``, ``force``, ``contact_radius``,
         ``in_contact`` (bool). Below the jump depth -9^(1/3)|d_JKR| the contact is lost:
         in_contact False, force 0, contact_radius 0.
     """
@@ -117,15 +133,22 @@ def flat_punch(
 ) -> Dict[str, object]:
     """Flat circular punch of radius a (Boussinesq 1885; Kendall 1971 for adhesion).
 
-    Args:
-        radius: punch radius a (length, > 0).
-        contact_modulus: E* (pressure, > 0).
-        depth: optional depths d (length) at which to give the force while in full
-            contact, F = 2E*a d (< 0 tensile for d < 0, down to the Kendall pull-off).
-        work_of_adhesion: gamma (energy per area, >= 0) for the pull-off values.
+    Parameters
+    ----------
+    radius : float
+        punch radius a (length, > 0).
+    contact_modulus : float
+        E* (pressure, > 0).
+    depth : array_like, optional
+        optional depths d (length) at which to give the force while in full
+        contact, F = 2E*a d (< 0 tensile for d < 0, down to the Kendall pull-off).
+    work_of_adhesion : float
+        gamma (energy per area, >= 0) for the pull-off values.
 
-    Returns:
-        dict: ``stiffness`` 2E*a (scalar), ``pull_off_force`` -(8 pi a^3 E* gamma)^(1/2)
+    Returns
+    -------
+    dict
+        ``stiffness`` 2E*a (scalar), ``pull_off_force`` -(8 pi a^3 E* gamma)^(1/2)
         (Kendall, < 0 tensile), ``pull_off_depth`` -(2 pi a gamma / E*)^(1/2); with
         `depth` also ``depth`` and ``force`` arrays.
     """

@@ -1,0 +1,54 @@
+"""The Python functions and classes of the package have numpy-style docstrings (issue
+#28, numpy conventions): numpydoc section headers, never Google-style ``Args:``, and a
+``Parameters`` section that names every parameter of the signature."""
+
+import inspect
+import re
+
+import pytest
+
+import adhesim
+from adhesim import _run, _sweep, fit, geometry, reference, surface, topography
+
+MODULES = [_run, _sweep, fit, geometry, reference, surface, topography]
+GOOGLE = re.compile(r"^\s*(Args|Arguments|Returns|Raises|Attributes|Yields|Examples?):\s*$", re.M)
+
+
+def documented():
+    for module in MODULES:
+        for name, obj in vars(module).items():
+            if name.startswith("_") or getattr(obj, "__module__", None) != module.__name__:
+                continue
+            if inspect.isfunction(obj) or inspect.isclass(obj):
+                yield f"{module.__name__}.{name}", obj
+
+
+@pytest.mark.parametrize("name, obj", list(documented()), ids=lambda v: v if isinstance(v, str) else "")
+def test_numpy_style(name, obj):
+    doc = inspect.getdoc(obj) or ""
+    assert doc.strip(), f"{name} has no docstring"
+    assert not GOOGLE.search(doc), f"{name}: Google-style section {GOOGLE.search(doc).group(0)!r}"
+    if "\nParameters\n----------\n" in doc and inspect.isfunction(obj):
+        section = doc.split("\nParameters\n----------\n", 1)[1].split("\n\n")[0]
+        listed = section + "\n" + doc  # groups such as "zip, random, derived : dict"
+        for parameter in inspect.signature(obj).parameters:
+            pattern = rf"^[\w, *]*\b{parameter}\b[\w, *]*( :.*)?$"
+            assert re.search(pattern, listed, re.M), f"{name}: parameter {parameter} not documented"
+
+
+def test_the_converted_functions_have_their_sections():
+    for function in (adhesim.run, adhesim.load, adhesim.sweep, fit.jkr_work_of_adhesion, reference.hertz):
+        doc = inspect.getdoc(function)
+        assert "Parameters\n----------" in doc and "Returns\n-------" in doc, function.__name__
+
+
+def test_compiled_solvers_are_numpy_style():
+    """The solvers' docstrings (src/solvers.rs, src/adhesive.rs) and jkr_scales'; Grid,
+    Material, HalfSpace and ContactState (src/objects.rs) still have Google sections."""
+    objects = [adhesim.Ccg, adhesim.NestedActiveSet, adhesim.AdhesiveSolver, adhesim.reference.jkr_scales]
+    for obj in objects:
+        members = [getattr(obj, m) for m in dir(obj) if not m.startswith("_")] if inspect.isclass(obj) else []
+        for item in [obj, *members]:
+            doc = inspect.getdoc(item) or ""
+            assert not GOOGLE.search(doc), f"{getattr(item, '__qualname__', item)}: {GOOGLE.search(doc).group(0)!r}"
+    assert "Parameters\n----------\noperator\n" in inspect.getdoc(adhesim.AdhesiveSolver)
