@@ -140,7 +140,7 @@ impl AdhesiveSolver {
                 let (low, high) = map
                     .iter()
                     .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| (l.min(g), h.max(g)));
-                format!("<map ({n}, {n}), {low:?} to {high:?}>", n = grid.n())
+                format!("<map ({}, {}), {low:?} to {high:?}>", grid.ny(), grid.nx())
             }
             // Python builds only a float or a map.
             _ => "<profile>".to_string(),
@@ -304,7 +304,8 @@ impl AdhesiveSolver {
     /// read-only (the same array at every access).
     #[getter]
     fn critical_stress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<f64>>> {
-        self.critical_stress
-            .get(py, || crate::convert::field(py, self.inner.critical_stresses(), &self.grid))
+        self.critical_stress.get(py, || {
+            crate::convert::field(py, self.inner.critical_stresses(), &self.grid)
+        })
     }
 }

@@ -469,7 +469,9 @@ impl ContactState {
     /// Pressure per element (> 0 compressive, < 0 tensile), shape (ny, nx), read-only.
     #[getter]
     fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.views.pressure.get(py, || field(py, &self.inner.pressure, &self.grid))
+        self.views
+            .pressure
+            .get(py, || field(py, &self.inner.pressure, &self.grid))
     }
 
     /// Normal surface displacement u = K p (> 0 into the body), shape (ny, nx), read-only.
@@ -483,7 +485,9 @@ impl ContactState {
     /// Contact mask (True in contact), shape (ny, nx), read-only.
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        self.views.contact.get(py, || field(py, &self.inner.contact, &self.grid))
+        self.views
+            .contact
+            .get(py, || field(py, &self.inner.contact, &self.grid))
     }
 
     /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
