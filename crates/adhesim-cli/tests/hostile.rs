@@ -345,3 +345,42 @@ fn every_command_checks_the_memory_limit() {
     let output = adhesim_with_memory(&["reference", "hertz", "--points", "10"], "1000000");
     assert!(output.status.success(), "{}", stderr(&output));
 }
+
+/// Issue #29: all lengths scaled by 1e-20 (inside the documented window; γ scaled with them,
+/// E* kept). The normalised results must equal the unscaled file's, and forces scale by
+/// 1e-40 (F ∝ γR), to the CG tolerance (relative residual 1e-6: the two runs stop their
+/// solves at different roundings; measured 3e-9).
+#[test]
+fn lengths_scaled_by_1e_minus_20_give_the_same_normalised_results() {
+    let temp = tempfile::tempdir().unwrap();
+    let scenario = scenarios_dir().join("jkr.toml");
+    let scenario = scenario.to_str().unwrap();
+    let plain = temp.path().join("plain");
+    let scaled = temp.path().join("scaled");
+    let base = ["run", scenario, "--set", "grid.n=64", "--quiet", "--out"];
+    let output = adhesim(&[&base[..], &[plain.to_str().unwrap()]].concat());
+    assert!(output.status.success(), "{}", stderr(&output));
+    let tiny = [
+        "--set",
+        "grid.size=0.25e-20",
+        "--set",
+        "indenter.radius=1e-20",
+        "--set",
+        "adhesion.work_of_adhesion=3.5367765131532306e-25",
+    ];
+    let output = adhesim(&[&base[..], &[scaled.to_str().unwrap()], &tiny[..]].concat());
+    assert!(output.status.success(), "{}", stderr(&output));
+    let plain = read_json(&plain.join("summary.json"))["results"].clone();
+    let scaled = read_json(&scaled.join("summary.json"))["results"].clone();
+    let value = |results: &serde_json::Value, key: &str| results[key].as_f64().unwrap();
+    for (key, scale) in [
+        ("gamma_approach_norm", 1.0),
+        ("gamma_pulloff_norm", 1.0),
+        ("adhesive_force_ratio", 1.0),
+        ("max_adhesive_force", 1e-40),
+        ("pull_off_depth", 1e-20),
+    ] {
+        let ratio = value(&scaled, key) / (scale * value(&plain, key));
+        assert!((ratio - 1.0).abs() < 1e-6, "{key}: scaled/plain = {ratio}");
+    }
+}
