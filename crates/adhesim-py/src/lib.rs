@@ -52,6 +52,7 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reference::_fit_power_law, m)?)?;
     m.add_class::<scenario::RunFields>()?;
     m.add_function(wrap_pyfunction!(scenario::_run_scenario, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_scenario_heights, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_curve_column_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_value, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_document, m)?)?;

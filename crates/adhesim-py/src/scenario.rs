@@ -12,7 +12,7 @@ use adhesim_scenario::output::timings::PhaseTimings;
 use adhesim_scenario::{
     CurveCell, CurveColumns, CurveKind, RunOutcome, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
 };
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
@@ -306,6 +306,22 @@ impl RunFields {
         adhesim_topography::write_npz(&path, &self.0.npz_arrays(&shapes))
             .map_err(|e| PyValueError::new_err(format!("cannot write {}: {e}", path.display())))
     }
+}
+
+/// The grid and the indenter heights (ny, nx) a scenario presses, built exactly as its run
+/// builds them (every `indenter.shape`: analytic, `topography` files, `rough_*` with their
+/// `[roughness]`), without running it (see `adhesim.geometry.from_scenario`).
+#[pyfunction]
+pub fn _scenario_heights<'py>(
+    py: Python<'py>,
+    text: &str,
+    origin: &str,
+    base: PathBuf,
+    overrides: Vec<String>,
+) -> PyResult<(crate::objects::Grid, Bound<'py, PyArray2<f64>>)> {
+    let scenario = load(text, origin, &base, &overrides, true)?;
+    let heights = crate::convert::field(py, &scenario.heights, &scenario.grid)?;
+    Ok((crate::objects::Grid { inner: scenario.grid }, heights))
 }
 
 /// Every column `curve.csv` can have, with its kind ("int", "float" or "str"), for

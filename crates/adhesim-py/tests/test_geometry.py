@@ -52,3 +52,48 @@ def test_bad_shape_parameters_name_the_value():
         adhesim.geometry.wavy_sphere(grid, 1.0, 0.001, 0.05, float("nan"))
     with pytest.raises(ValueError, match="semi_axes"):
         adhesim.geometry.elliptic_punch(grid, (1.0, 0.0))
+
+
+SCENARIOS = __import__("pathlib").Path(__file__).resolve().parents[3] / "scenarios"
+
+
+def test_from_scenario_gives_what_the_run_presses():
+    # The wavy sphere of fig1.toml is exactly the analytic function (same code, same grid).
+    grid, heights = adhesim.geometry.from_scenario(SCENARIOS / "fig1.toml", {"grid.n": 64})
+    assert (grid.nx, grid.ny, grid.size_x) == (64, 64, 0.8)
+    expected = adhesim.geometry.wavy_sphere(grid, 1.0, 0.0025, 0.05)
+    assert np.array_equal(heights, expected)
+    # rough_sphere.toml: the paraboloid minus its [roughness] (peaks towards the body),
+    # shifted by a constant; the roughness is adhesim.surface.self_affine with the file's keys
+    # (the same generator): the difference is constant to rounding (1e-15 of the rms height).
+    grid, heights = adhesim.geometry.from_scenario(SCENARIOS / "rough_sphere.toml", **{"grid.n": 64})
+    roughness = adhesim.surface.self_affine(
+        grid, 0.8, seed=1, rms_height=2e-4, rolloff_wavelength=0.05, cutoff_wavelength=0.015625
+    )
+    offset = heights - adhesim.geometry.sphere(grid, 1.0) + roughness
+    assert offset.std() < 1e-15 * 2e-4 * 1e3
+    with pytest.raises(adhesim.ScenarioError) as error:
+        adhesim.geometry.from_scenario(SCENARIOS / "fig1.toml", {"grid.n": -3})
+    assert error.value.key == "grid.n"
+
+
+def test_from_scenario_reads_a_topography_indenter(tmp_path):
+    ny, nx = 64, 96
+    rng = np.random.default_rng(3)
+    measured = rng.normal(size=(ny, nx)) * 1e-6
+    np.save(tmp_path / "map.npy", measured)
+    scenario = {
+        "grid": {"n": [nx, ny], "size": [nx * 1e-5, ny * 1e-5]},
+        "material": {"contact_modulus": 1.0},
+        "adhesion": {"work_of_adhesion": 0.0},
+        "indenter": {"shape": "topography", "file": str(tmp_path / "map.npy"), "spacing": 1e-5},
+        "protocol": {"kind": "indent_pulloff", "max_depth": 1e-5, "steps": 2},
+    }
+    grid, heights = adhesim.geometry.from_scenario(scenario)
+    assert heights.shape == (ny, nx)
+    # The map's points span (n − 1) spacings, the grid n elements: bilinear resampling onto
+    # the element centres leaves one row and one column without surface (+inf, never
+    # touching), and cannot widen the map's range of heights.
+    finite = np.isfinite(heights)
+    assert (~finite).sum() == nx + ny - 1
+    assert np.ptp(heights[finite]) <= np.ptp(measured) * (1 + 1e-12)

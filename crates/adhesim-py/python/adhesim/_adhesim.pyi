@@ -20,7 +20,7 @@ __all__ = [
     "NestedActiveSet", "AdhesiveSolver", "sphere_heights", "flat_punch_heights",
     "wavy_sphere_heights", "elliptic_punch_heights", "_hertz", "_jkr_curve",
     "_jkr_at_depth", "jkr_scales", "_flat_punch", "johnson_parameter", "_fit_jkr_force",
-    "_fit_jkr_depth", "_fit_power_law", "_RunFields", "_run_scenario",
+    "_fit_jkr_depth", "_fit_power_law", "_RunFields", "_run_scenario", "_scenario_heights",
     "_curve_column_kinds", "_toml_value", "_toml_document", "_SweepFolder",
     "_sweep_open", "_sweep_run_case", "_self_affine", "_height_map_statistics",
     "_isotropic_psd", "_fill_invalid", "_read_topography",
@@ -243,6 +243,7 @@ def _run_scenario(
     out: Optional[str] = None,
     force: bool = False,
 ) -> Dict[str, Any]: ...
+def _scenario_heights(text: str, origin: str, base: str, overrides: List[str]) -> Tuple[Grid, _FloatField]: ...
 @final
 class _RunFields:
     def write_npz(self, path: str) -> None: ...

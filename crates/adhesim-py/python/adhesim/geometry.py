@@ -2,7 +2,7 @@
 
 Heights z >= 0 are measured from the indenter's reference point (the apex of a sphere,
 the face of a punch) with its axis at the origin, at every element centre; +inf where the
-indenter has no surface (such elements never touch). Arrays are float64 (n, n),
+indenter has no surface (such elements never touch). Arrays are float64 (ny, nx),
 [row = y, column = x]. Any other height map of that shape and dtype works as well.
 """
 
@@ -12,7 +12,7 @@ import numpy as np
 
 from ._adhesim import Grid, elliptic_punch_heights, flat_punch_heights, sphere_heights, wavy_sphere_heights
 
-__all__ = ["sphere", "flat_punch", "wavy_sphere", "elliptic_punch"]
+__all__ = ["sphere", "flat_punch", "wavy_sphere", "elliptic_punch", "from_scenario"]
 
 
 def sphere(grid: Grid, radius: float) -> np.ndarray:
@@ -52,3 +52,41 @@ def elliptic_punch(grid: Grid, semi_axes, angle: float = 0.0) -> np.ndarray:
     """
     a, b = semi_axes
     return elliptic_punch_heights(grid, (float(a), float(b)), float(angle))
+
+
+
+def from_scenario(scenario, overrides=None, **keyword_overrides):
+    """The grid and indenter heights a scenario presses, without running it.
+
+    Every ``indenter.shape`` of the scenario file is covered, built by the same code as
+    its run: the analytic shapes, ``"topography"`` (a measured map, read and resampled as
+    the run reads it) and ``"rough_sphere"`` / ``"rough_flat"`` with their
+    ``[roughness]``.
+
+    Parameters
+    ----------
+    scenario : str, os.PathLike or dict
+        A scenario file, TOML text or a nested dict, as for ``adhesim.run``.
+    overrides : dict, optional
+        ``{"grid.n": 64, ...}``, as for ``adhesim.run``.
+    **keyword_overrides
+        More overrides.
+
+    Returns
+    -------
+    grid : Grid
+        The scenario's grid.
+    heights : numpy.ndarray
+        float64 (ny, nx), [row = y, column = x]; +inf where the indenter has no surface.
+
+    Raises
+    ------
+    adhesim.ScenarioError
+        a bad scenario, naming the key and the value.
+    """
+    from . import _adhesim
+    from ._run import _override_items, _scenario_text
+
+    text, origin, base = _scenario_text(scenario)
+    items = _override_items(overrides, keyword_overrides)
+    return _adhesim._scenario_heights(text, origin, str(base), items)
