@@ -73,6 +73,10 @@ fn parse_npy(bytes: &[u8]) -> Array {
             .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
             .collect(),
         "|b1" => data.iter().map(|&b| f64::from(b)).collect(),
+        "<i8" => data
+            .chunks_exact(8)
+            .map(|c| i64::from_le_bytes(c.try_into().unwrap()) as f64)
+            .collect(),
         other => panic!("unexpected dtype {other}"),
     };
     assert_eq!(values.len(), shape.iter().product::<usize>(), "{header}");
@@ -143,7 +147,12 @@ fn fields_npz_holds_the_documented_arrays_and_agrees_with_the_run() {
     for step in [3, 29, last_in_contact] {
         assert!(steps.contains(&step), "step {step} in {steps:?}");
     }
-    assert_eq!(arrays.len(), 7 + 4 * count, "{:?}", arrays.keys().collect::<Vec<_>>());
+    assert_eq!(
+        arrays.len(),
+        7 + 4 * count + 5,
+        "{:?}",
+        arrays.keys().collect::<Vec<_>>()
+    );
     for (index, &step) in steps.iter().enumerate() {
         let field = |kind: &str| &arrays[&format!("{kind}_{step:06}")];
         for (kind, descr) in [
@@ -194,9 +203,138 @@ fn fields_npz_holds_the_documented_arrays_and_agrees_with_the_run() {
     // The chosen step's pressure is the same as its .npy snapshot.
     let npy = parse_npy(&std::fs::read(out.join("snapshots/step_000003_pressure.npy")).unwrap());
     assert_eq!(npy.values, arrays["pressure_000003"].values);
-    let netcdf = std::fs::read(out.join("fields.nc")).unwrap();
-    assert_eq!(&netcdf[..3], b"CDF");
+    stacked_fields_and_netcdf_follow_contract_2(&out, &arrays, &steps, n);
     assert!(!out.join("fields.npz.partial").exists());
+}
+
+/// Fields contract 2 (docs/output.md): `fields.npz`'s integer `step` and the fields stacked
+/// along it (layer i = the i-th step's field), and `fields.nc` on (step, y, x) with the
+/// centred coordinates and the same values.
+fn stacked_fields_and_netcdf_follow_contract_2(
+    out: &Path,
+    arrays: &BTreeMap<String, Array>,
+    steps: &[usize],
+    n: usize,
+) {
+    let count = steps.len();
+    // Contract 2: the integer `step` and the fields stacked along it, layer i = step i.
+    assert_eq!(arrays["step"].descr, "<i8");
+    assert_eq!(arrays["step"].values, arrays["steps"].values);
+    let cells = n * n;
+    for (i, step) in steps.iter().enumerate() {
+        for kind in ["pressure", "displacement", "gap", "contact"] {
+            assert_eq!(arrays[kind].shape, vec![count, n, n], "{kind}");
+            assert_eq!(
+                arrays[kind].values[i * cells..(i + 1) * cells],
+                arrays[&format!("{kind}_{step:06}")].values[..],
+                "{kind} layer {i}"
+            );
+        }
+    }
+    let nc = Nc::parse(&std::fs::read(out.join("fields.nc")).unwrap());
+    let names = |list: &[(String, Vec<u32>, u32, u32)]| list.iter().map(|v| v.0.clone()).collect::<Vec<_>>();
+    assert_eq!(
+        nc.dims,
+        vec![
+            ("step".to_string(), count as u32),
+            ("y".into(), n as u32),
+            ("x".into(), n as u32)
+        ]
+    );
+    assert!(nc.globals.contains(&("Conventions".into(), "CF-1.8".into())));
+    assert_eq!(
+        names(&nc.vars),
+        [
+            "step",
+            "y",
+            "x",
+            "depth",
+            "offset",
+            "heights",
+            "surface",
+            "pressure",
+            "displacement",
+            "gap",
+            "contact"
+        ]
+    );
+    let var = |name: &str| nc.vars.iter().find(|v| v.0 == name).unwrap().clone();
+    assert_eq!(var("pressure").1, vec![0, 1, 2], "pressure(step, y, x)");
+    assert_eq!(var("step").2, 4, "NC_INT");
+    let step_values: Vec<f64> = (0..count)
+        .map(|i| nc.be_i32(var("step").3 as usize + 4 * i) as f64)
+        .collect();
+    assert_eq!(step_values, arrays["steps"].values);
+    let x0 = f64::from_be_bytes(nc.bytes[var("x").3 as usize..][..8].try_into().unwrap());
+    assert_eq!(x0, arrays["x"].values[0], "centred x");
+    let last = var("pressure").3 as usize + 8 * (count - 1) * cells;
+    let p_last: Vec<f64> = (0..cells)
+        .map(|k| f64::from_be_bytes(nc.bytes[last + 8 * k..][..8].try_into().unwrap()))
+        .collect();
+    assert_eq!(p_last, arrays["pressure"].values[(count - 1) * cells..]);
+}
+
+/// The header of a NetCDF classic (CDF-1) file: dimensions, text global attributes and
+/// variables (name, dimension ids, type, begin).
+struct Nc {
+    bytes: Vec<u8>,
+    dims: Vec<(String, u32)>,
+    globals: Vec<(String, String)>,
+    vars: Vec<(String, Vec<u32>, u32, u32)>,
+}
+
+impl Nc {
+    fn parse(bytes: &[u8]) -> Self {
+        assert_eq!(&bytes[..4], b"CDF\x01");
+        let mut out = Nc {
+            bytes: bytes.to_vec(),
+            dims: Vec::new(),
+            globals: Vec::new(),
+            vars: Vec::new(),
+        };
+        let mut at = 8usize;
+        let u32_at = |at: &mut usize| {
+            let v = u32::from_be_bytes(bytes[*at..*at + 4].try_into().unwrap());
+            *at += 4;
+            v
+        };
+        let text_at = |at: &mut usize| {
+            let len = u32_at(at) as usize;
+            let text = String::from_utf8(bytes[*at..*at + len].to_vec()).unwrap();
+            *at += len.div_ceil(4) * 4;
+            text
+        };
+        let attributes = |at: &mut usize| {
+            let _tag = u32_at(at);
+            (0..u32_at(at))
+                .map(|_| {
+                    let name = text_at(at);
+                    assert_eq!(u32_at(at), 2, "text attribute");
+                    (name, text_at(at))
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(u32_at(&mut at), 10);
+        for _ in 0..u32_at(&mut at) {
+            let name = text_at(&mut at);
+            out.dims.push((name, u32_at(&mut at)));
+        }
+        out.globals = attributes(&mut at);
+        assert_eq!(u32_at(&mut at), 11);
+        for _ in 0..u32_at(&mut at) {
+            let name = text_at(&mut at);
+            let ids = (0..u32_at(&mut at)).map(|_| u32_at(&mut at)).collect();
+            let _ = attributes(&mut at);
+            let ty = u32_at(&mut at);
+            let _vsize = u32_at(&mut at);
+            out.vars.push((name, ids, ty, u32_at(&mut at)));
+        }
+        out
+    }
+
+    fn be_i32(&self, at: usize) -> i32 {
+        i32::from_be_bytes(self.bytes[at..at + 4].try_into().unwrap())
+    }
 }
 
 #[test]

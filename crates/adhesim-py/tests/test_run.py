@@ -469,7 +469,13 @@ def test_cli_fields_npz_follows_the_documented_contract(tmp_path):
         for name in ("depths", "offsets"):
             assert npz[name].shape == steps.shape and npz[name].dtype == np.float64
         per_step = {f"{f}_{int(s):06d}" for s in steps for f in ("pressure", "displacement", "gap", "contact")}
-        assert names == {"x", "y", "heights", "surface", "steps", "depths", "offsets"} | per_step
+        stacked = {"step", "pressure", "displacement", "gap", "contact"}  # fields contract 2
+        assert names == {"x", "y", "heights", "surface", "steps", "depths", "offsets"} | per_step | stacked
+        assert npz["step"].dtype == np.int64 and np.array_equal(npz["step"], steps)
+        for field in ("pressure", "displacement", "gap", "contact"):
+            assert npz[field].shape == (len(steps), n, n)
+            for k, step in enumerate(steps.astype(int)):
+                assert np.array_equal(npz[field][k], npz[f"{field}_{step:06d}"])
         dx = size / n
         # element centres (j - N/2)·Δ, the same along y
         assert np.allclose(npz["x"], (np.arange(n) - n // 2) * dx, rtol=0, atol=1e-12 * size)

@@ -67,7 +67,7 @@ pub use parse::{read_height_map, read_npy_2d};
 pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
-pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder};
+pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder, Stacked};
 pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes, Summary};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 

@@ -184,6 +184,29 @@ pub struct SnapshotFields {
     snapshots: Vec<FieldSnapshot>,
     gaps: Vec<Vec<f64>>,
     names: Vec<[String; 4]>,
+    /// The step numbers and the fields stacked along the step axis, (K, Ny, Nx).
+    step: Vec<i64>,
+    stacked: Stacked,
+}
+
+/// The snapshot fields stacked along the step axis, (K, Ny, Nx), row-major.
+#[derive(Debug, Clone, Default)]
+pub struct Stacked {
+    pub pressure: Vec<f64>,
+    pub displacement: Vec<f64>,
+    pub gap: Vec<f64>,
+    pub contact: Vec<bool>,
+}
+
+impl Stacked {
+    fn of(snapshots: &[FieldSnapshot], gaps: &[Vec<f64>]) -> Self {
+        Self {
+            pressure: snapshots.iter().flat_map(|s| s.pressure.iter().copied()).collect(),
+            displacement: snapshots.iter().flat_map(|s| s.displacement.iter().copied()).collect(),
+            gap: gaps.iter().flatten().copied().collect(),
+            contact: snapshots.iter().flat_map(|s| s.contact.iter().copied()).collect(),
+        }
+    }
 }
 
 impl SnapshotFields {
@@ -208,7 +231,7 @@ impl SnapshotFields {
         let at_zero = profile_at(0.0);
         let surface: Vec<bool> = at_zero.iter().map(|z| z.is_finite()).collect();
         let heights = at_zero.iter().map(|&z| if z.is_finite() { z } else { 0.0 }).collect();
-        let gaps = snapshots
+        let gaps: Vec<Vec<f64>> = snapshots
             .iter()
             .map(|s| {
                 profile_at(s.offset)
@@ -232,6 +255,8 @@ impl SnapshotFields {
                 .iter()
                 .map(|s| ["pressure", "displacement", "gap", "contact"].map(|f| format!("{f}_{:06}", s.step)))
                 .collect(),
+            step: snapshots.iter().map(|s| s.step as i64).collect(),
+            stacked: Stacked::of(&snapshots, &gaps),
             snapshots,
             gaps,
         }
@@ -255,6 +280,26 @@ impl SnapshotFields {
     /// The snapshots, by step.
     pub fn snapshots(&self) -> &[FieldSnapshot] {
         &self.snapshots
+    }
+
+    /// The step numbers, (K,).
+    pub fn steps(&self) -> &[i64] {
+        &self.step
+    }
+
+    /// The depths d and offsets X of the steps, (K,) each.
+    pub fn depths_offsets(&self) -> (&[f64], &[f64]) {
+        (&self.depths, &self.offsets)
+    }
+
+    /// The indenter profile at X = 0 (0 where it has no surface), (Ny, Nx).
+    pub fn heights(&self) -> &[f64] {
+        &self.heights
+    }
+
+    /// The fields stacked along the step axis, (K, Ny, Nx).
+    pub fn stacked(&self) -> &Stacked {
+        &self.stacked
     }
 
     /// The gap g = u + z − d of snapshot `index` (0 where the indenter has no surface).
@@ -288,14 +333,24 @@ impl SnapshotFields {
         arrays
     }
 
-    /// The arrays of `fields.npz`, in its order: `x`, `y`, then [`Self::field_arrays`].
-    /// `shapes` holds the shapes the arrays borrow (see [`Self::shapes`]).
+    /// The arrays of `fields.npz`, in its order: `x`, `y`, then [`Self::field_arrays`],
+    /// then (fields contract 2) `step` and the stacked `pressure`, `displacement`, `gap`,
+    /// `contact` (K, Ny, Nx). `shapes` holds the shapes the arrays borrow (see
+    /// [`Self::shapes`]).
     pub fn npz_arrays<'a>(&'a self, shapes: &'a FieldShapes) -> Vec<NamedArray<'a>> {
         let mut arrays = vec![
             NamedArray::f64("x", &shapes.x, &self.x).with_unit("length"),
             NamedArray::f64("y", &shapes.y, &self.y).with_unit("length"),
         ];
         arrays.extend(self.field_arrays(&shapes.field, &shapes.count));
+        let (stacked, by_step) = (&self.stacked, &shapes.stacked);
+        arrays.extend([
+            NamedArray::i64("step", &shapes.count, &self.step),
+            NamedArray::f64("pressure", by_step, &stacked.pressure).with_unit("pressure"),
+            NamedArray::f64("displacement", by_step, &stacked.displacement).with_unit("length"),
+            NamedArray::f64("gap", by_step, &stacked.gap).with_unit("length"),
+            NamedArray::bool("contact", by_step, &stacked.contact),
+        ]);
         arrays
     }
 
@@ -306,6 +361,7 @@ impl SnapshotFields {
             y: [self.ny],
             field: [self.ny, self.nx],
             count: [self.snapshots.len()],
+            stacked: [self.snapshots.len(), self.ny, self.nx],
         }
     }
 }
@@ -319,8 +375,10 @@ pub struct FieldShapes {
     pub y: [usize; 1],
     /// (Ny, Nx): the fields, row i at y_i.
     pub field: [usize; 2],
-    /// (K,): `steps`, `depths`, `offsets`.
+    /// (K,): `steps`, `depths`, `offsets`, `step`.
     pub count: [usize; 1],
+    /// (K, Ny, Nx): the stacked fields.
+    pub stacked: [usize; 3],
 }
 
 #[cfg(test)]
@@ -408,7 +466,28 @@ mod tests {
         }
         let shapes = fields.shapes();
         let arrays = fields.npz_arrays(&shapes);
-        assert_eq!(arrays.len(), 7 + 4 * steps.len());
+        assert_eq!(arrays.len(), 7 + 4 * steps.len() + 5);
+        let tail: Vec<(&str, &[usize])> = arrays[arrays.len() - 5..].iter().map(|a| (a.name, a.shape)).collect();
+        let k = steps.len();
+        let (ny, nx) = (scenario.grid.ny(), scenario.grid.nx());
+        assert_eq!(
+            tail,
+            [
+                ("step", &[k][..]),
+                ("pressure", &[k, ny, nx][..]),
+                ("displacement", &[k, ny, nx][..]),
+                ("gap", &[k, ny, nx][..]),
+                ("contact", &[k, ny, nx][..])
+            ]
+        );
+        // Layer i of a stacked field is snapshot i's field.
+        let cells = ny * nx;
+        for (i, s) in fields.snapshots().iter().enumerate() {
+            assert_eq!(fields.steps()[i], s.step as i64);
+            assert_eq!(&fields.stacked().pressure[i * cells..(i + 1) * cells], &s.pressure[..]);
+            assert_eq!(&fields.stacked().gap[i * cells..(i + 1) * cells], fields.gap(i));
+            assert_eq!(&fields.stacked().contact[i * cells..(i + 1) * cells], &s.contact[..]);
+        }
         let names: Vec<&str> = arrays.iter().take(8).map(|a| a.name).collect();
         assert_eq!(
             names,

@@ -29,7 +29,7 @@ use std::path::Path;
 
 pub use bytes::MAX_POINTS;
 pub use error::TopographyError;
-pub use netcdf::{write_netcdf, NetcdfGrid};
+pub use netcdf::{write_netcdf, write_netcdf_variables, NcVariable, NetcdfGrid};
 pub use process::{ResampleMethod, Resampled, Undersampling};
 pub use units::length_unit_to_metres;
 pub use write_npz::{write_npz, ArrayData, NamedArray};

@@ -7,7 +7,8 @@
 //! 11, count, then per variable: name, dimension ids, attributes, type, `vsize`, `begin`);
 //! then each variable's data at its `begin`, padded to 4 bytes. A name is a 32-bit length and
 //! its bytes padded with zeros to 4; an absent list is two zero words. Types used: `NC_BYTE`
-//! (1) for masks, `NC_CHAR` (2) for text attributes, `NC_DOUBLE` (6) for fields.
+//! (1) for masks, `NC_CHAR` (2) for text attributes, `NC_INT` (4) for step numbers,
+//! `NC_DOUBLE` (6) for fields.
 
 use std::io::Write;
 use std::path::Path;
@@ -20,6 +21,7 @@ const NC_VARIABLE: u32 = 11;
 const NC_ATTRIBUTE: u32 = 12;
 const NC_BYTE: u32 = 1;
 const NC_CHAR: u32 = 2;
+const NC_INT: u32 = 4;
 const NC_DOUBLE: u32 = 6;
 
 /// The grid of the fields: dimensions `y` (ny) and `x` (nx) with coordinate variables of the
@@ -39,9 +41,20 @@ struct Variable<'a> {
     attributes: Vec<(String, String)>,
 }
 
+/// A variable of [`write_netcdf_variables`]: an array, the names of its dimensions (their
+/// lengths must be its shape) and its text attributes (the array's unit is added as
+/// `units`).
+#[derive(Clone, Debug)]
+pub struct NcVariable<'a> {
+    pub array: NamedArray<'a>,
+    pub dims: Vec<&'a str>,
+    pub attributes: Vec<(&'a str, String)>,
+}
+
 /// Writes `arrays` to `path` as a NetCDF classic file. Arrays of shape `[ny, nx]` get the
 /// dimensions `(y, x)`; other shapes get dimensions named `NAME_0`, `NAME_1`, …; each array's
 /// unit becomes its `units` attribute. `global_attributes` are written as text attributes.
+/// The coordinate variables are `x = j·dx`, `y = i·dy` in metres.
 pub fn write_netcdf(
     path: impl AsRef<Path>,
     grid: &NetcdfGrid,
@@ -59,56 +72,98 @@ pub fn write_netcdf(
     }
     let x: Vec<f64> = (0..grid.nx).map(|i| i as f64 * grid.dx).collect();
     let y: Vec<f64> = (0..grid.ny).map(|i| i as f64 * grid.dy).collect();
-    let mut dimensions: Vec<(String, usize)> = vec![("y".into(), grid.ny), ("x".into(), grid.nx)];
-    let metres = vec![("units".to_string(), "m".to_string())];
+    let names: Vec<Vec<String>> = arrays
+        .iter()
+        .map(|a| (0..a.shape.len()).map(|axis| format!("{}_{axis}", a.name)).collect())
+        .collect();
+    let mut dimensions: Vec<(&str, usize)> = vec![("y", grid.ny), ("x", grid.nx)];
+    let (x_shape, y_shape) = ([grid.nx], [grid.ny]);
+    let metres = || vec![("units", "m".to_string())];
     let mut variables = vec![
-        Variable {
-            name: "x".into(),
-            dims: vec![1],
-            data: ArrayData::F64(&x),
-            attributes: metres.clone(),
+        NcVariable {
+            array: NamedArray::f64("x", &x_shape, &x),
+            dims: vec!["x"],
+            attributes: metres(),
         },
-        Variable {
-            name: "y".into(),
-            dims: vec![0],
-            data: ArrayData::F64(&y),
-            attributes: metres,
+        NcVariable {
+            array: NamedArray::f64("y", &y_shape, &y),
+            dims: vec!["y"],
+            attributes: metres(),
         },
     ];
-    for (index, array) in arrays.iter().enumerate() {
-        array.validate(path)?;
-        if ["x", "y"].contains(&array.name) || arrays[..index].iter().any(|a| a.name == array.name) {
-            return Err(TopographyError::InvalidArgument {
-                name: "array",
-                value: array.name.to_string(),
-                why: format!("named twice (x and y are the coordinates) for {}", path.display()),
-            });
-        }
+    for (array, names) in arrays.iter().zip(&names) {
         let dims = if array.shape == [grid.ny, grid.nx] {
-            vec![0, 1]
+            vec!["y", "x"]
         } else {
-            array
-                .shape
-                .iter()
-                .enumerate()
-                .map(|(axis, &len)| {
-                    dimensions.push((format!("{}_{axis}", array.name), len));
-                    dimensions.len() - 1
-                })
-                .collect()
+            dimensions.extend(names.iter().zip(array.shape).map(|(n, &len)| (n.as_str(), len)));
+            names.iter().map(String::as_str).collect()
         };
-        let mut attributes = Vec::new();
-        if let Some(unit) = array.unit {
-            attributes.push(("units".to_string(), unit.to_string()));
+        variables.push(NcVariable {
+            array: *array,
+            dims,
+            attributes: Vec::new(),
+        });
+    }
+    write_netcdf_variables(path, &dimensions, &variables, global_attributes)
+}
+
+/// Writes `variables` on the dimensions `dimensions` (name, length) to `path` as a NetCDF
+/// classic file, with the text attributes `global_attributes`. Names must be distinct;
+/// each variable's dimensions must exist and their lengths be its shape; floats finite;
+/// integers must fit 32 bits (`NC_INT`).
+pub fn write_netcdf_variables(
+    path: impl AsRef<Path>,
+    dimensions: &[(&str, usize)],
+    variables: &[NcVariable<'_>],
+    global_attributes: &[(&str, &str)],
+) -> Result<(), TopographyError> {
+    let path = path.as_ref();
+    let invalid = |value: &str, why: String| TopographyError::InvalidArgument {
+        name: "NetCDF variable",
+        value: value.to_string(),
+        why: format!("{why} (writing {})", path.display()),
+    };
+    let mut encoded = Vec::with_capacity(variables.len());
+    for (index, variable) in variables.iter().enumerate() {
+        let array = &variable.array;
+        array.validate(path)?;
+        if variables[..index].iter().any(|v| v.array.name == array.name) {
+            return Err(invalid(array.name, "named twice".into()));
         }
-        variables.push(Variable {
+        let mut dims = Vec::with_capacity(variable.dims.len());
+        for name in &variable.dims {
+            let id = dimensions
+                .iter()
+                .position(|(d, _)| d == name)
+                .ok_or_else(|| invalid(array.name, format!("has no dimension {name:?}")))?;
+            dims.push(id);
+        }
+        let lengths: Vec<usize> = dims.iter().map(|&d| dimensions[d].1).collect();
+        if lengths != array.shape {
+            return Err(invalid(
+                array.name,
+                format!("shape {:?} is not its dimensions' lengths {lengths:?}", array.shape),
+            ));
+        }
+        if let ArrayData::I64(values) = array.data {
+            if let Some(v) = values.iter().find(|v| i32::try_from(**v).is_err()) {
+                return Err(invalid(array.name, format!("value {v} does not fit a 32-bit NC_INT")));
+            }
+        }
+        let mut attributes: Vec<(String, String)> = Vec::new();
+        if let Some(unit) = array.unit {
+            attributes.push(("units".into(), unit.into()));
+        }
+        attributes.extend(variable.attributes.iter().map(|(k, v)| (k.to_string(), v.clone())));
+        encoded.push(Variable {
             name: array.name.to_string(),
             dims,
             data: array.data,
             attributes,
         });
     }
-    let bytes = encode(&dimensions, &variables, global_attributes);
+    let dimensions: Vec<(String, usize)> = dimensions.iter().map(|(n, l)| (n.to_string(), *l)).collect();
+    let bytes = encode(&dimensions, &encoded, global_attributes);
     let io_error = |source| TopographyError::Io {
         path: path.to_path_buf(),
         action: "writing",
@@ -152,6 +207,7 @@ fn data_bytes(data: &ArrayData<'_>) -> usize {
     match data {
         ArrayData::F64(v) => v.len() * 8,
         ArrayData::Bool(v) => v.len(),
+        ArrayData::I64(v) => v.len() * 4,
     }
 }
 
@@ -186,10 +242,10 @@ fn encode(dimensions: &[(String, usize)], variables: &[Variable<'_>], globals: &
             );
             put_u32(
                 &mut out,
-                if matches!(variable.data, ArrayData::F64(_)) {
-                    NC_DOUBLE
-                } else {
-                    NC_BYTE
+                match variable.data {
+                    ArrayData::F64(_) => NC_DOUBLE,
+                    ArrayData::I64(_) => NC_INT,
+                    ArrayData::Bool(_) => NC_BYTE,
                 },
             );
             let vsize = padded_len(data_bytes(&variable.data));
@@ -215,6 +271,10 @@ fn encode(dimensions: &[(String, usize)], variables: &[Variable<'_>], globals: &
         match variable.data {
             ArrayData::F64(values) => values.iter().for_each(|v| out.extend_from_slice(&v.to_be_bytes())),
             ArrayData::Bool(values) => out.extend(values.iter().map(|&b| u8::from(b))),
+            // Checked to fit 32 bits by `write_netcdf_variables`.
+            ArrayData::I64(values) => values
+                .iter()
+                .for_each(|&v| out.extend_from_slice(&(v as i32).to_be_bytes())),
         }
         out.resize(padded_len(out.len()), 0);
     }

@@ -13,6 +13,8 @@ pub enum ArrayData<'a> {
     F64(&'a [f64]),
     /// Stored as numpy bool (`|b1`).
     Bool(&'a [bool]),
+    /// Stored as little-endian int64 (`<i8`); NetCDF classic stores it as 32-bit `NC_INT`.
+    I64(&'a [i64]),
 }
 
 impl ArrayData<'_> {
@@ -20,6 +22,7 @@ impl ArrayData<'_> {
         match self {
             Self::F64(v) => v.len(),
             Self::Bool(v) => v.len(),
+            Self::I64(v) => v.len(),
         }
     }
 }
@@ -42,6 +45,16 @@ impl<'a> NamedArray<'a> {
             name,
             shape,
             data: ArrayData::F64(values),
+            unit: None,
+        }
+    }
+
+    /// An int64 array (step numbers).
+    pub fn i64(name: &'a str, shape: &'a [usize], values: &'a [i64]) -> Self {
+        Self {
+            name,
+            shape,
+            data: ArrayData::I64(values),
             unit: None,
         }
     }
@@ -103,6 +116,7 @@ fn npy_header(array: &NamedArray<'_>) -> Vec<u8> {
     let descr = match array.data {
         ArrayData::F64(_) => "<f8",
         ArrayData::Bool(_) => "|b1",
+        ArrayData::I64(_) => "<i8",
     };
     let shape = match array.shape {
         [] => "()".to_string(),
@@ -141,6 +155,9 @@ fn write_values(data: &ArrayData<'_>, range: std::ops::Range<usize>, out: &mut i
                 .iter()
                 .for_each(|v| piece.extend_from_slice(&v.to_le_bytes())),
             ArrayData::Bool(values) => piece.extend(values[start..end].iter().map(|&b| u8::from(b))),
+            ArrayData::I64(values) => values[start..end]
+                .iter()
+                .for_each(|v| piece.extend_from_slice(&v.to_le_bytes())),
         }
         out.write_all(&piece)?;
         start = end;
@@ -165,7 +182,7 @@ const WORTHWHILE_RATIO: f64 = 0.75;
 /// negligible).
 fn deflate_pays(data: &ArrayData<'_>) -> bool {
     let element_bytes = match data {
-        ArrayData::F64(_) => 8,
+        ArrayData::F64(_) | ArrayData::I64(_) => 8,
         ArrayData::Bool(_) => 1,
     };
     let chunk = SAMPLE_CHUNK_BYTES / element_bytes;

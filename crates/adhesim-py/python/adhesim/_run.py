@@ -142,10 +142,75 @@ class RunResult:
         parts += [f"{name}={value}" for name, value in rows.items()]
         return f"RunResult({', '.join(parts)})"
 
+    def to_xarray(self):
+        """The snapshots as an ``xarray.Dataset``, laid out as ``fields.nc`` (docs/output.md).
+
+        Returns
+        -------
+        xarray.Dataset
+            ``pressure``, ``displacement``, ``gap`` and ``contact`` on the dimensions
+            ``(step, y, x)``; the coordinates ``step`` (int64 step numbers), ``x``, ``y``
+            (element centres relative to the indenter axis, the scenario's length unit) and
+            ``depth``, ``offset`` on ``step``. ``ds.pressure.sel(step=3)`` is the pressure
+            of step 3.
+
+        Raises
+        ------
+        ImportError
+            xarray is not installed (``pip install xarray``).
+        ValueError
+            the element centres are unknown: no grid in ``summary["inputs"]`` and no
+            ``fields.npz`` in ``out``.
+        """
+        try:
+            import xarray
+        except ImportError:
+            raise ImportError(
+                "RunResult.to_xarray needs xarray, which is not installed: pip install xarray"
+            ) from None
+        x, y = _centres(self)
+        dims = ("step", "y", "x")
+        fields = {}
+        for kind in ("pressure", "displacement", "gap", "contact"):
+            layers = [getattr(s, kind) for s in self.snapshots]
+            if any(layer is None for layer in layers):
+                continue
+            stacked = np.stack(layers) if layers else np.zeros((0, y.size, x.size))
+            unit = {"pressure": "pressure", "contact": None}.get(kind, "length")
+            fields[kind] = xarray.Variable(dims, stacked, {"units": unit} if unit else {})
+        coords = {
+            "step": ("step", np.array([s.step for s in self.snapshots], dtype=np.int64)),
+            "x": ("x", x, {"units": "length", "axis": "X"}),
+            "y": ("y", y, {"units": "length", "axis": "Y"}),
+            "depth": ("step", np.array([s.depth for s in self.snapshots]), {"units": "length"}),
+            "offset": ("step", np.array([s.offset for s in self.snapshots]), {"units": "length"}),
+        }
+        attrs = {"Conventions": "CF-1.8", "title": "adhesim contact fields",
+                 "results_revision": str(_adhesim.RESULTS_REVISION)}
+        return xarray.Dataset(fields, coords=coords, attrs=attrs)
+
     def _repr_html_(self) -> str:
         """A notebook's display: a table of the grid, steps, snapshots, folder and key
         results, and the force curve F(d) as an inline PNG when matplotlib is importable."""
         return _display.run_result_html(self)
+
+
+def _centres(result: RunResult):
+    """The element centres (x, y) of ``result``'s grid: ``fields.npz``'s ``x``, ``y`` when
+    ``out`` has one, else (j - Nx//2)·Δx, (i - Ny//2)·Δy from ``summary["inputs"]["grid"]``."""
+    npz = None if result.out is None else Path(result.out) / "fields.npz"
+    if npz is not None and npz.is_file():
+        with np.load(npz) as archive:
+            return np.array(archive["x"]), np.array(archive["y"])
+    grid = result.summary.get("inputs", {}).get("grid", {})
+    if "n" not in grid or "size" not in grid:
+        raise ValueError("to_xarray: the grid is unknown (no summary['inputs']['grid'], no fields.npz)")
+    n, size = grid["n"], grid["size"]
+    nx, ny = (n, n) if isinstance(n, int) else n
+    sx, sy = (size, size) if isinstance(size, (int, float)) else size
+    x = (np.arange(nx) - nx // 2) * (sx / nx)
+    y = (np.arange(ny) - ny // 2) * (sy / ny)
+    return x, y
 
 
 def _plain(value):

@@ -9,7 +9,7 @@
 
 use crate::{SnapshotFields, SnapshotRecorder, ValidScenario};
 use adhesim::StepView;
-use adhesim_topography::{write_netcdf, write_npz, NetcdfGrid};
+use adhesim_topography::{write_netcdf_variables, write_npz, NamedArray, NcVariable};
 use anyhow::{Context, Result};
 use std::path::Path;
 
@@ -38,29 +38,113 @@ impl FieldsRecorder {
             Ok(write_npz(path, &fields.npz_arrays(&shapes))?)
         })?;
         if self.netcdf {
-            let (nx, ny) = fields.counts();
-            let grid = NetcdfGrid {
-                nx,
-                ny,
-                dx: scenario.grid.dx(),
-                dy: scenario.grid.dy(),
-            };
-            let (x_origin, y_origin) = (format!("{:e}", fields.x()[0]), format!("{:e}", fields.y()[0]));
-            let attributes = [
-                ("title", "adhesim contact fields"),
-                (
-                    "coordinates",
-                    "x, y start at 0; the element centre is x + x_origin, y + y_origin",
-                ),
-                ("x_origin", x_origin.as_str()),
-                ("y_origin", y_origin.as_str()),
-            ];
-            let arrays = fields.field_arrays(&shapes.field, &shapes.count);
-            write_renamed(&out.join("fields.nc"), |path| {
-                Ok(write_netcdf(path, &grid, &arrays, &attributes)?)
-            })?;
+            write_renamed(&out.join("fields.nc"), |path| Ok(write_fields_nc(path, &fields)?))?;
         }
         Ok(fields)
+    }
+}
+
+/// The version of the `fields.npz` / `fields.nc` layout (docs/output.md, "fields.npz"):
+/// 2 added the `step` dimension, centred coordinates and CF attributes.
+pub const FIELDS_CONTRACT: &str = "2";
+
+/// Writes `fields.nc` (docs/output.md): dimensions `step` (K), `y` (Ny), `x` (Nx); the
+/// coordinates `step` (int), `x`, `y` (element centres) and the auxiliary coordinates
+/// `depth(step)`, `offset(step)`; `heights`, `surface` on (y, x); `pressure`,
+/// `displacement`, `gap`, `contact` on (step, y, x); CF-1.8 attributes.
+fn write_fields_nc(path: &Path, fields: &SnapshotFields) -> Result<(), adhesim_topography::TopographyError> {
+    let (nx, ny) = fields.counts();
+    let k = fields.snapshots().len();
+    let (x_shape, y_shape, k_shape, field, stack) = ([nx], [ny], [k], [ny, nx], [k, ny, nx]);
+    let (depths, offsets) = fields.depths_offsets();
+    let stacked = fields.stacked();
+    let text = |pairs: &[(&'static str, &str)]| -> Vec<(&'static str, String)> {
+        pairs.iter().map(|(k, v)| (*k, v.to_string())).collect()
+    };
+    let field_attrs = |long_name: &str| text(&[("long_name", long_name), ("coordinates", "depth offset")]);
+    let variables = vec![
+        var(
+            NamedArray::i64("step", &k_shape, fields.steps()),
+            &["step"],
+            text(&[("long_name", "step number (curve.csv's step)"), ("axis", "T")]),
+        ),
+        var(
+            NamedArray::f64("y", &y_shape, fields.y()).with_unit("length"),
+            &["y"],
+            text(&[
+                ("long_name", "element centre y relative to the indenter axis"),
+                ("axis", "Y"),
+            ]),
+        ),
+        var(
+            NamedArray::f64("x", &x_shape, fields.x()).with_unit("length"),
+            &["x"],
+            text(&[
+                ("long_name", "element centre x relative to the indenter axis"),
+                ("axis", "X"),
+            ]),
+        ),
+        var(
+            NamedArray::f64("depth", &k_shape, depths).with_unit("length"),
+            &["step"],
+            text(&[("long_name", "indentation depth d (> 0 into the body)")]),
+        ),
+        var(
+            NamedArray::f64("offset", &k_shape, offsets).with_unit("length"),
+            &["step"],
+            text(&[("long_name", "lateral position X of the indenter axis")]),
+        ),
+        var(
+            NamedArray::f64("heights", &field, fields.heights()).with_unit("length"),
+            &["y", "x"],
+            text(&[("long_name", "indenter profile z at X = 0 (0 where surface is 0)")]),
+        ),
+        var(
+            NamedArray::bool("surface", &field, fields.surface()),
+            &["y", "x"],
+            text(&[("long_name", "1 where the indenter has a surface, 0 where z is infinite")]),
+        ),
+        var(
+            NamedArray::f64("pressure", &stack, &stacked.pressure).with_unit("pressure"),
+            &["step", "y", "x"],
+            field_attrs("pressure (> 0 compressive, < 0 adhesive tension)"),
+        ),
+        var(
+            NamedArray::f64("displacement", &stack, &stacked.displacement).with_unit("length"),
+            &["step", "y", "x"],
+            field_attrs("normal surface displacement u (> 0 into the body)"),
+        ),
+        var(
+            NamedArray::f64("gap", &stack, &stacked.gap).with_unit("length"),
+            &["step", "y", "x"],
+            field_attrs("gap g = u + z - d (0 in contact)"),
+        ),
+        var(
+            NamedArray::bool("contact", &stack, &stacked.contact),
+            &["step", "y", "x"],
+            field_attrs("contact set (1 in contact, 0 outside)"),
+        ),
+    ];
+    let revision = adhesim::RESULTS_REVISION.to_string();
+    let globals = [
+        ("Conventions", "CF-1.8"),
+        ("title", "adhesim contact fields"),
+        ("source", "adhesim"),
+        ("results_revision", revision.as_str()),
+        ("fields_contract", FIELDS_CONTRACT),
+        (
+            "comment",
+            "units are the scenario's: length and pressure (= modulus) as given in scenario.toml",
+        ),
+    ];
+    write_netcdf_variables(path, &[("step", k), ("y", ny), ("x", nx)], &variables, &globals)
+}
+
+fn var<'a>(array: NamedArray<'a>, dims: &[&'a str], attributes: Vec<(&'a str, String)>) -> NcVariable<'a> {
+    NcVariable {
+        array,
+        dims: dims.to_vec(),
+        attributes,
     }
 }
 
