@@ -8,7 +8,7 @@
 //! logarithmic); a horizontal line marks y = 0 where the range crosses it; the legend lists
 //! the labelled series.
 
-use crate::log_ticks::{log_axis, log_tick_label};
+use crate::log_ticks::{log_axis, tick_label};
 use anyhow::{anyhow, Result};
 use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -355,25 +355,18 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    let scientific = |v: &f64| format!("{v:.1e}");
     let mut mesh = chart.configure_mesh();
     mesh.x_desc(&panel.x_label)
         .y_desc(&panel.y_label)
         .label_style((FAMILY, 14))
         .axis_desc_style((FAMILY, 16))
         .light_line_style(RGBColor(235, 235, 235));
-    let log_label_x = |v: &f64| log_tick_label(*v, (x0, x1));
-    let log_label_y = |v: &f64| log_tick_label(*v, (y0, y1));
-    if panel.log_x {
-        mesh.x_label_formatter(&log_label_x);
-    } else if panel.scientific_ticks {
-        mesh.x_labels(6).x_label_formatter(&scientific);
+    let label_x = |v: &f64| tick_label::<X>(*v, (x0, x1), panel.log_x, panel.scientific_ticks);
+    let label_y = |v: &f64| tick_label::<Y>(*v, (y0, y1), panel.log_y, panel.scientific_ticks);
+    if panel.scientific_ticks && !panel.log_x {
+        mesh.x_labels(6);
     }
-    if panel.log_y {
-        mesh.y_label_formatter(&log_label_y);
-    } else if panel.scientific_ticks {
-        mesh.y_label_formatter(&scientific);
-    }
+    mesh.x_label_formatter(&label_x).y_label_formatter(&label_y);
     mesh.draw().map_err(plot_error)?;
     let zero = (y0 < 0.0 && y1 > 0.0).then_some((0.0, 0.4));
     for (y, opacity) in zero.into_iter().chain(panel.guides_y.iter().map(|&y| (y, 0.25))) {

@@ -2,9 +2,11 @@
 //! few points its own rule picks (on a 0.25–4 axis only 1 and 2, on a PSD over 12 decades
 //! a handful of the decades), so the figures choose their own: every decade when the axis
 //! spans many, 1-2-5 within a few decades, and finer steps within one, labelled in
-//! plain numbers on an axis within 1e-3 … 1e4 and as `1e-11` on others.
+//! plain numbers on an axis within 1e-3 … 1e4 and as `1e-11` on others. Linear axes keep
+//! plotters' labels, with the zero tick snapped (`zero_snapped`).
 
 use plotters::coord::combinators::{BindKeyPoints, IntoLogRange, LogCoord, WithKeyPoints};
+use plotters::coord::ranged1d::ValueFormatter;
 
 /// Labelled (bold) and unlabelled (light) tick positions inside [low, high] (low > 0).
 pub fn log_ticks(low: f64, high: f64) -> (Vec<f64>, Vec<f64>) {
@@ -85,9 +87,45 @@ pub fn log_axis(low: f64, high: f64) -> WithKeyPoints<LogCoord<f64>> {
     (low..high).log_scale().with_key_points(bold).with_light_points(light)
 }
 
+/// A linear tick's value as labelled: tick positions are sums of float steps, so the zero
+/// tick can land at −1e-17 and print as "-0.0"; a tick within 1e-9 of the span from zero
+/// is zero.
+pub fn zero_snapped(value: f64, (low, high): (f64, f64)) -> f64 {
+    if value.abs() <= 1e-9 * (high - low).abs() {
+        0.0
+    } else {
+        value
+    }
+}
+
+/// A tick's label: `log_tick_label` on a log axis, else the zero-snapped value in
+/// scientific notation or in the axis type's own format (plotters' plain numbers).
+pub fn tick_label<Axis: ValueFormatter<f64>>(value: f64, range: (f64, f64), log: bool, scientific: bool) -> String {
+    if log {
+        log_tick_label(value, range)
+    } else if scientific {
+        format!("{:.1e}", zero_snapped(value, range))
+    } else {
+        Axis::format(&zero_snapped(value, range))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_zero_tick_off_by_rounding_is_labelled_zero() {
+        // 0.2 · 3 − 0.6 ≠ 0 in floating point: the tick a step sum lands on.
+        let off = 0.2 * 3.0 - 0.6;
+        assert!(off != 0.0);
+        assert_eq!(zero_snapped(-off, (-0.5, 1.3)), 0.0);
+        assert!(zero_snapped(-off, (-0.5, 1.3)).is_sign_positive());
+        assert_eq!(format!("{:.1}", zero_snapped(-1e-17, (-0.5, 1.3))), "0.0");
+        // A real small value on a small axis is kept.
+        assert_eq!(zero_snapped(-1e-17, (-1e-16, 1e-16)), -1e-17);
+        assert_eq!(zero_snapped(0.1, (-0.5, 1.3)), 0.1);
+    }
 
     #[test]
     fn a_johnson_parameter_axis_is_labelled_beyond_1_and_2() {
