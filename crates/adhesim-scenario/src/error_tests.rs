@@ -17,13 +17,24 @@ fn typed_error(replace: (&str, &str), overrides: &[&str]) -> ScenarioError {
 }
 
 const NONE: (&str, &str) = ("", "");
+
+/// A bad scenario (a text replacement and overrides of `MINIMAL`) and the error's kind,
+/// key, value and the start of its requirement.
+type Case<'a> = (
+    (&'a str, &'a str),
+    &'a [&'a str],
+    ErrorKind,
+    &'a str,
+    Option<&'a str>,
+    &'a str,
+);
 const ROUGH: &str = "[roughness]\nseed = 1\nrms_height = 0.001\nhurst = 0.8\n[indenter]";
 
 #[test]
 fn each_check_of_a_key_gives_the_key_the_value_and_the_requirement() {
     use ErrorKind::*;
     #[rustfmt::skip]
-    let cases: [((&str, &str), &[&str], ErrorKind, &str, Option<&str>, &str); 14] = [
+    let cases: [Case; 14] = [
         (NONE, &["protocol.max_retract_steps=0"], InvalidValue, "protocol.max_retract_steps", Some("0"), ">= 1"),
         (NONE, &["protocol.steps=0"], InvalidValue, "protocol.steps", Some("0"), "in 1..=1000000"),
         (NONE, &["protocol.step=0.1"], InvalidValue, "protocol.step", Some("0.1"), "absent when protocol.steps is given"),
