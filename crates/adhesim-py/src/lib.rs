@@ -15,6 +15,7 @@ mod reference;
 mod scenario;
 mod shapes;
 mod solvers;
+mod state;
 mod surface;
 mod sweep;
 mod views;

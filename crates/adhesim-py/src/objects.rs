@@ -1,11 +1,12 @@
-//! Grid, material, the elastic half-space operator and the contact state.
+//! Grid, material and the elastic half-space operator (the contact state: `state.rs`).
 
-use crate::convert::{count, elements, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
-use crate::views::Cached;
+use crate::convert::{count, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
 use adhesim::{Boundary, ElasticOperator};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+
+pub use crate::state::ContactState;
 
 /// A grid of boundary elements: `Grid(n, size)` is n × n square elements covering a square
 /// of side `size`; `Grid(nx, ny, size_x, size_y)` is nx columns (along x) and ny rows (along
@@ -15,16 +16,21 @@ use pyo3::prelude::*;
 /// the coordinate y, column j the coordinate x; element centres sit at (j − nx//2)·Δx,
 /// (i − ny//2)·Δy, so the origin is the centre of element (ny//2, nx//2).
 ///
-/// Args:
-///     n, size: elements per side (integer ≥ 2) and side length L (> 0, any length unit);
-///         or nx, ny, size_x, size_y.
-///     boundary: "free" (one contact on an infinite half-space) or "periodic" (the
-///         rectangle is one period of an infinite surface); positional after the sizes, or
-///         a keyword.
+/// Parameters
+/// ----------
+/// n, size : int, float
+///     Elements per side (≥ 2) and side length L (> 0, any length unit) of a square.
+/// nx, ny, size_x, size_y : int, int, float, float
+///     Or the columns, rows and side lengths of a rectangle.
+/// boundary : {"free", "periodic"}, default "free"
+///     One contact on an infinite half-space, or the rectangle as one period of an
+///     infinite surface; positional after the sizes, or a keyword.
 ///
-/// Raises:
-///     ValueError: a count < 2, a size not finite and > 0, an unknown boundary, or another
-///         number of arguments.
+/// Raises
+/// ------
+/// ValueError
+///     A count < 2, a size not finite and > 0, an unknown boundary, or another number of
+///     arguments.
 #[pyclass(module = "adhesim._adhesim", frozen, eq, from_py_object)]
 #[derive(Clone, Copy, PartialEq)]
 pub struct Grid {
@@ -249,8 +255,15 @@ fn boundary_name(boundary: Boundary) -> &'static str {
 /// Linear elastic half-space, characterised by its contact modulus E* = E/(1 − ν²)
 /// (against a rigid indenter; units of pressure).
 ///
-/// Raises:
-///     ValueError: contact_modulus not finite and > 0.
+/// Parameters
+/// ----------
+/// contact_modulus : float
+///     E* (> 0).
+///
+/// Raises
+/// ------
+/// ValueError
+///     contact_modulus not finite and > 0.
 #[pyclass(module = "adhesim._adhesim", frozen, from_py_object)]
 #[derive(Clone, Copy)]
 pub struct Material {
@@ -267,7 +280,23 @@ impl Material {
         })
     }
 
-    /// E* = E/(1 − ν²) from Young's modulus E (> 0) and Poisson's ratio ν in (−1, 0.5].
+    /// E* = E/(1 − ν²) from Young's modulus and Poisson's ratio.
+    ///
+    /// Parameters
+    /// ----------
+    /// youngs_modulus : float
+    ///     E (> 0).
+    /// poisson_ratio : float
+    ///     ν in (−1, 0.5].
+    ///
+    /// Returns
+    /// -------
+    /// Material
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     E or ν out of range.
     #[staticmethod]
     fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> PyResult<Self> {
         Ok(Self {
@@ -275,7 +304,21 @@ impl Material {
         })
     }
 
-    /// Two elastic bodies, each (E, ν): 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2.
+    /// Two elastic bodies: 1/E* = (1 − ν1²)/E1 + (1 − ν2²)/E2.
+    ///
+    /// Parameters
+    /// ----------
+    /// first, second : tuple of float
+    ///     (E, ν) of each body, E > 0 and ν in (−1, 0.5].
+    ///
+    /// Returns
+    /// -------
+    /// Material
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     E or ν out of range.
     #[staticmethod]
     fn from_two_bodies(first: (f64, f64), second: (f64, f64)) -> PyResult<Self> {
         Ok(Self {
@@ -301,6 +344,16 @@ impl Material {
 /// Signs: pressure p > 0 is compressive, displacement u > 0 points into the body. On a
 /// periodic grid the mean displacement is undefined (K̂(0) = 0): a uniform pressure gives
 /// u = 0.
+///
+/// Parameters
+/// ----------
+/// grid : Grid
+/// material : Material
+///
+/// Raises
+/// ------
+/// MemoryError
+///     The operator's FFT buffers exceed the memory available.
 #[pyclass(module = "adhesim._adhesim")]
 pub struct HalfSpace {
     pub inner: adhesim::HalfSpace,
@@ -330,14 +383,22 @@ impl HalfSpace {
 
     /// Surface displacement u = K p (length units) of a pressure field.
     ///
-    /// Args:
-    ///     pressure: float64 array of shape (n, n), > 0 compressive (units of pressure).
+    /// Parameters
+    /// ----------
+    /// pressure : array_like of float, shape (ny, nx)
+    ///     Pressure per element, > 0 compressive (units of pressure).
     ///
-    /// Returns:
-    ///     displacement: float64 array of shape (n, n), > 0 into the body.
+    /// Returns
+    /// -------
+    /// displacement : numpy.ndarray of float64, shape (ny, nx)
+    ///     > 0 into the body; a new, writeable array.
     ///
-    /// Raises:
-    ///     TypeError: not a float64 numpy array.  ValueError: wrong shape or non-finite.
+    /// Raises
+    /// ------
+    /// TypeError
+    ///     Not an array of real numbers.
+    /// ValueError
+    ///     Wrong shape or non-finite values.
     fn apply<'py>(&mut self, py: Python<'py>, pressure: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let grid = self.grid;
         read_field(pressure, "pressure", &grid, false, &mut self.scratch)?;
@@ -377,197 +438,6 @@ impl HalfSpace {
             "HalfSpace(grid={}, contact_modulus={})",
             describe(&self.grid),
             self.material.contact_modulus()
-        )
-    }
-}
-
-/// Fields of a contact configuration on a grid; also the warm start of the next solve or
-/// step (pass the same object again). Starts with no contact and no load.
-///
-/// The fields (`pressure`, `displacement`, `contact`, `gap`) are read-only float64 (bool
-/// for `contact`) arrays of shape (n, n), [row = y, column = x]: two accesses between
-/// solves return the same array (no copy), and writing into it raises ValueError. A solve
-/// or step on the state makes new arrays; arrays taken before keep their values (use
-/// `numpy.array(state.pressure)` for a writeable copy).
-#[pyclass(module = "adhesim._adhesim")]
-pub struct ContactState {
-    /// The library's state: change it only through [`ContactState::fields_mut`].
-    inner: adhesim::ContactState,
-    pub grid: adhesim::Grid,
-    /// Heights and depth of the last solve or step (for the gap).
-    pub last_heights: Vec<f64>,
-    pub last_depth: Option<f64>,
-    views: StateViews,
-}
-
-/// The read-only arrays handed out since the last change (crate::views).
-#[derive(Default)]
-struct StateViews {
-    pressure: Cached<f64>,
-    displacement: Cached<f64>,
-    contact: Cached<bool>,
-    gap: Cached<f64>,
-}
-
-impl ContactState {
-    pub fn fresh(grid: adhesim::Grid) -> Self {
-        Self {
-            inner: adhesim::ContactState::new(&grid),
-            grid,
-            last_heights: Vec::new(),
-            last_depth: None,
-            views: StateViews::default(),
-        }
-    }
-
-    /// The library's state, read only.
-    pub fn fields(&self) -> &adhesim::ContactState {
-        &self.inner
-    }
-
-    /// The library's state to change (a solve or step): forgets the arrays handed out, so
-    /// the next access to a field gives the new values.
-    pub fn fields_mut(&mut self) -> &mut adhesim::ContactState {
-        self.views = StateViews::default();
-        &mut self.inner
-    }
-
-    /// `ValueError` unless the state lives on `grid`.
-    pub fn check_grid(&self, grid: &adhesim::Grid) -> PyResult<()> {
-        if &self.grid == grid {
-            Ok(())
-        } else {
-            Err(PyValueError::new_err(format!(
-                "state is for {}; the solver's grid is {}",
-                describe(&self.grid),
-                describe(grid)
-            )))
-        }
-    }
-
-    /// Remembers the heights and depth the state was solved for.
-    pub fn record(&mut self, heights: &[f64], depth: f64) {
-        self.last_heights.clear();
-        self.last_heights.extend_from_slice(heights);
-        self.last_depth = Some(depth);
-        self.views.gap.clear();
-    }
-}
-
-#[pymethods]
-impl ContactState {
-    #[new]
-    fn new(grid: Grid) -> PyResult<Self> {
-        // Pressure, displacement, contact and the recorded heights, with numpy's copies.
-        fits_in_memory(
-            &format!("ContactState({})", grid.__repr__()),
-            elements(&grid.inner) * 40,
-        )?;
-        Ok(Self::fresh(grid.inner))
-    }
-
-    /// Pressure per element (> 0 compressive, < 0 tensile), shape (ny, nx), read-only.
-    #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.views
-            .pressure
-            .get(py, || field(py, &self.inner.pressure, &self.grid))
-    }
-
-    /// Normal surface displacement u = K p (> 0 into the body), shape (ny, nx), read-only.
-    #[getter]
-    fn displacement<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        self.views
-            .displacement
-            .get(py, || field(py, &self.inner.displacement, &self.grid))
-    }
-
-    /// Contact mask (True in contact), shape (ny, nx), read-only.
-    #[getter]
-    fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        self.views
-            .contact
-            .get(py, || field(py, &self.inner.contact, &self.grid))
-    }
-
-    /// Gap g = z − d + u ≥ 0 (0 in contact) for the heights z and depth d of the last
-    /// solve or step; +inf where the indenter has no surface. Read-only, shape (n, n).
-    ///
-    /// Raises:
-    ///     ValueError: the state has not been solved yet.
-    #[getter]
-    fn gap<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let Some(depth) = self.last_depth else {
-            return Err(PyValueError::new_err(
-                "gap: the state has not been solved yet (no heights and depth)",
-            ));
-        };
-        self.views.gap.get(py, || {
-            let gap: Vec<f64> = self
-                .last_heights
-                .iter()
-                .zip(&self.inner.displacement)
-                .map(|(z, u)| z - depth + u)
-                .collect();
-            field(py, &gap, &self.grid)
-        })
-    }
-
-    /// Depth d of the last solve or step (prescribed, or found under load control), or None.
-    #[getter]
-    fn depth(&self) -> Option<f64> {
-        self.last_depth
-    }
-
-    /// Normal force F = Δ²·Σp (> 0 compressive).
-    #[getter]
-    fn force(&self) -> f64 {
-        self.inner.force(self.grid.element_area())
-    }
-
-    /// Number of elements in contact.
-    #[getter]
-    fn contact_elements(&self) -> usize {
-        self.inner.contact_elements()
-    }
-
-    /// Real contact area Δ²·|C|.
-    #[getter]
-    fn contact_area(&self) -> f64 {
-        self.grid.element_area() * self.inner.contact_elements() as f64
-    }
-
-    /// Largest distance from `centre` = (x, y) to the centre of an element in contact
-    /// (the paper's contact radius, Sect. 2.3); 0 without contact.
-    #[pyo3(signature = (centre = (0.0, 0.0)), text_signature = "($self, centre=(0.0, 0.0))")]
-    fn contact_radius(&self, centre: (f64, f64)) -> f64 {
-        self.inner.contact_radius(&self.grid, centre)
-    }
-
-    /// The grid of the state.
-    #[getter]
-    fn grid(&self) -> Grid {
-        Grid { inner: self.grid }
-    }
-
-    /// An independent copy (e.g. to branch a load path from a saved state).
-    fn copy(&self) -> Self {
-        Self {
-            inner: self.inner.clone(),
-            grid: self.grid,
-            last_heights: self.last_heights.clone(),
-            last_depth: self.last_depth,
-            views: StateViews::default(),
-        }
-    }
-
-    fn __repr__(&self) -> String {
-        let depth = self.last_depth.map_or("None".to_string(), |d| format!("{d:?}"));
-        format!(
-            "ContactState(grid={}, depth={depth}, force={:e}, contact_elements={})",
-            describe(&self.grid),
-            self.inner.force(self.grid.element_area()),
-            self.inner.contact_elements()
         )
     }
 }

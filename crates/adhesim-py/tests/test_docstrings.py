@@ -42,13 +42,32 @@ def test_the_converted_functions_have_their_sections():
         assert "Parameters\n----------" in doc and "Returns\n-------" in doc, function.__name__
 
 
-def test_compiled_solvers_are_numpy_style():
-    """The solvers' docstrings (src/solvers.rs, src/adhesive.rs) and jkr_scales'; Grid,
-    Material, HalfSpace and ContactState (src/objects.rs) still have Google sections."""
-    objects = [adhesim.Ccg, adhesim.NestedActiveSet, adhesim.AdhesiveSolver, adhesim.reference.jkr_scales]
-    for obj in objects:
+COMPILED = [
+    adhesim.Grid,
+    adhesim.Material,
+    adhesim.HalfSpace,
+    adhesim.ContactState,
+    adhesim.Ccg,
+    adhesim.NestedActiveSet,
+    adhesim.AdhesiveSolver,
+    adhesim.SolveReport,
+    adhesim.StepReport,
+    adhesim.reference.jkr_scales,
+]
+
+
+def test_compiled_objects_are_numpy_style():
+    """The docstrings written in Rust (src/objects.rs, src/state.rs, src/solvers.rs,
+    src/adhesive.rs) and jkr_scales': no Google section on a class or any of its members,
+    and the constructors' parameters in a numpydoc section."""
+    for obj in COMPILED:
         members = [getattr(obj, m) for m in dir(obj) if not m.startswith("_")] if inspect.isclass(obj) else []
         for item in [obj, *members]:
             doc = inspect.getdoc(item) or ""
             assert not GOOGLE.search(doc), f"{getattr(item, '__qualname__', item)}: {GOOGLE.search(doc).group(0)!r}"
     assert "Parameters\n----------\noperator\n" in inspect.getdoc(adhesim.AdhesiveSolver)
+    assert "Parameters\n----------\nn, size : int, float\n" in inspect.getdoc(adhesim.Grid)
+    assert "Raises\n------\nValueError\n" in inspect.getdoc(adhesim.Material)
+    assert "Parameters\n----------\ngrid : Grid\n" in inspect.getdoc(adhesim.ContactState)
+    apply = inspect.getdoc(adhesim.HalfSpace.apply)
+    assert "Parameters\n----------\npressure : array_like" in apply and "Returns\n-------\ndisplacement" in apply

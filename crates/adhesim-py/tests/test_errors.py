@@ -226,3 +226,64 @@ def test_scenario_errors_carry_the_key_value_and_requirement():
     with pytest.raises(adhesim.ScenarioError, match=r"case 1 \(grid.n = -4\)") as info:
         adhesim.sweep(scenario, vary={"grid.n": [32, -4]})
     assert info.value.key == "grid.n"
+
+
+BASE = {
+    "grid": {"n": 16, "size": 0.25},
+    "material": {"contact_modulus": 1.0},
+    "adhesion": {"work_of_adhesion": 1e-5},
+    "indenter": {"shape": "sphere", "radius": 1.0},
+    "protocol": {"kind": "indent_pulloff", "max_depth": 2.0, "depth_unit": "jkr", "steps": 4},
+}
+
+
+@pytest.mark.parametrize(
+    "overrides, kind, key, value, requirement",
+    [
+        ({"protocol.max_retract_steps": 0}, "invalid_value", "protocol.max_retract_steps", "0", ">= 1"),
+        ({"protocol.steps": 0}, "invalid_value", "protocol.steps", "0", "in 1..=1000000"),
+        ({"protocol.step": 0.5}, "invalid_value", "protocol.step", "0.5", "absent when protocol.steps is given"),
+        ({"output.snapshot_steps": [2, -3]}, "invalid_value", "output.snapshot_steps", "-3", "steps >= 0"),
+        ({"material.youngs_modulus": 2.0}, "invalid_value", "material.contact_modulus", "1",
+         "absent when material.youngs_modulus or material.poisson_ratio is given"),
+        ({"adhesion.law": "dugdale"}, "missing_key", "adhesion.cohesive_stress", None, 'with adhesion.law = "dugdale"'),
+        ({"adhesion.range": 0.5}, "unknown_key", "adhesion.range", "0.5", 'absent with adhesion.law = "jkr"'),
+        ({"analysis.tau0": 1.0}, "invalid_value", "protocol.kind", '"indent_pulloff"', '"roll" or "slide" with [analysis]'),
+        ({"roughness.hurst": 0.8, "roughness.rms_height": 1e-4}, "missing_key", "roughness.seed", None,
+         "for a random surface"),
+        ({"roughness.hurst": 1.5, "roughness.rms_height": 1e-4, "roughness.seed": 1}, "invalid_value",
+         "roughness.hurst", "1.5", "in (0, 1]"),
+        ({"indenter.shape": "topography", "indenter.radius": None, "indenter.file": "no-such-map.npy",
+          "indenter.spacing": 0.01}, "file", "indenter.file", "no-such-map.npy", "a height map file adhesim reads"),
+    ],
+)
+def test_the_checks_of_each_key_reach_python_with_their_fields(overrides, kind, key, value, requirement):
+    """Checks that reached Python as bare messages before (key None): each gives the key,
+    the value as written, the requirement and the kind, and the message names the key."""
+    scenario = {section: dict(keys) for section, keys in BASE.items()}
+    for dotted, item in overrides.items():
+        section, name = dotted.split(".")
+        if item is None:
+            del scenario[section][name]
+        else:
+            scenario.setdefault(section, {})[name] = item
+    with pytest.raises(adhesim.ScenarioError) as info:
+        adhesim.run(scenario)
+    error = info.value
+    assert (error.kind, error.key) == (kind, key), str(error)
+    # A file's value is its path, joined to the folder relative paths resolve against.
+    assert error.value == value or (value and error.value.endswith("/" + value)), (error.value, str(error))
+    assert error.requirement is not None and error.requirement.startswith(requirement), (error.requirement, str(error))
+    assert key.split(".")[-1] in str(error)
+
+
+def test_a_sweep_pseudo_key_is_typed():
+    with pytest.raises(adhesim.ScenarioError, match=r"alpha must be > 0, got -1") as info:
+        adhesim.sweep(BASE, vary={"alpha": [-1.0]})
+    assert (info.value.key, info.value.value, info.value.requirement) == ("alpha", "-1", "> 0")
+
+
+def test_a_quantity_of_several_keys_gives_its_value_and_requirement_without_a_key():
+    with pytest.raises(adhesim.ScenarioError, match=r"adhesion.work_of_adhesion = 1e-200") as info:
+        adhesim.run(BASE, **{"adhesion.work_of_adhesion": 1e-200})
+    assert info.value.key is None and info.value.value is not None and info.value.requirement is not None

@@ -2,6 +2,7 @@
 //! (docs/cli.md, docs/physics.md §2.6). The sharp JKR-type criterion (`law = "jkr"`, the
 //! default) takes neither `cohesive_stress` nor `range` and is built in `pipeline.rs`.
 
+use crate::error::{ErrorKind, ScenarioError};
 use crate::model::{AdhesionSection, LawName, ScenarioFile};
 use crate::validate::positive;
 use adhesim::analysis::reference::{maugis_parameter, MaugisDugdale};
@@ -23,50 +24,67 @@ impl ScenarioFile {
         let section = &self.adhesion;
         let law = law_name(section);
         let name = law.name();
-        let stray = |key: &str| -> Result<()> {
-            bail!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (cohesive_stress belongs to \"dugdale\", range to \"exponential\")")
+        let stray = |key: &str, value: Option<f64>| -> Result<()> {
+            let Some(value) = value else { return Ok(()) };
+            bail!(ScenarioError::new(
+                ErrorKind::UnknownKey,
+                format!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (got adhesion.{key} = {value}; cohesive_stress belongs to \"dugdale\", range to \"exponential\")")
+            )
+            .with_key(format!("adhesion.{key}"))
+            .with_value(value.to_string())
+            .with_requirement(format!("absent with adhesion.law = \"{name}\"")))
         };
         match law {
             LawName::Jkr => {
-                if section.cohesive_stress.is_some() {
-                    stray("cohesive_stress")?;
-                }
-                if section.range.is_some() {
-                    stray("range")?;
-                }
+                stray("cohesive_stress", section.cohesive_stress)?;
+                stray("range", section.range)?;
                 return Ok((None, None));
             }
             LawName::Dugdale => {
-                if section.range.is_some() {
-                    stray("range")?;
-                }
+                stray("range", section.range)?;
                 let Some(stress) = section.cohesive_stress else {
-                    bail!("adhesion.law = \"dugdale\" needs adhesion.cohesive_stress (σ0 > 0)");
+                    bail!(ScenarioError::missing(
+                        "adhesion.cohesive_stress",
+                        "with adhesion.law = \"dugdale\"",
+                        "adhesion.law = \"dugdale\" needs adhesion.cohesive_stress (σ0 > 0)"
+                    ));
                 };
                 positive("adhesion.cohesive_stress", stress)?;
             }
             LawName::Exponential => {
-                if section.cohesive_stress.is_some() {
-                    stray("cohesive_stress")?;
-                }
+                stray("cohesive_stress", section.cohesive_stress)?;
                 let Some(range) = section.range else {
-                    bail!("adhesion.law = \"exponential\" needs adhesion.range (ρ > 0)");
+                    bail!(ScenarioError::missing(
+                        "adhesion.range",
+                        "with adhesion.law = \"exponential\"",
+                        "adhesion.law = \"exponential\" needs adhesion.range (ρ > 0)"
+                    ));
                 };
                 positive("adhesion.range", range)?;
             }
         }
         if section.work_of_adhesion <= 0.0 {
-            bail!(
-                "adhesion.law = \"{name}\" needs adhesion.work_of_adhesion > 0, got {}",
-                section.work_of_adhesion
-            );
+            bail!(ScenarioError::invalid_as(
+                "adhesion.work_of_adhesion",
+                section.work_of_adhesion,
+                format!("> 0 with adhesion.law = \"{name}\""),
+                format!(
+                    "adhesion.law = \"{name}\" needs adhesion.work_of_adhesion > 0, got {}",
+                    section.work_of_adhesion
+                )
+            ));
         }
         let kind = self.protocol.kind();
         if kind.is_translation() {
-            bail!(
-                "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only so far, got \"{}\"",
-                kind.name()
-            );
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                format!("\"{}\"", kind.name()),
+                format!("\"indent_pulloff\" with adhesion.law = \"{name}\""),
+                format!(
+                    "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only so far, got \"{}\"",
+                    kind.name()
+                )
+            ));
         }
         let radius = indenter.radius_of_curvature();
         let gamma = section.work_of_adhesion;

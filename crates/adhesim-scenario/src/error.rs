@@ -81,6 +81,47 @@ impl ScenarioError {
         }
     }
 
+    /// `invalid`'s fields with a message of the check's own, which names the key and the
+    /// value in words fitting the check (the other keys involved, the file, a hint).
+    pub fn invalid_as(
+        key: &str,
+        value: impl std::fmt::Display,
+        requirement: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Self {
+            kind: ErrorKind::InvalidValue,
+            key: Some(key.to_string()),
+            value: Some(value.to_string()),
+            requirement: Some(requirement.into()),
+            message: message.into(),
+        }
+    }
+
+    /// A required key that is missing: `requirement` says when it is required.
+    pub fn missing(key: &str, requirement: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            kind: ErrorKind::MissingKey,
+            key: Some(key.to_string()),
+            value: None,
+            requirement: Some(requirement.into()),
+            message: message.into(),
+        }
+    }
+
+    /// A quantity derived from several keys (named in `message`) that fails
+    /// `requirement`: no single key is at fault, so `key` is None and `value` is the
+    /// derived quantity's.
+    pub fn derived(value: impl std::fmt::Display, requirement: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            kind: ErrorKind::InvalidValue,
+            key: None,
+            value: Some(value.to_string()),
+            requirement: Some(requirement.into()),
+            message: message.into(),
+        }
+    }
+
     /// The same error naming `key`.
     pub fn with_key(mut self, key: impl Into<String>) -> Self {
         self.key = Some(key.into());

@@ -3,6 +3,7 @@
 //! device streams without end; a folder fails with a bare "Is a directory". Each is
 //! refused by name before it is opened.
 
+use crate::error::{ErrorKind, ScenarioError};
 use anyhow::{bail, Context, Result};
 use std::path::Path;
 
@@ -22,7 +23,18 @@ pub fn check_regular_file(path: &Path, what: &str) -> Result<()> {
     } else {
         special_file_kind(&kind)
     };
-    bail!("{what}: {} is {name}, not a regular file", path.display())
+    let error = ScenarioError::new(
+        ErrorKind::File,
+        format!("{what}: {} is {name}, not a regular file", path.display()),
+    )
+    .with_value(path.display().to_string())
+    .with_requirement("a regular file");
+    // `what` is a dotted scenario key, or a word (`scenario`, `sweep file`) for the file itself.
+    bail!(if what.contains('.') {
+        error.with_key(what)
+    } else {
+        error
+    })
 }
 
 #[cfg(unix)]

@@ -4,6 +4,7 @@
 //! memory a grid needs is estimated before anything of that size is allocated. Errors name
 //! the input keys responsible; resolution problems are warnings.
 
+use crate::error::ScenarioError;
 use crate::memory::{gibibytes, MemoryLimit};
 use crate::model::*;
 use adhesim::{Grid, Indenter};
@@ -17,6 +18,9 @@ pub const MAX_STEPS: usize = 1_000_000;
 /// A derived scale must have a magnitude in [1e-150, 1e150]: the solver multiplies two such
 /// numbers (a stress by an area, a modulus by a displacement), which then stays finite.
 const USABLE_MAGNITUDE: f64 = 1e150;
+
+/// [`USABLE_MAGNITUDE`] as a requirement.
+const USABLE_RANGE: &str = "finite, magnitude in 1e-150..1e150";
 
 /// Resolution warnings fire below this many elements across a feature (a waviness
 /// wavelength, a punch diameter, the JKR radius a_JKR): with fewer, the discrete contact
@@ -46,13 +50,18 @@ fn show(value: f64) -> String {
 /// 1e300 overflowed the generated surface and failed later with a message about another key.
 pub(crate) fn usable_positive(key: &str, value: f64) -> Result<f64> {
     if !(value.is_finite() && value > 0.0) {
-        bail!("{key} must be > 0, got {value}");
+        bail!(ScenarioError::invalid(key, value, "> 0"));
     }
     if !usable(value) {
-        bail!(
-            "{key} = {} lies outside the magnitudes 1e-150..1e150 the solver can use: bring it to commensurate units",
-            show(value)
-        );
+        bail!(ScenarioError::invalid_as(
+            key,
+            show(value),
+            USABLE_RANGE,
+            format!(
+                "{key} = {} lies outside the magnitudes 1e-150..1e150 the solver can use: bring it to commensurate units",
+                show(value)
+            )
+        ));
     }
     Ok(value)
 }
@@ -96,17 +105,25 @@ impl ScenarioFile {
                 // α = 0 without adhesion is a legitimate value (a non-adhesive wavy contact).
                 let zero_without_adhesion = value == 0.0 && self.adhesion.work_of_adhesion == 0.0;
                 if !usable(value) && !zero_without_adhesion {
-                    bail!(
-                        "{name} = {value:e} is not a usable number (finite, magnitude in 1e-150..1e150); it comes from {keys}: bring these inputs to commensurate units"
-                    );
+                    bail!(ScenarioError::derived(
+                        format!("{value:e}"),
+                        USABLE_RANGE,
+                        format!(
+                            "{name} = {value:e} is not a usable number (finite, magnitude in 1e-150..1e150); it comes from {keys}: bring these inputs to commensurate units"
+                        )
+                    ));
                 }
             }
         }
         if !usable(derived.element_size) {
-            bail!(
-                "the element size grid.size/grid.n = {:e} is not a usable number (magnitude in 1e-150..1e150); {element}",
-                derived.element_size
-            );
+            bail!(ScenarioError::derived(
+                format!("{:e}", derived.element_size),
+                USABLE_RANGE,
+                format!(
+                    "the element size grid.size/grid.n = {:e} is not a usable number (magnitude in 1e-150..1e150); {element}",
+                    derived.element_size
+                )
+            ));
         }
         self.check_single_precision(derived)
     }
@@ -176,10 +193,14 @@ impl ScenarioFile {
             }
         }
         keys.push(format!("grid.size = {}", self.grid.size.show(show)));
-        bail!(
-            "the indenter's heights span {span:e} above its lowest point on the grid, beyond the {SINGLE_PRECISION_MAGNITUDE:e} the solver's single-precision FFTs hold; it comes from {}: bring these inputs to commensurate units",
-            keys.join(", ")
-        )
+        bail!(ScenarioError::derived(
+            format!("{span:e}"),
+            format!("a height span <= {SINGLE_PRECISION_MAGNITUDE:e}"),
+            format!(
+                "the indenter's heights span {span:e} above its lowest point on the grid, beyond the {SINGLE_PRECISION_MAGNITUDE:e} the solver's single-precision FFTs hold; it comes from {}: bring these inputs to commensurate units",
+                keys.join(", ")
+            )
+        ))
     }
 
     /// The depth step of a run: finite, positive, and large enough to move the depth at all
@@ -187,10 +208,17 @@ impl ScenarioFile {
     /// [`MAX_STEPS`]. `keys` names the inputs that set the step.
     pub(crate) fn check_step(&self, start_depth: f64, end_depth: f64, depth_step: f64, keys: &str) -> Result<usize> {
         let moves = start_depth + depth_step != start_depth && end_depth - depth_step != end_depth;
+        // The step's own key (protocol.steps or protocol.step) comes first in `keys`.
+        let step_key = keys.split(", ").next().unwrap_or(keys);
         if !(depth_step.is_finite() && depth_step > 0.0 && moves) {
-            bail!(
-                "the depth step {depth_step:e} (from {keys}) does not move the depth between {start_depth:e} and {end_depth:e}: choose fewer steps or commensurate units"
-            );
+            bail!(ScenarioError::derived(
+                format!("{depth_step:e}"),
+                "a depth step that moves the depth",
+                format!(
+                    "the depth step {depth_step:e} (from {keys}) does not move the depth between {start_depth:e} and {end_depth:e}: choose fewer steps or commensurate units"
+                )
+            )
+            .with_key(step_key));
         }
         // The largest pressure of the run is at most that of one element pushed through the
         // whole depth range, E*·(range)/Δ.
@@ -211,7 +239,12 @@ impl ScenarioFile {
         )?;
         let steps = ((end_depth - start_depth) / depth_step).ceil();
         if steps.is_nan() || steps > MAX_STEPS as f64 {
-            bail!("{keys} imply {steps:e} approach steps, more than the cap of {MAX_STEPS}");
+            bail!(ScenarioError::derived(
+                format!("{steps:e}"),
+                format!("at most {MAX_STEPS} approach steps"),
+                format!("{keys} imply {steps:e} approach steps, more than the cap of {MAX_STEPS}")
+            )
+            .with_key(step_key));
         }
         Ok(steps as usize)
     }
@@ -225,14 +258,21 @@ impl ScenarioFile {
 /// and its 1/N² normalisation; every physical unit system (SI, nm–GPa, cgs) lies far inside.
 pub const SINGLE_PRECISION_MAGNITUDE: f64 = 1e30;
 
+/// [`SINGLE_PRECISION_MAGNITUDE`] as a requirement.
+const SINGLE_PRECISION_RANGE: &str = "magnitude in 1e-30..1e30";
+
 /// Refuses a scale outside ±[1/[`SINGLE_PRECISION_MAGNITUDE`], [`SINGLE_PRECISION_MAGNITUDE`]],
 /// naming the keys it comes from.
 fn single_precision_scale(name: &str, value: f64, keys: &str) -> Result<()> {
     let magnitude = value.abs();
     if !(1.0 / SINGLE_PRECISION_MAGNITUDE..=SINGLE_PRECISION_MAGNITUDE).contains(&magnitude) {
-        bail!(
-            "{name} = {value:e} is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {keys}: bring these inputs to commensurate units"
-        );
+        bail!(ScenarioError::derived(
+            format!("{value:e}"),
+            SINGLE_PRECISION_RANGE,
+            format!(
+                "{name} = {value:e} is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {keys}: bring these inputs to commensurate units"
+            )
+        ));
     }
     Ok(())
 }
@@ -250,7 +290,7 @@ fn contact_modulus(m: &MaterialSection) -> f64 {
 /// [`MAX_STEPS`].
 pub(crate) fn step_count(key: &str, value: i64) -> Result<usize> {
     if value < 1 || value as u64 > MAX_STEPS as u64 {
-        bail!("{key} must be in 1..={MAX_STEPS}, got {value}");
+        bail!(ScenarioError::invalid(key, value, &format!("in 1..={MAX_STEPS}")));
     }
     Ok(value as usize)
 }
@@ -262,11 +302,25 @@ pub(crate) fn check_field(section: &AdhesionSection, grid: &Grid, gamma: &[f64])
         return Ok(());
     };
     let (x, y) = grid.centre(bad);
-    bail!(
-        "the work of adhesion must be finite and >= 0 on every element, got {:e} at x = {x:e}, y = {y:e} (element {bad}); it comes from {}",
-        gamma[bad],
-        field_keys(section)
+    bail!(ScenarioError::derived(
+        format!("{:e}", gamma[bad]),
+        "a work of adhesion finite and >= 0 on every element",
+        format!(
+            "the work of adhesion must be finite and >= 0 on every element, got {:e} at x = {x:e}, y = {y:e} (element {bad}); it comes from {}",
+            gamma[bad],
+            field_keys(section)
+        )
     )
+    .with_key(field_key(section)))
+}
+
+/// The key that sets the shape of γ on the grid.
+fn field_key(section: &AdhesionSection) -> &'static str {
+    match &section.field {
+        Some(FieldSpec::Quadratic { .. }) => "adhesion.field.ratio_edge_to_centre",
+        Some(FieldSpec::Map { .. }) => "adhesion.field.file",
+        None => "adhesion.work_of_adhesion",
+    }
 }
 
 /// The keys that set γ per element, with their values.
@@ -306,15 +360,20 @@ impl ScenarioFile {
             return Ok(());
         };
         let (x, y) = grid.centre(bad);
-        bail!(
-            "the critical stress σ_c = {:e} of the element at x = {x:e}, y = {y:e} (element {bad}, γ = {:e}) is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {}, {}, grid.size = {}, grid.n = {}: bring these inputs to commensurate values",
-            stress(gamma[bad]),
-            gamma[bad],
-            field_keys(&self.adhesion),
-            material_keys(&self.material),
-            self.grid.size.show(show),
-            self.grid.n
+        bail!(ScenarioError::derived(
+            format!("{:e}", stress(gamma[bad])),
+            SINGLE_PRECISION_RANGE,
+            format!(
+                "the critical stress σ_c = {:e} of the element at x = {x:e}, y = {y:e} (element {bad}, γ = {:e}) is outside the range the solver's single-precision FFTs hold (magnitude 1e-30..1e30); it comes from {}, {}, grid.size = {}, grid.n = {}: bring these inputs to commensurate values",
+                stress(gamma[bad]),
+                gamma[bad],
+                field_keys(&self.adhesion),
+                material_keys(&self.material),
+                self.grid.size.show(show),
+                self.grid.n
+            )
         )
+        .with_key(field_key(&self.adhesion)))
     }
 }
 

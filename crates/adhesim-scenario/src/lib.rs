@@ -51,6 +51,7 @@ mod parse;
 mod pipeline;
 mod results;
 mod roughness;
+mod sections;
 mod snapshots;
 mod summary;
 pub mod sweep;
@@ -178,6 +179,8 @@ pub fn load_within(
 
 #[cfg(test)]
 mod cohesive_tests;
+#[cfg(test)]
+mod error_tests;
 #[cfg(test)]
 mod guards_tests;
 #[cfg(test)]

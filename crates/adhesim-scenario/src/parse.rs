@@ -4,7 +4,7 @@
 use crate::error::{ErrorKind, ScenarioError};
 use crate::model::ScenarioFile;
 use adhesim_topography::{read_topography, ReadOptions, Topography};
-use anyhow::{anyhow, bail, Result};
+use anyhow::{bail, Result};
 use std::path::Path;
 
 /// Parses TOML text into a table (with the file name in the message on failure).
@@ -347,9 +347,19 @@ pub fn read_npy_2d(path: &Path, key: &str) -> Result<(Vec<f64>, usize, usize)> {
         ..ReadOptions::default()
     };
     crate::files::check_regular_file(path, key)?;
-    let map = read_topography(path, &options).map_err(|e| anyhow!("{key}: {e}"))?;
+    let map = read_topography(path, &options)
+        .map_err(|e| file_error(key, path, "a 2-D .npy array of floats", format!("{key}: {e}")))?;
     refuse_invalid_points(&map, path, key)?;
     Ok((map.heights, map.ny, map.nx))
+}
+
+/// A file of `key` that cannot be read as `requirement` says.
+fn file_error(key: &str, path: &Path, requirement: &str, message: String) -> anyhow::Error {
+    ScenarioError::new(ErrorKind::File, message)
+        .with_key(key)
+        .with_value(path.display().to_string())
+        .with_requirement(requirement)
+        .into()
 }
 
 /// Errors where the file marks points invalid (NaN, a mask): the reader fills them with the
@@ -358,11 +368,16 @@ pub(crate) fn refuse_invalid_points(map: &Topography, path: &Path, key: &str) ->
     if let Some(mask) = &map.mask {
         let invalid = mask.iter().filter(|valid| !**valid).count();
         if invalid > 0 {
-            bail!(
-                "{key} = {}: {invalid} of {} points are invalid (NaN or masked in the file); fill them before use",
+            bail!(ScenarioError::invalid_as(
+                key,
                 path.display(),
-                mask.len()
-            );
+                "a map without invalid points",
+                format!(
+                    "{key} = {}: {invalid} of {} points are invalid (NaN or masked in the file); fill them before use",
+                    path.display(),
+                    mask.len()
+                )
+            ));
         }
     }
     Ok(())
@@ -388,24 +403,39 @@ pub fn read_height_map(path: &Path, spacing: Option<f64>) -> Result<(Vec<f64>, u
         } else {
             ""
         };
-        anyhow!("{key}: {e}{hint}")
+        file_error(
+            key,
+            path,
+            "a height map file adhesim reads",
+            format!("{key}: {e}{hint}"),
+        )
     })?;
     refuse_invalid_points(&map, path, key)?;
     if (map.dx - map.dy).abs() > 1e-9 * map.dx.abs() {
-        bail!(
-            "{key} = {}: the spacing differs along x ({:e}) and y ({:e}); resample the map to a square spacing",
+        bail!(ScenarioError::invalid_as(
+            key,
             path.display(),
-            map.dx,
-            map.dy
-        );
+            "a map of square spacing",
+            format!(
+                "{key} = {}: the spacing differs along x ({:e}) and y ({:e}); resample the map to a square spacing",
+                path.display(),
+                map.dx,
+                map.dy
+            )
+        ));
     }
     if let Some(given) = spacing {
         if (given - map.dx).abs() > 1e-9 * given {
-            bail!(
-                "indenter.spacing = {given} but {key} = {} records a spacing of {:e} m: leave indenter.spacing out",
-                path.display(),
-                map.dx
-            );
+            bail!(ScenarioError::invalid_as(
+                "indenter.spacing",
+                given,
+                format!("absent, or the file's spacing {:e} m", map.dx),
+                format!(
+                    "indenter.spacing = {given} but {key} = {} records a spacing of {:e} m: leave indenter.spacing out",
+                    path.display(),
+                    map.dx
+                )
+            ));
         }
     }
     Ok((map.heights, map.ny, map.nx, map.dx))

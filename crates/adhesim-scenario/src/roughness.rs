@@ -3,13 +3,14 @@
 //! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
 //! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
 
+use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::usable_positive;
 use crate::model::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection, RoughnessStatistics};
 use crate::validate::{grid_keys, positive};
 use adhesim::surface::{fill_invalid_harmonic, statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
 use adhesim::Grid;
 use adhesim_topography::{read_topography, ReadOptions, Topography, TopographyError};
-use anyhow::{anyhow, bail, Result};
+use anyhow::{bail, Result};
 use std::path::Path;
 
 /// Keys of the generator form.
@@ -83,16 +84,25 @@ fn present(section: &RoughnessSection) -> (Vec<&'static str>, Vec<&'static str>)
 pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<RoughnessMap> {
     let (generator, file) = present(section);
     let sampled = match (generator.is_empty(), file.is_empty()) {
-        (true, true) => bail!(
-            "[{name}] is empty: give {name}.file, or the generator keys {name}.hurst, {name}.seed and one of {name}.rms_height / {name}.rms_slope"
-        ),
-        (false, false) => bail!(
-            "[{name}] mixes the generator key {name}.{} with the file key {name}.{}: give a random surface ({}) or a measured one ({}), not both",
-            generator[0],
-            file[0],
-            GENERATOR_KEYS.join(", "),
-            FILE_KEYS.join(", ")
-        ),
+        (true, true) => bail!(ScenarioError::missing(
+            &format!("{name}.file"),
+            format!("{name}.file, or {name}.hurst, {name}.seed and {name}.rms_height or {name}.rms_slope"),
+            format!(
+                "[{name}] is empty: give {name}.file, or the generator keys {name}.hurst, {name}.seed and one of {name}.rms_height / {name}.rms_slope"
+            )
+        )),
+        (false, false) => bail!(ScenarioError::new(
+            ErrorKind::InvalidValue,
+            format!(
+                "[{name}] mixes the generator key {name}.{} with the file key {name}.{}: give a random surface ({}) or a measured one ({}), not both",
+                generator[0],
+                file[0],
+                GENERATOR_KEYS.join(", "),
+                FILE_KEYS.join(", ")
+            )
+        )
+        .with_key(format!("{name}.{}", file[0]))
+        .with_requirement(format!("absent when {name}.{} is given", generator[0]))),
         (false, true) => SampledFile {
             heights: generate(section, name, grid)?,
             warnings: Vec::new(),
@@ -100,7 +110,14 @@ pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, ba
         },
         (true, false) => from_file(section, name, grid, base)?,
     };
-    let stats = statistics(grid, &sampled.heights).map_err(|e| anyhow!("[{name}]: the statistics of the map: {e}"))?;
+    let stats = statistics(grid, &sampled.heights).map_err(|e| {
+        ScenarioError::new(
+            ErrorKind::InvalidValue,
+            format!("[{name}]: the statistics of the map: {e}"),
+        )
+        .with_key(name)
+        .with_requirement("a map whose statistics exist")
+    })?;
     Ok(RoughnessMap {
         heights: sampled.heights,
         statistics: RoughnessStatistics {
@@ -116,25 +133,47 @@ pub fn roughness_on_grid(section: &RoughnessSection, name: &str, grid: &Grid, ba
 /// The generator form: `adhesim::surface::SelfAffine` on the grid.
 fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f64>> {
     let s = section;
-    let hurst = s
-        .hurst
-        .ok_or_else(|| anyhow!("missing key `{name}.hurst` (the Hurst exponent of a random surface)"))?;
+    let hurst = s.hurst.ok_or_else(|| {
+        ScenarioError::missing(
+            &format!("{name}.hurst"),
+            "for a random surface",
+            format!("missing key `{name}.hurst` (the Hurst exponent of a random surface)"),
+        )
+    })?;
     if !(hurst.is_finite() && hurst > 0.0 && hurst <= 1.0) {
-        bail!("{name}.hurst must lie in (0, 1], got {hurst}");
+        bail!(ScenarioError::invalid_as(
+            &format!("{name}.hurst"),
+            hurst,
+            "in (0, 1]",
+            format!("{name}.hurst must lie in (0, 1], got {hurst}")
+        ));
     }
     let target = match (s.rms_height, s.rms_slope) {
         (Some(h), None) => RmsTarget::Height(usable_positive(&format!("{name}.rms_height"), h)?),
         (None, Some(slope)) => RmsTarget::Slope(usable_positive(&format!("{name}.rms_slope"), slope)?),
-        (Some(h), Some(slope)) => bail!(
-            "give exactly one of {name}.rms_height and {name}.rms_slope, got both ({name}.rms_height = {h}, {name}.rms_slope = {slope})"
-        ),
-        (None, None) => bail!("give exactly one of {name}.rms_height and {name}.rms_slope, got neither"),
+        (Some(h), Some(slope)) => bail!(ScenarioError::invalid_as(
+            &format!("{name}.rms_slope"),
+            slope,
+            format!("absent when {name}.rms_height is given"),
+            format!(
+                "give exactly one of {name}.rms_height and {name}.rms_slope, got both ({name}.rms_height = {h}, {name}.rms_slope = {slope})"
+            )
+        )),
+        (None, None) => bail!(ScenarioError::missing(
+            &format!("{name}.rms_height"),
+            format!("{name}.rms_height or {name}.rms_slope"),
+            format!("give exactly one of {name}.rms_height and {name}.rms_slope, got neither")
+        )),
     };
-    let seed = s
-        .seed
-        .ok_or_else(|| anyhow!("missing key `{name}.seed` (an integer >= 0 that fixes the random surface)"))?;
+    let seed = s.seed.ok_or_else(|| {
+        ScenarioError::missing(
+            &format!("{name}.seed"),
+            "for a random surface",
+            format!("missing key `{name}.seed` (an integer >= 0 that fixes the random surface)"),
+        )
+    })?;
     if seed < 0 {
-        bail!("{name}.seed must be >= 0, got {seed}");
+        bail!(ScenarioError::invalid(&format!("{name}.seed"), seed, ">= 0"));
     }
     let mut generator = SelfAffine::new(hurst, target).with_amplitudes(match s.mode.unwrap_or_default() {
         RoughnessMode::RandomPhase => Amplitudes::RandomPhase,
@@ -147,16 +186,33 @@ fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f
         generator = generator.with_cutoff_wavelength(positive(&format!("{name}.cutoff_wavelength"), wavelength)?);
     }
     let surface = generator.generate(grid, seed as u64).map_err(|e| match e {
-        SurfaceError::RolloffNotBelowCutoff { rolloff, cutoff } => anyhow!(
-            "{name}.rolloff_wavelength must be longer than the cutoff wavelength {cutoff:e} ({name}.cutoff_wavelength, default 2·grid element), got {rolloff}"
+        SurfaceError::RolloffNotBelowCutoff { rolloff, cutoff } => ScenarioError::invalid_as(
+            &format!("{name}.rolloff_wavelength"),
+            rolloff,
+            format!("> {cutoff:e} (the cutoff wavelength)"),
+            format!(
+                "{name}.rolloff_wavelength must be longer than the cutoff wavelength {cutoff:e} ({name}.cutoff_wavelength, default 2·grid element), got {rolloff}"
+            ),
         ),
-        SurfaceError::CutoffBelowNyquist { cutoff, nyquist } => anyhow!(
-            "{name}.cutoff_wavelength must be at least two elements ({nyquist:e}: grid.size / grid.n × 2), got {cutoff}"
+        SurfaceError::CutoffBelowNyquist { cutoff, nyquist } => ScenarioError::invalid_as(
+            &format!("{name}.cutoff_wavelength"),
+            cutoff,
+            format!(">= {nyquist:e} (two elements)"),
+            format!(
+                "{name}.cutoff_wavelength must be at least two elements ({nyquist:e}: grid.size / grid.n × 2), got {cutoff}"
+            ),
         ),
-        SurfaceError::EmptyBand { cutoff, patch } => anyhow!(
-            "{name}.cutoff_wavelength = {cutoff}: no Fourier mode of the {patch:e}-wide patch lies below it; shorten it or enlarge grid.size"
+        SurfaceError::EmptyBand { cutoff, patch } => ScenarioError::invalid_as(
+            &format!("{name}.cutoff_wavelength"),
+            cutoff,
+            format!("longer than the shortest Fourier wavelength of the {patch:e}-wide patch"),
+            format!(
+                "{name}.cutoff_wavelength = {cutoff}: no Fourier mode of the {patch:e}-wide patch lies below it; shorten it or enlarge grid.size"
+            ),
         ),
-        other => anyhow!("[{name}]: {other}"),
+        other => ScenarioError::new(ErrorKind::InvalidValue, format!("[{name}]: {other}"))
+            .with_key(name)
+            .with_requirement("a surface the generator can make"),
     })?;
     Ok(surface.heights)
 }
@@ -167,13 +223,15 @@ fn generate(section: &RoughnessSection, name: &str, grid: &Grid) -> Result<Vec<f
 fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -> Result<SampledFile> {
     let s = section;
     let file = s.file.as_ref().ok_or_else(|| {
-        anyhow!(
-            "missing key `{name}.file` (the file keys {} need a file)",
-            FILE_KEYS[1..]
-                .iter()
-                .map(|k| format!("{name}.{k}"))
-                .collect::<Vec<_>>()
-                .join(", ")
+        let file_keys = FILE_KEYS[1..]
+            .iter()
+            .map(|k| format!("{name}.{k}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        ScenarioError::missing(
+            &format!("{name}.file"),
+            format!("with {file_keys}"),
+            format!("missing key `{name}.file` (the file keys {file_keys} need a file)"),
         )
     })?;
     let key = format!("{name}.file");
@@ -189,33 +247,49 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
     };
     let path = base.join(file);
     crate::files::check_regular_file(&path, &key)?;
-    let mut map = read_topography(&path, &options).map_err(|e| read_error(&e, name, &key))?;
+    let mut map = read_topography(&path, &options).map_err(|e| read_error(&e, name, &key, file))?;
     if let Some(given) = spacing {
         if (given - map.dx).abs() > 1e-9 * given || (given - map.dy).abs() > 1e-9 * given {
-            bail!(
-                "{name}.spacing = {given} but {key} = {} records a spacing of {:e} × {:e} m: leave {name}.spacing out",
-                file.display(),
-                map.dx,
-                map.dy
-            );
+            bail!(ScenarioError::invalid_as(
+                &format!("{name}.spacing"),
+                given,
+                format!("absent, or the file's spacing {:e} × {:e} m", map.dx, map.dy),
+                format!(
+                    "{name}.spacing = {given} but {key} = {} records a spacing of {:e} × {:e} m: leave {name}.spacing out",
+                    file.display(),
+                    map.dx,
+                    map.dy
+                )
+            ));
         }
     }
     let invalid_points = handle_invalid_points(&mut map, s.invalid_points, name, &key, file)?;
     if s.detrend.unwrap_or(false) {
-        map.detrend_mean_plane()
-            .map_err(|e| anyhow!("{key} = {}: detrending: {e}", file.display()))?;
+        map.detrend_mean_plane().map_err(|e| {
+            ScenarioError::invalid_as(
+                &key,
+                file.display(),
+                "a map whose mean plane can be removed",
+                format!("{key} = {}: detrending: {e}", file.display()),
+            )
+        })?;
     }
     let resampled = map
         .resample_to(grid.nx(), grid.ny(), grid.dx(), grid.dy())
         .map_err(|e| {
-            anyhow!(
-                "{key} = {}: the grid ({}) does not fit in the {}×{} map of spacing {:e} × {:e}: {e}",
+            ScenarioError::invalid_as(
+                &key,
                 file.display(),
-                grid_keys(grid),
-                map.nx,
-                map.ny,
-                map.dx,
-                map.dy
+                format!("a map that covers the grid ({})", grid_keys(grid)),
+                format!(
+                    "{key} = {}: the grid ({}) does not fit in the {}×{} map of spacing {:e} × {:e}: {e}",
+                    file.display(),
+                    grid_keys(grid),
+                    map.nx,
+                    map.ny,
+                    map.dx,
+                    map.dy
+                ),
             )
         })?;
     let warnings = resampled
@@ -231,12 +305,18 @@ fn from_file(section: &RoughnessSection, name: &str, grid: &Grid, base: &Path) -
 }
 
 /// A reading error with the scenario key that supplies what the file lacks.
-fn read_error(error: &TopographyError, name: &str, key: &str) -> anyhow::Error {
-    let hint = match error {
-        TopographyError::MissingOption { option, .. } => format!("; set {name}.{option}"),
-        _ => String::new(),
+fn read_error(error: &TopographyError, name: &str, key: &str, file: &Path) -> anyhow::Error {
+    let (hint, requirement) = match error {
+        TopographyError::MissingOption { option, .. } => {
+            (format!("; set {name}.{option}"), format!("{name}.{option} set"))
+        }
+        _ => (String::new(), "a height map file adhesim reads".to_string()),
     };
-    anyhow!("{key}: {error}{hint}")
+    ScenarioError::new(ErrorKind::File, format!("{key}: {error}{hint}"))
+        .with_key(key)
+        .with_value(file.display().to_string())
+        .with_requirement(requirement)
+        .into()
 }
 
 /// Applies the section's choice for the points the file marks invalid: an error naming the
@@ -266,15 +346,26 @@ fn handle_invalid_points(
             } else {
                 format!("{name}.invalid_points = \"refuse\"")
             };
-            bail!(
-                "{key} = {}: {count} of {} points are invalid (NaN or masked in the file); {how}",
+            bail!(ScenarioError::invalid_as(
+                key,
                 file.display(),
-                valid.len()
-            )
+                format!("a map without invalid points, or {name}.invalid_points = \"interpolate\""),
+                format!(
+                    "{key} = {}: {count} of {} points are invalid (NaN or masked in the file); {how}",
+                    file.display(),
+                    valid.len()
+                )
+            ))
         }
         Some(InvalidPoints::Interpolate) => {
-            map.heights = fill_invalid_harmonic((map.nx, map.ny), &map.heights, &valid, false)
-                .map_err(|e| anyhow!("{key} = {}: filling the invalid points: {e}", file.display()))?;
+            map.heights = fill_invalid_harmonic((map.nx, map.ny), &map.heights, &valid, false).map_err(|e| {
+                ScenarioError::invalid_as(
+                    key,
+                    file.display(),
+                    "a map whose invalid points can be filled",
+                    format!("{key} = {}: filling the invalid points: {e}", file.display()),
+                )
+            })?;
             Ok(Some(report))
         }
     }

@@ -1,13 +1,14 @@
 //! Validation of the roll / slide / translate protocols (`[protocol]` kind roll, slide,
 //! translate, and `[analysis]`).
 
+use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::step_count;
 use crate::model::*;
 use crate::validate::{finite, non_negative, positive};
 use adhesim::analysis::reference::Jkr;
 use adhesim::geometry::WavySphere;
 use adhesim::{ElasticMaterial, Grid, Indenter, Kinematics, TranslatingContact, Translation};
-use anyhow::{anyhow, bail, Result};
+use anyhow::{bail, Result};
 
 /// What `validate` has built from every section but `[protocol]`, handed to the
 /// indentation or the roll/slide part (not the friction analysis's `TranslationInputs`).
@@ -58,18 +59,29 @@ impl ScenarioFile {
         let raw_depth = p.depth;
         let depth = finite("protocol.depth", raw_depth)? * unit;
         if depth <= start_depth {
-            bail!(
-                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
-                start_depth / unit
-            );
+            bail!(ScenarioError::invalid_as(
+                "protocol.depth",
+                raw_depth,
+                format!("> {:.6e} (the depth of first contact)", start_depth / unit),
+                format!(
+                    "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
+                    start_depth / unit
+                )
+            ));
         }
         crate::validate::check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
         let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
             DistanceUnit::Length => 1.0,
             DistanceUnit::Wavelength => wavelength.ok_or_else(|| {
-                anyhow!(
-                    "protocol.distance_unit = \"wavelength\" needs indenter.shape = \"wavy_sphere\" (its indenter.wavelength)"
+                ScenarioError::invalid_as(
+                    "protocol.distance_unit",
+                    "\"wavelength\"",
+                    "indenter.shape = \"wavy_sphere\"",
+                    format!(
+                        "protocol.distance_unit = \"wavelength\" needs indenter.shape = \"wavy_sphere\" (its indenter.wavelength), got \"{}\"",
+                        self.indenter.shape().name()
+                    ),
                 )
             })?,
         };
@@ -89,7 +101,12 @@ impl ScenarioFile {
         )?;
         let stationary_from = p.stationary_from.unwrap_or(DEFAULT_STATIONARY_FROM);
         if !(0.0..1.0).contains(&stationary_from) {
-            bail!("protocol.stationary_from must lie in [0, 1), got {stationary_from}");
+            bail!(ScenarioError::invalid_as(
+                "protocol.stationary_from",
+                stationary_from,
+                "in [0, 1)",
+                format!("protocol.stationary_from must lie in [0, 1), got {stationary_from}")
+            ));
         }
         let (gammas, tau0) = analysis_inputs(&self.analysis)?;
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
@@ -146,10 +163,15 @@ impl ScenarioFile {
         let wavy = match indenter {
             Indenter::WavySphere(w) => *w,
             Indenter::Sphere(s) => WavySphere::new(s.radius(), 0.0, grid.size_x(), 0.0)?,
-            _ => bail!(
-                "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
-                self.indenter.shape().name()
-            ),
+            _ => bail!(ScenarioError::invalid_as(
+                "indenter.shape",
+                format!("\"{}\"", self.indenter.shape().name()),
+                format!("\"wavy_sphere\" or \"sphere\" with protocol.kind = \"{name}\""),
+                format!(
+                    "protocol.kind = \"{name}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+                    self.indenter.shape().name()
+                )
+            )),
         };
         let wavelength = matches!(indenter, Indenter::WavySphere(_)).then(|| wavy.waviness().wavelength());
         let kinematics = match kind {
@@ -167,9 +189,11 @@ impl ScenarioFile {
         };
         let mut contact = TranslatingContact::new(wavy, kinematics);
         if let Some(roughness) = substrate_roughness {
-            contact = contact
-                .with_substrate_roughness(roughness, grid)
-                .map_err(|e| anyhow!("[substrate_roughness]: {e}"))?;
+            contact = contact.with_substrate_roughness(roughness, grid).map_err(|e| {
+                ScenarioError::new(ErrorKind::InvalidValue, format!("[substrate_roughness]: {e}"))
+                    .with_key("substrate_roughness")
+                    .with_requirement("a roughness map the library accepts")
+            })?;
         }
         Ok((wavy, wavelength, contact))
     }
@@ -219,9 +243,14 @@ fn check_travel_inside(
         } else {
             "a smaller protocol.depth".to_string()
         };
-        bail!(
-            "protocol.distance = {raw_distance} carries the contact off the grid: the indenter travels to X = {distance:.4e} and {how} is a ≈ {contact_radius:.4e}, so the contact's front reaches X + a = {front:.4e}, beyond the domain's half-width grid.size/2 = {half_width:.4e} (the contact would be cut by the edge or lost, with zero force); choose {advice}, or a larger grid.size"
-        );
+        bail!(ScenarioError::invalid_as(
+            "protocol.distance",
+            raw_distance,
+            "a travel that keeps the contact inside the grid",
+            format!(
+                "protocol.distance = {raw_distance} carries the contact off the grid: the indenter travels to X = {distance:.4e} and {how} is a ≈ {contact_radius:.4e}, so the contact's front reaches X + a = {front:.4e}, beyond the domain's half-width grid.size/2 = {half_width:.4e} (the contact would be cut by the edge or lost, with zero force); choose {advice}, or a larger grid.size"
+            )
+        ));
     }
     Ok(())
 }
@@ -235,8 +264,16 @@ fn analysis_inputs(a: &AnalysisSection) -> Result<(Option<(f64, f64)>, Option<f6
             non_negative("analysis.gamma_pulloff", g2)?,
         )),
         (None, None) => None,
-        (Some(_), None) => bail!("analysis.gamma_pulloff is required with analysis.gamma_approach"),
-        (None, Some(_)) => bail!("analysis.gamma_approach is required with analysis.gamma_pulloff"),
+        (Some(_), None) => bail!(ScenarioError::missing(
+            "analysis.gamma_pulloff",
+            "with analysis.gamma_approach",
+            "analysis.gamma_pulloff is required with analysis.gamma_approach"
+        )),
+        (None, Some(_)) => bail!(ScenarioError::missing(
+            "analysis.gamma_approach",
+            "with analysis.gamma_pulloff",
+            "analysis.gamma_approach is required with analysis.gamma_pulloff"
+        )),
     };
     let tau0 = a.tau0.map(|t| non_negative("analysis.tau0", t)).transpose()?;
     Ok((gammas, tau0))

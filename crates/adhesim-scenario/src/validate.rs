@@ -4,17 +4,18 @@
 
 use crate::cohesive::zone_resolution_warning;
 use crate::error::ScenarioError;
-use crate::guards::{check_field, resolution_warnings, step_count, MAX_GRID_N};
+use crate::guards::{resolution_warnings, step_count};
 use crate::model::*;
-use crate::parse::{read_height_map, read_npy_2d};
+use crate::parse::read_height_map;
 use crate::roughness::{roughness_on_grid, RoughnessMap};
+use crate::sections::{validate_adhesion, validate_grid, validate_material};
 use crate::translation::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
 use adhesim::geometry::{EllipticPunch, FlatPunch, RoughProfile, Sphere, Topography, WavySphere};
 use adhesim::solver::critical_stress;
-use adhesim::{Axis, Boundary, ElasticMaterial, Grid, Indenter, Profile, WorkOfAdhesion};
-use anyhow::{anyhow, bail, Result};
+use adhesim::{Boundary, ElasticMaterial, Grid, Indenter, Profile};
+use anyhow::{bail, Result};
 use std::path::Path;
 
 /// The grid as its keys give it: `grid.n = 64, grid.size = 0.8` for a square,
@@ -70,14 +71,23 @@ pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw:
         - heights.iter().copied().fold(f64::INFINITY, f64::min);
     // The solver's own depth tolerance (CcgParams::depth_tolerance) times the scale.
     if raw * unit > full_contact_depth + 1e-10 * range.max((raw * unit).abs()) {
-        bail!(
-            "{key} = {raw} lies beyond full contact of the periodic cell: the whole cell touches at depth \
+        let requirement = format!(
+            "<= {:.6e} (full contact of the periodic cell)",
+            full_contact_depth / unit
+        );
+        bail!(ScenarioError::invalid_as(
+            key,
+            raw,
+            requirement,
+            format!(
+                "{key} = {raw} lies beyond full contact of the periodic cell: the whole cell touches at depth \
              {:.6e} (in depth_unit; the indenter's mean height over the cell, since the displacement of a \
              periodic half-space has zero mean) and no load goes deeper. Use {key} <= {:.6e}, a larger \
              grid.size, or grid.boundary = \"free\"",
-            full_contact_depth / unit,
-            full_contact_depth / unit
-        );
+                full_contact_depth / unit,
+                full_contact_depth / unit
+            )
+        ));
     }
     Ok(())
 }
@@ -112,7 +122,12 @@ impl ScenarioFile {
         derived.substrate_roughness = substrate_roughness.as_ref().map(|map| map.statistics);
         let unit = depth_unit(&self.protocol, shape, jkr.as_ref(), gamma0)?;
         if !(unit.is_finite() && unit > 0.0) {
-            bail!("protocol.depth_unit = \"jkr\": the unit |d_JKR| = {unit:e} is not a positive number");
+            bail!(ScenarioError::invalid_as(
+                "protocol.depth_unit",
+                "\"jkr\"",
+                "a positive unit |d_JKR|",
+                format!("protocol.depth_unit = \"jkr\": the unit |d_JKR| = {unit:e} is not a positive number")
+            ));
         }
         let inputs = ValidatedSections {
             grid,
@@ -140,16 +155,26 @@ impl ScenarioFile {
     fn roughness_maps(&self, grid: &Grid, base: &Path) -> Result<(Option<RoughnessMap>, Option<RoughnessMap>)> {
         let kind = self.protocol.kind();
         if self.roughness.is_some() && kind.is_translation() {
-            bail!(
-                "[roughness] roughens the indenter of protocol.kind = \"indent_pulloff\" only, got \"{}\" (a slide's substrate takes [substrate_roughness])",
-                kind.name()
-            );
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                format!("\"{}\"", kind.name()),
+                "\"indent_pulloff\" with [roughness]",
+                format!(
+                    "[roughness] roughens the indenter of protocol.kind = \"indent_pulloff\" only, got \"{}\" (a slide's substrate takes [substrate_roughness])",
+                    kind.name()
+                )
+            ));
         }
         if self.substrate_roughness.is_some() && kind != ProtocolKind::Slide {
-            bail!(
-                "[substrate_roughness] is the substrate of protocol.kind = \"slide\" only, got \"{}\" (an indenter takes [roughness])",
-                kind.name()
-            );
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                format!("\"{}\"", kind.name()),
+                "\"slide\" with [substrate_roughness]",
+                format!(
+                    "[substrate_roughness] is the substrate of protocol.kind = \"slide\" only, got \"{}\" (an indenter takes [roughness])",
+                    kind.name()
+                )
+            ));
         }
         let roughness = self
             .roughness
@@ -187,18 +212,27 @@ impl ScenarioFile {
             bail!("[protocol]: validate_indentation needs protocol.kind = \"indent_pulloff\"");
         };
         if !self.analysis.is_empty() {
-            bail!(
-                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only"
-            );
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                "\"indent_pulloff\"",
+                "\"roll\" or \"slide\" with [analysis]",
+                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only, got \"indent_pulloff\""
+            ));
         }
         let raw_max_depth = p.max_depth;
         let max_depth = finite("protocol.max_depth", raw_max_depth)? * unit;
         if max_depth <= start_depth {
-            bail!(
-                "protocol.max_depth must exceed the depth of first contact ({:.6e} in length units), got {}",
-                start_depth / unit,
-                raw_max_depth
-            );
+            let requirement = format!("> {:.6e} (the depth of first contact)", start_depth / unit);
+            bail!(ScenarioError::invalid_as(
+                "protocol.max_depth",
+                raw_max_depth,
+                requirement,
+                format!(
+                    "protocol.max_depth must exceed the depth of first contact ({:.6e} in depth_unit), got {}",
+                    start_depth / unit,
+                    raw_max_depth
+                )
+            ));
         }
         check_periodic_depth(&grid, &heights, "protocol.max_depth", raw_max_depth, unit)?;
         let (depth_step, keys) = match (p.steps, p.step) {
@@ -213,12 +247,21 @@ impl ScenarioFile {
                 positive("protocol.step", step)? * unit,
                 "protocol.step, protocol.max_depth",
             ),
-            (Some(_), Some(_)) => bail!("give either protocol.steps or protocol.step, not both"),
-            (None, None) => bail!("missing key `protocol.steps` (or `protocol.step`)"),
+            (Some(steps), Some(step)) => bail!(ScenarioError::invalid_as(
+                "protocol.step",
+                step,
+                "absent when protocol.steps is given",
+                format!("give either protocol.steps or protocol.step, not both (protocol.steps = {steps}, protocol.step = {step})")
+            )),
+            (None, None) => bail!(ScenarioError::missing(
+                "protocol.steps",
+                "protocol.steps or protocol.step",
+                "missing key `protocol.steps` (or `protocol.step`)"
+            )),
         };
         let approach_steps = self.check_step(start_depth, max_depth, depth_step, keys)?;
         let max_retract_steps = match p.max_retract_steps {
-            Some(s) if s < 1 => bail!("protocol.max_retract_steps must be >= 1, got {s}"),
+            Some(s) if s < 1 => bail!(ScenarioError::invalid("protocol.max_retract_steps", s, ">= 1")),
             Some(s) => s as usize,
             None => (20 * approach_steps).max(1000),
         };
@@ -258,20 +301,30 @@ impl ScenarioFile {
         let o = &self.output;
         for &s in &o.snapshot_steps {
             if s < 0 {
-                bail!("output.snapshot_steps must hold steps >= 0, got {s}");
+                bail!(ScenarioError::invalid_as(
+                    "output.snapshot_steps",
+                    s,
+                    "steps >= 0",
+                    format!("output.snapshot_steps must hold steps >= 0, got {s}")
+                ));
             }
         }
         if o.snapshot_every < 0 {
-            bail!("output.snapshot_every must be >= 0, got {}", o.snapshot_every);
+            bail!(ScenarioError::invalid(
+                "output.snapshot_every",
+                o.snapshot_every,
+                ">= 0"
+            ));
         }
         if o.jump_snapshot_elements < 1 {
-            bail!(
-                "output.jump_snapshot_elements must be >= 1, got {}",
-                o.jump_snapshot_elements
-            );
+            bail!(ScenarioError::invalid(
+                "output.jump_snapshot_elements",
+                o.jump_snapshot_elements,
+                ">= 1"
+            ));
         }
         if o.max_snapshots < 0 {
-            bail!("output.max_snapshots must be >= 0, got {}", o.max_snapshots);
+            bail!(ScenarioError::invalid("output.max_snapshots", o.max_snapshots, ">= 0"));
         }
         non_negative("output.jump_force_threshold", o.jump_force_threshold)?;
         if let Some(radius) = o.min_fit_radius {
@@ -280,72 +333,6 @@ impl ScenarioFile {
         let force_scale = adhesive_force_scale(indenter, jkr.as_ref(), contact_modulus, gamma0);
         Ok(o.jump_force_threshold * force_scale)
     }
-}
-
-/// `[grid]`.
-fn validate_grid(section: &GridSection) -> Result<Grid> {
-    let count = |key: &str, n: i64| -> Result<usize> {
-        if n < 2 {
-            return Err(ScenarioError::invalid(key, n, ">= 2").into());
-        }
-        if n > MAX_GRID_N {
-            return Err(ScenarioError::invalid(key, n, &format!("<= {MAX_GRID_N}")).into());
-        }
-        Ok(n as usize)
-    };
-    let boundary = match section.boundary {
-        BoundaryName::Free => Boundary::Free,
-        BoundaryName::Periodic => Boundary::Periodic,
-    };
-    let grid = match (section.n, section.size) {
-        // The square of every scenario before issue #26, built as it always was.
-        (PerAxis::Both(n), PerAxis::Both(size)) => {
-            Grid::new(count("grid.n", n)?, positive("grid.size", size)?, boundary)
-        }
-        (n, size) => {
-            let keys = |key: &str, per_axis: bool| match per_axis {
-                false => [key.to_string(), key.to_string()],
-                true => [format!("{key}[0]"), format!("{key}[1]")],
-            };
-            let ([nx_key, ny_key], [sx_key, sy_key]) = (
-                keys("grid.n", matches!(n, PerAxis::Axes(..))),
-                keys("grid.size", matches!(size, PerAxis::Axes(..))),
-            );
-            let ((nx, ny), (sx, sy)) = (n.pair(), size.pair());
-            Grid::rectangular(
-                count(&nx_key, nx)?,
-                count(&ny_key, ny)?,
-                positive(&sx_key, sx)?,
-                positive(&sy_key, sy)?,
-                boundary,
-            )
-        }
-    };
-    grid.map_err(|e| anyhow!("[grid]: {e}"))
-}
-
-/// `[material]`: E* directly, or E and ν.
-fn validate_material(section: &MaterialSection) -> Result<ElasticMaterial> {
-    let m = section;
-    let material = match (m.contact_modulus, m.youngs_modulus, m.poisson_ratio) {
-        (Some(e), None, None) => ElasticMaterial::new(positive("material.contact_modulus", e)?)?,
-        (None, Some(e), Some(nu)) => {
-            positive("material.youngs_modulus", e)?;
-            if !(nu > -1.0 && nu <= 0.5) {
-                bail!("material.poisson_ratio must lie in (-1, 0.5], got {nu}");
-            }
-            ElasticMaterial::from_youngs_modulus(e, nu)?
-        }
-        (None, Some(_), None) => bail!("material.poisson_ratio is required with material.youngs_modulus"),
-        (None, None, Some(_)) => bail!("material.youngs_modulus is required with material.poisson_ratio"),
-        (None, None, None) => {
-            bail!("[material] needs contact_modulus, or youngs_modulus and poisson_ratio")
-        }
-        (Some(_), _, _) => bail!(
-            "material.contact_modulus cannot be combined with material.youngs_modulus/poisson_ratio; give one form"
-        ),
-    };
-    Ok(material)
 }
 
 /// `[indenter]` (with the `[roughness]` on the grid, if any): the profile, its heights on
@@ -383,7 +370,11 @@ fn validate_indenter(
         } => {
             let angle = angle(degrees)?;
             if semi_axes.len() != 2 {
-                bail!("indenter.semi_axes must be [a, b], got {semi_axes:?}");
+                bail!(ScenarioError::invalid(
+                    "indenter.semi_axes",
+                    format!("{semi_axes:?}"),
+                    "[a, b]"
+                ));
             }
             let a = positive("indenter.semi_axes[0]", semi_axes[0])?;
             let b = positive("indenter.semi_axes[1]", semi_axes[1])?;
@@ -392,10 +383,14 @@ fn validate_indenter(
         IndenterSection::Topography { file, spacing } => {
             let spacing = spacing.map(|s| positive("indenter.spacing", s)).transpose()?;
             let (values, rows, columns, spacing) = read_height_map(&base.join(file), spacing)?;
-            Indenter::Topography(
-                Topography::new(values, rows, columns, spacing)
-                    .map_err(|e| anyhow!("indenter.file = {}: {e}", file.display()))?,
-            )
+            Indenter::Topography(Topography::new(values, rows, columns, spacing).map_err(|e| {
+                ScenarioError::invalid_as(
+                    "indenter.file",
+                    file.display(),
+                    "a usable height map",
+                    format!("indenter.file = {}: {e}", file.display()),
+                )
+            })?)
         }
         IndenterSection::RoughSphere { .. } | IndenterSection::RoughFlat {} => {
             rough_indenter(section, grid, roughness)?
@@ -408,11 +403,16 @@ fn validate_indenter(
         .filter(|h| h.is_finite())
         .fold(f64::INFINITY, f64::min);
     if !start_depth.is_finite() {
-        bail!(
-            "the indenter (indenter.shape = \"{}\") has no surface inside the domain ({}): enlarge grid.size or grid.n",
-            shape.name(),
-            grid_keys(grid)
-        );
+        bail!(ScenarioError::invalid_as(
+            "grid.size",
+            grid.size_x(),
+            format!("a domain that holds part of the indenter (indenter.shape = \"{}\")", shape.name()),
+            format!(
+                "the indenter (indenter.shape = \"{}\") has no surface inside the domain ({}): enlarge grid.size or grid.n",
+                shape.name(),
+                grid_keys(grid)
+            )
+        ));
     }
     Ok((indenter, heights, start_depth))
 }
@@ -421,16 +421,20 @@ fn validate_indenter(
 fn rough_indenter(section: &IndenterSection, grid: &Grid, roughness: Option<&RoughnessMap>) -> Result<Indenter> {
     let shape = section.shape();
     let Some(map) = roughness else {
-        bail!(
-            "indenter.shape = \"{}\" needs a [roughness] section (roughness.file, or roughness.hurst, roughness.seed and roughness.rms_height or roughness.rms_slope)",
-            shape.name()
-        );
+        bail!(ScenarioError::missing(
+            "roughness",
+            format!("a [roughness] section with indenter.shape = \"{}\"", shape.name()),
+            format!(
+                "indenter.shape = \"{}\" needs a [roughness] section (roughness.file, or roughness.hurst, roughness.seed and roughness.rms_height or roughness.rms_slope)",
+                shape.name()
+            )
+        ));
     };
     let profile = match section.radius() {
         Some(radius) => RoughProfile::rough_sphere(positive("indenter.radius", radius)?, map.heights.clone(), grid),
         None => RoughProfile::rough_flat(map.heights.clone(), grid),
     };
-    Ok(Indenter::Rough(profile.map_err(|e| anyhow!("[roughness]: {e}"))?))
+    Ok(Indenter::Rough(profile.map_err(|e| roughness_error(&e))?))
 }
 
 /// The indenter and its heights on the grid with the `[roughness]`: a sphere with one is a
@@ -440,8 +444,7 @@ fn rough_indenter(section: &IndenterSection, grid: &Grid, roughness: Option<&Rou
 fn with_roughness(indenter: Indenter, grid: &Grid, roughness: Option<&RoughnessMap>) -> Result<(Indenter, Vec<f64>)> {
     let indenter = match (indenter, roughness) {
         (Indenter::Sphere(sphere), Some(map)) => Indenter::Rough(
-            RoughProfile::rough_sphere(sphere.radius(), map.heights.clone(), grid)
-                .map_err(|e| anyhow!("[roughness]: {e}"))?,
+            RoughProfile::rough_sphere(sphere.radius(), map.heights.clone(), grid).map_err(|e| roughness_error(&e))?,
         ),
         (other, _) => other,
     };
@@ -462,77 +465,12 @@ fn with_roughness(indenter: Indenter, grid: &Grid, roughness: Option<&RoughnessM
     Ok((indenter, heights))
 }
 
-/// `[adhesion]`: the reference γ0 and γ per element.
-fn validate_adhesion(
-    section: &AdhesionSection,
-    grid: &Grid,
-    indenter: &Indenter,
-    shape: ShapeName,
-    base: &Path,
-) -> Result<(f64, Vec<f64>)> {
-    let gamma0 = non_negative("adhesion.work_of_adhesion", section.work_of_adhesion)?;
-    let adhesion = match &section.field {
-        None => WorkOfAdhesion::Uniform(gamma0),
-        Some(FieldSpec::Quadratic {
-            ratio_edge_to_centre,
-            axis,
-            half_length,
-        }) => {
-            let ratio = positive("adhesion.field.ratio_edge_to_centre", *ratio_edge_to_centre)?;
-            let default_half_length = match (indenter, axis) {
-                (Indenter::EllipticPunch(p), AxisName::X) => Some(p.semi_axes().0),
-                (Indenter::EllipticPunch(p), AxisName::Y) => Some(p.semi_axes().1),
-                (Indenter::FlatPunch(p), _) => Some(p.radius()),
-                _ => None,
-            };
-            let half_length = match half_length {
-                Some(h) => positive("adhesion.field.half_length", *h)?,
-                None => default_half_length.ok_or_else(|| {
-                    anyhow!(
-                        "adhesion.field.half_length is required for indenter.shape = \"{}\" (defaults exist only for punches)",
-                        shape.name()
-                    )
-                })?,
-            };
-            WorkOfAdhesion::Quadratic {
-                middle: gamma0,
-                ratio_end_to_middle: ratio,
-                half_length,
-                axis: match axis {
-                    AxisName::X => Axis::X,
-                    AxisName::Y => Axis::Y,
-                },
-            }
-        }
-        Some(FieldSpec::Map { file }) => {
-            let (values, rows, columns) = read_npy_2d(&base.join(file), "adhesion.field.file")?;
-            if rows != grid.ny() || columns != grid.nx() {
-                bail!(
-                    "adhesion.field.file = {}: the map is {rows}×{columns}, the grid is {}×{} (rows × columns; {})",
-                    file.display(),
-                    grid.ny(),
-                    grid.nx(),
-                    grid_keys(grid)
-                );
-            }
-            if let Some(bad) = values.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-                bail!(
-                    "adhesion.field.file = {}: values must be finite and >= 0, found {bad}",
-                    file.display()
-                );
-            }
-            WorkOfAdhesion::Map(values.into_iter().map(|v| v * gamma0).collect())
-        }
-    };
-    let gamma = match adhesion.on_grid(grid) {
-        Ok(gamma) => gamma,
-        Err(e) => bail!("[adhesion]: {e}"),
-    };
-    check_field(section, grid, &gamma)?;
-    if gamma0 == 0.0 && section.field.is_some() {
-        bail!("adhesion.field needs adhesion.work_of_adhesion > 0, got 0");
-    }
-    Ok((gamma0, gamma))
+/// The library's refusal of a `[roughness]` map as a scenario error (the section as key).
+fn roughness_error(error: &impl std::fmt::Display) -> anyhow::Error {
+    ScenarioError::new(crate::error::ErrorKind::InvalidValue, format!("[roughness]: {error}"))
+        .with_key("roughness")
+        .with_requirement("a roughness map the library accepts")
+        .into()
 }
 
 /// The JKR scales and the other derived numbers of `summary.json`.
@@ -578,20 +516,33 @@ fn derived_scales(grid: &Grid, material: &ElasticMaterial, indenter: &Indenter, 
 fn depth_unit(section: &ProtocolSection, shape: ShapeName, jkr: Option<&Jkr>, gamma0: f64) -> Result<f64> {
     let p = section;
     if p.kind().is_translation() && !matches!(shape, ShapeName::Sphere | ShapeName::WavySphere) {
-        bail!(
-            "protocol.kind = \"{}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
-            p.kind().name(),
-            shape.name()
-        );
+        bail!(ScenarioError::invalid_as(
+            "indenter.shape",
+            format!("\"{}\"", shape.name()),
+            format!(
+                "\"wavy_sphere\" or \"sphere\" with protocol.kind = \"{}\"",
+                p.kind().name()
+            ),
+            format!(
+                "protocol.kind = \"{}\" needs indenter.shape = \"wavy_sphere\" or \"sphere\", got \"{}\"",
+                p.kind().name(),
+                shape.name()
+            )
+        ));
     }
     Ok(match p.depth_unit() {
         DepthUnit::Length => 1.0,
         DepthUnit::Jkr => match jkr {
             Some(j) => j.critical_depth().abs(),
-            None => bail!(
-                "protocol.depth_unit = \"jkr\" needs adhesion.work_of_adhesion > 0 (got {gamma0}) and a curved indenter (indenter.shape = \"{}\")",
-                shape.name()
-            ),
+            None => bail!(ScenarioError::invalid_as(
+                "protocol.depth_unit",
+                "\"jkr\"",
+                "adhesion.work_of_adhesion > 0 and a curved indenter",
+                format!(
+                    "protocol.depth_unit = \"jkr\" needs adhesion.work_of_adhesion > 0 (got {gamma0}) and a curved indenter (indenter.shape = \"{}\")",
+                    shape.name()
+                )
+            )),
         },
     })
 }

@@ -22,9 +22,15 @@ class _Field:
 
 
 _FIELDS = {
-    "key": "The dotted scenario key at fault (``grid.n``), or None when no single key is.",
-    "value": "The value at fault as written (``-4``, ``\"many\"``), or None where unknown.",
-    "requirement": "What the value must satisfy (``>= 2``), or None where unknown.",
+    "key": (
+        "The dotted scenario key at fault (``grid.n``), or None when no single key is (a syntax "
+        "error, a quantity derived from several keys that the message names)."
+    ),
+    "value": (
+        "The value at fault as written (``-4``, ``\"many\"``; a file key's path; a derived "
+        "quantity's own value), or None (a missing key)."
+    ),
+    "requirement": "What the value must satisfy (``>= 2``; when a missing key is required), or None where unknown.",
     "kind": "syntax, unknown_key, missing_key, invalid_value, file or resources.",
 }
 for _name, _doc in _FIELDS.items():

@@ -108,6 +108,11 @@ class RunResult:
         the folder the files were written to, or None.
     """
 
+    # Set by ``adhesim.sweep`` on each case's result only: the varied keys with their
+    # values, and the case's folder name under ``cases/``.
+    case: Dict[str, Any]
+    case_id: str
+
     def __init__(self, curve_arrays, summary, snapshots, out=None):
         self.curve_arrays: Dict[str, np.ndarray] = {
             name: _read_only(column) for name, column in curve_arrays.items()
@@ -424,8 +429,10 @@ def _read_fields_npz(path: Path) -> List[Snapshot]:
             steps, depths, offsets = (archive[name] for name in ("steps", "depths", "offsets"))
             for step, depth, offset in zip(steps, depths, offsets):
                 step = int(step)
-                fields = [archive[f"{name}_{step:06d}"] for name in ("pressure", "displacement", "gap", "contact")]
-                snapshots.append(Snapshot(step, depth, *fields[:3], fields[3].astype(bool), offset))
+                pressure, displacement, gap, contact = (
+                    archive[f"{name}_{step:06d}"] for name in ("pressure", "displacement", "gap", "contact")
+                )
+                snapshots.append(Snapshot(step, depth, pressure, displacement, gap, contact.astype(bool), offset))
         except KeyError as error:
             raise ValueError(f"{path}: no array {error} (see docs/output.md, fields.npz)") from None
     return snapshots

@@ -4,6 +4,7 @@
 
 use crate as scenario;
 use crate::batch::{fnv1a, results_hash};
+use crate::error::ScenarioError;
 use adhesim::analysis::johnson::{JohnsonInputs, JohnsonTarget};
 use adhesim::analysis::reference::Jkr;
 use adhesim::rng::SplitMix64;
@@ -85,8 +86,17 @@ fn number(table: &toml::Table, key: &str, why: &str) -> Result<f64> {
     match get(table, key) {
         Some(toml::Value::Float(f)) => Ok(*f),
         Some(toml::Value::Integer(i)) => Ok(*i as f64),
-        Some(other) => bail!("{why} needs {key} to be a number, got {other}"),
-        None => bail!("{why} needs {key} in the scenario"),
+        Some(other) => bail!(ScenarioError::invalid_as(
+            key,
+            other,
+            format!("a number (for {why})"),
+            format!("{why} needs {key} to be a number, got {other}")
+        )),
+        None => bail!(ScenarioError::missing(
+            key,
+            format!("for {why}"),
+            format!("{why} needs {key} in the scenario")
+        )),
     }
 }
 
@@ -127,9 +137,9 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
             let v = value
                 .as_float()
                 .or_else(|| value.as_integer().map(|i| i as f64))
-                .ok_or_else(|| anyhow!("{key} must be a number, got {value}"))?;
+                .ok_or_else(|| ScenarioError::invalid(key, value, "a number"))?;
             if !(v.is_finite() && v > 0.0) {
-                bail!("{key} must be > 0, got {v}");
+                bail!(ScenarioError::invalid(key, v, "> 0"));
             }
             pseudo.push((key.as_str(), v));
         } else {
