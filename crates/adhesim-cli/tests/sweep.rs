@@ -224,7 +224,7 @@ fn bad_sweep_files_name_the_key() {
     let temp = tempfile::tempdir().unwrap();
     let base = std::fs::read_to_string(sweeps_dir().join("tiny.toml")).unwrap();
     let scenario = &base[base.find("[scenario]").unwrap()..base.find("[vary]").unwrap()];
-    let cases: [(&str, &[&str]); 7] = [
+    let cases: [(&str, &[&str]); 9] = [
         (
             "[vary]\n\"indenter.amplitud\" = [1e-4, 2e-4]\n",
             &["indenter.amplitud", "unknown key"],
@@ -249,6 +249,14 @@ fn bad_sweep_files_name_the_key() {
         (
             "[vary]\n\"grid.n\" = [32]\n[zip]\n\"grid.n\" = [40]\n",
             &["grid.n", "more than once"],
+        ),
+        (
+            "[vary]\nmaugis_parameter = [1.5]\n",
+            &["maugis_parameter = 1.5", "adhesion.law is not set"],
+        ),
+        (
+            "[set]\n\"adhesion.law\" = \"dugdale\"\n[vary]\nmaugis_parameter = [1.5, -2.0]\n",
+            &["maugis_parameter must be a finite number > 0, got -2"],
         ),
     ];
     for (k, (tail, fragments)) in cases.iter().enumerate() {
