@@ -32,18 +32,51 @@ enum PlotKind {
         /// Output folder [default: plots/ next to the first table].
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Join each series' points by a line in α order (a few series side by side).
+        #[arg(long)]
+        join: bool,
+        /// Leave out the γ fits with the area-equivalent radius √(A/π).
+        #[arg(long)]
+        no_area: bool,
     },
+}
+
+/// How `fig3_master` and `fig5_master` are drawn (the defaults are a sweep's own plots).
+#[derive(Debug, Clone, Copy)]
+pub struct MasterStyle {
+    /// Each series' points joined by a line.
+    pub join: bool,
+    /// The γ fits with the area-equivalent radius as series of their own.
+    pub area: bool,
+}
+
+impl Default for MasterStyle {
+    fn default() -> Self {
+        Self {
+            join: false,
+            area: true,
+        }
+    }
 }
 
 /// Entry point of `adhesim plot`.
 pub fn command(args: &PlotArgs) -> Result<()> {
     match &args.what {
-        PlotKind::Master { tables, out } => {
+        PlotKind::Master {
+            tables,
+            out,
+            join,
+            no_area,
+        } => {
             let out = match out {
                 Some(out) => out.clone(),
                 None => tables[0].parent().unwrap_or(Path::new(".")).join("plots"),
             };
-            let written = write(tables, &out)?;
+            let style = MasterStyle {
+                join: *join,
+                area: !*no_area,
+            };
+            let written = write(tables, &out, style)?;
             println!("plots in {}/: {}", out.display(), written.join(", "));
             Ok(())
         }
@@ -52,7 +85,7 @@ pub fn command(args: &PlotArgs) -> Result<()> {
 
 /// Plots of a sweep folder into `DIR/plots/`; returns the file names.
 pub fn from_sweep(dir: &Path, table: &Path) -> Result<Vec<String>> {
-    write(&[table.to_path_buf()], &dir.join("plots"))
+    write(&[table.to_path_buf()], &dir.join("plots"), MasterStyle::default())
 }
 
 /// One table row's numbers.
@@ -139,8 +172,16 @@ fn group(rows: &[Row], value: impl Fn(&Row) -> Option<f64>) -> Series {
     out
 }
 
-/// A scatter panel with a log α axis; `styles` maps a series name to its marker index.
-fn scatter(title: &str, y_label: &str, data: &[(String, Series)], styles: &[String], alpha_range: (f64, f64)) -> Panel {
+/// A scatter panel with a log α axis; `styles` maps a series name to its marker index;
+/// `join` draws a line through each series' points in α order.
+fn scatter(
+    title: &str,
+    y_label: &str,
+    data: &[(String, Series)],
+    styles: &[String],
+    alpha_range: (f64, f64),
+    join: bool,
+) -> Panel {
     let mut panel = Panel::new(title, "Johnson parameter α", y_label)
         .log_x()
         .x_range(alpha_range.0, alpha_range.1)
@@ -161,6 +202,11 @@ fn scatter(title: &str, y_label: &str, data: &[(String, Series)], styles: &[Stri
             } else {
                 format!("{quantity}: {name}")
             };
+            if join {
+                let mut sorted = points.clone();
+                sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+                panel = panel.with([Drawn::new("", colour, Mark::Line, sorted)]);
+            }
             panel = panel.with([Drawn::new(label, colour, Mark::Marker(k), points.clone())]);
         }
     }
@@ -267,23 +313,30 @@ const AREA_SUFFIX: &str = ", radius √(A/π)";
 
 /// Paper Fig. 3: γ1/γ0, γ2/γ0 and |F_ad|/|F_JKR| vs α, side by side; (a) and (b) also with
 /// the area-equivalent radius where the tables have it.
-fn fig3(data: &[Series; 3], styles: &[String], range: (f64, f64)) -> Figure {
+fn fig3(data: &[Series; 3], styles: &[String], range: (f64, f64), join: bool) -> Figure {
     let one = |s: &Series| vec![(String::new(), s.clone())];
     Figure::side_by_side(vec![
-        scatter("(a) approach", "γ1 / γ0", &one(&data[0]), styles, range),
-        scatter("(b) detachment", "γ2 / γ0", &one(&data[1]), styles, range),
-        scatter("(c) adhesive force", "|F_ad| / |F_JKR|", &one(&data[2]), styles, range),
+        scatter("(a) approach", "γ1 / γ0", &one(&data[0]), styles, range, join),
+        scatter("(b) detachment", "γ2 / γ0", &one(&data[1]), styles, range, join),
+        scatter(
+            "(c) adhesive force",
+            "|F_ad| / |F_JKR|",
+            &one(&data[2]),
+            styles,
+            range,
+            join,
+        ),
     ])
 }
 
 /// Paper Fig. 5: the mean and half difference of γ1 and γ2 vs α.
-fn fig5(data: &[(String, Series)], styles: &[String], range: (f64, f64)) -> Figure {
+fn fig5(data: &[(String, Series)], styles: &[String], range: (f64, f64), join: bool) -> Figure {
     let title = "Mean and half difference (cf. paper Fig. 5)";
-    Figure::stacked(vec![scatter(title, "(γ1 ± γ2) / (2γ0)", data, styles, range)])
+    Figure::stacked(vec![scatter(title, "(γ1 ± γ2) / (2γ0)", data, styles, range, join)])
 }
 
 /// Draws every plot the tables allow into `out`; returns the file names written.
-pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
+pub fn write(tables: &[PathBuf], out: &Path, style: MasterStyle) -> Result<Vec<String>> {
     let mut rows = Vec::new();
     for table in tables {
         rows.extend(read_table(table)?);
@@ -310,8 +363,10 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
             series.iter_mut().for_each(|(name, _)| name.push_str(AREA_SUFFIX));
             series
         };
-        g1.extend(area(|r| r.gamma1_area));
-        g2.extend(area(|r| r.gamma2_area));
+        if style.area {
+            g1.extend(area(|r| r.gamma1_area));
+            g2.extend(area(|r| r.gamma2_area));
+        }
         for (name, _) in g1.iter().chain(&g2) {
             if !styles.contains(name) {
                 styles.push(name.clone());
@@ -325,8 +380,10 @@ pub fn write(tables: &[PathBuf], out: &Path) -> Result<Vec<String>> {
             ("(γ1+γ2)/(2γ0)".to_string(), mean),
             ("(γ1−γ2)/(2γ0)".to_string(), half_difference),
         ];
-        written.extend(fig3(&gammas_force, &styles, range).save(out, "fig3_master", (1500, 480))?);
-        written.extend(fig5(&mean_difference, &styles, range).save(out, "fig5_master", (800, 560))?);
+        let fig3 = fig3(&gammas_force, &styles, range, style.join);
+        written.extend(fig3.save(out, "fig3_master", (1500, 480))?);
+        let fig5 = fig5(&mean_difference, &styles, range, style.join);
+        written.extend(fig5.save(out, "fig5_master", (800, 560))?);
     }
     // Fig. 2: up to eight cases with folders, spread over the α range.
     let mut with_folders: Vec<&Row> = rows.iter().filter(|r| r.folder.is_some()).collect();

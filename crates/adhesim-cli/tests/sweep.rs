@@ -197,6 +197,26 @@ fn three_shards_merged_give_the_single_run_table() {
     ] {
         assert!(plots.join(name).exists(), "{name} missing");
     }
+    // --no-area leaves out the area-radius fits (the default draws them: the tiny cases
+    // have them); --join adds one line per series and panel: one series (both tables are
+    // the tiny sweep's, series "tiny") × 3 panels.
+    let svg = |dir: &Path| std::fs::read_to_string(dir.join("fig3_master.svg")).unwrap();
+    let polylines = |text: &str| text.matches("<polyline").count();
+    let mut drawn = Vec::new();
+    for (name, flags) in [
+        ("no_area", &["--no-area"][..]),
+        ("joined", &["--no-area", "--join"][..]),
+    ] {
+        let dir = temp.path().join(name);
+        let mut args = vec!["plot", "master", table.to_str().unwrap(), table2.to_str().unwrap()];
+        args.extend(flags);
+        args.extend(["--out", dir.to_str().unwrap()]);
+        assert_ok(&adhesim(&args));
+        drawn.push(svg(&dir));
+    }
+    assert!(svg(&plots).contains("√(A/π)"));
+    assert!(!drawn[0].contains("√(A/π)") && !drawn[1].contains("√(A/π)"));
+    assert_eq!(polylines(&drawn[1]), polylines(&drawn[0]) + 3);
 }
 
 #[test]
@@ -204,7 +224,7 @@ fn bad_sweep_files_name_the_key() {
     let temp = tempfile::tempdir().unwrap();
     let base = std::fs::read_to_string(sweeps_dir().join("tiny.toml")).unwrap();
     let scenario = &base[base.find("[scenario]").unwrap()..base.find("[vary]").unwrap()];
-    let cases: [(&str, &[&str]); 7] = [
+    let cases: [(&str, &[&str]); 9] = [
         (
             "[vary]\n\"indenter.amplitud\" = [1e-4, 2e-4]\n",
             &["indenter.amplitud", "unknown key"],
@@ -229,6 +249,14 @@ fn bad_sweep_files_name_the_key() {
         (
             "[vary]\n\"grid.n\" = [32]\n[zip]\n\"grid.n\" = [40]\n",
             &["grid.n", "more than once"],
+        ),
+        (
+            "[vary]\nmaugis_parameter = [1.5]\n",
+            &["maugis_parameter = 1.5", "adhesion.law is not set"],
+        ),
+        (
+            "[set]\n\"adhesion.law\" = \"dugdale\"\n[vary]\nmaugis_parameter = [1.5, -2.0]\n",
+            &["maugis_parameter must be a finite number > 0, got -2"],
         ),
     ];
     for (k, (tail, fragments)) in cases.iter().enumerate() {

@@ -278,9 +278,9 @@ def test_the_checks_of_each_key_reach_python_with_their_fields(overrides, kind, 
 
 
 def test_a_sweep_pseudo_key_is_typed():
-    with pytest.raises(adhesim.ScenarioError, match=r"alpha must be > 0, got -1") as info:
+    with pytest.raises(adhesim.ScenarioError, match=r"alpha must be a finite number > 0, got -1") as info:
         adhesim.sweep(BASE, vary={"alpha": [-1.0]})
-    assert (info.value.key, info.value.value, info.value.requirement) == ("alpha", "-1", "> 0")
+    assert (info.value.key, info.value.value, info.value.requirement) == ("alpha", "-1", "a finite number > 0")
 
 
 def test_a_quantity_of_several_keys_gives_its_value_and_requirement_without_a_key():

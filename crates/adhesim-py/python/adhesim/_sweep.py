@@ -125,8 +125,9 @@ def sweep(
         The base scenario, as for ``run``.
     vary : dict of str to list
         The sweep file's ``[vary]``: dotted scenario keys or the pseudo-keys
-        ``alpha``, ``size_over_a_jkr``, ``lambda_over_radius``, ``h_over_lambda``, each
-        with a list of values; the cases are their Cartesian product (last key fastest).
+        ``alpha``, ``size_over_a_jkr``, ``lambda_over_radius``, ``h_over_lambda``,
+        ``maugis_parameter``, each with a list of values; the cases are their Cartesian
+        product (last key fastest).
     out : path, optional
         The sweep folder (``sweep.json``, ``cases/<id>/``, ``table.csv``, ``plots/``: the
         command line's layout). Cases already finished there are not computed again, so a

@@ -14,7 +14,13 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// Pseudo-keys: dimensionless inputs turned into scenario keys for each case.
-pub const PSEUDO_KEYS: [&str; 4] = ["lambda_over_radius", "h_over_lambda", "alpha", "size_over_a_jkr"];
+pub const PSEUDO_KEYS: [&str; 5] = [
+    "lambda_over_radius",
+    "h_over_lambda",
+    "alpha",
+    "size_over_a_jkr",
+    "maugis_parameter",
+];
 
 /// Keys that `alpha` may solve for ([derived] alpha = "..."), with the library's inversion.
 const ALPHA_TARGETS: [(&str, JohnsonTarget); 4] = [
@@ -73,7 +79,7 @@ fn round10(x: f64) -> f64 {
     format!("{x:.9e}").parse().unwrap_or(x)
 }
 
-fn get<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
+pub(super) fn get<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     let mut parts = key.split('.');
     let mut value = table.get(parts.next()?)?;
     for part in parts {
@@ -82,7 +88,7 @@ fn get<'a>(table: &'a toml::Table, key: &str) -> Option<&'a toml::Value> {
     Some(value)
 }
 
-fn number(table: &toml::Table, key: &str, why: &str) -> Result<f64> {
+pub(super) fn number(table: &toml::Table, key: &str, why: &str) -> Result<f64> {
     match get(table, key) {
         Some(toml::Value::Float(f)) => Ok(*f),
         Some(toml::Value::Integer(i)) => Ok(*i as f64),
@@ -117,7 +123,7 @@ fn set(table: &mut toml::Table, key: &str, value: toml::Value) -> Result<()> {
     Ok(())
 }
 
-fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
+pub(super) fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
     if get(table, "material.contact_modulus").is_some() {
         return number(table, "material.contact_modulus", why);
     }
@@ -129,7 +135,7 @@ fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
 }
 
 /// Applies one case's overrides: plain dotted keys first, then the pseudo-keys in the
-/// order lambda_over_radius, h_over_lambda, alpha, size_over_a_jkr.
+/// order lambda_over_radius, h_over_lambda, alpha, size_over_a_jkr, maugis_parameter.
 pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha_target: &str) -> Result<()> {
     let mut pseudo: Vec<(&str, f64)> = Vec::new();
     for (key, value) in overrides {
@@ -139,7 +145,7 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
                 .or_else(|| value.as_integer().map(|i| i as f64))
                 .ok_or_else(|| ScenarioError::invalid(key, value, "a number"))?;
             if !(v.is_finite() && v > 0.0) {
-                bail!(ScenarioError::invalid(key, v, "> 0"));
+                bail!(ScenarioError::invalid(key, v, "a finite number > 0"));
             }
             pseudo.push((key.as_str(), v));
         } else {
@@ -192,6 +198,13 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
             work_of_adhesion: number(table, "adhesion.work_of_adhesion", why)?,
         };
         set(table, "grid.size", toml::Value::Float(v * jkr.critical_radius()))?;
+    }
+    if let Some(v) = value_of("maugis_parameter") {
+        if overrides.iter().any(|(key, _)| key == "adhesion.cohesive_stress") {
+            bail!("maugis_parameter = {v} sets adhesion.cohesive_stress: give one of the two, not both");
+        }
+        let stress = super::maugis::cohesive_stress(table, v)?;
+        set(table, "adhesion.cohesive_stress", toml::Value::Float(stress))?;
     }
     Ok(())
 }
