@@ -109,7 +109,11 @@ fn a_sweep_pseudo_key_and_the_key_it_needs_are_typed() {
         error.value.as_deref(),
         error.requirement.as_deref(),
     );
-    assert_eq!(fields, (Some("alpha"), Some("-1"), Some("a finite number > 0")), "{error}");
+    assert_eq!(
+        fields,
+        (Some("alpha"), Some("-1"), Some("a finite number > 0")),
+        "{error}"
+    );
     let error = crate::sweep::plan::apply(&mut table, &[("h_over_lambda".into(), toml::Value::Float(0.1))], "")
         .map_err(ScenarioError::from_anyhow)
         .unwrap_err();

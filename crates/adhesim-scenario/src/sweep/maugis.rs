@@ -6,6 +6,7 @@
 //! follows the map; λ_M is then the parameter at the scenario's reference
 //! `adhesion.work_of_adhesion`, as `derived.maugis_parameter` in summary.json reports it.
 
+use crate::error::ScenarioError;
 use adhesim::analysis::reference::cohesive_stress_for;
 use anyhow::{bail, Result};
 
@@ -15,23 +16,37 @@ pub(super) fn cohesive_stress(table: &toml::Table, lambda: f64) -> Result<f64> {
     let why = "maugis_parameter";
     match super::plan::get(table, "adhesion.law") {
         Some(toml::Value::String(law)) if law == "dugdale" => {}
-        Some(other) => bail!(
-            "maugis_parameter = {lambda} sets adhesion.cohesive_stress of law = \"dugdale\", but adhesion.law = {other}"
-        ),
-        None => bail!(
-            "maugis_parameter = {lambda} sets adhesion.cohesive_stress of law = \"dugdale\", but adhesion.law is not set (the default is \"jkr\")"
-        ),
+        Some(other) => bail!(ScenarioError::invalid_as(
+            "adhesion.law",
+            other,
+            "\"dugdale\" with maugis_parameter",
+            format!(
+                "maugis_parameter = {lambda} sets adhesion.cohesive_stress of law = \"dugdale\", but adhesion.law = {other}"
+            )
+        )),
+        None => bail!(ScenarioError::missing(
+            "adhesion.law",
+            "\"dugdale\" with maugis_parameter",
+            format!(
+                "maugis_parameter = {lambda} sets adhesion.cohesive_stress of law = \"dugdale\", but adhesion.law is not set (the default is \"jkr\")"
+            )
+        )),
     }
     let radius = super::plan::number(table, "indenter.radius", why)?;
     let contact_modulus = super::plan::contact_modulus(table, why)?;
     let work_of_adhesion = super::plan::number(table, "adhesion.work_of_adhesion", why)?;
     for (key, value) in [
         ("indenter.radius", radius),
-        ("material contact modulus", contact_modulus),
+        ("material.contact_modulus", contact_modulus),
         ("adhesion.work_of_adhesion", work_of_adhesion),
     ] {
         if !(value.is_finite() && value > 0.0) {
-            bail!("maugis_parameter needs {key} > 0, got {value}");
+            bail!(ScenarioError::invalid_as(
+                key,
+                value,
+                "> 0 with maugis_parameter",
+                format!("maugis_parameter needs {key} > 0, got {value}")
+            ));
         }
     }
     Ok(cohesive_stress_for(radius, contact_modulus, work_of_adhesion, lambda))
@@ -126,6 +141,11 @@ mod tests {
         let text = BASE.replace("law = \"dugdale\"\ncohesive_stress = 0.5\n", "");
         let error = error_of(&format!("{text}[vary]\nmaugis_parameter = [1.5]\n"));
         assert!(error.contains("adhesion.law is not set"), "{error}");
+        // Typed for Python: the key at fault is the law.
+        let typed = crate::error::ScenarioError::from_anyhow(
+            plan(&format!("{text}[vary]\nmaugis_parameter = [1.5]\n")).expect_err("refused"),
+        );
+        assert_eq!(typed.key.as_deref(), Some("adhesion.law"), "{typed}");
         // The law may come from the sweep itself.
         let plan = plan(&format!(
             "{text}[set]\n\"adhesion.law\" = \"dugdale\"\n[vary]\nmaugis_parameter = [1.5]\n"
