@@ -16,7 +16,7 @@ pyo3::create_exception!(
     _adhesim,
     ScenarioError,
     pyo3::exceptions::PyValueError,
-    "A scenario that cannot be read or run (a ValueError). `key` is the dotted key at fault (None when the error is not about one key), `value` its value as written, `requirement` what it must satisfy (None where unknown), `kind` one of syntax, unknown_key, missing_key, invalid_value, file, resources."
+    "A scenario that cannot be read or run (a ValueError). `key` is the dotted key at fault (None when the error is not about one key), `value` its value as written, `requirement` what it must satisfy (None where unknown), `kind` one of syntax, unknown_key, missing_key, invalid_value, file, resources. A sweep's own tables (adhesim.sweep's vary, zip, random, derived; a sweep file) name their key as the sweep file's TOML dotted key: random.seed, random.cases, vary.alpha, zip.\"grid.n\", random.\"grid.size\".min, derived.alpha; a case's value of a scenario key keeps the scenario key (grid.n)."
 );
 
 /// The scenario crate's typed error as `adhesim.ScenarioError` (a `ValueError`) with

@@ -287,3 +287,43 @@ def test_a_quantity_of_several_keys_gives_its_value_and_requirement_without_a_ke
     with pytest.raises(adhesim.ScenarioError, match=r"adhesion.work_of_adhesion = 1e-200") as info:
         adhesim.run(BASE, **{"adhesion.work_of_adhesion": 1e-200})
     assert info.value.key is None and info.value.value is not None and info.value.requirement is not None
+
+
+@pytest.mark.parametrize(
+    "tables, kind, key, value, requirement",
+    [
+        ({"random": {"seed": -1, "cases": 2, "grid.n": {"min": 8, "max": 16}}}, "invalid_value", "random.seed",
+         "-1", "an integer >= 0"),
+        ({"random": {"cases": 2, "grid.n": {"min": 8, "max": 16}}}, "missing_key", "random.seed", None,
+         "with [random]"),
+        ({"random": {"seed": 1, "cases": 0, "grid.n": {"min": 8, "max": 16}}}, "invalid_value", "random.cases",
+         "0", "an integer >= 1"),
+        ({"random": {"seed": 1, "cases": 2, "adhesion.work_of_adhesion": {"min": 0.2, "max": 0.1}}},
+         "invalid_value", 'random."adhesion.work_of_adhesion".min', "0.2", "<= max (0.1)"),
+        ({"random": {"seed": 1, "cases": 2, "grid.size": {"min": 0.0, "max": 1.0, "scale": "log"}}},
+         "invalid_value", 'random."grid.size".min', "0", '> 0 with scale = "log"'),
+        ({"random": {"seed": 1, "cases": 2, "grid.size": {"min": 0.1, "max": 1.0, "scale": "ln"}}},
+         "invalid_value", 'random."grid.size".scale', '"ln"', '"log" or "linear"'),
+        ({"vary": {"alpha": []}}, "invalid_value", "vary.alpha", "[]", "a non-empty list"),
+        ({"zip": {"grid.n": [16, 32], "grid.size": [0.25]}}, "invalid_value", 'zip."grid.size"', "[0.25]",
+         'a list of 2 values, as zip."grid.n"'),
+        ({"vary": {"grid.n": [16]}, "zip": {"grid.n": [32]}}, "invalid_value", 'zip."grid.n"', "[32]",
+         'given once in [set], [vary], [zip] and [random] (also vary."grid.n")'),
+        ({"vary": {"alpha": [1.0]}, "derived": {"alpha": "indenter.radius"}}, "invalid_value", "derived.alpha",
+         '"indenter.radius"', "one of indenter.amplitude"),
+        ({"vary": {"alpha": [1.0]}, "derived": {"alpha": "indenter.wavelength"}}, "missing_key",
+         "indenter.wavelength", None, "in the base scenario, for alpha"),
+        ({"vary": {"alpah": [1.0]}}, "unknown_key", "alpah", None, "a dotted scenario key or one of"),
+    ],
+)
+def test_the_checks_of_a_sweeps_own_tables_give_the_sweep_files_key(tables, kind, key, value, requirement, tmp_path):
+    """The checks of the sweep's tables (seed, cases, ranges, lists, keys given twice, the
+    [derived] alpha target) reached Python with key None before: each names the sweep
+    file's key as a TOML dotted key, with the value and the requirement."""
+    with pytest.raises(adhesim.ScenarioError) as info:
+        adhesim.sweep(BASE, out=tmp_path / "out", **tables)
+    error = info.value
+    assert isinstance(error, ValueError)
+    assert (error.kind, error.key, error.value) == (kind, key, value), str(error)
+    assert error.requirement is not None and error.requirement.startswith(requirement), (error.requirement, str(error))
+    assert not (tmp_path / "out").exists()

@@ -131,3 +131,117 @@ fn a_sweep_pseudo_key_and_the_key_it_needs_are_typed() {
         "h_over_lambda needs indenter.wavelength in the scenario"
     );
 }
+
+/// The error of a sweep file made of `MINIMAL` as its inline `[scenario]` and `tail`.
+fn sweep_error(tail: &str) -> ScenarioError {
+    let mut sweep: toml::Table = toml::from_str(tail).unwrap();
+    sweep.insert(
+        "scenario".into(),
+        toml::Value::Table(parse_toml(MINIMAL, "test").unwrap()),
+    );
+    let text = toml::to_string(&sweep).unwrap();
+    match crate::sweep::plan::from_text(&text, "test.toml", Path::new("."), "test") {
+        Ok(plan) => panic!("accepted {tail:?}: {} cases", plan.cases.len()),
+        Err(error) => ScenarioError::from_anyhow(error),
+    }
+}
+
+/// The sweep file's own checks name its key as a TOML dotted key (`random.seed`,
+/// `vary.alpha`, `zip."grid.n"`, `random."KEY".min`), with the value and the requirement.
+#[test]
+fn each_check_of_a_sweep_file_gives_its_key_the_value_and_the_requirement() {
+    use ErrorKind::*;
+    const RANGE: &str = "[random]\nseed = 1\ncases = 2\n\"adhesion.work_of_adhesion\"";
+    const GAMMA: &str = "random.\"adhesion.work_of_adhesion\"";
+    let min = format!("{GAMMA}.min");
+    let tails = [
+        format!("{RANGE} = {{ min = 2.0, max = 1.0 }}"),
+        format!("{RANGE} = {{ min = 0.0, max = 1.0, scale = \"log\" }}"),
+        format!("{RANGE} = {{ min = 0.1, max = 1.0, scale = \"ln\" }}"),
+        format!("{RANGE} = {{ min = 0.1, max = \"big\" }}"),
+        format!("{RANGE} = {{ min = 0.1 }}"),
+        format!("{RANGE} = {{ min = 0.1, max = 1.0, step = 0.1 }}"),
+        format!("{RANGE} = 0.5"),
+    ];
+    let scale = format!("{GAMMA}.scale");
+    let (max, step) = (format!("{GAMMA}.max"), format!("{GAMMA}.step"));
+    #[rustfmt::skip]
+    let cases: [(&str, ErrorKind, &str, Option<&str>, &str); 21] = [
+        ("[random]\nseed = -1\ncases = 2\n\"grid.n\" = { min = 8, max = 16 }", InvalidValue, "random.seed", Some("-1"),
+            "an integer >= 0"),
+        ("[random]\ncases = 2\n\"grid.n\" = { min = 8, max = 16 }", MissingKey, "random.seed", None, "with [random]"),
+        ("[random]\nseed = 1\ncases = 0\n\"grid.n\" = { min = 8, max = 16 }", InvalidValue, "random.cases", Some("0"),
+            "an integer >= 1"),
+        ("[random]\nseed = 1\ncases = 1000001\n\"grid.n\" = { min = 8, max = 16 }", InvalidValue, "random.cases",
+            Some("1000001"), "<= 100000"),
+        (&tails[0], InvalidValue, &min, Some("2"), "<= max (1)"),
+        (&tails[1], InvalidValue, &min, Some("0"), "> 0 with scale = \"log\""),
+        (&tails[2], InvalidValue, &scale, Some("\"ln\""), "\"log\" or \"linear\""),
+        (&tails[3], InvalidValue, &max, Some("\"big\""), "a finite number"),
+        (&tails[4], MissingKey, &max, None, "in a [random] range"),
+        (&tails[5], UnknownKey, &step, None, "one of min, max, scale"),
+        (&tails[6], InvalidValue, GAMMA, Some("0.5"), "{ min = .., max = .."),
+        ("[vary]\nalpha = []", InvalidValue, "vary.alpha", Some("[]"), "a non-empty list"),
+        ("[vary]\n\"grid.n\" = 8", InvalidValue, "vary.\"grid.n\"", Some("8"), "a list of values"),
+        ("[zip]\n\"grid.n\" = [8, 16]\n\"grid.size\" = [0.5]", InvalidValue, "zip.\"grid.size\"", Some("[0.5]"),
+            "a list of 2 values, as zip.\"grid.n\""),
+        ("[vary]\n\"grid.n\" = [8]\n[zip]\n\"grid.n\" = [16]", InvalidValue, "zip.\"grid.n\"", Some("[16]"),
+            "given once in [set], [vary], [zip] and [random] (also vary.\"grid.n\")"),
+        ("[vary]\nalpha = [1.0]\n[derived]\nalpha = \"indenter.radius\"", InvalidValue, "derived.alpha",
+            Some("\"indenter.radius\""), "one of indenter.amplitude, "),
+        ("[vary]\nalpha = [1.0]\n[derived]\nbeta = \"x\"", UnknownKey, "derived.beta", Some("\"x\""), "absent"),
+        ("[vary]\nalpha = [1.0]\n[derived]\nalpha = \"indenter.wavelength\"", MissingKey, "indenter.wavelength", None,
+            "in the base scenario, for alpha"),
+        ("[vary]\nalpah = [1.0]", UnknownKey, "alpah", None, "a dotted scenario key or one of"),
+        ("series = 3\n[vary]\nalpha = [1.0]", InvalidValue, "series", Some("3"), "a string"),
+        ("vary = 3", InvalidValue, "vary", Some("3"), "a table [vary]"),
+    ];
+    for (tail, kind, key, value, requirement) in cases {
+        let error = sweep_error(tail);
+        let context = format!("{tail:?}: {error}");
+        assert_eq!(error.kind, kind, "{context}");
+        assert_eq!(error.key.as_deref(), Some(key), "{context}");
+        assert_eq!(error.value.as_deref(), value, "{context}");
+        let got = error.requirement.as_deref().unwrap_or_default();
+        assert!(got.starts_with(requirement), "{context}: requirement {got:?}");
+        // The message names the key (a range's field beside its range) and a scalar value.
+        let shown = [".min", ".max", ".scale", ".step"]
+            .iter()
+            .fold(key, |k, f| k.trim_end_matches(f));
+        assert!(error.message().contains(shown), "{context}");
+        if let Some(value) = value.filter(|v| !v.starts_with('[') && kind != UnknownKey) {
+            assert!(error.message().contains(value.trim_matches('"')), "{context}");
+        }
+    }
+}
+
+#[test]
+fn the_sweep_file_messages_keep_their_wording() {
+    let error = sweep_error("[random]\nseed = 1\ncases = 2\n\"grid.size\" = { min = 2.0, max = 1.0 }");
+    assert_eq!(error.to_string(), "random.\"grid.size\": min (2) > max (1)");
+    let error = sweep_error("[random]\nseed = 1\ncases = 1000001\n\"grid.n\" = { min = 8, max = 16 }");
+    assert_eq!(
+        error.to_string(),
+        "random.cases must be <= 100000 (the cap on a sweep's cases), got 1000001"
+    );
+    let error = sweep_error("[zip]\n\"grid.n\" = [8, 16]\n\"grid.size\" = [0.5]");
+    assert_eq!(
+        error.to_string(),
+        "[zip] lists must have equal lengths: zip.\"grid.size\" has 1, zip.\"grid.n\" has 2"
+    );
+    // A key given twice names both places.
+    let error = sweep_error("[set]\n\"grid.n\" = 8\n[vary]\n\"grid.n\" = [16]");
+    assert_eq!(
+        error.to_string(),
+        "sweep key `grid.n` is given more than once (in [set], [vary], [zip] or [random]): vary.\"grid.n\" and set.\"grid.n\""
+    );
+    assert_eq!(error.key.as_deref(), Some("set.\"grid.n\""));
+    // A case count over the cap is a quantity of several tables: no single key.
+    let error = sweep_error("[vary]\n\"grid.n\" = [8, 9, 10, 11, 12, 13, 14, 15, 16, 17]\n[random]\nseed = 1\ncases = 100000\n\"grid.size\" = { min = 1.0, max = 2.0 }");
+    assert_eq!(
+        (error.key.as_deref(), error.value.as_deref()),
+        (None, Some("1000000")),
+        "{error}"
+    );
+    assert!(error.to_string().contains("1000000 cases"), "{error}");
+}

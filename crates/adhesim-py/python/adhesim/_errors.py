@@ -24,7 +24,13 @@ class _Field:
 _FIELDS = {
     "key": (
         "The dotted scenario key at fault (``grid.n``), or None when no single key is (a syntax "
-        "error, a quantity derived from several keys that the message names)."
+        "error, a quantity derived from several keys that the message names). The checks of a "
+        "sweep's own tables (``adhesim.sweep``'s ``vary``, ``zip``, ``random``, ``derived``, or a "
+        "sweep file) give the sweep file's key, a TOML dotted key quoted where it holds a dot: "
+        "``random.seed``, ``random.cases``, ``vary.alpha``, ``zip.\"grid.n\"`` (a list that is "
+        "empty, no list, or of another length; a key given twice), "
+        "``random.\"grid.size\".min`` (``.max``, ``.scale``: a range), ``derived.alpha``; a "
+        "case's value of a scenario key keeps the scenario key (``grid.n``)."
     ),
     "value": (
         "The value at fault as written (``-4``, ``\"many\"``; a file key's path; a derived "

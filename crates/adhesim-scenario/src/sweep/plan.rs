@@ -219,6 +219,9 @@ struct Range {
     scale: Option<String>,
 }
 
+mod tables;
+use tables::SweepTables;
+
 /// Reads the sweep file and builds the validated case list.
 pub fn load(path: &Path) -> Result<Plan> {
     let text = scenario::read_input_text(path, "sweep file")?;
@@ -234,117 +237,29 @@ pub fn load(path: &Path) -> Result<Plan> {
 /// As [`load`], from text (`sweep_dir` resolves `base`).
 pub fn from_text(text: &str, origin: &str, sweep_dir: &Path, stem: &str) -> Result<Plan> {
     let sweep = scenario::parse_toml(text, origin)?;
-    const TOP: [&str; 8] = ["base", "scenario", "series", "set", "vary", "zip", "random", "derived"];
-    for key in sweep.keys() {
-        if !TOP.contains(&key.as_str()) {
-            bail!("{origin}: unknown key `{key}` (expected: {})", TOP.join(", "));
-        }
-    }
+    tables::check_top_keys(&sweep, origin)?;
     let (base, base_dir) = base_scenario(&sweep, origin, sweep_dir)?;
     scenario::deserialize(&base)
         .and_then(|file| file.validate(&base_dir).map(|_| ()))
         .context("base scenario")?;
-    let series = match sweep.get("series") {
-        None => stem.to_string(),
-        Some(toml::Value::String(s)) => s.clone(),
-        Some(other) => bail!("series must be a string, got {other}"),
-    };
-    let table_of = |name: &str| -> Result<toml::Table> {
-        match sweep.get(name) {
-            None => Ok(toml::Table::new()),
-            Some(toml::Value::Table(t)) => Ok(t.clone()),
-            Some(other) => bail!("`{name}` must be a table [{name}], got {other}"),
-        }
-    };
-    let derived = table_of("derived")?;
-    let alpha_target = alpha_target(&derived)?;
-    let fixed: Vec<(String, toml::Value)> = table_of("set")?.into_iter().collect();
-
-    // [vary]: cartesian product.
-    let mut keys: Vec<String> = Vec::new();
-    let mut vary: Vec<(String, Vec<toml::Value>)> = Vec::new();
-    for (key, value) in table_of("vary")? {
-        match value {
-            toml::Value::Array(list) if !list.is_empty() => vary.push((key.clone(), list)),
-            toml::Value::Array(_) => bail!("vary.\"{key}\" is an empty list"),
-            other => bail!("vary.\"{key}\" must be a list of values, got {other}"),
-        }
-        keys.push(key);
-    }
-    // [zip]: equal-length lists.
-    let mut zip: Vec<(String, Vec<toml::Value>)> = Vec::new();
-    for (key, value) in table_of("zip")? {
-        match value {
-            toml::Value::Array(list) => zip.push((key.clone(), list)),
-            other => bail!("zip.\"{key}\" must be a list of values, got {other}"),
-        }
-        keys.push(key);
-    }
-    let zip_rows = match zip.first() {
-        None => 1,
-        Some((first_key, first)) => {
-            for (key, list) in &zip {
-                if list.len() != first.len() {
-                    bail!(
-                        "[zip] lists must have equal lengths: zip.\"{key}\" has {}, zip.\"{first_key}\" has {}",
-                        list.len(),
-                        first.len()
-                    );
-                }
-            }
-            if first.is_empty() {
-                bail!("zip.\"{first_key}\" is an empty list");
-            }
-            first.len()
-        }
-    };
-    // [random]: seeded draws.
-    let draws = random_draws(table_of("random")?, &mut keys)?;
-    let mut seen = std::collections::BTreeSet::new();
-    for key in keys.iter().chain(fixed.iter().map(|(k, _)| k)) {
-        if !seen.insert(key.clone()) {
-            bail!("sweep key `{key}` is given more than once (in [set], [vary], [zip] or [random])");
-        }
-        if key == "alpha" && get(&base, &alpha_target).is_none() && alpha_target != "indenter.amplitude" {
-            bail!("alpha sets {alpha_target}, which the base scenario lacks");
-        }
-    }
-    // Every key must be a scenario key (or a pseudo-key): set it alone on the base and
-    // deserialise, so that an unknown key is named.
-    for (key, value) in vary
-        .iter()
-        .map(|(k, l)| (k, &l[0]))
-        .chain(zip.iter().map(|(k, l)| (k, &l[0])))
-        .chain(draws[0].iter().map(|(k, v)| (k, v)))
-        .chain(fixed.iter().map(|(k, v)| (k, v)))
-    {
-        if PSEUDO_KEYS.contains(&key.as_str()) {
-            continue;
-        }
-        if key.split('.').any(str::is_empty) || !key.contains('.') {
-            bail!(
-                "unknown sweep key `{key}`: expected a dotted scenario key such as \"indenter.amplitude\" or one of {}",
-                PSEUDO_KEYS.join(", ")
-            );
-        }
-        let mut table = base.clone();
-        set(&mut table, key, value.clone()).with_context(|| format!("sweep key `{key}`"))?;
-        scenario::deserialize(&table).with_context(|| format!("sweep key `{key}`"))?;
-    }
-
+    let series = tables::series(&sweep, stem)?;
+    let alpha_target = alpha_target(&tables::table_of(&sweep, "derived")?)?;
+    let tables = SweepTables::read(&sweep)?;
+    tables.check_keys_once(&sweep, &base, &alpha_target)?;
+    tables.check_scenario_keys(&base)?;
     let cases = case_list(&CaseInputs {
         base: &base,
         base_dir: &base_dir,
-        fixed: &fixed,
-        vary: &vary,
-        zip: &zip,
-        zip_rows,
-        draws: &draws,
+        fixed: &tables.fixed,
+        vary: &tables.vary,
+        zip: &tables.zip,
+        zip_rows: tables.zip_rows,
+        draws: &tables.draws,
         alpha_target: &alpha_target,
     })?;
     Ok(Plan {
         series,
-        keys,
+        keys: tables.keys,
         cases,
         base_dir,
     })
@@ -361,10 +276,29 @@ fn base_scenario(sweep: &toml::Table, origin: &str, sweep_dir: &Path) -> Result<
             (table, base_path.parent().unwrap_or(Path::new(".")).to_path_buf())
         }
         (None, Some(toml::Value::Table(table))) => (table.clone(), sweep_dir.to_path_buf()),
-        (Some(_), Some(_)) => bail!("{origin}: give either base = \"file.toml\" or an inline [scenario], not both"),
-        (Some(other), None) => bail!("base must be a file name (string), got {other}"),
-        (None, Some(other)) => bail!("scenario must be a table [scenario], got {other}"),
-        (None, None) => bail!("{origin}: missing base = \"scenario.toml\" (or an inline [scenario] table)"),
+        (Some(base), Some(_)) => bail!(ScenarioError::invalid_as(
+            "base",
+            base,
+            "absent with an inline [scenario]",
+            format!("{origin}: give either base = \"file.toml\" or an inline [scenario], not both")
+        )),
+        (Some(other), None) => bail!(ScenarioError::invalid_as(
+            "base",
+            other,
+            "a file name (string)",
+            format!("base must be a file name (string), got {other}")
+        )),
+        (None, Some(other)) => bail!(ScenarioError::invalid_as(
+            "scenario",
+            other,
+            "a table [scenario]",
+            format!("scenario must be a table [scenario], got {other}")
+        )),
+        (None, None) => bail!(ScenarioError::missing(
+            "base",
+            "unless an inline [scenario] is given",
+            format!("{origin}: missing base = \"scenario.toml\" (or an inline [scenario] table)")
+        )),
     })
 }
 
@@ -376,92 +310,28 @@ fn alpha_target(derived: &toml::Table) -> Result<String> {
             ("alpha", toml::Value::String(target)) if ALPHA_TARGETS.iter().any(|(key, _)| key == target) => {
                 alpha_target = target.clone()
             }
-            ("alpha", other) => bail!(
-                "derived.alpha must name the key alpha sets, one of {}; got {other}",
-                alpha_target_keys()
-            ),
-            (other, _) => bail!("unknown key `derived.{other}` (known: alpha)"),
+            ("alpha", other) => bail!(ScenarioError::invalid_as(
+                "derived.alpha",
+                other,
+                format!("one of {}", alpha_target_keys()),
+                format!(
+                    "derived.alpha must name the key alpha sets, one of {}; got {other}",
+                    alpha_target_keys()
+                )
+            )),
+            (_, other) => {
+                let key = tables::file_key("derived", key);
+                bail!(ScenarioError::new(
+                    crate::error::ErrorKind::UnknownKey,
+                    format!("unknown key `{key}` (known: alpha)")
+                )
+                .with_key(key)
+                .with_value(other.to_string())
+                .with_requirement("absent (the key of [derived] is alpha)"))
+            }
         }
     }
     Ok(alpha_target)
-}
-
-/// `[random]`: `cases` seeded draws of each range (keys appended to `keys`); one empty draw
-/// without a `[random]` table.
-fn random_draws(mut random: toml::Table, keys: &mut Vec<String>) -> Result<Vec<Vec<(String, toml::Value)>>> {
-    let mut draws: Vec<Vec<(String, toml::Value)>> = Vec::new();
-    if !random.is_empty() {
-        let seed = match random.remove("seed") {
-            Some(toml::Value::Integer(s)) if s >= 0 => s as u64,
-            Some(other) => bail!("random.seed must be an integer >= 0, got {other}"),
-            None => bail!("missing key `random.seed`"),
-        };
-        let cases = match random.remove("cases") {
-            Some(toml::Value::Integer(c)) if c > MAX_CASES as i64 => {
-                bail!("random.cases must be <= {MAX_CASES} (the cap on a sweep's cases), got {c}")
-            }
-            Some(toml::Value::Integer(c)) if c >= 1 => c as usize,
-            Some(other) => bail!("random.cases must be an integer >= 1, got {other}"),
-            None => bail!("missing key `random.cases`"),
-        };
-        let mut ranges = Vec::new();
-        for (key, value) in random {
-            let range = Range::deserialize(value.clone()).map_err(|e| {
-                anyhow!(
-                    "random.\"{key}\" must be {{ min = .., max = .., scale = \"log\"|\"linear\" }}: {}",
-                    e.message()
-                )
-            })?;
-            let as_f64 = |v: &toml::Value, which: &str| -> Result<f64> {
-                v.as_float()
-                    .or_else(|| v.as_integer().map(|i| i as f64))
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| anyhow!("random.\"{key}\".{which} must be a number, got {v}"))
-            };
-            let (min, max) = (as_f64(&range.min, "min")?, as_f64(&range.max, "max")?);
-            if min > max {
-                bail!("random.\"{key}\": min ({min}) > max ({max})");
-            }
-            let log = match range.scale.as_deref() {
-                None | Some("linear") => false,
-                Some("log") => {
-                    if min <= 0.0 {
-                        bail!("random.\"{key}\": scale = \"log\" needs min > 0, got {min}");
-                    }
-                    true
-                }
-                Some(other) => bail!("random.\"{key}\".scale must be \"log\" or \"linear\", got \"{other}\""),
-            };
-            let integer = range.min.is_integer() && range.max.is_integer();
-            ranges.push((key.clone(), min, max, log, integer));
-            keys.push(key);
-        }
-        let mut rng = SplitMix64::new(seed);
-        for _ in 0..cases {
-            let mut draw = Vec::new();
-            for (key, min, max, log, integer) in &ranges {
-                let u = rng.next_f64();
-                let x = if *log {
-                    (min.ln() + u * (max.ln() - min.ln())).exp()
-                } else if *integer {
-                    (min + (u * (max - min + 1.0)).floor()).min(*max)
-                } else {
-                    min + u * (max - min)
-                };
-                let value = if *integer {
-                    toml::Value::Integer(x.round() as i64)
-                } else {
-                    toml::Value::Float(round10(x))
-                };
-                draw.push((key.clone(), value));
-            }
-            draws.push(draw);
-        }
-    }
-    if draws.is_empty() {
-        draws.push(Vec::new());
-    }
-    Ok(draws)
 }
 
 /// What the case list is built from.
@@ -490,10 +360,14 @@ fn check_case_count(vary: &[(String, Vec<toml::Value>)], zip_rows: usize, draws:
     }
     if count > MAX_CASES as u128 {
         let sizes: Vec<String> = vary.iter().map(|(k, l)| format!("{k}: {}", l.len())).collect();
-        bail!(
-            "the sweep has {count} cases ([vary] {} × [zip] {zip_rows} rows × [random] {draws} draws), more than the cap of {MAX_CASES}: split it into several sweeps",
-            if sizes.is_empty() { "none".to_string() } else { sizes.join(" × ") }
-        );
+        bail!(ScenarioError::derived(
+            count,
+            format!("<= {MAX_CASES} cases"),
+            format!(
+                "the sweep has {count} cases ([vary] {} × [zip] {zip_rows} rows × [random] {draws} draws), more than the cap of {MAX_CASES}: split it into several sweeps",
+                if sizes.is_empty() { "none".to_string() } else { sizes.join(" × ") }
+            )
+        ));
     }
     Ok(())
 }
