@@ -147,14 +147,25 @@ mod tests {
         );
         assert_eq!(typed.key.as_deref(), Some("adhesion.law"), "{typed}");
         // The law may come from the sweep itself.
-        let plan = plan(&format!(
+        let sweep = plan(&format!(
             "{text}[set]\n\"adhesion.law\" = \"dugdale\"\n[vary]\nmaugis_parameter = [1.5]\n"
         ));
-        assert!(plan.is_ok(), "{:?}", plan.err());
+        assert!(sweep.is_ok(), "{:?}", sweep.err());
         let error = error_of(&format!(
             "{BASE}[set]\n\"adhesion.cohesive_stress\" = 0.2\n[vary]\nmaugis_parameter = [1.5]\n"
         ));
         assert!(error.contains("adhesion.cohesive_stress"), "{error}");
         assert!(error.contains("maugis_parameter"), "{error}");
+        let typed = crate::error::ScenarioError::from_anyhow(
+            plan(&format!(
+                "{BASE}[set]\n\"adhesion.cohesive_stress\" = 0.2\n[vary]\nmaugis_parameter = [1.5]\n"
+            ))
+            .expect_err("refused"),
+        );
+        assert_eq!(
+            (typed.key.as_deref(), typed.value.as_deref()),
+            (Some("adhesion.cohesive_stress"), Some("0.2")),
+            "{typed}"
+        );
     }
 }

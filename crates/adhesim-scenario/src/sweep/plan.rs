@@ -129,8 +129,13 @@ pub(super) fn contact_modulus(table: &toml::Table, why: &str) -> Result<f64> {
     }
     let youngs_modulus = number(table, "material.youngs_modulus", why)?;
     let poisson_ratio = number(table, "material.poisson_ratio", why)?;
-    let material =
-        ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(|e| anyhow!("{why}: {e}"))?;
+    let material = ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(|e| {
+        ScenarioError::derived(
+            format!("youngs_modulus = {youngs_modulus}, poisson_ratio = {poisson_ratio}"),
+            "a valid elastic material",
+            format!("{why}: {e}"),
+        )
+    })?;
     Ok(material.contact_modulus())
 }
 
@@ -200,8 +205,13 @@ pub fn apply(table: &mut toml::Table, overrides: &[(String, toml::Value)], alpha
         set(table, "grid.size", toml::Value::Float(v * jkr.critical_radius()))?;
     }
     if let Some(v) = value_of("maugis_parameter") {
-        if overrides.iter().any(|(key, _)| key == "adhesion.cohesive_stress") {
-            bail!("maugis_parameter = {v} sets adhesion.cohesive_stress: give one of the two, not both");
+        if let Some((_, stress)) = overrides.iter().find(|(key, _)| key == "adhesion.cohesive_stress") {
+            bail!(ScenarioError::invalid_as(
+                "adhesion.cohesive_stress",
+                stress,
+                "not given with maugis_parameter",
+                format!("maugis_parameter = {v} sets adhesion.cohesive_stress: give one of the two, not both")
+            ));
         }
         let stress = super::maugis::cohesive_stress(table, v)?;
         set(table, "adhesion.cohesive_stress", toml::Value::Float(stress))?;
