@@ -15,11 +15,11 @@ use crate::elastic::influence::love_coefficient;
 /// Contact elements within this distance (in elements) of a released one respond to it.
 /// The tension of a peeling front is shed far along the front: 8, 12 and 16 give 113, 101
 /// and 91 FFT pairs per approach step on the Fig. 1 case at n = 128 (132.8 without
-/// prediction), at a dense-solve cost growing as the cube of the strip's length. At
-/// n = 256 (Fig. 1, 75 steps, prediction on) 12 → 16 took the approach from 158.3 to 136.8
-/// FFT pairs per step (fewer verification solves per ring; 20: 136.4 at twice the replay
-/// time); BENCHMARKS.md §0, 2026-11-26.
-const RADIUS: i64 = 16;
+/// prediction), at a dense-solve cost growing as the cube of the strip's length. 16 cuts
+/// the FFT pairs further (N = 512, Fig. 1: 252.2 → 223.0 per step, the same contact sets)
+/// but not the time: the longer one-thread replays eat the saved transforms (n = 256, the
+/// 512² rule: 1.16× the CPU, 1.27× the wall; BENCHMARKS.md §0, 2026-11-26), so 12 stays.
+const RADIUS: i64 = 12;
 /// ... and within this distance (Chebyshev) of a free element: the edge strip.
 const BAND: i64 = 2;
 /// At most this many, the nearest first: on a contact broken into many small patches
