@@ -3,6 +3,31 @@
 //! script (`adhesim._adhesim.cli_main`) both call it, so they behave alike, exit codes
 //! included (docs/cli.md).
 
+/// `println!` for the commands' reports: a reader that closed the pipe early (`adhesim
+/// sweep merge DIR | head -1`) has what it wanted, so a closed pipe is ignored, where
+/// `println!` panics; any other failure to write standard output ends the command with
+/// exit code 1 and a message, never a panic or a silently cut report.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::write_stdout_line(format_args!($($arg)*))
+    };
+}
+
+/// The line of [`outln!`].
+fn write_stdout_line(line: std::fmt::Arguments) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let written = stdout.write_fmt(line).and_then(|()| stdout.write_all(b"\n"));
+    match written {
+        Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(error) => {
+            eprintln!("error: cannot write to standard output: {error}");
+            std::process::exit(1);
+        }
+        Ok(()) => {}
+    }
+}
+
 mod commands;
 mod figure;
 mod log_ticks;

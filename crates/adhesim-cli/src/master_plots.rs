@@ -77,7 +77,7 @@ pub fn command(args: &PlotArgs) -> Result<()> {
                 area: !*no_area,
             };
             let written = write(tables, &out, style)?;
-            println!("plots in {}/: {}", out.display(), written.join(", "));
+            outln!("plots in {}/: {}", out.display(), written.join(", "));
             Ok(())
         }
     }

@@ -119,6 +119,31 @@ fn reference_into_a_closed_pipe_ends_quietly() {
     assert_eq!(stderr(&output), "");
 }
 
+/// `adhesim sweep merge DIR | head -1` panicked ("failed printing to stdout: Broken pipe"):
+/// the commands' reports go through `outln!`, which ignores a closed pipe.
+#[test]
+fn a_report_into_a_closed_pipe_ends_quietly() {
+    let out = tempfile::tempdir().unwrap();
+    let hertz = scenarios_dir().join("hertz.toml");
+    let mut child = Command::new(BIN)
+        .args(["run", hertz.to_str().unwrap(), "--out"])
+        .arg(out.path().join("hertz"))
+        .args(["--set", "grid.n=16"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The reader goes before the run reports anything: every line meets a closed pipe.
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    assert!(output.status.success(), "exit {:?}: {}", output.status, stderr(&output));
+    assert!(!stderr(&output).contains("panicked"), "{}", stderr(&output));
+    assert!(
+        out.path().join("hertz/summary.json").is_file(),
+        "the run's files are written"
+    );
+}
+
 /// `adhesim reference` printed inf and NaN rows where the closed forms overflow.
 #[test]
 fn reference_prints_no_non_finite_rows() {

@@ -130,14 +130,14 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
             ProtocolReport::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
             ProtocolReport::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
         }
-        println!("outputs in {}/", out.display());
-        println!(
+        outln!("outputs in {}/", out.display());
+        outln!(
             "  summary.json, curve.csv, fields.npz{}",
             if options.fields.is_some() { ", fields.nc" } else { "" }
         );
-        println!("  {}", done.plot_files.join(", "));
+        outln!("  {}", done.plot_files.join(", "));
         if matches!(outcome.report, ProtocolReport::Indentation(_)) {
-            println!(
+            outln!(
                 "  snapshots/: {} contact maps (largest_contact.png, max_depth.png, pull_off.png, jump_*.png, step_*.png)",
                 done.snapshot_files.len()
             );
@@ -147,9 +147,9 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
 }
 
 fn print_indentation(scenario: &ValidScenario, summary: &ProtocolSummary, wall_seconds: f64) {
-    println!("adhesim: {} steps in {:.1} s", summary.steps, wall_seconds);
+    outln!("adhesim: {} steps in {:.1} s", summary.steps, wall_seconds);
     if let Some(jkr) = scenario.jkr {
-        println!(
+        outln!(
             "  max adhesive force = {:.4} |F_JKR|, jumps = {}",
             summary.max_adhesive_force / jkr.critical_force().abs(),
             summary.jumps
@@ -164,7 +164,7 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
     let RunResults::Translation(results) = &outcome.results else {
         return;
     };
-    println!(
+    outln!(
         "adhesim: {} {} steps ({} moving) in {:.1} s",
         setup.kind.name(),
         summary.steps,
@@ -173,7 +173,7 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
     );
     let force = scenario.jkr.map_or(1.0, |j| j.critical_force().abs());
     let unit = if scenario.jkr.is_some() { " |F_JKR|" } else { "" };
-    println!(
+    outln!(
         "  mean F_T = {:.4}{unit} (per step), {:.4}{unit} (work), fluctuation {:.4}{unit}, mean F_N = {:.4}{unit}",
         summary.mean_tangential_force / force,
         summary.mean_tangential_force_work / force,
@@ -181,10 +181,12 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
         summary.mean_normal_force / force,
     );
     if let (Some(p), Some(r)) = (results.eq12_prediction, results.eq12_ratio) {
-        println!("  Eq. 12: 2a(γ2−γ1) = {:.4}{unit}, F_T / 2a(γ2−γ1) = {r:.3}", p / force);
+        outln!("  Eq. 12: 2a(γ2−γ1) = {:.4}{unit}, F_T / 2a(γ2−γ1) = {r:.3}", p / force);
     }
-    println!(
+    outln!(
         "  half-width a = {:.4e}, compactness A/(πa²) = {:.3}, jumps = {}",
-        results.contact_half_width, results.compactness, results.jumps
+        results.contact_half_width,
+        results.compactness,
+        results.jumps
     );
 }

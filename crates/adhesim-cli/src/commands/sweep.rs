@@ -163,7 +163,7 @@ fn execute(
     };
     let (summary, plots) = table_and_plots(dir, plan)?;
     if !quiet {
-        println!(
+        outln!(
             "adhesim sweep: {} cases in the plan, shard {}/{}: {} run now, {} already finished, {} failed",
             plan.cases.len(),
             shard.index,
@@ -197,14 +197,14 @@ pub fn table_and_plots(dir: &Path, plan: &Plan) -> Result<(table::TableSummary, 
 
 /// The report on the table and the plots of a sweep.
 fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary, plots: &[String]) {
-    println!(
+    outln!(
         "{}: {} of {} cases finished ({} with errors)",
         summary.path.display(),
         summary.finished,
         plan.cases.len(),
         summary.errors
     );
-    println!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
+    outln!("plots in {}/plots/: {}", dir.display(), plots.join(", "));
 }
 
 /// `adhesim sweep merge DIR`: rebuilds the table and the plots.

@@ -164,7 +164,7 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
         .with_context(|| format!("cannot write {}", out.join("statistics.json").display()))?;
     written.push("statistics.json".into());
     print_report(&report);
-    println!("outputs in {}/: {}", out.display(), written.join(", "));
+    outln!("outputs in {}/: {}", out.display(), written.join(", "));
     Ok(())
 }
 
@@ -200,42 +200,49 @@ fn report(args: &TopographyArgs, surface: &Surface, map: &HeightMap<'_>, fit: Op
 
 fn print_report(report: &Report) {
     let number = |value: Option<f64>| value.map_or("none (map too small)".to_string(), |v| format!("{v:.6e}"));
-    println!("topography {}", report.input);
+    outln!("topography {}", report.input);
     for line in &report.source {
-        println!("  {line}");
+        outln!("  {line}");
     }
-    println!(
+    outln!(
         "  analysed: the whole map, {} × {} points, spacing {:e} × {:e}, size {:e} × {:e}, {} boundary",
-        report.nx, report.ny, report.dx, report.dy, report.size_x, report.size_y, report.boundary
+        report.nx,
+        report.ny,
+        report.dx,
+        report.dy,
+        report.size_x,
+        report.size_y,
+        report.boundary
     );
     if report.invalid_points > 0 {
-        println!(
+        outln!(
             "  {} invalid points left out of every statistic ({} valid)",
-            report.invalid_points, report.valid_points
+            report.invalid_points,
+            report.valid_points
         );
     }
-    println!("  rms height                             {:.6e}", report.rms_height);
+    outln!("  rms height                             {:.6e}", report.rms_height);
     let fd = report.finite_differences;
-    println!("  rms slope      (finite differences)    {}", number(fd.rms_slope));
-    println!("  rms curvature  (finite differences)    {}", number(fd.rms_curvature));
+    outln!("  rms slope      (finite differences)    {}", number(fd.rms_slope));
+    outln!("  rms curvature  (finite differences)    {}", number(fd.rms_curvature));
     match report.spectral {
         Some(spectral) => {
-            println!(
+            outln!(
                 "  rms slope      (spectral)              {}",
                 number(spectral.rms_slope)
             );
-            println!(
+            outln!(
                 "  rms curvature  (spectral)              {}",
                 number(spectral.rms_curvature)
             );
         }
-        None => println!("  spectral slope and curvature: none (only for a periodic map with every point valid)"),
+        None => outln!("  spectral slope and curvature: none (only for a periodic map with every point valid)"),
     }
     match (report.hurst_estimate, report.hurst_fit_range) {
-        (Some(h), Some((low, high))) => println!(
+        (Some(h), Some((low, high))) => outln!(
             "  Hurst estimate H = {h:.3} (power-law fit C ∝ q^(−2−2H) of the PSD for q in [{low:.4e}, {high:.4e}])"
         ),
-        _ => println!("  Hurst estimate: none (fewer than 3 PSD bins inside the fit range)"),
+        _ => outln!("  Hurst estimate: none (fewer than 3 PSD bins inside the fit range)"),
     }
 }
 

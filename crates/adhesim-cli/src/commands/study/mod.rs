@@ -363,7 +363,7 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     if unfinished > 0 {
         // Only a shard ran: the tables need the other shards' runs.
         if !args.quiet {
-            println!(
+            outln!(
                 "adhesim study: shard {}/{} done; {unfinished} of {} runs are not finished yet: the command that \
                  finds them all finished (another shard, or the study without --shard) writes the tables",
                 shard.index,
@@ -425,7 +425,7 @@ fn show(v: Option<f64>) -> String {
 /// The study's report on stdout.
 fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: &[String], start: Instant) {
     let StudyPlan { study, wanted, out, .. } = plan;
-    println!(
+    outln!(
         "adhesim study {}: {} cases + {} normal runs in {:.0} s",
         wanted.name(),
         rows.len(),
@@ -434,7 +434,7 @@ fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: 
     );
     for a in alpha_rows {
         match study.kind {
-            StudyKind::Rolling => println!(
+            StudyKind::Rolling => outln!(
                 "  α = {:.3}: γ1/γ0 = {}, γ2/γ0 = {}, F_T/2a(γ2−γ1) = {} (per step), {} (work), γ3/γ0 = {}",
                 a.alpha,
                 show(a.gamma_approach_norm),
@@ -443,7 +443,7 @@ fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: 
                 show(a.mean_eq12_ratio_work),
                 show(a.gamma3_norm)
             ),
-            StudyKind::Sliding => println!(
+            StudyKind::Sliding => outln!(
                 "  α = {:.3}: F_B/|F_JKR| = {} (per step), {} (work), F_B/(2aγ0) = {}{}, A/(πa²) = {:.3}",
                 a.alpha,
                 show(a.mean_tangential_force_norm),
@@ -456,7 +456,7 @@ fn print_report(plan: &StudyPlan, rows: &[Row], alpha_rows: &[AlphaRow], plots: 
             ),
         }
     }
-    println!(
+    outln!(
         "outputs in {}/: table.csv, alphas.csv, study.json, {}",
         out.display(),
         plots.join(", ")
