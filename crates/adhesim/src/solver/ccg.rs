@@ -314,7 +314,12 @@ impl Ccg {
             return Ok(Outcome::Continue);
         }
         if load.is_some() {
-            mean_gap /= active as f64;
+            // Polonsky & Keer's (1999) shift ḡ must come out exact when the gaps on I are all
+            // equal (one row of a strip contact, issue #27). A rounded ḡ left g − ḡ a uniform
+            // vector of rounding size, along which the curvature Σ(r − r̄)t vanishes too: the
+            // step Σg·t / Σ(r − r̄)t was rounding over rounding (4e16 there), it wiped the
+            // pressure, and the cold restart retraced the same path without end.
+            mean_gap = refined_mean(&self.gap, pressure, mean_gap / active as f64, active);
             progress.found_depth = mean_gap;
             self.gap.iter_mut().for_each(|g| *g -= mean_gap);
         }
@@ -532,4 +537,18 @@ fn rescale_to(pressure: &mut [f64], total: f64) {
         let scale = total / sum;
         pressure.iter_mut().for_each(|p| *p *= scale);
     }
+}
+
+/// The mean over the active set (p > 0) of `values`, refined from `mean` by one correction
+/// pass: when the values are all equal the result is exactly that value (x − m is exact near
+/// x, Sterbenz, and so are the sum of the equal small differences and its quotient), so
+/// that a mean-free vector on such a set is exactly zero rather than its rounding error.
+fn refined_mean(values: &[f64], pressure: &[f64], mean: f64, active: usize) -> f64 {
+    let correction: f64 = values
+        .iter()
+        .zip(pressure)
+        .filter(|(_, &p)| p > 0.0)
+        .map(|(&v, _)| v - mean)
+        .sum();
+    mean + correction / active as f64
 }

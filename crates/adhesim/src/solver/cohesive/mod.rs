@@ -270,19 +270,12 @@ impl CohesiveSolver {
             Compressive::Nested(solver) => {
                 solver.solve(operator, &self.shifted_heights, depth, &mut self.compressive_state)?
             }
-            Compressive::Ccg(solver) => {
-                let control = Control::Displacement(depth);
-                match solver.solve(operator, &self.shifted_heights, control, &mut self.compressive_state) {
-                    // A warm start from the last round can stall Polonsky–Keer's iteration
-                    // on a periodic cell whose contact shrinks to a few rows of a strip (met
-                    // on the 1-D waviness, docs/validation.md §13): once more from cold.
-                    Err(SolveError::NotConverged { .. }) => {
-                        self.compressive_state = ContactState::new(&self.grid);
-                        solver.solve(operator, &self.shifted_heights, control, &mut self.compressive_state)?
-                    }
-                    report => report?,
-                }
-            }
+            Compressive::Ccg(solver) => solver.solve(
+                operator,
+                &self.shifted_heights,
+                Control::Displacement(depth),
+                &mut self.compressive_state,
+            )?,
         };
         let q = &self.compressive_state;
         for k in 0..self.grid.len() {
