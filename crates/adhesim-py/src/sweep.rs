@@ -171,7 +171,7 @@ pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(
         .build()
         .map_err(|e| PyValueError::new_err(format!("cannot build a thread pool: {e}")))?;
     let failure = py
-        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case)))
+        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case, None, None)))
         .map_err(|e| value_error(e.context(format!("case {}", case.id))))?;
     Ok((true, failure))
 }
