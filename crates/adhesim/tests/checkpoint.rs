@@ -315,3 +315,46 @@ fn a_checkpoint_of_another_grid_is_refused() {
         .unwrap_err();
     assert!(error.to_string().contains("checkpoint"), "{error}");
 }
+
+/// The reference rule (exact peels, no local release rounds, which would clear the ring
+/// records) in quarter steps to half the depth, and 20 retraction steps (the run ends there
+/// with `ContactNotLost`, after the records): between the jumps of the wavy front the
+/// contact stays put while the same trial ring fails, and the failed-ring prediction of
+/// quiet steps (from the records of the last two steps, which a checkpoint must carry: the
+/// test fails without them) saves the solves the records count.
+#[test]
+fn quiet_steps_predicted_from_failed_ring_records_resume_bit_for_bit() {
+    let params = AdhesiveParams {
+        reference_rule: true,
+        ..AdhesiveParams::default()
+    };
+    let (grid, heights, start) = wavy_sphere(32);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let protocol = IndentPulloff {
+        depth_step: 2.5e-5,
+        max_depth: 1.5e-3,
+        max_retract_steps: 20,
+        ..protocol(start)
+    };
+    let make = adhesive(params);
+    let run = |observer: &mut dyn Observer, start: Option<&IndentCheckpoint>| {
+        let mut operator = FreeOperator::new(grid, material);
+        let _ = protocol.run_from(&mut operator, &heights, &mut make(&grid), observer, start);
+    };
+    let mut plain = Vec::new();
+    run(&mut plain, None);
+    assert!(plain.len() > 60, "{} steps", plain.len());
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: (1..plain.len()).collect(),
+        taken: Vec::new(),
+    };
+    run(&mut taker, None);
+    assert_eq!(bits(&taker.records), bits(&plain));
+    for checkpoint in &taker.taken {
+        let mut rest = Vec::new();
+        run(&mut rest, Some(&round_trip(checkpoint)));
+        let k = checkpoint.steps_done;
+        assert_eq!(bits(&rest), bits(&plain[k..]), "after step {}", k - 1);
+    }
+}
