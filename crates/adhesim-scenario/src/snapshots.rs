@@ -155,6 +155,14 @@ impl SnapshotRecorder {
         }
     }
 
+    /// Whether every field kept has `elements` values (a recorder read from a checkpoint).
+    pub(crate) fn fits(&self, elements: usize) -> bool {
+        let fits = |s: &FieldSnapshot| {
+            s.pressure.len() == elements && s.displacement.len() == elements && s.contact.len() == elements
+        };
+        self.kept.iter().all(fits) && self.last_in_contact.iter().all(fits) && self.largest.iter().all(|(_, s)| fits(s))
+    }
+
     /// The snapshots so far, by step, each step once (also after a run stopped early).
     pub fn take_snapshots(&mut self) -> Vec<FieldSnapshot> {
         let mut snapshots = std::mem::take(&mut self.kept);

@@ -218,24 +218,31 @@ fn a_killed_case_resumes_from_its_checkpoint_byte_identically() {
     assert_same(&case_files(dir.path(), &case.id), &plain);
 }
 
-/// A checkpoint whose body is cut, and one of another scenario: each is warned about and
-/// the case restarts from scratch, with the files of the uninterrupted run.
+/// A checkpoint whose body is cut, one of another scenario, and one of another grid under
+/// this case's header: each is warned about and the case restarts from scratch, with the
+/// files of the uninterrupted run.
 #[test]
 fn a_corrupt_or_foreign_checkpoint_restarts_the_case() {
     let case = real_case(SCENARIO);
     let (_plain_dir, plain) = uninterrupted(&case);
-    for damage in ["cut", "foreign"] {
+    let coarse = real_case(&SCENARIO.replace("n = 40", "n = 32"));
+    let coarse_dir = tempfile::tempdir().unwrap();
+    let coarse_folder = killed_run(&coarse, coarse_dir.path(), 8);
+    let coarse_text = std::fs::read_to_string(coarse_folder.join(CHECKPOINT_FILE)).unwrap();
+    for damage in ["cut", "foreign", "grid"] {
         let dir = tempfile::tempdir().unwrap();
         let folder = killed_run(&case, dir.path(), 20);
         let path = folder.join(CHECKPOINT_FILE);
         let text = std::fs::read_to_string(&path).unwrap();
         let damaged = match damage {
             "cut" => text[..text.len() / 2].to_string(),
-            _ => text.replacen(&case.hash, "0123456789abcdef", 1),
+            "foreign" => text.replacen(&case.hash, "0123456789abcdef", 1),
+            _ => coarse_text.replacen(&coarse.hash, &case.hash, 1),
         };
         std::fs::write(&path, damaged).unwrap();
         let (resumable, first) = run_batch(&case, dir.path());
-        // A cut body passes the header check (the run then restarts); another hash does not.
+        // A cut body or another grid passes the header check (the run then restarts);
+        // another hash does not.
         assert_eq!(resumable.is_empty(), damage == "foreign", "{damage}");
         assert_eq!(first, Some(0), "{damage}: restarted from scratch");
         assert_same(&case_files(dir.path(), &case.id), &plain);

@@ -169,7 +169,7 @@ pub(crate) fn read(folder: &Path, policy: &CheckpointPolicy, elements: usize) ->
             body.records.len()
         );
     }
-    if body.protocol.state.pressure.len() != elements {
+    if body.protocol.state.pressure.len() != elements || !body.observer.fits(elements) {
         bail!(
             "it is of {} elements, the grid has {elements}",
             body.protocol.state.pressure.len()

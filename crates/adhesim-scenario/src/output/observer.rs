@@ -117,6 +117,18 @@ pub(crate) struct ObserverState {
     fields: Option<crate::SnapshotRecorder>,
 }
 
+impl ObserverState {
+    /// Whether its contact sets and fields are of a grid of `elements` (a checkpoint read
+    /// back: a mismatch would otherwise stop the run later).
+    pub(crate) fn fits(&self, elements: usize) -> bool {
+        let set = |bits: &Bits| bits.0.len() == elements;
+        (self.largest.2 .0.is_empty() || set(&self.largest.2))
+            && self.last_in_contact.iter().all(|(_, c, p)| set(c) && set(p))
+            && self.captured.iter().all(|(_, c, p)| set(c) && set(p))
+            && self.fields.as_ref().is_none_or(|f| f.fits(elements))
+    }
+}
+
 /// The phase names of the timings (`Phase::name`, or "unknown").
 fn phase_name(name: &str) -> &'static str {
     [
