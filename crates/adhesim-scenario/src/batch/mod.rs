@@ -38,7 +38,7 @@ pub trait BatchCase: Sync {
     /// of this case (kept in its `error.txt`), not of the batch.
     fn run(&self, folder: &Path) -> Result<()>;
     /// As [`run`](Self::run), writing mid-run checkpoints into `folder` by `policy` and
-    /// continuing from the one found there (docs/sweeps.md, "Resume"). Default: a case
+    /// continuing from the one found there (docs/sweeps.md, "Resuming a case mid-run"). Default: a case
     /// without checkpoints runs as [`run`](Self::run).
     fn run_checkpointed(&self, folder: &Path, _policy: &CheckpointPolicy) -> Result<()> {
         self.run(folder)

@@ -181,7 +181,7 @@ impl<'a> RunObserver<'a> {
     }
 
     /// Writes a checkpoint into `folder` every `policy.every` of wall time (indentations
-    /// on solvers that support them; docs/sweeps.md, "Resume").
+    /// on solvers that support them; docs/sweeps.md, "Resuming a case mid-run").
     pub fn enable_checkpoints(&mut self, folder: &Path, policy: &CheckpointPolicy) {
         self.checkpoints = Some(Checkpoints {
             folder: folder.to_path_buf(),

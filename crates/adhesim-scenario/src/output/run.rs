@@ -28,7 +28,7 @@ pub struct FolderRunOptions<'a> {
     /// Also `fields.nc` (NetCDF-3) beside `fields.npz`.
     pub netcdf: bool,
     /// Mid-run checkpoints into the folder, and continuing from the one found there (a
-    /// case of the batch engine; docs/sweeps.md, "Resume"); none without.
+    /// case of the batch engine; docs/sweeps.md, "Resuming a case mid-run"); none without.
     pub checkpoint: Option<&'a CheckpointPolicy>,
 }
 
