@@ -1,5 +1,6 @@
-//! Mid-case checkpoints of a run into a folder (docs/sweeps.md, "Resuming a case mid-run"; the file is in
-//! docs/output.md, "A sweep"): every `every` of wall time an indentation writes
+//! Mid-case checkpoints of a run into a folder (docs/sweeps.md, "Resuming a case
+//! mid-run"; the file is in docs/output.md, "A sweep"): every `every` of wall time an
+//! indentation writes
 //! `checkpoint.json` into its folder, atomically (a temporary sibling, fsync, rename). It
 //! holds the protocol's and the solver's state after the last step, the records so far and
 //! the output observer's state, so that a run continued from it writes the files of the
