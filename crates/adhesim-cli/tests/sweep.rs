@@ -1,5 +1,6 @@
-//! End-to-end tests of `adhesim sweep`: resuming after SIGKILL, shards + merge, bad sweep
-//! files, and the JKR fits of a smooth-sphere run.
+//! End-to-end tests of `adhesim sweep`: resuming after SIGKILL (whole cases, and a case
+//! from its mid-run checkpoint), shards + merge, bad sweep files, and the JKR fits of a
+//! smooth-sphere run.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -359,4 +360,125 @@ fn cases_of_an_older_results_revision_are_redone() {
         "stale",
         "the old case was not redone"
     );
+}
+
+/// One case of a second or two (64×64 grid, 60 approach steps).
+const ONE_CASE_SWEEP: &str = r#"
+series = "checkpoint-test"
+
+[scenario]
+grid = { n = 64, size = 0.8 }
+material = { contact_modulus = 1.0 }
+adhesion = { work_of_adhesion = 6.16850275068085e-4 }
+indenter = { shape = "wavy_sphere", radius = 1.0, amplitude = 0.0025, wavelength = 0.05 }
+protocol = { kind = "indent_pulloff", max_depth = 8.0, depth_unit = "jkr", steps = 60 }
+output = { snapshot_steps = [10, 70] }
+
+[vary]
+alpha = [1.0]
+"#;
+
+/// Every file of a case folder (by path relative to it), summary.json without its
+/// `performance` section (wall times).
+fn case_folder_files(folder: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files = Vec::new();
+    let mut stack = vec![folder.to_path_buf()];
+    while let Some(current) = stack.pop() {
+        for entry in std::fs::read_dir(&current).unwrap().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let name = path.strip_prefix(folder).unwrap().to_string_lossy().into_owned();
+            let mut bytes = std::fs::read(&path).unwrap();
+            if name == "summary.json" {
+                let mut summary: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+                summary.as_object_mut().unwrap().remove("performance");
+                bytes = serde_json::to_vec(&summary).unwrap();
+            }
+            files.push((name, bytes));
+        }
+    }
+    files.sort();
+    files
+}
+
+/// A case killed (SIGKILL) mid-run after a checkpoint goes on from it when the sweep is
+/// run again ("resumed case ... at step k" on stderr), and its folder (curve.csv,
+/// summary.json but `performance`, fields.npz, snapshots, plots) is byte-identical to an
+/// uninterrupted run's.
+#[test]
+fn a_case_killed_mid_run_resumes_from_its_checkpoint() {
+    let temp = tempfile::tempdir().unwrap();
+    let sweep = write(temp.path(), "one.toml", ONE_CASE_SWEEP);
+    let sweep = sweep.to_str().unwrap();
+    let run = |out: &Path| {
+        let mut args: Vec<String> = [
+            "sweep",
+            sweep,
+            "--out",
+            out.to_str().unwrap(),
+            "--jobs",
+            "1",
+            "--threads",
+            "1",
+        ]
+        .map(String::from)
+        .to_vec();
+        args.extend(["--quiet", "--checkpoint-every", "0.05"].map(String::from));
+        args
+    };
+    let reference = temp.path().join("reference");
+    let args = run(&reference);
+    assert_ok(&adhesim(&args.iter().map(String::as_str).collect::<Vec<_>>()));
+    let [id] = &finished_cases(&reference)[..] else {
+        panic!("one case")
+    };
+    let expected = case_folder_files(&reference.join("cases").join(id));
+    assert!(!expected.iter().any(|(name, _)| name.contains("checkpoint")));
+
+    let killed = temp.path().join("killed");
+    let args = run(&killed);
+    let mut child = Command::new(BIN)
+        .args(&args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let checkpoint = || -> Option<std::path::PathBuf> {
+        let entries = std::fs::read_dir(killed.join("tmp")).ok()?;
+        entries
+            .flatten()
+            .map(|e| e.path().join("checkpoint.json"))
+            .find(|p| p.exists())
+    };
+    let start = Instant::now();
+    while checkpoint().is_none() {
+        assert!(start.elapsed() < Duration::from_secs(120), "no checkpoint written");
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the case ended before a checkpoint"
+        );
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    std::thread::sleep(Duration::from_millis(100));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    if !finished_cases(&killed).is_empty() {
+        // The case finished before the kill (a very fast machine): nothing to resume.
+        return;
+    }
+    assert!(checkpoint().is_some());
+    let output = adhesim(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_ok(&output);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains(&format!("resumed case {id} at step ")), "{stderr}");
+    let resumed = case_folder_files(&killed.join("cases").join(id));
+    let names = |files: &[(String, Vec<u8>)]| files.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&resumed), names(&expected));
+    for ((name, a), (_, b)) in resumed.iter().zip(&expected) {
+        assert!(a == b, "{name} differs from the uninterrupted run's");
+    }
+    assert_eq!(std::fs::read_dir(killed.join("tmp")).unwrap().count(), 0);
 }

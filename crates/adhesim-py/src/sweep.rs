@@ -71,7 +71,10 @@ pub fn _sweep_open(
                 .map_err(|e| value_error(e.context("refused before allocating (allow_large=True runs anyway)")))?;
         }
     }
-    let batch = Batch::open(&out, Shard::ALL).map_err(value_error)?;
+    let mut batch = Batch::open(&out, Shard::ALL).map_err(value_error)?;
+    // Each case runs through `_sweep_run_case`, without mid-run checkpoints (docs/sweeps.md,
+    // "Resuming a case mid-run"): leftovers of killed cases are discarded, as before.
+    batch.set_checkpoint_seconds(0.0).map_err(value_error)?;
     sweep::write_plan(&out, &plan).map_err(value_error)?;
     Ok(SweepFolder {
         dir: out,
@@ -171,7 +174,7 @@ pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(
         .build()
         .map_err(|e| PyValueError::new_err(format!("cannot build a thread pool: {e}")))?;
     let failure = py
-        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case)))
+        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case, None, None)))
         .map_err(|e| value_error(e.context(format!("case {}", case.id))))?;
     Ok((true, failure))
 }

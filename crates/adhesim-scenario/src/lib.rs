@@ -65,7 +65,7 @@ pub use guards::{memory_estimate, memory_estimate_rectangle, MAX_GRID_N, MAX_STE
 pub use memory::{memory_available, MemoryLimit};
 pub use model::*;
 pub use parse::{read_height_map, read_npy_2d};
-pub use pipeline::{run, Counters, ProtocolReport, ProtocolSetup, RunOutcome};
+pub use pipeline::{run, run_from, Counters, ProtocolReport, ProtocolSetup, Resume, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
 pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder, Stacked};

@@ -6,8 +6,8 @@ use crate::model::{TranslationSetup, ValidScenario};
 use crate::results::{fit_results, Results, RunResults};
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolError,
-    ProtocolSummary, StepRecord, StepView, TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Profile,
+    ProtocolError, ProtocolSummary, StepRecord, StepView, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -129,21 +129,59 @@ impl Observer for Recording<'_> {
         self.records.push(*view.record);
         self.inner.on_step(view)
     }
+
+    fn wants_checkpoint(&mut self) -> bool {
+        self.inner.wants_checkpoint()
+    }
+
+    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+        self.inner.on_checkpoint(checkpoint)
+    }
+}
+
+/// Where a run of an indentation goes on from: the protocol's checkpoint and the records
+/// of the steps before it.
+#[derive(Debug, Clone)]
+pub struct Resume {
+    /// The protocol's state after its last step.
+    pub protocol: IndentCheckpoint,
+    /// The records of the steps done.
+    pub records: Vec<StepRecord>,
 }
 
 /// Runs a validated scenario: builds the elastic operator and the normal solver, runs the
 /// protocol with `observer` seeing every step (pass `&mut ()` for none), and analyses the
 /// records into the results `summary.json` reports. Writes nothing itself.
 pub fn run(scenario: &ValidScenario, observer: &mut dyn Observer) -> Result<RunOutcome, ProtocolError> {
+    run_from(scenario, observer, None)
+}
+
+/// As [`run`], an indentation continued from `resume` when given (a translation ignores
+/// it): the outcome is that of the uninterrupted run, bit for bit.
+pub fn run_from(
+    scenario: &ValidScenario,
+    observer: &mut dyn Observer,
+    resume: Option<Resume>,
+) -> Result<RunOutcome, ProtocolError> {
     let mut operator = HalfSpace::new(scenario.grid, scenario.material);
     let mut solver = scenario.normal_solver();
+    let (start, records) = match resume {
+        Some(Resume { protocol, records }) => (Some(protocol), records),
+        None => (None, Vec::new()),
+    };
     let mut recording = Recording {
-        records: Vec::new(),
+        records,
         inner: observer,
     };
     match scenario.protocol_setup() {
         ProtocolSetup::Indentation(protocol) => {
-            let summary = protocol.run(&mut operator, &scenario.heights, &mut solver, &mut recording)?;
+            let summary = protocol.run_from(
+                &mut operator,
+                &scenario.heights,
+                &mut solver,
+                &mut recording,
+                start.as_ref(),
+            )?;
             let records = recording.records;
             let (fits, _) = fit_results(scenario, &records);
             Ok(RunOutcome {
@@ -156,6 +194,7 @@ pub fn run(scenario: &ValidScenario, observer: &mut dyn Observer) -> Result<RunO
             })
         }
         ProtocolSetup::Translation(setup) => {
+            recording.records.clear();
             let summary = setup
                 .protocol
                 .run(&mut operator, &setup.contact, &mut solver, &mut recording)?;

@@ -12,7 +12,7 @@ use adhesim_topography::NamedArray;
 use std::collections::BTreeSet;
 
 /// Which steps get a snapshot, from the scenario's `[output]`.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct SnapshotPlan {
     /// Steps chosen by `output.snapshot_steps` (for a translation without chosen steps:
     /// the end of the forward stroke); they get a PNG, `.npy` fields and fields.
@@ -64,7 +64,7 @@ impl SnapshotPlan {
 }
 
 /// The fields of one step, row-major (n, n): row i is y, column j is x.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FieldSnapshot {
     /// Step number (as in `curve.csv`).
     pub step: usize,
@@ -77,6 +77,7 @@ pub struct FieldSnapshot {
     /// Normal displacement u (> 0 into the body).
     pub displacement: Vec<f64>,
     /// The contact set.
+    #[serde(with = "crate::output::checkpoint::bit_string")]
     pub contact: Vec<bool>,
 }
 
@@ -106,7 +107,7 @@ impl FieldSnapshot {
 /// last step in contact (`pull_off`) and the step of the largest contact (the first of
 /// them on a tie), each once. Two buffers are reused for the last two; jump steps get no
 /// fields (their number would make memory grow with the run).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct SnapshotRecorder {
     plan: SnapshotPlan,
     kept: Vec<FieldSnapshot>,
@@ -152,6 +153,14 @@ impl SnapshotRecorder {
             Some(_) => {}
             None => self.largest = Some((elements, FieldSnapshot::of(view))),
         }
+    }
+
+    /// Whether every field kept has `elements` values (a recorder read from a checkpoint).
+    pub(crate) fn fits(&self, elements: usize) -> bool {
+        let fits = |s: &FieldSnapshot| {
+            s.pressure.len() == elements && s.displacement.len() == elements && s.contact.len() == elements
+        };
+        self.kept.iter().all(fits) && self.last_in_contact.iter().all(fits) && self.largest.iter().all(|(_, s)| fits(s))
     }
 
     /// The snapshots so far, by step, each step once (also after a run stopped early).

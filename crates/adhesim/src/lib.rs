@@ -88,8 +88,8 @@ pub use geometry::{
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
-    IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, StepRecord, StepView, Translation,
-    TranslationSummary,
+    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, SolverCheckpoint,
+    StepRecord, StepView, Translation, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

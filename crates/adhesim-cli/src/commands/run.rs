@@ -4,6 +4,7 @@
 
 use crate::{output, resources};
 use adhesim::{ProtocolSummary, TranslationSummary};
+use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
 use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
@@ -48,6 +49,9 @@ pub struct RunOptions {
     /// Also write the snapshot fields as NetCDF-3 (`fields.nc`) besides `fields.npz`.
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub fields: Option<FieldsFormat>,
+    /// Mid-run checkpoints into the folder (a sweep case; not an option of `adhesim run`).
+    #[arg(skip)]
+    pub checkpoint: Option<CheckpointPolicy>,
 }
 
 /// Extra formats of the snapshot fields (`fields.npz` is always written).
@@ -118,6 +122,7 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
     let folder_options = FolderRunOptions {
         pictures: Some(&output::CliPictures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
+        checkpoint: options.checkpoint.as_ref(),
     };
     let done = run_into_folder(scenario, out, folder_options, &mut progress)?;
     let outcome = &done.outcome;

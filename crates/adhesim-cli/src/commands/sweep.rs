@@ -10,6 +10,7 @@
 use crate::commands::run::{run, RunOptions};
 use crate::resources;
 use adhesim_scenario::batch::{self, Batch};
+use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder::{self, FolderLock, Shard};
 use adhesim_scenario::sweep::{check_memory, plan, read_plan, table, write_plan, SweepCase};
 use adhesim_scenario::ValidScenario;
@@ -38,6 +39,10 @@ pub struct SweepArgs {
     /// FFT threads per case [default: cores / jobs, at least 1].
     #[arg(long)]
     threads: Option<usize>,
+    /// Wall time between mid-case checkpoints of a running case (0: none); a killed case
+    /// goes on from its last checkpoint when the sweep is run again (docs/sweeps.md).
+    #[arg(long, value_name = "SECONDS", default_value_t = batch::DEFAULT_CHECKPOINT_SECONDS)]
+    checkpoint_every: f64,
     /// Run only the cases whose index modulo N is I (0-based), e.g. a SLURM array task:
     /// `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
     #[arg(long, value_name = "I/N")]
@@ -108,19 +113,31 @@ pub fn command(args: &SweepArgs) -> Result<()> {
     if let Some(limit) = resources::memory_limit(args.allow_large)? {
         check_memory(&plan, jobs, &limit)?;
     }
-    execute(&plan, &out, shard, jobs, threads, args.quiet, args.retry_failed)
+    let resources = Resources {
+        jobs,
+        threads,
+        checkpoint_seconds: args.checkpoint_every,
+    };
+    execute(&plan, &out, shard, resources, args.quiet, args.retry_failed)
 }
 
-fn execute(
-    plan: &Plan,
-    dir: &Path,
-    shard: Shard,
+/// How a sweep runs its cases.
+struct Resources {
     jobs: usize,
     threads: usize,
-    quiet: bool,
-    retry_failed: bool,
-) -> Result<()> {
-    let batch = Batch::open(dir, shard)?;
+    checkpoint_seconds: f64,
+}
+
+fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: bool, retry_failed: bool) -> Result<()> {
+    let Resources {
+        jobs,
+        threads,
+        checkpoint_seconds,
+    } = resources;
+    let mut batch = Batch::open(dir, shard)?;
+    batch
+        .set_checkpoint_seconds(checkpoint_seconds)
+        .context("--checkpoint-every")?;
     write_plan(dir, plan)?;
     let cases: Vec<SweepCase> = plan
         .cases
@@ -179,9 +196,10 @@ fn execute(
 
 /// Runs one sweep case's scenario into its folder: `adhesim run --quiet`, figures
 /// included (the runner of the command line's sweeps and of Python's `adhesim.sweep`).
-pub fn run_case(scenario: &ValidScenario, folder: &Path) -> Result<()> {
+pub fn run_case(scenario: &ValidScenario, folder: &Path, checkpoint: Option<&CheckpointPolicy>) -> Result<()> {
     let options = RunOptions {
         quiet: true,
+        checkpoint: checkpoint.cloned(),
         ..RunOptions::default()
     };
     run(scenario, folder, &options)

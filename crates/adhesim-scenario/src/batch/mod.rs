@@ -10,10 +10,13 @@
 //! [`adhesim::RESULTS_REVISION`]) is redone.
 
 mod cases;
+#[cfg(test)]
+mod checkpoint_tests;
 mod pool;
 #[cfg(test)]
 mod tests;
 
+use crate::output::checkpoint::CheckpointPolicy;
 use crate::output::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
 pub use cases::{case_state, fnv1a, results_hash, run_case, CaseState};
@@ -34,13 +37,24 @@ pub trait BatchCase: Sync {
     /// Runs the case, writing its outputs into `folder`; an error or a panic is a failure
     /// of this case (kept in its `error.txt`), not of the batch.
     fn run(&self, folder: &Path) -> Result<()>;
+    /// As [`run`](Self::run), writing mid-run checkpoints into `folder` by `policy` and
+    /// continuing from the one found there (docs/sweeps.md, "Resuming a case mid-run"). Default: a case
+    /// without checkpoints runs as [`run`](Self::run).
+    fn run_checkpointed(&self, folder: &Path, _policy: &CheckpointPolicy) -> Result<()> {
+        self.run(folder)
+    }
 }
+
+/// Wall time between two mid-case checkpoints unless set ([`Batch::set_checkpoint_seconds`]).
+pub const DEFAULT_CHECKPOINT_SECONDS: f64 = 600.0;
 
 /// A batch folder, locked (for its shard) while this value lives: a second command on the
 /// same cases is refused, not interleaved.
 pub struct Batch {
     dir: PathBuf,
     shard: Shard,
+    /// Seconds between mid-case checkpoints (0: none, and no case is continued).
+    checkpoint_seconds: f64,
     _lock: FolderLock,
 }
 
@@ -54,6 +68,8 @@ pub struct Pending<'a, C> {
     pub kept_failures: Vec<String>,
     /// Cases of this shard.
     pub selected: usize,
+    /// Temporary folders of killed runs with a checkpoint to continue from, by case id.
+    pub resumable: std::collections::HashMap<String, PathBuf>,
 }
 
 /// What [`Batch::execute`] did.
@@ -73,8 +89,24 @@ impl Batch {
         Ok(Self {
             dir: dir.to_path_buf(),
             shard,
+            checkpoint_seconds: DEFAULT_CHECKPOINT_SECONDS,
             _lock: lock,
         })
+    }
+
+    /// Writes a checkpoint of each running case every `seconds` of wall time (0: none, and
+    /// killed cases restart from scratch); an error for a negative or non-finite value.
+    pub fn set_checkpoint_seconds(&mut self, seconds: f64) -> Result<()> {
+        CheckpointPolicy::every_seconds(seconds, "")?;
+        self.checkpoint_seconds = seconds;
+        Ok(())
+    }
+
+    /// The checkpoint policy of `case` (none when checkpoints are off).
+    fn checkpoint_policy(&self, case: &dyn BatchCase) -> Option<CheckpointPolicy> {
+        CheckpointPolicy::every_seconds(self.checkpoint_seconds, case.hash())
+            .ok()
+            .flatten()
     }
 
     /// Sorts this shard's cases (those whose position modulo the shard count is the
@@ -91,14 +123,25 @@ impl Batch {
             finished: Vec::new(),
             kept_failures: Vec::new(),
             selected: 0,
+            resumable: std::collections::HashMap::new(),
         };
         let shard = self.shard;
         for case in cases.iter().skip(shard.index).step_by(shard.count) {
             pending.selected += 1;
             // Leftovers of a killed run of this case (only this shard's cases: other
-            // shards may be running in the same folder).
-            cases::remove_temp_folders(&temp_root, case.id());
-            match case_state(&self.dir, case.id(), case.hash()) {
+            // shards may be running in the same folder), but the folder of a killed run
+            // that left a checkpoint of this case, when the case is to be done.
+            let state = case_state(&self.dir, case.id(), case.hash());
+            let resumable = match (state, self.checkpoint_seconds > 0.0) {
+                (CaseState::Finished { ok: true }, _) | (_, false) => None,
+                (CaseState::Finished { ok: false }, true) if !retry_failed => None,
+                _ => cases::resumable_temp_folder(&temp_root, case.id(), case.hash()),
+            };
+            cases::remove_temp_folders(&temp_root, case.id(), resumable.as_deref());
+            if let Some(folder) = resumable {
+                pending.resumable.insert(case.id().to_string(), folder);
+            }
+            match state {
                 CaseState::Finished { ok: true } => pending.finished.push(case),
                 CaseState::Finished { ok: false } if !retry_failed => {
                     pending.finished.push(case);
@@ -128,7 +171,10 @@ impl Batch {
     ) -> Result<Outcome> {
         let failures = std::sync::Mutex::new(Vec::new());
         pool::for_each(&pending.todo, jobs, threads, |case| {
-            let failure = cases::run_case(&self.dir, *case).with_context(|| format!("case {}", case.id()))?;
+            let policy = self.checkpoint_policy(*case);
+            let resume = pending.resumable.get(case.id()).map(PathBuf::as_path);
+            let failure = cases::run_case(&self.dir, *case, policy.as_ref(), resume)
+                .with_context(|| format!("case {}", case.id()))?;
             if failure.is_some() {
                 failures.lock().expect("lock").push(case.id().to_string());
             }

@@ -25,6 +25,16 @@ impl FieldsRecorder {
         Self { recorder, netcdf }
     }
 
+    /// The recorder (its state goes into a checkpoint).
+    pub(crate) fn recorder(&self) -> &SnapshotRecorder {
+        &self.recorder
+    }
+
+    /// Continues with the recorder of a checkpoint.
+    pub(crate) fn restore(&mut self, recorder: SnapshotRecorder) {
+        self.recorder = recorder;
+    }
+
     /// Sees every step: keeps the plan's steps, the last in contact and the largest contact.
     pub fn observe(&mut self, view: &StepView<'_>) {
         self.recorder.observe(view);

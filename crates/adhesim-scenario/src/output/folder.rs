@@ -80,7 +80,7 @@ fn host_name() -> String {
 
 /// Whether process `pid` of this machine is alive; `None` where this cannot be told
 /// (no `/proc`).
-fn process_alive(pid: u32) -> Option<bool> {
+pub(crate) fn process_alive(pid: u32) -> Option<bool> {
     if !Path::new("/proc/self").exists() {
         return None;
     }

@@ -2,6 +2,7 @@
 //! package: the run folder (marker, clearing, locks), `curve.csv`, the phase timings and
 //! the field files, each written whole or not at all.
 
+pub mod checkpoint;
 pub mod curve_csv;
 pub mod fields;
 pub mod folder;

@@ -3,14 +3,15 @@
 //! [`RunPictures`] it was given (the command line draws them; Python runs without), drives
 //! a [`RunProgress`], times the phases and watches for contact at the domain border.
 
+use super::checkpoint::{bit_string, CheckpointPolicy};
 use super::curve_csv::CurveCsv;
 use super::fields::FieldsRecorder;
 use super::timings::PhaseTimings;
 use crate::{RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
 use adhesim::analysis::reference::Jkr;
-use adhesim::{Grid, Observer, StepRecord, StepView};
+use adhesim::{Grid, IndentCheckpoint, Observer, StepRecord, StepView};
 use anyhow::{Context, Result};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::ops::ControlFlow;
@@ -82,6 +83,64 @@ pub struct RunObserver<'a> {
     pub fields: Option<FieldsRecorder>,
     /// The snapshot fields once written (for Python's in-memory result).
     pub written_fields: Option<SnapshotFields>,
+    /// Mid-run checkpoints, when on ([`RunObserver::enable_checkpoints`]).
+    checkpoints: Option<Checkpoints>,
+}
+
+/// Where and when checkpoints are written, and the records they need.
+struct Checkpoints {
+    folder: PathBuf,
+    policy: CheckpointPolicy,
+    last: Instant,
+    records: Vec<StepRecord>,
+    warned: bool,
+}
+
+/// A contact set in a checkpoint.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+struct Bits(#[serde(with = "bit_string")] Vec<bool>);
+
+/// What the observer of a run carries from step to step (in a checkpoint): everything the
+/// files written after the checkpoint depend on.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub(crate) struct ObserverState {
+    jump_snapshots: usize,
+    largest: (usize, usize, Bits),
+    last_in_contact: Option<(usize, Bits, Bits)>,
+    warnings: Vec<String>,
+    border_warned: bool,
+    snapshot_files: Vec<String>,
+    captured: Vec<(usize, Bits, Bits)>,
+    phase_seconds: BTreeMap<String, f64>,
+    phase_steps: BTreeMap<String, usize>,
+    output_seconds: f64,
+    fields: Option<crate::SnapshotRecorder>,
+}
+
+impl ObserverState {
+    /// Whether its contact sets and fields are of a grid of `elements` (a checkpoint read
+    /// back: a mismatch would otherwise stop the run later).
+    pub(crate) fn fits(&self, elements: usize) -> bool {
+        let set = |bits: &Bits| bits.0.len() == elements;
+        (self.largest.2 .0.is_empty() || set(&self.largest.2))
+            && self.last_in_contact.iter().all(|(_, c, p)| set(c) && set(p))
+            && self.captured.iter().all(|(_, c, p)| set(c) && set(p))
+            && self.fields.as_ref().is_none_or(|f| f.fits(elements))
+    }
+}
+
+/// The phase names of the timings (`Phase::name`, or "unknown").
+fn phase_name(name: &str) -> &'static str {
+    [
+        adhesim::Phase::Approach,
+        adhesim::Phase::Retract,
+        adhesim::Phase::Roll,
+        adhesim::Phase::Slide,
+    ]
+    .iter()
+    .map(|p| p.name())
+    .find(|&p| p == name)
+    .unwrap_or("unknown")
 }
 
 impl<'a> RunObserver<'a> {
@@ -117,7 +176,72 @@ impl<'a> RunObserver<'a> {
             timings: PhaseTimings::new(),
             fields: None,
             written_fields: None,
+            checkpoints: None,
         })
+    }
+
+    /// Writes a checkpoint into `folder` every `policy.every` of wall time (indentations
+    /// on solvers that support them; docs/sweeps.md, "Resuming a case mid-run").
+    pub fn enable_checkpoints(&mut self, folder: &Path, policy: &CheckpointPolicy) {
+        self.checkpoints = Some(Checkpoints {
+            folder: folder.to_path_buf(),
+            policy: policy.clone(),
+            last: Instant::now(),
+            records: Vec::new(),
+            warned: false,
+        });
+    }
+
+    /// The state a checkpoint keeps.
+    fn state(&self) -> ObserverState {
+        let bits = |b: &Vec<bool>| Bits(b.clone());
+        ObserverState {
+            jump_snapshots: self.jump_snapshots,
+            largest: (self.largest.0, self.largest.1, bits(&self.largest.2)),
+            last_in_contact: self.last_in_contact.as_ref().map(|(s, c, p)| (*s, bits(c), bits(p))),
+            warnings: self.warnings.clone(),
+            border_warned: self.border_warned,
+            snapshot_files: self.snapshot_files.clone(),
+            captured: self.captured.iter().map(|(s, c, p)| (*s, bits(c), bits(p))).collect(),
+            phase_seconds: self
+                .timings
+                .phase_seconds
+                .iter()
+                .map(|(k, v)| (k.to_string(), *v))
+                .collect(),
+            phase_steps: self
+                .timings
+                .phase_steps
+                .iter()
+                .map(|(k, v)| (k.to_string(), *v))
+                .collect(),
+            output_seconds: self.timings.output_seconds,
+            fields: self.fields.as_ref().map(|f| f.recorder().clone()),
+        }
+    }
+
+    /// Continues from a checkpoint: its state, and `curve.csv` rows of the `records` done.
+    pub(crate) fn restore(&mut self, state: ObserverState, records: &[StepRecord]) -> Result<()> {
+        for record in records {
+            self.csv.write(record)?;
+        }
+        if let Some(checkpoints) = &mut self.checkpoints {
+            checkpoints.records = records.to_vec();
+        }
+        self.jump_snapshots = state.jump_snapshots;
+        self.largest = (state.largest.0, state.largest.1, state.largest.2 .0);
+        self.last_in_contact = state.last_in_contact.map(|(s, c, p)| (s, c.0, p.0));
+        self.warnings = state.warnings;
+        self.border_warned = state.border_warned;
+        self.snapshot_files = state.snapshot_files;
+        self.captured = state.captured.into_iter().map(|(s, c, p)| (s, c.0, p.0)).collect();
+        self.timings.phase_seconds = state.phase_seconds.iter().map(|(k, v)| (phase_name(k), *v)).collect();
+        self.timings.phase_steps = state.phase_steps.iter().map(|(k, v)| (phase_name(k), *v)).collect();
+        self.timings.output_seconds = state.output_seconds;
+        if let (Some(fields), Some(recorder)) = (&mut self.fields, state.fields) {
+            fields.restore(recorder);
+        }
+        Ok(())
     }
 
     /// Keeps the contact sets of these steps in memory (for composite pictures such as
@@ -221,6 +345,9 @@ impl<'a> RunObserver<'a> {
 
 impl Observer for RunObserver<'_> {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        if let Some(checkpoints) = &mut self.checkpoints {
+            checkpoints.records.push(*view.record);
+        }
         self.timings
             .solver_step(view.record.phase.map_or("unknown", |p| p.name()));
         let output_start = Instant::now();
@@ -233,6 +360,33 @@ impl Observer for RunObserver<'_> {
                 ControlFlow::Break(())
             }
         }
+    }
+
+    fn wants_checkpoint(&mut self) -> bool {
+        self.error.is_none()
+            && self
+                .checkpoints
+                .as_ref()
+                .is_some_and(|c| c.last.elapsed() >= c.policy.every)
+    }
+
+    /// Writes the checkpoint; a failure to write it is a warning on stderr (once), not a
+    /// failure of the run (the run goes on without).
+    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+        let state = self.state();
+        let Some(c) = &mut self.checkpoints else {
+            return ControlFlow::Continue(());
+        };
+        match super::checkpoint::write(&c.folder, &c.policy, &checkpoint, &c.records, &state) {
+            Ok(()) => {}
+            Err(error) if !c.warned => {
+                c.warned = true;
+                eprintln!("warning: no checkpoint written: {error:#}");
+            }
+            Err(_) => {}
+        }
+        c.last = Instant::now();
+        ControlFlow::Continue(())
     }
 }
 

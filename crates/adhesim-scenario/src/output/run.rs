@@ -4,6 +4,7 @@
 //! written atomically. The folder is new, or made ready by
 //! [`super::folder::prepare_run_folder`].
 
+use super::checkpoint::{self, CheckpointPolicy};
 use super::folder;
 use super::observer::{RunObserver, RunPictures, RunProgress};
 use super::timings::PhaseTimings;
@@ -26,6 +27,9 @@ pub struct FolderRunOptions<'a> {
     pub pictures: Option<&'a dyn RunPictures>,
     /// Also `fields.nc` (NetCDF-3) beside `fields.npz`.
     pub netcdf: bool,
+    /// Mid-run checkpoints into the folder, and continuing from the one found there (a
+    /// case of the batch engine; docs/sweeps.md, "Resuming a case mid-run"); none without.
+    pub checkpoint: Option<&'a CheckpointPolicy>,
 }
 
 /// What a finished run into a folder gives back.
@@ -56,6 +60,9 @@ pub fn run_into_folder(
     std::fs::create_dir_all(out).with_context(|| format!("cannot create output folder {}", out.display()))?;
     folder::write_run_marker(out)?;
     let start = Instant::now();
+    let resume = options
+        .checkpoint
+        .and_then(|policy| take_checkpoint(scenario, out, policy));
     let mut observer = RunObserver::new(
         out,
         scenario.grid,
@@ -69,7 +76,24 @@ pub fn run_into_folder(
         SnapshotRecorder::new(SnapshotPlan::new(scenario)),
         options.netcdf,
     ));
-    let outcome = crate::run(scenario, &mut observer);
+    if let Some(policy) = options.checkpoint {
+        observer.enable_checkpoints(out, policy);
+    }
+    let resume = match resume {
+        Some(body) => {
+            observer.restore(body.observer, &body.records)?;
+            Some(crate::Resume {
+                protocol: body.protocol,
+                records: body.records,
+            })
+        }
+        None => None,
+    };
+    let outcome = crate::run_from(scenario, &mut observer, resume);
+    if options.checkpoint.is_some() {
+        // A finished (or failed) run is not continued: its folder holds no checkpoint.
+        checkpoint::remove(out);
+    }
     observer.finish(scenario)?;
     let outcome = match outcome {
         Ok(outcome) => outcome,
@@ -112,6 +136,38 @@ pub fn run_into_folder(
         plot_files,
         wall_seconds,
     })
+}
+
+/// The checkpoint in `out` to continue from, if it is this case's and readable; otherwise
+/// a one-line warning naming the file and why, and the run starts from scratch (the
+/// files of the checkpoint's run removed).
+fn take_checkpoint(scenario: &ValidScenario, out: &Path, policy: &CheckpointPolicy) -> Option<checkpoint::Body> {
+    // (The solver is only built to ask where a checkpoint is there.)
+    let path = out.join(checkpoint::CHECKPOINT_FILE);
+    let found = if path.exists()
+        && matches!(scenario.protocol_setup(), ProtocolSetup::Indentation(_))
+        && scenario.normal_solver().supports_checkpoints()
+    {
+        checkpoint::read(out, policy, scenario.grid.len())
+    } else {
+        Ok(None)
+    };
+    match found {
+        Ok(Some(body)) => Some(body),
+        Ok(None) => {
+            checkpoint::remove(out);
+            None
+        }
+        Err(why) => {
+            eprintln!(
+                "warning: checkpoint {} not used: {why:#}; the case restarts from scratch",
+                path.display()
+            );
+            checkpoint::remove(out);
+            let _ = std::fs::remove_dir_all(out.join("snapshots"));
+            None
+        }
+    }
 }
 
 /// Counters of a run, with the per-step averages and the observer's phase timings.

@@ -11,13 +11,15 @@ pub mod table;
 
 use crate::batch::{write_atomically, BatchCase};
 use crate::memory::MemoryLimit;
+use crate::output::checkpoint::CheckpointPolicy;
 use crate::ValidScenario;
 use anyhow::{bail, Context, Result};
 pub use plan::{Case, Plan};
 use std::path::Path;
 
-/// Runs one case's validated scenario into its folder (curve.csv, summary.json, ...).
-pub type CaseRunner = dyn Fn(&ValidScenario, &Path) -> Result<()> + Sync;
+/// Runs one case's validated scenario into its folder (curve.csv, summary.json, ...), with
+/// mid-run checkpoints by the policy when given (continuing from the one in the folder).
+pub type CaseRunner = dyn Fn(&ValidScenario, &Path, Option<&CheckpointPolicy>) -> Result<()> + Sync;
 
 /// Refuses a plan whose largest grid, run `jobs` at a time, needs more memory than is
 /// available (before any case allocates its FFT buffers).
@@ -113,8 +115,18 @@ impl BatchCase for SweepCase<'_> {
     }
 
     fn run(&self, folder: &Path) -> Result<()> {
+        self.run_with(folder, None)
+    }
+
+    fn run_checkpointed(&self, folder: &Path, policy: &CheckpointPolicy) -> Result<()> {
+        self.run_with(folder, Some(policy))
+    }
+}
+
+impl SweepCase<'_> {
+    fn run_with(&self, folder: &Path, policy: Option<&CheckpointPolicy>) -> Result<()> {
         let case = self.case;
         let scenario = crate::load(&case.scenario, &format!("case {}", case.id), &self.plan.base_dir, &[])?;
-        (self.runner)(&scenario, folder)
+        (self.runner)(&scenario, folder, policy)
     }
 }

@@ -1,5 +1,6 @@
-use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use super::{IndentCheckpoint, NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::ElasticOperator;
+use crate::grid::Grid;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
@@ -21,6 +22,7 @@ pub struct IndentPulloff {
 
 /// Totals over a protocol run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ProtocolSummary {
     /// Steps done.
     pub steps: usize,
@@ -55,6 +57,70 @@ impl IndentPulloff {
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
     ) -> Result<ProtocolSummary, ProtocolError> {
+        self.run_from(operator, heights, solver, observer, None)
+    }
+
+    /// As [`run`](Self::run), continued from `start` (a checkpoint of a run of the same
+    /// protocol, problem and kind of solver) when given: the steps after it are those of
+    /// the uninterrupted run, bit for bit. After every step the observer is offered a
+    /// checkpoint ([`Observer::wants_checkpoint`]) where the solver supports them.
+    pub fn run_from<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+        start: Option<&IndentCheckpoint>,
+    ) -> Result<ProtocolSummary, ProtocolError> {
+        self.check()?;
+        let grid = *operator.grid();
+        solver.reset();
+        let acts_across_gaps = solver.acts_across_gaps();
+        let released_fraction = solver.released_force(1.0);
+        // A law of unbounded support approaches from where its pull is negligible.
+        let start_depth = self.start_depth - solver.approach_margin();
+        let approach_steps = ((self.max_depth - start_depth) / self.depth_step).ceil() as usize;
+        let mut run = match start {
+            Some(checkpoint) => {
+                checkpoint.check(&grid, approach_steps)?;
+                solver
+                    .restore(&checkpoint.solver, &checkpoint.state)
+                    .map_err(ProtocolError::InvalidParameter)?;
+                RunState::restored(checkpoint)
+            }
+            None => RunState::new(&grid, self.max_depth),
+        };
+        while run.step < approach_steps {
+            let depth = (start_depth + (run.step + 1) as f64 * self.depth_step).min(self.max_depth);
+            self.run_step(operator, heights, solver, observer, &mut run, depth, Phase::Approach)?;
+            run.offer_checkpoint(solver, observer)?;
+        }
+        while run.step - approach_steps < self.max_retract_steps {
+            run.depth -= self.depth_step;
+            let depth = run.depth;
+            let record = self.run_step(operator, heights, solver, observer, &mut run, depth, Phase::Retract)?;
+            let released_force = released_fraction * run.summary.max_adhesive_force;
+            // Without contact, a cohesive law may still pull (a tensile force): retraction
+            // goes on until it lets go (for a law of unbounded support, until the tension
+            // is negligible).
+            let holds_across_gap = acts_across_gaps && -record.force_normal > released_force;
+            if record.contact_elements == 0 && !holds_across_gap {
+                run.summary.pull_off_depth = run.last_in_contact;
+                return Ok(run.summary);
+            }
+            if record.contact_elements > 0 {
+                run.last_in_contact = Some(depth);
+            }
+            run.offer_checkpoint(solver, observer)?;
+        }
+        Err(ProtocolError::ContactNotLost {
+            steps: self.max_retract_steps,
+            depth: run.depth,
+        })
+    }
+
+    /// The parameters are usable.
+    fn check(&self) -> Result<(), ProtocolError> {
         if !(self.depth_step.is_finite() && self.depth_step > 0.0) {
             return Err(ProtocolError::InvalidParameter(format!(
                 "depth step must be > 0, got {}",
@@ -67,90 +133,129 @@ impl IndentPulloff {
                 self.max_depth, self.start_depth
             )));
         }
-        let grid = *operator.grid();
-        solver.reset();
-        let acts_across_gaps = solver.acts_across_gaps();
-        let released_fraction = solver.released_force(1.0);
-        let mut state = ContactState::new(&grid);
-        let mut previous = state.contact.clone();
-        let mut summary = ProtocolSummary::default();
-        // A law of unbounded support approaches from where its pull is negligible.
-        let start_depth = self.start_depth - solver.approach_margin();
-        let approach_steps = ((self.max_depth - start_depth) / self.depth_step).ceil() as usize;
-        let mut step = 0usize;
-        let mut run_step = |depth: f64,
-                            phase: Phase,
-                            state: &mut ContactState,
-                            previous: &mut Vec<bool>,
-                            summary: &mut ProtocolSummary|
-         -> Result<StepRecord, ProtocolError> {
-            previous.copy_from_slice(&state.contact);
-            let report = solver
-                .step(operator, heights, depth, state)
-                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
-            summary.dissipated_energy += report.dissipated_energy;
-            let mut record = StepRecord::measure(
-                step,
-                phase,
-                depth,
-                0.0,
-                report,
-                state,
-                &grid,
-                summary.dissipated_energy,
-                self.jump_force_threshold,
-            );
-            // A cohesive zone cut by the border is as wrong as a contact cut by it.
-            record.touches_border |= solver.zone_touches_border();
-            let contact_elements = record.contact_elements;
-            summary.steps += 1;
-            summary.solves += report.solves;
-            summary.cg_iterations += report.cg_iterations;
-            summary.operator_applications += report.operator_applications;
-            summary.jumps += record.jumped as usize;
-            summary.touches_border |= record.touches_border;
-            if -record.force_normal > summary.max_adhesive_force {
-                summary.max_adhesive_force = -record.force_normal;
-                summary.depth_at_max_adhesive_force = depth;
-            }
-            if contact_elements > summary.largest_contact.0 {
-                summary.largest_contact = (contact_elements, step);
-            }
-            if let ControlFlow::Break(()) = observer.on_step(StepView {
-                record: &record,
-                state,
-                previous_contact: previous,
-            }) {
-                return Err(ProtocolError::Interrupted(step));
-            }
-            step += 1;
-            Ok(record)
-        };
-        for i in 1..=approach_steps {
-            let depth = (start_depth + i as f64 * self.depth_step).min(self.max_depth);
-            run_step(depth, Phase::Approach, &mut state, &mut previous, &mut summary)?;
-        }
-        let mut depth = self.max_depth;
-        let mut last_in_contact = None;
-        for _ in 0..self.max_retract_steps {
-            depth -= self.depth_step;
-            let record = run_step(depth, Phase::Retract, &mut state, &mut previous, &mut summary)?;
-            let released_force = released_fraction * summary.max_adhesive_force;
-            // Without contact, a cohesive law may still pull (a tensile force): retraction
-            // goes on until it lets go (for a law of unbounded support, until the tension
-            // is negligible).
-            let holds_across_gap = acts_across_gaps && -record.force_normal > released_force;
-            if record.contact_elements == 0 && !holds_across_gap {
-                summary.pull_off_depth = last_in_contact;
-                return Ok(summary);
-            }
-            if record.contact_elements > 0 {
-                last_in_contact = Some(depth);
-            }
-        }
-        Err(ProtocolError::ContactNotLost {
-            steps: self.max_retract_steps,
+        Ok(())
+    }
+
+    /// One step at `depth`: the solve, the record, the totals, the observer.
+    #[allow(clippy::too_many_arguments)]
+    fn run_step<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+        run: &mut RunState,
+        depth: f64,
+        phase: Phase,
+    ) -> Result<StepRecord, ProtocolError> {
+        let (grid, step) = (*operator.grid(), run.step);
+        let (state, previous, summary) = (&mut run.state, &mut run.previous, &mut run.summary);
+        previous.copy_from_slice(&state.contact);
+        let report = solver
+            .step(operator, heights, depth, state)
+            .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+        summary.dissipated_energy += report.dissipated_energy;
+        let mut record = StepRecord::measure(
+            step,
+            phase,
             depth,
-        })
+            0.0,
+            report,
+            state,
+            &grid,
+            summary.dissipated_energy,
+            self.jump_force_threshold,
+        );
+        // A cohesive zone cut by the border is as wrong as a contact cut by it.
+        record.touches_border |= solver.zone_touches_border();
+        let contact_elements = record.contact_elements;
+        summary.steps += 1;
+        summary.solves += report.solves;
+        summary.cg_iterations += report.cg_iterations;
+        summary.operator_applications += report.operator_applications;
+        summary.jumps += record.jumped as usize;
+        summary.touches_border |= record.touches_border;
+        if -record.force_normal > summary.max_adhesive_force {
+            summary.max_adhesive_force = -record.force_normal;
+            summary.depth_at_max_adhesive_force = depth;
+        }
+        if contact_elements > summary.largest_contact.0 {
+            summary.largest_contact = (contact_elements, step);
+        }
+        if let ControlFlow::Break(()) = observer.on_step(StepView {
+            record: &record,
+            state,
+            previous_contact: previous,
+        }) {
+            return Err(ProtocolError::Interrupted(step));
+        }
+        run.step += 1;
+        run.phase = phase;
+        Ok(record)
+    }
+}
+
+/// Where a run stands between two steps (what a checkpoint holds, less the solver's).
+struct RunState {
+    /// Steps done.
+    step: usize,
+    phase: Phase,
+    /// Depth of the retraction (the maximum depth until it starts).
+    depth: f64,
+    last_in_contact: Option<f64>,
+    state: ContactState,
+    previous: Vec<bool>,
+    summary: ProtocolSummary,
+}
+
+impl RunState {
+    fn new(grid: &Grid, max_depth: f64) -> Self {
+        let state = ContactState::new(grid);
+        Self {
+            step: 0,
+            phase: Phase::Approach,
+            depth: max_depth,
+            last_in_contact: None,
+            previous: state.contact.clone(),
+            state,
+            summary: ProtocolSummary::default(),
+        }
+    }
+
+    fn restored(checkpoint: &IndentCheckpoint) -> Self {
+        Self {
+            step: checkpoint.steps_done,
+            phase: checkpoint.phase,
+            depth: checkpoint.depth,
+            last_in_contact: checkpoint.last_in_contact,
+            state: checkpoint.state.clone(),
+            previous: checkpoint.previous.clone(),
+            summary: checkpoint.summary,
+        }
+    }
+
+    /// Offers the observer a checkpoint of the run after the step just done, if it wants
+    /// one and the solver supports them.
+    fn offer_checkpoint(&self, solver: &NormalSolver, observer: &mut dyn Observer) -> Result<(), ProtocolError> {
+        if !solver.supports_checkpoints() || !observer.wants_checkpoint() {
+            return Ok(());
+        }
+        let Some(solver) = solver.checkpoint() else {
+            return Ok(());
+        };
+        let checkpoint = IndentCheckpoint {
+            steps_done: self.step,
+            phase: self.phase,
+            depth: self.depth,
+            last_in_contact: self.last_in_contact,
+            state: self.state.clone(),
+            previous: self.previous.clone(),
+            summary: self.summary,
+            solver,
+        };
+        match observer.on_checkpoint(checkpoint) {
+            ControlFlow::Continue(()) => Ok(()),
+            ControlFlow::Break(()) => Err(ProtocolError::Interrupted(self.step - 1)),
+        }
     }
 }

@@ -2,9 +2,13 @@
 //! and reports every step to an [`Observer`] (writing files is an observer's job, not the
 //! library's).
 
+#[cfg(feature = "serde")]
+pub(crate) mod bit_string;
+mod checkpoint;
 mod indentation;
 mod translation;
 
+pub use checkpoint::{IndentCheckpoint, SolverCheckpoint};
 pub use indentation::{IndentPulloff, ProtocolSummary};
 pub use translation::{Translation, TranslationSummary};
 
@@ -20,6 +24,7 @@ use thiserror::Error;
 
 /// Stage of a protocol a step belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Phase {
     /// Indentation grows.
     Approach,
@@ -45,6 +50,7 @@ impl Phase {
 
 /// One quasi-static step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepRecord {
     /// Step counter from 0.
     pub step: usize,
@@ -132,6 +138,18 @@ pub struct StepView<'a> {
 pub trait Observer {
     /// Called after each step.
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()>;
+
+    /// Asked after each step of a protocol that offers checkpoints (an indentation, on a
+    /// solver that supports them): whether to take one now. Default: never.
+    fn wants_checkpoint(&mut self) -> bool {
+        false
+    }
+
+    /// The checkpoint asked for by [`wants_checkpoint`](Self::wants_checkpoint), after the
+    /// step [`on_step`](Self::on_step) has seen; `Break` stops the protocol as there.
+    fn on_checkpoint(&mut self, _checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
 }
 
 /// An observer that does nothing.

@@ -16,8 +16,8 @@ mod peel_predictor;
 mod state;
 
 pub use adhesive::{
-    critical_stress, detachment_element_size, AdhesiveParams, AdhesiveSolver, Attachment, Detachment, PredictedGrowth,
-    StepReport, ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
+    critical_stress, detachment_element_size, AdhesiveCheckpoint, AdhesiveParams, AdhesiveSolver, Attachment,
+    Detachment, PredictedGrowth, StepReport, ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;

@@ -2,12 +2,14 @@ use crate::grid::Grid;
 
 /// Fields of a contact configuration; also the warm start of the next solve.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactState {
     /// Pressure per element (> 0 compressive).
     pub pressure: Vec<f64>,
     /// Normal surface displacement per element (> 0 into the body), u = K p.
     pub displacement: Vec<f64>,
     /// Contact set C.
+    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
     pub contact: Vec<bool>,
 }
 

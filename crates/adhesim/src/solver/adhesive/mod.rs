@@ -3,12 +3,14 @@
 //! rules (violators, local rounds, failed-ring prediction) in `release`, attachment and
 //! predicted-subset growth in `growth`.
 
+mod checkpoint;
 mod fixed_set;
 mod growth;
 mod params;
 mod release;
 mod ring;
 
+pub use checkpoint::AdhesiveCheckpoint;
 pub use params::{
     critical_stress, detachment_element_size, AdhesiveParams, Attachment, Detachment, PredictedGrowth, StepReport,
     ELEMENT_ENERGY_FACTOR, PREDICTION_MIN_ELEMENTS,

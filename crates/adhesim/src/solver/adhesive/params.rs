@@ -194,6 +194,7 @@ impl Default for AdhesiveParams {
 
 /// What one quasi-static step did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StepReport {
     /// Fixed-set solves (rounds of the step loop).
     pub solves: usize,

@@ -8,9 +8,11 @@ use crate::solver::ContactState;
 /// One round of a trial-ring peel: the trial elements present, their pressures after the
 /// solve, and which of them failed.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RingRound {
     members: Vec<usize>,
     pressures: Vec<f64>,
+    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
     failed: Vec<bool>,
     /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
     error_bound: f64,
@@ -18,10 +20,24 @@ pub(super) struct RingRound {
 
 /// A trial ring tried on contact set `contact` at `depth` that failed completely.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RingAttempt {
     depth: f64,
+    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
     contact: Vec<bool>,
     rounds: Vec<RingRound>,
+}
+
+impl RingAttempt {
+    /// Whether the record is of a grid of `len` elements (a restored checkpoint).
+    pub(super) fn fits(&self, len: usize) -> bool {
+        self.contact.len() == len
+            && self.rounds.iter().all(|r| {
+                r.members.len() == r.pressures.len()
+                    && r.members.len() == r.failed.len()
+                    && r.members.iter().all(|&k| k < len)
+            })
+    }
 }
 
 /// Buffers of dropped ring records, reused by the next ones.

@@ -1,0 +1,99 @@
+//! Mid-run checkpoints of an [`IndentPulloff`](super::IndentPulloff) run: everything the
+//! steps after a given step depend on, so that a run restored from a checkpoint (in a fresh
+//! solver of the same problem) gives the records of the uninterrupted run bit for bit.
+//!
+//! The protocol offers one after every step to its [`Observer`](super::Observer), which
+//! decides whether to take it ([`Observer::wants_checkpoint`](super::Observer::wants_checkpoint));
+//! writing it anywhere is the observer's business. Solvers that cannot be checkpointed (a
+//! cohesive law; the nested non-adhesive active set, whose contact windows carry their
+//! sizes from solve to solve) decline: the protocol then offers none and runs as without.
+
+use super::{Phase, ProtocolError, ProtocolSummary};
+use crate::grid::Grid;
+use crate::solver::{AdhesiveCheckpoint, ContactState};
+use crate::NormalSolver;
+
+/// What the normal solver carries from one step to the next.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SolverCheckpoint {
+    /// Nothing (the non-adhesive CCG: every solve starts from the state alone).
+    Stateless,
+    /// The adhesive active set's history (warm start, failed rings, bans, generator).
+    Adhesive(Box<AdhesiveCheckpoint>),
+}
+
+/// The state of an indentation run after a step.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct IndentCheckpoint {
+    /// Steps done (the next step's number).
+    pub steps_done: usize,
+    /// Phase of the last step done.
+    pub phase: Phase,
+    /// Depth of the last step done (the retraction goes on from it).
+    pub depth: f64,
+    /// Depth of the last retraction step in contact.
+    pub last_in_contact: Option<f64>,
+    /// The configuration after the last step (the next step's warm start).
+    pub state: ContactState,
+    /// The contact set at the start of the last step.
+    #[cfg_attr(feature = "serde", serde(with = "super::bit_string"))]
+    pub previous: Vec<bool>,
+    /// The run's totals so far.
+    pub summary: ProtocolSummary,
+    /// The solver's history.
+    pub solver: SolverCheckpoint,
+}
+
+impl NormalSolver {
+    /// The state this solver carries into its next step, or `None` where checkpoints are
+    /// not supported (a cohesive law; the nested non-adhesive active set).
+    pub fn checkpoint(&self) -> Option<SolverCheckpoint> {
+        match self {
+            Self::NonAdhesive(_) => Some(SolverCheckpoint::Stateless),
+            Self::Adhesive(solver) => Some(SolverCheckpoint::Adhesive(Box::new(solver.checkpoint()))),
+            Self::NonAdhesiveNested(_) | Self::Cohesive(_) => None,
+        }
+    }
+
+    /// Whether [`checkpoint`](Self::checkpoint) gives one.
+    pub fn supports_checkpoints(&self) -> bool {
+        matches!(self, Self::NonAdhesive(_) | Self::Adhesive(_))
+    }
+
+    /// Puts back the state of `checkpoint` (taken by the same kind of solver on the same
+    /// problem when the step that left `state` ended).
+    pub fn restore(&mut self, checkpoint: &SolverCheckpoint, state: &ContactState) -> Result<(), String> {
+        match (self, checkpoint) {
+            (Self::NonAdhesive(_), SolverCheckpoint::Stateless) => Ok(()),
+            (Self::Adhesive(solver), SolverCheckpoint::Adhesive(saved)) => solver.restore(saved, state),
+            _ => Err("the checkpoint is of another kind of solver".to_string()),
+        }
+    }
+}
+
+impl IndentCheckpoint {
+    /// Checks that the checkpoint fits `grid` and a run of `approach_steps` approach steps.
+    pub(super) fn check(&self, grid: &Grid, approach_steps: usize) -> Result<(), ProtocolError> {
+        let len = grid.len();
+        let fits = self.state.pressure.len() == len
+            && self.state.displacement.len() == len
+            && self.state.contact.len() == len
+            && self.previous.len() == len
+            && self.steps_done > 0
+            && self.summary.steps == self.steps_done
+            && (self.phase == Phase::Approach) == (self.steps_done <= approach_steps)
+            && matches!(self.phase, Phase::Approach | Phase::Retract);
+        if fits {
+            Ok(())
+        } else {
+            Err(ProtocolError::InvalidParameter(format!(
+                "the checkpoint (after step {}, {} elements) does not fit this run ({} approach steps, {len} elements)",
+                self.steps_done.saturating_sub(1),
+                self.state.pressure.len(),
+                approach_steps
+            )))
+        }
+    }
+}

@@ -1,0 +1,360 @@
+//! Mid-run checkpoints of an indentation (`IndentPulloff::run_from`): a run stopped after
+//! step k and continued from its checkpoint in a fresh operator and solver gives the
+//! records and the summary of the uninterrupted run bit for bit. The claim is byte
+//! identity of the outputs, so every f64 is compared by its bits (through `{:?}`, which
+//! prints the shortest round-trip form and tells −0 from +0), never by tolerance.
+//!
+//! With the `serde` feature the checkpoint also goes through JSON bytes and back (the form
+//! the scenario crate writes); without it, through a clone.
+
+use adhesim::solver::PredictedGrowth;
+use adhesim::{
+    AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, Detachment, ElasticMaterial, FreeOperator, Grid,
+    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, PeriodicKernel, PeriodicOperator, Profile,
+    ProtocolSummary, StepRecord, StepView, WavySphere,
+};
+use std::ops::ControlFlow;
+
+/// The Fig. 1 wavy sphere (α ≈ 1, scenarios/fig1.toml's kind) on an n × n free grid.
+fn wavy_sphere(n: usize) -> (Grid, Vec<f64>, f64) {
+    let grid = Grid::new(n, 0.3 * n as f64 / 48.0, Boundary::Free).unwrap();
+    let heights = WavySphere::new(1.0, 5e-4, 0.025, 0.0).unwrap().heights(&grid);
+    let start = heights.iter().cloned().fold(f64::INFINITY, f64::min);
+    (grid, heights, start)
+}
+
+fn protocol(start: f64) -> IndentPulloff {
+    IndentPulloff {
+        start_depth: start,
+        max_depth: 3e-3,
+        depth_step: 1e-4,
+        max_retract_steps: 10_000,
+        jump_force_threshold: 0.0,
+    }
+}
+
+/// Keeps every record and the checkpoints after the steps in `at` (steps done).
+struct Taker {
+    records: Vec<StepRecord>,
+    at: Vec<usize>,
+    taken: Vec<IndentCheckpoint>,
+}
+
+impl Observer for Taker {
+    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
+        self.records.push(*view.record);
+        ControlFlow::Continue(())
+    }
+
+    fn wants_checkpoint(&mut self) -> bool {
+        self.at.contains(&self.records.len())
+    }
+
+    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+        self.taken.push(checkpoint);
+        ControlFlow::Continue(())
+    }
+}
+
+/// The checkpoint as a fresh process would read it back.
+fn round_trip(checkpoint: &IndentCheckpoint) -> IndentCheckpoint {
+    #[cfg(feature = "serde")]
+    {
+        let bytes = serde_json::to_vec(checkpoint).unwrap();
+        let back: IndentCheckpoint = serde_json::from_slice(&bytes).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{checkpoint:?}"));
+        back
+    }
+    #[cfg(not(feature = "serde"))]
+    checkpoint.clone()
+}
+
+fn bits(records: &[StepRecord]) -> Vec<String> {
+    records.iter().map(|r| format!("{r:?}")).collect()
+}
+
+fn summary_bits(summary: &ProtocolSummary) -> String {
+    format!("{summary:?}")
+}
+
+/// Runs uninterrupted (with and without checkpoints taken: taking them changes nothing),
+/// then continues from each checkpoint in a fresh operator and solver made by `make`.
+fn check_resumes(
+    n: usize,
+    make: impl Fn(&Grid) -> NormalSolver,
+    at: impl Fn(usize, usize) -> Vec<usize>,
+) -> (usize, usize) {
+    let (grid, heights, start) = wavy_sphere(n);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let protocol = protocol(start);
+    let mut plain = Vec::new();
+    let plain_summary = protocol
+        .run(
+            &mut FreeOperator::new(grid, material),
+            &heights,
+            &mut make(&grid),
+            &mut plain,
+        )
+        .unwrap();
+    let approach = plain
+        .iter()
+        .filter(|r| r.phase == Some(adhesim::Phase::Approach))
+        .count();
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: at(approach, plain.len()),
+        taken: Vec::new(),
+    };
+    let summary = protocol
+        .run(
+            &mut FreeOperator::new(grid, material),
+            &heights,
+            &mut make(&grid),
+            &mut taker,
+        )
+        .unwrap();
+    assert_eq!(bits(&taker.records), bits(&plain), "taking checkpoints changed the run");
+    assert_eq!(summary_bits(&summary), summary_bits(&plain_summary));
+    assert_eq!(taker.taken.len(), taker.at.len(), "a checkpoint after each asked step");
+    for checkpoint in &taker.taken {
+        let k = checkpoint.steps_done;
+        let restored = round_trip(checkpoint);
+        let mut rest = Vec::new();
+        let resumed = protocol
+            .run_from(
+                &mut FreeOperator::new(grid, material),
+                &heights,
+                &mut make(&grid),
+                &mut rest,
+                Some(&restored),
+            )
+            .unwrap();
+        assert_eq!(bits(&rest), bits(&plain[k..]), "resumed after step {}", k - 1);
+        assert_eq!(
+            summary_bits(&resumed),
+            summary_bits(&plain_summary),
+            "summary after step {}",
+            k - 1
+        );
+    }
+    (approach, plain.len())
+}
+
+fn adhesive(params: AdhesiveParams) -> impl Fn(&Grid) -> NormalSolver {
+    move |grid: &Grid| {
+        NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
+            *grid,
+            1.0,
+            vec![2e-5; grid.len()],
+            params,
+        )))
+    }
+}
+
+/// Stops in the approach, right after the deepest step, just after the retraction
+/// starts, in mid-retraction and one step before pull-off.
+fn spread(approach: usize, total: usize) -> Vec<usize> {
+    vec![
+        1,
+        approach / 2,
+        approach,
+        approach + 1,
+        (approach + total) / 2,
+        total - 1,
+    ]
+}
+
+/// The default adhesive solver (fast certified rule, local peels, bans carried while
+/// retracting, failed-ring prediction): every checkpoint resumes bit for bit.
+#[test]
+fn adhesive_wavy_sphere_resumes_bit_for_bit() {
+    let (approach, total) = check_resumes(40, adhesive(AdhesiveParams::default()), spread);
+    assert!(approach > 10 && total > approach + 5, "{approach} of {total}");
+}
+
+/// The same with predicted-subset growth forced on (its ring records survive the steps)
+/// and resumes after every step of the retraction (where bans and failed rings carry over).
+#[test]
+fn adhesive_with_predicted_growth_resumes_after_every_retraction_step() {
+    let params = AdhesiveParams {
+        predicted_growth: PredictedGrowth::On,
+        ..AdhesiveParams::default()
+    };
+    check_resumes(32, adhesive(params), |approach, total| (approach..total).collect());
+}
+
+/// `Detachment::RandomHalf` releases a random half of the violators: the generator's state
+/// is part of the checkpoint.
+#[test]
+fn random_half_detachment_resumes_bit_for_bit() {
+    let params = AdhesiveParams {
+        detachment: Detachment::RandomHalf { seed: 7 },
+        ..AdhesiveParams::default()
+    };
+    check_resumes(32, adhesive(params), spread);
+}
+
+/// The periodic non-adhesive CCG carries nothing between steps: a checkpoint is its state.
+#[test]
+fn periodic_ccg_resumes_bit_for_bit() {
+    let n = 32;
+    let grid = Grid::new(n, 0.2, Boundary::Periodic).unwrap();
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let heights: Vec<f64> = (0..grid.len())
+        .map(|k| {
+            let (x, y) = grid.centre(k);
+            1e-3 * ((x * 31.4).cos() + (y * 31.4).cos() + 2.0)
+        })
+        .collect();
+    let protocol = IndentPulloff {
+        start_depth: 0.0,
+        max_depth: 2e-3,
+        depth_step: 2e-4,
+        max_retract_steps: 100,
+        jump_force_threshold: 0.0,
+    };
+    let make = || NormalSolver::NonAdhesive(Ccg::new(CcgParams::default()));
+    let mut plain = Vec::new();
+    protocol
+        .run(
+            &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
+            &heights,
+            &mut make(),
+            &mut plain,
+        )
+        .unwrap();
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: (1..plain.len()).collect(),
+        taken: Vec::new(),
+    };
+    protocol
+        .run(
+            &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
+            &heights,
+            &mut make(),
+            &mut taker,
+        )
+        .unwrap();
+    assert_eq!(taker.taken.len(), plain.len() - 1);
+    for checkpoint in &taker.taken {
+        let mut rest = Vec::new();
+        protocol
+            .run_from(
+                &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
+                &heights,
+                &mut make(),
+                &mut rest,
+                Some(&round_trip(checkpoint)),
+            )
+            .unwrap();
+        assert_eq!(bits(&rest), bits(&plain[checkpoint.steps_done..]));
+    }
+}
+
+/// Solvers without checkpoint support (the nested non-adhesive active set) decline: no
+/// checkpoint is offered and the run is the plain one.
+#[test]
+fn unsupported_solvers_offer_no_checkpoint() {
+    let (grid, heights, start) = wavy_sphere(32);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let solver = adhesim::protocol::non_adhesive_solver(grid, material);
+    assert!(solver.checkpoint().is_none() && !solver.supports_checkpoints());
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: (0..1000).collect(),
+        taken: Vec::new(),
+    };
+    let protocol = IndentPulloff {
+        max_retract_steps: 3,
+        ..protocol(start)
+    };
+    let mut solver = solver;
+    let _ = protocol.run(
+        &mut FreeOperator::new(grid, material),
+        &heights,
+        &mut solver,
+        &mut taker,
+    );
+    assert!(!taker.records.is_empty());
+    assert!(taker.taken.is_empty());
+}
+
+/// A checkpoint of another grid is refused with an error, not a panic.
+#[test]
+fn a_checkpoint_of_another_grid_is_refused() {
+    let (grid, heights, start) = wavy_sphere(32);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: vec![3],
+        taken: Vec::new(),
+    };
+    let protocol = IndentPulloff {
+        max_depth: start + 5e-4,
+        ..protocol(start)
+    };
+    let make = adhesive(AdhesiveParams::default());
+    protocol
+        .run(
+            &mut FreeOperator::new(grid, material),
+            &heights,
+            &mut make(&grid),
+            &mut taker,
+        )
+        .unwrap();
+    let (other, other_heights, _) = wavy_sphere(16);
+    let error = protocol
+        .run_from(
+            &mut FreeOperator::new(other, material),
+            &other_heights,
+            &mut make(&other),
+            &mut Vec::new(),
+            Some(&taker.taken[0]),
+        )
+        .unwrap_err();
+    assert!(error.to_string().contains("checkpoint"), "{error}");
+}
+
+/// The reference rule (exact peels, no local release rounds, which would clear the ring
+/// records) in quarter steps to half the depth, and 20 retraction steps (the run ends there
+/// with `ContactNotLost`, after the records): between the jumps of the wavy front the
+/// contact stays put while the same trial ring fails, and the failed-ring prediction of
+/// quiet steps (from the records of the last two steps, which a checkpoint must carry: the
+/// test fails without them) saves the solves the records count.
+#[test]
+fn quiet_steps_predicted_from_failed_ring_records_resume_bit_for_bit() {
+    let params = AdhesiveParams {
+        reference_rule: true,
+        ..AdhesiveParams::default()
+    };
+    let (grid, heights, start) = wavy_sphere(32);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let protocol = IndentPulloff {
+        depth_step: 2.5e-5,
+        max_depth: 1.5e-3,
+        max_retract_steps: 20,
+        ..protocol(start)
+    };
+    let make = adhesive(params);
+    let run = |observer: &mut dyn Observer, start: Option<&IndentCheckpoint>| {
+        let mut operator = FreeOperator::new(grid, material);
+        let _ = protocol.run_from(&mut operator, &heights, &mut make(&grid), observer, start);
+    };
+    let mut plain = Vec::new();
+    run(&mut plain, None);
+    assert!(plain.len() > 60, "{} steps", plain.len());
+    let mut taker = Taker {
+        records: Vec::new(),
+        at: (1..plain.len()).collect(),
+        taken: Vec::new(),
+    };
+    run(&mut taker, None);
+    assert_eq!(bits(&taker.records), bits(&plain));
+    for checkpoint in &taker.taken {
+        let mut rest = Vec::new();
+        run(&mut rest, Some(&round_trip(checkpoint)));
+        let k = checkpoint.steps_done;
+        assert_eq!(bits(&rest), bits(&plain[k..]), "after step {}", k - 1);
+    }
+}
