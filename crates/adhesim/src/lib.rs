@@ -68,7 +68,11 @@
 /// 6: predicted-subset growth is the product's default from 512² (`PredictedGrowth::Auto`;
 /// the same contact sets as the exact peel, forces may move in their last bits), and the
 /// periodic non-adhesive solve no longer fails on an empty or one-element contact set.
-pub const RESULTS_REVISION: u32 = 6;
+/// 7: CCG's load-controlled mean gap is refined to be exact on equal gaps (docs/physics.md
+/// §3.1: it stalled on a strip contact one row wide); periodic and cohesive-periodic
+/// forces move in their last digits (≤ 4.5e-12 of the largest force without adhesion,
+/// ≤ 4e-10 with the exponential law), free-grid results are bit-identical to revision 6.
+pub const RESULTS_REVISION: u32 = 7;
 
 pub mod analysis;
 pub mod elastic;
