@@ -77,7 +77,7 @@ pub struct FieldSnapshot {
     /// Normal displacement u (> 0 into the body).
     pub displacement: Vec<f64>,
     /// The contact set.
-    #[serde(with = "crate::output::checkpoint::bit_string")]
+    #[serde(with = "adhesim::protocol::bit_string")]
     pub contact: Vec<bool>,
 }
 

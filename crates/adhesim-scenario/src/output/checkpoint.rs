@@ -192,26 +192,3 @@ pub(crate) fn remove(folder: &Path) {
         }
     }
 }
-
-/// Serde form of a `Vec<bool>` as a string of `0` and `1` (the contact sets).
-pub(crate) mod bit_string {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    pub(crate) fn serialize<S: Serializer>(bits: &[bool], serializer: S) -> Result<S::Ok, S::Error> {
-        let text: String = bits.iter().map(|&b| if b { '1' } else { '0' }).collect();
-        serializer.serialize_str(&text)
-    }
-
-    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<bool>, D::Error> {
-        let text = String::deserialize(deserializer)?;
-        text.bytes()
-            .map(|b| match b {
-                b'0' => Ok(false),
-                b'1' => Ok(true),
-                _ => Err(serde::de::Error::custom(
-                    "a bit string holds a character other than 0 and 1",
-                )),
-            })
-            .collect()
-    }
-}

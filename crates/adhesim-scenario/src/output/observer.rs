@@ -3,12 +3,13 @@
 //! [`RunPictures`] it was given (the command line draws them; Python runs without), drives
 //! a [`RunProgress`], times the phases and watches for contact at the domain border.
 
-use super::checkpoint::{bit_string, CheckpointPolicy};
+use super::checkpoint::CheckpointPolicy;
 use super::curve_csv::CurveCsv;
 use super::fields::FieldsRecorder;
 use super::timings::PhaseTimings;
 use crate::{RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
 use adhesim::analysis::reference::Jkr;
+use adhesim::protocol::bit_string;
 use adhesim::{Grid, IndentCheckpoint, Observer, StepRecord, StepView};
 use anyhow::{Context, Result};
 use std::collections::{BTreeMap, BTreeSet};

@@ -1,14 +1,17 @@
 //! Serde form of a `Vec<bool>` as a string of `0` and `1` (one byte per element instead of
-//! a JSON array of `true`/`false`): the contact sets of a checkpoint.
+//! a JSON array of `true`/`false`): the contact sets of a checkpoint, in the library's
+//! and in the output layer's (`#[serde(with = "adhesim::protocol::bit_string")]`).
 
 use serde::{Deserialize, Deserializer, Serializer};
 
-pub(crate) fn serialize<S: Serializer>(bits: &[bool], serializer: S) -> Result<S::Ok, S::Error> {
+/// Writes `bits` as one string of `0` and `1`.
+pub fn serialize<S: Serializer>(bits: &[bool], serializer: S) -> Result<S::Ok, S::Error> {
     let text: String = bits.iter().map(|&b| if b { '1' } else { '0' }).collect();
     serializer.serialize_str(&text)
 }
 
-pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<bool>, D::Error> {
+/// Reads a string of `0` and `1`; any other character is an error naming it.
+pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<bool>, D::Error> {
     let text = String::deserialize(deserializer)?;
     text.bytes()
         .map(|b| match b {

@@ -3,7 +3,7 @@
 //! library's).
 
 #[cfg(feature = "serde")]
-pub(crate) mod bit_string;
+pub mod bit_string;
 mod checkpoint;
 mod indentation;
 mod translation;
