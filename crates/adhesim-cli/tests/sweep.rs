@@ -381,27 +381,7 @@ alpha = [1.0]
 /// Every file of a case folder (by path relative to it), summary.json without its
 /// `performance` section (wall times).
 fn case_folder_files(folder: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut files = Vec::new();
-    let mut stack = vec![folder.to_path_buf()];
-    while let Some(current) = stack.pop() {
-        for entry in std::fs::read_dir(&current).unwrap().flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            let name = path.strip_prefix(folder).unwrap().to_string_lossy().into_owned();
-            let mut bytes = std::fs::read(&path).unwrap();
-            if name == "summary.json" {
-                let mut summary: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                summary.as_object_mut().unwrap().remove("performance");
-                bytes = serde_json::to_vec(&summary).unwrap();
-            }
-            files.push((name, bytes));
-        }
-    }
-    files.sort();
-    files
+    adhesim_scenario::output::folder::comparable_files(folder).unwrap()
 }
 
 /// A case killed (SIGKILL) mid-run after a checkpoint goes on from it when the sweep is

@@ -147,28 +147,7 @@ fn run_batch(case: &RealCase, dir: &Path) -> (Vec<String>, Option<usize>) {
 /// The files of a finished case folder, by name; summary.json without `performance`
 /// (its wall times differ).
 fn case_files(dir: &Path, id: &str) -> Vec<(String, Vec<u8>)> {
-    let folder = dir.join("cases").join(id);
-    let mut files = Vec::new();
-    let mut stack = vec![folder.clone()];
-    while let Some(current) = stack.pop() {
-        for entry in std::fs::read_dir(&current).unwrap().flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            let name = path.strip_prefix(&folder).unwrap().to_string_lossy().into_owned();
-            let mut bytes = std::fs::read(&path).unwrap();
-            if name == "summary.json" {
-                let mut summary: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                summary.as_object_mut().unwrap().remove("performance");
-                bytes = serde_json::to_vec_pretty(&summary).unwrap();
-            }
-            files.push((name, bytes));
-        }
-    }
-    files.sort();
-    files
+    crate::output::folder::comparable_files(&dir.join("cases").join(id)).unwrap()
 }
 
 fn uninterrupted(case: &RealCase) -> (tempfile::TempDir, Vec<(String, Vec<u8>)>) {

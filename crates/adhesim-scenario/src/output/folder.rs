@@ -265,3 +265,37 @@ pub fn output_dir(out: Option<&Path>, input: &Path, what: &str) -> Result<PathBu
         .ok_or_else(|| anyhow!("{what} path {} has no file name", input.display()))?;
     Ok(Path::new("out").join(stem))
 }
+
+/// Every file under a run or case folder, by its path relative to `folder`, sorted, with
+/// summary.json's `performance` section (wall times and counters that differ between two
+/// runs of the same case) removed: what "byte-identical outputs" compares, e.g. a case
+/// resumed from a checkpoint against one run straight through.
+pub fn comparable_files(folder: &Path) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    let mut stack = vec![folder.to_path_buf()];
+    while let Some(current) = stack.pop() {
+        let entries = std::fs::read_dir(&current).with_context(|| format!("cannot read {}", current.display()))?;
+        for entry in entries {
+            let path = entry
+                .with_context(|| format!("cannot read {}", current.display()))?
+                .path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let name = path.strip_prefix(folder)?.to_string_lossy().into_owned();
+            let mut bytes = std::fs::read(&path).with_context(|| format!("cannot read {}", path.display()))?;
+            if name == "summary.json" {
+                let mut summary: serde_json::Value =
+                    serde_json::from_slice(&bytes).with_context(|| format!("{} is not JSON", path.display()))?;
+                if let Some(object) = summary.as_object_mut() {
+                    object.remove("performance");
+                }
+                bytes = serde_json::to_vec_pretty(&summary)?;
+            }
+            files.push((name, bytes));
+        }
+    }
+    files.sort();
+    Ok(files)
+}
