@@ -5,9 +5,11 @@
 mod anderson;
 mod exponential;
 mod law;
+mod trapezoid;
 
 pub use exponential::Exponential;
 pub use law::{CohesiveLaw, Dugdale};
+pub use trapezoid::Trapezoid;
 
 use super::{
     Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, SolveReport, StepReport,
