@@ -218,7 +218,7 @@ impl CohesiveSolver {
 
     /// The largest traction change that ends a step.
     fn tolerance(&self) -> f64 {
-        self.params.traction_tolerance * self.law.max_traction()
+        (self.params.traction_tolerance * self.law.max_traction()).max(self.law.traction_resolution())
     }
 
     /// One round (the `rounds`-th of the step, counted): solves for q under the tractions
