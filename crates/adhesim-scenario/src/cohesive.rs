@@ -165,7 +165,7 @@ pub(crate) fn zone_resolution_warning(
     if law_name(section) == LawName::Exponential {
         return range_resolution_warning(section, grid, contact_modulus);
     }
-    let (LawName::Dugdale, Some(stress), Some(radius)) = (
+    let (LawName::Dugdale | LawName::Trapezoid, Some(stress), Some(radius)) = (
         law_name(section),
         section.cohesive_stress,
         indenter.radius_of_curvature(),
