@@ -217,3 +217,38 @@ pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, c
         )
     })
 }
+
+/// Elements across the trapezoid's softening length s·ℓ (ℓ = πE*γ0/(4σ0²)) below which a
+/// roll, slide or translation is warned about: measured on the smooth sphere of
+/// `fig6.toml`, the lattice pinning is 0.49, 0.16 and 0.006 of Dugdale's at s·ℓ = 0.4, 0.5
+/// and 1 element, and below 1e-7 of it from 1.5 (docs/validation.md §16).
+pub(crate) const MIN_SOFTENING_ELEMENTS: f64 = 1.0;
+
+/// A warning when a translation runs the trapezoidal law with its softening length s·ℓ
+/// under [`MIN_SOFTENING_ELEMENTS`] elements: its zone's edge is then pinned by the grid as
+/// Dugdale's is, only less.
+pub(crate) fn softening_resolution_warning(
+    section: &AdhesionSection,
+    grid: &Grid,
+    contact_modulus: f64,
+    translation: bool,
+) -> Option<String> {
+    let (LawName::Trapezoid, Some(stress), Some(fraction), true) = (
+        law_name(section),
+        section.cohesive_stress,
+        section.softening_fraction,
+        translation,
+    ) else {
+        return None;
+    };
+    let gamma = section.work_of_adhesion;
+    let length = std::f64::consts::PI * contact_modulus * gamma / (4.0 * stress * stress);
+    let delta = grid.dx().max(grid.dy());
+    let elements = fraction * length / delta;
+    (elements < MIN_SOFTENING_ELEMENTS).then(|| {
+        format!(
+            "the trapezoidal law's softening length s*pi*E*gamma0/(4*sigma0^2) = {:.4e} (adhesion.softening_fraction = {fraction}, adhesion.cohesive_stress = {stress}) spans {elements:.2} elements (the larger element side {delta:.4e}), fewer than {MIN_SOFTENING_ELEMENTS}: under translation the zone's edge is pinned by the grid, a spurious tangential force of up to about half of Dugdale's gamma0*2b*delta/l (docs/validation.md §16); raise adhesion.softening_fraction or grid.n, or lower adhesion.cohesive_stress",
+            fraction * length
+        )
+    })
+}

@@ -349,3 +349,30 @@ fn a_trapezoid_roll_on_the_smooth_sphere_is_not_pinned() {
         "F_T = {force:e}, Dugdale's pinning {pinning:e}"
     );
 }
+
+/// A translation whose trapezoidal softening length spans under one element is warned
+/// about, naming the keys; fig6's N = 64 at σ0 = 0.05, s = 1 (1.0 element) is not.
+#[test]
+fn an_unresolved_softening_length_is_warned_about_under_translation() {
+    let text = include_str!("../../../scenarios/fig6.toml");
+    let keys = |s: &str| {
+        vec![
+            "adhesion.law=\"trapezoid\"".to_string(),
+            "adhesion.cohesive_stress=0.05".to_string(),
+            format!("adhesion.softening_fraction={s}"),
+        ]
+    };
+    // (The Maugis zone at pull-off, 0.8 elements, is warned about as for Dugdale.)
+    let resolved = load(text, "test", Path::new("."), &keys("1.0")).unwrap();
+    assert!(
+        !resolved.warnings.iter().any(|w| w.contains("softening length")),
+        "{:?}",
+        resolved.warnings
+    );
+    let coarse = load(text, "test", Path::new("."), &keys("0.2")).unwrap();
+    let warning = coarse.warnings.join("\n");
+    assert!(
+        warning.contains("softening length") && warning.contains("adhesion.softening_fraction = 0.2"),
+        "{warning}"
+    );
+}
