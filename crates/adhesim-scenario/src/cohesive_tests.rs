@@ -321,7 +321,7 @@ fn only_the_trapezoid_translates() {
 /// The trapezoid does not pin its zone's edge to the grid: on the smooth sphere of
 /// `fig6.toml` (amplitude 0, N = 64, σ0 = 0.05, s = 1), whose true rolling resistance is 0,
 /// |F_T| stays below 1 % of Dugdale's lattice pinning γ0·2b·Δ/ℓ (ℓ = πE*γ0/(4σ0²);
-/// Dugdale measures 1.0–1.1 times it, docs/validation.md §15). Measured |F_T| ≈ 5e-16
+/// Dugdale measures 1.0–1.1 times it, docs/validation.md §15). Measured |F_T| ≈ 4e-14
 /// against 3.0e-6 (docs/validation.md §16). About 3 s.
 #[test]
 fn a_trapezoid_roll_on_the_smooth_sphere_is_not_pinned() {
