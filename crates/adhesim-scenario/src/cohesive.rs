@@ -8,6 +8,7 @@ use crate::validate::positive;
 use adhesim::analysis::reference::{maugis_parameter, MaugisDugdale};
 use adhesim::{
     CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, Grid, Indenter, Profile,
+    Trapezoid,
 };
 use anyhow::{bail, Result};
 
@@ -28,39 +29,50 @@ impl ScenarioFile {
             let Some(value) = value else { return Ok(()) };
             bail!(ScenarioError::new(
                 ErrorKind::UnknownKey,
-                format!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (got adhesion.{key} = {value}; cohesive_stress belongs to \"dugdale\", range to \"exponential\")")
+                format!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (got adhesion.{key} = {value}; cohesive_stress belongs to \"dugdale\" and \"trapezoid\", range to \"exponential\", softening_fraction to \"trapezoid\")")
             )
             .with_key(format!("adhesion.{key}"))
             .with_value(value.to_string())
             .with_requirement(format!("absent with adhesion.law = \"{name}\"")))
         };
+        let required = |key: &str, value: Option<f64>, what: &str| -> Result<f64> {
+            let Some(value) = value else {
+                bail!(ScenarioError::missing(
+                    &format!("adhesion.{key}"),
+                    format!("with adhesion.law = \"{name}\""),
+                    format!("adhesion.law = \"{name}\" needs adhesion.{key} ({what})")
+                ));
+            };
+            positive(&format!("adhesion.{key}"), value)
+        };
         match law {
             LawName::Jkr => {
                 stray("cohesive_stress", section.cohesive_stress)?;
                 stray("range", section.range)?;
+                stray("softening_fraction", section.softening_fraction)?;
                 return Ok((None, None));
             }
             LawName::Dugdale => {
                 stray("range", section.range)?;
-                let Some(stress) = section.cohesive_stress else {
-                    bail!(ScenarioError::missing(
-                        "adhesion.cohesive_stress",
-                        "with adhesion.law = \"dugdale\"",
-                        "adhesion.law = \"dugdale\" needs adhesion.cohesive_stress (σ0 > 0)"
-                    ));
-                };
-                positive("adhesion.cohesive_stress", stress)?;
+                stray("softening_fraction", section.softening_fraction)?;
+                required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?;
             }
             LawName::Exponential => {
                 stray("cohesive_stress", section.cohesive_stress)?;
-                let Some(range) = section.range else {
-                    bail!(ScenarioError::missing(
-                        "adhesion.range",
-                        "with adhesion.law = \"exponential\"",
-                        "adhesion.law = \"exponential\" needs adhesion.range (ρ > 0)"
+                stray("softening_fraction", section.softening_fraction)?;
+                required("range", section.range, "ρ > 0")?;
+            }
+            LawName::Trapezoid => {
+                stray("range", section.range)?;
+                required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?;
+                let fraction = required("softening_fraction", section.softening_fraction, "0 < s ≤ 1")?;
+                if fraction > 1.0 {
+                    bail!(ScenarioError::invalid(
+                        "adhesion.softening_fraction",
+                        fraction,
+                        "in (0, 1] (the fraction of the range over which the traction falls)"
                     ));
-                };
-                positive("adhesion.range", range)?;
+                }
             }
         }
         if section.work_of_adhesion <= 0.0 {
@@ -75,13 +87,13 @@ impl ScenarioFile {
             ));
         }
         let kind = self.protocol.kind();
-        if kind.is_translation() {
+        if kind.is_translation() && law != LawName::Trapezoid {
             bail!(ScenarioError::invalid_as(
                 "protocol.kind",
                 format!("\"{}\"", kind.name()),
                 format!("\"indent_pulloff\" with adhesion.law = \"{name}\""),
                 format!(
-                    "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only so far, got \"{}\"",
+                    "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only, got \"{}\" (its zone's edge is pinned by the grid under translation, docs/validation.md §15; adhesion.law = \"trapezoid\" rolls and slides, §16)",
                     kind.name()
                 )
             ));
@@ -89,7 +101,7 @@ impl ScenarioFile {
         let radius = indenter.radius_of_curvature();
         let gamma = section.work_of_adhesion;
         Ok(match (law, radius) {
-            (LawName::Dugdale, Some(radius)) => (
+            (LawName::Dugdale | LawName::Trapezoid, Some(radius)) => (
                 section
                     .cohesive_stress
                     .map(|stress| maugis_parameter(radius, contact_modulus, gamma, stress)),
@@ -125,6 +137,11 @@ pub(crate) fn cohesive_solver(
         LawName::Jkr => return None,
         LawName::Dugdale => Box::new(Dugdale::new(section.cohesive_stress?, gamma.to_vec())),
         LawName::Exponential => Box::new(Exponential::new(section.range?, gamma.to_vec())),
+        LawName::Trapezoid => Box::new(Trapezoid::new(
+            section.cohesive_stress?,
+            section.softening_fraction?,
+            gamma.to_vec(),
+        )),
     };
     Some(CohesiveSolver::new(grid, material, law, CohesiveParams::default()))
 }
@@ -148,7 +165,7 @@ pub(crate) fn zone_resolution_warning(
     if law_name(section) == LawName::Exponential {
         return range_resolution_warning(section, grid, contact_modulus);
     }
-    let (LawName::Dugdale, Some(stress), Some(radius)) = (
+    let (LawName::Dugdale | LawName::Trapezoid, Some(stress), Some(radius)) = (
         law_name(section),
         section.cohesive_stress,
         indenter.radius_of_curvature(),
@@ -197,6 +214,41 @@ pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, c
     (elements < MIN_RANGE_ELEMENTS).then(|| {
         format!(
             "the exponential law's cohesive length pi*E*rho^2/(4*gamma0) = {length:.4e} (adhesion.range = {range}, adhesion.work_of_adhesion = {gamma}) spans {elements:.2} elements (the larger element side {delta:.4e}), fewer than {MIN_RANGE_ELEMENTS}: the range is under-resolved and the pull-off force too large (measured +2 % at 1 element, +19 % at 0.5, docs/validation.md §11); raise grid.n, lower grid.size or widen adhesion.range"
+        )
+    })
+}
+
+/// Elements across the trapezoid's softening length s·ℓ (ℓ = πE*γ0/(4σ0²)) below which a
+/// roll, slide or translation is warned about: measured on the smooth sphere of
+/// `fig6.toml`, the lattice pinning is 0.49, 0.16 and 0.006 of Dugdale's at s·ℓ = 0.4, 0.5
+/// and 1 element, and below 1e-7 of it from 1.5 (docs/validation.md §16).
+pub(crate) const MIN_SOFTENING_ELEMENTS: f64 = 1.0;
+
+/// A warning when a translation runs the trapezoidal law with its softening length s·ℓ
+/// under [`MIN_SOFTENING_ELEMENTS`] elements: its zone's edge is then pinned by the grid as
+/// Dugdale's is, only less.
+pub(crate) fn softening_resolution_warning(
+    section: &AdhesionSection,
+    grid: &Grid,
+    contact_modulus: f64,
+    translation: bool,
+) -> Option<String> {
+    let (LawName::Trapezoid, Some(stress), Some(fraction), true) = (
+        law_name(section),
+        section.cohesive_stress,
+        section.softening_fraction,
+        translation,
+    ) else {
+        return None;
+    };
+    let gamma = section.work_of_adhesion;
+    let length = std::f64::consts::PI * contact_modulus * gamma / (4.0 * stress * stress);
+    let delta = grid.dx().max(grid.dy());
+    let elements = fraction * length / delta;
+    (elements < MIN_SOFTENING_ELEMENTS).then(|| {
+        format!(
+            "the trapezoidal law's softening length s*pi*E*gamma0/(4*sigma0^2) = {:.4e} (adhesion.softening_fraction = {fraction}, adhesion.cohesive_stress = {stress}) spans {elements:.2} elements (the larger element side {delta:.4e}), fewer than {MIN_SOFTENING_ELEMENTS}: under translation the zone's edge is pinned by the grid, a spurious tangential force of up to about half of Dugdale's gamma0*2b*delta/l (docs/validation.md §16); raise adhesion.softening_fraction or grid.n, or lower adhesion.cohesive_stress",
+            fraction * length
         )
     })
 }

@@ -95,9 +95,13 @@ pub struct AdhesionSection {
     /// The adhesion law; absent means `jkr` (and is echoed absent).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub law: Option<LawName>,
-    /// σ0 of `law = "dugdale"`.
+    /// σ0 of `law = "dugdale"` or `"trapezoid"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cohesive_stress: Option<f64>,
+    /// s ∈ (0, 1] of `law = "trapezoid"`: the fraction of the range over which the
+    /// traction falls.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub softening_fraction: Option<f64>,
     /// ρ of `law = "exponential"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
@@ -111,6 +115,7 @@ pub enum LawName {
     Jkr,
     Dugdale,
     Exponential,
+    Trapezoid,
 }
 
 impl LawName {
@@ -119,6 +124,7 @@ impl LawName {
             Self::Jkr => "jkr",
             Self::Dugdale => "dugdale",
             Self::Exponential => "exponential",
+            Self::Trapezoid => "trapezoid",
         }
     }
 }
@@ -526,7 +532,8 @@ pub struct Derived {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub element_size_y: Option<f64>,
     pub critical_stress: Option<f64>,
-    /// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of `adhesion.law = "dugdale"` on a curved
+    /// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of `adhesion.law = "dugdale"` (or of the
+    /// plateau traction σ0 of `"trapezoid"`) on a curved
     /// indenter (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub maugis_parameter: Option<f64>,

@@ -2,7 +2,7 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
-use crate::cohesive::zone_resolution_warning;
+use crate::cohesive::{softening_resolution_warning, zone_resolution_warning};
 use crate::error::ScenarioError;
 use crate::guards::{resolution_warnings, step_count};
 use crate::model::*;
@@ -114,6 +114,12 @@ impl ScenarioFile {
             &grid,
             &indenter,
             material.contact_modulus(),
+        ));
+        warnings.extend(softening_resolution_warning(
+            &self.adhesion,
+            &grid,
+            material.contact_modulus(),
+            self.protocol.kind().is_translation(),
         ));
         for map in roughness.iter().chain(&substrate_roughness) {
             warnings.extend(map.warnings.iter().cloned());

@@ -98,6 +98,6 @@ pub use protocol::{
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,
     CohesiveSolver, ContactState, Control, Detachment, Dugdale, Exponential, NestedActiveSet, NestedParams, SolveError,
-    SolveReport, StepReport,
+    SolveReport, StepReport, Trapezoid,
 };
 pub use surface::{Amplitudes, PsdBin, RmsTarget, RoughSurface, SelfAffine, SurfaceError, SurfaceStatistics};

@@ -21,7 +21,7 @@ pub use adhesive::{
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;
-pub use cohesive::{Acceleration, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, Exponential};
+pub use cohesive::{Acceleration, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, Exponential, Trapezoid};
 pub use nested::{NestedActiveSet, NestedParams};
 pub use state::ContactState;
 

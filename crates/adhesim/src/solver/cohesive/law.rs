@@ -36,6 +36,15 @@ pub trait CohesiveLaw: Send {
         false
     }
 
+    /// The smallest traction change the rounds can resolve on this law: a floor under the
+    /// stop tolerance [`CohesiveParams::traction_tolerance`](super::CohesiveParams) times
+    /// [`max_traction`](Self::max_traction). A steep softening turns the compressive solve's
+    /// gap error into a traction error of |t'|·δg, and rounds asked for less stagnate at that
+    /// noise (0, the default: no floor).
+    fn traction_resolution(&self) -> f64 {
+        0.0
+    }
+
     /// For a law of unbounded support: the fraction of [`max_traction`](Self::max_traction)
     /// at or below which an element counts as outside the cohesive zone, and of the
     /// largest adhesive force below which a pull-off has let go (0, the default, for laws

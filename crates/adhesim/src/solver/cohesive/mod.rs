@@ -5,9 +5,11 @@
 mod anderson;
 mod exponential;
 mod law;
+mod trapezoid;
 
 pub use exponential::Exponential;
 pub use law::{CohesiveLaw, Dugdale};
+pub use trapezoid::Trapezoid;
 
 use super::{
     Ccg, CcgParams, ContactState, Control, NestedActiveSet, NestedParams, SolveError, SolveReport, StepReport,
@@ -216,7 +218,7 @@ impl CohesiveSolver {
 
     /// The largest traction change that ends a step.
     fn tolerance(&self) -> f64 {
-        self.params.traction_tolerance * self.law.max_traction()
+        (self.params.traction_tolerance * self.law.max_traction()).max(self.law.traction_resolution())
     }
 
     /// One round (the `rounds`-th of the step, counted): solves for q under the tractions
