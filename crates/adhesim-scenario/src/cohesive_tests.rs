@@ -14,6 +14,12 @@ fn error_of(text: &str) -> String {
         .to_string()
 }
 
+/// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of MINIMAL's sphere (R = 1, γ0 = 0.01, K = 4E*/3 = 8/3)
+/// at the cohesive stress σ0 = `stress`: the closed form the reader's value is checked against.
+fn maugis_of_minimal(stress: f64) -> f64 {
+    2.0 * stress * (1.0 / (std::f64::consts::PI * 0.01 * (8.0f64 / 3.0).powi(2))).cbrt()
+}
+
 fn with_adhesion(keys: &str) -> String {
     MINIMAL.replace("work_of_adhesion = 0.01", &format!("work_of_adhesion = 0.01\n{keys}"))
 }
@@ -87,9 +93,7 @@ fn the_law_picks_the_solver() {
     )
     .unwrap();
     assert!(matches!(dugdale.normal_solver(), NormalSolver::Cohesive(_)));
-    // λ = 2σ0·(R/(πγ0K²))^(1/3) with K = 4E*/3 = 8/3.
-    let expected = 2.0 * 0.5 * (1.0 / (std::f64::consts::PI * 0.01 * (8.0f64 / 3.0).powi(2))).cbrt();
-    assert!((dugdale.derived.maugis_parameter.unwrap() - expected).abs() < 1e-12);
+    assert!((dugdale.derived.maugis_parameter.unwrap() - maugis_of_minimal(0.5)).abs() < 1e-12);
     assert!(dugdale.derived.tabor_parameter.is_none());
     let exponential = load(
         &with_adhesion("law = \"exponential\"\nrange = 0.05"),
@@ -251,8 +255,7 @@ fn trapezoid_keys_are_checked_by_name() {
     )
     .unwrap();
     assert!(matches!(trapezoid.normal_solver(), NormalSolver::Cohesive(_)));
-    let expected = 2.0 * 0.5 * (1.0 / (std::f64::consts::PI * 0.01 * (8.0f64 / 3.0).powi(2))).cbrt();
-    assert!((trapezoid.derived.maugis_parameter.unwrap() - expected).abs() < 1e-12);
+    assert!((trapezoid.derived.maugis_parameter.unwrap() - maugis_of_minimal(0.5)).abs() < 1e-12);
 }
 
 /// The trapezoidal law on the smooth sphere of `maugis_lambda0p3.toml` (λ = 0.3 of its σ0,
