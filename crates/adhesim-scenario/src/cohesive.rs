@@ -87,13 +87,13 @@ impl ScenarioFile {
             ));
         }
         let kind = self.protocol.kind();
-        if kind.is_translation() && law != LawName::Trapezoid {
+        if kind.is_translation() && law == LawName::Dugdale {
             bail!(ScenarioError::invalid_as(
                 "protocol.kind",
                 format!("\"{}\"", kind.name()),
                 format!("\"indent_pulloff\" with adhesion.law = \"{name}\""),
                 format!(
-                    "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only, got \"{}\" (its zone's edge is pinned by the grid under translation, docs/validation.md §15; adhesion.law = \"trapezoid\" rolls and slides, §16)",
+                    "adhesion.law = \"{name}\" runs with protocol.kind = \"indent_pulloff\" only, got \"{}\" (its zone's edge is pinned by the grid under translation, docs/validation.md §15; adhesion.law = \"trapezoid\" or \"exponential\" rolls and slides, §16)",
                     kind.name()
                 )
             ));

@@ -72,7 +72,11 @@
 /// §3.1: it stalled on a strip contact one row wide); periodic and cohesive-periodic
 /// forces move in their last digits (≤ 4.5e-12 of the largest force without adhesion,
 /// ≤ 4e-10 with the exponential law), free-grid results are bit-identical to revision 6.
-pub const RESULTS_REVISION: u32 = 7;
+/// 8: the accelerated rounds of smooth cohesive laws keep a mixing only if it also lowers
+/// the residual, and hold mixing back while the plain rounds escape (docs/physics.md §2.6):
+/// trapezoid and exponential runs move (rolls that failed now converge; where jumps happen
+/// another local minimum may be reached), the JKR criterion and Dugdale are bit-identical.
+pub const RESULTS_REVISION: u32 = 8;
 
 pub mod analysis;
 pub mod elastic;

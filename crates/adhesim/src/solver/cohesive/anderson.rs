@@ -12,9 +12,14 @@
 //! *J. ACM* 12, 547; Walker & Ni 2011, *SIAM J. Numer. Anal.* 49, 1715) combines the last
 //! [`MEMORY`] rounds: on a linear map it is GMRES on the residual t − F(t). A mixed
 //! traction field is kept only if the energy of its state is no higher than that of the
-//! state before it (to [`ENERGY_ROUNDING`]). Otherwise the memory is cleared and the plain
-//! round taken, extended by a forward-tracking line search along it: near a state that lost
-//! its stability mixing extrapolates back towards it, while the plain round escapes slowly.
+//! state before it (to [`ENERGY_ROUNDING`]) and its residual ‖F(t) − t‖₂ is smaller
+//! (a safeguard in the manner of Zhang, O'Donoghue & Boyd 2020, *SIAM J. Optim.* 30, 3170).
+//! Both are needed: near a state that lost its stability, mixing extrapolates back towards
+//! that state, whose residual is small, while a change of a few elements moves the energy
+//! by less than its rounding (docs/validation.md §16 traced steps where an energy-only test
+//! cycled for ever). Otherwise the memory is cleared and the plain round taken. A plain
+//! round that grows the residual is an escape from such a state: a forward-tracking line
+//! search extends it, and mixing waits until a plain round shrinks the residual again.
 //! The energy so decreases along the rounds from the previous step's state, and the step
 //! ends in a local minimum reached along the load path: the jumps and
 //! the hysteresis are kept.
@@ -135,7 +140,22 @@ fn solve_symmetric(matrix: &mut [f64], rhs: &mut [f64], m: usize) -> Option<Vec<
     Some(rhs.to_vec())
 }
 
+/// The Euclidean norm.
+fn norm(values: &[f64]) -> f64 {
+    values.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
 impl CohesiveSolver {
+    /// ‖F(t) − t‖₂ of the last round: its image `traction` less the applied tractions.
+    fn residual_norm(&self) -> f64 {
+        self.traction
+            .iter()
+            .zip(&self.tensile_pressure)
+            .map(|(image, pressure)| (image + pressure) * (image + pressure))
+            .sum::<f64>()
+            .sqrt()
+    }
+
     /// Iterates from a state computed under the applied tractions −`tensile_pressure`,
     /// whose round set `traction` = F(applied) with the largest change `change`, to a
     /// converged state (no traction changing by more than the tolerance).
@@ -159,32 +179,37 @@ impl CohesiveSolver {
         let mut residual: Vec<f64> = image.iter().zip(&self.tensile_pressure).map(|(g, p)| g + p).collect();
         let mut applied: Vec<f64> = self.tensile_pressure.iter().map(|p| -p).collect();
         let mut mixed = vec![0.0; len];
+        // Whether the last plain round grew the residual: the rounds are escaping from a state
+        // that lost its stability, and mixing (which extrapolates back towards it) waits.
+        let mut escaping = false;
         while change > tolerance {
+            // The residual of the current state, ‖F(t) − t‖₂.
+            let current = norm(&residual);
             let mut accepted = false;
-            let mut rejected = false;
-            if !history.is_empty() {
+            if !history.is_empty() && !escaping {
                 history.mix(&residual, &image, &mut mixed);
                 self.set_within_law(&mixed, &image);
                 report.attachment_rounds += 1;
                 change = self.round(operator, heights, depth, state, report, rounds)?;
                 let new_merit = self.energy(state, heights, depth, Interface::Law);
-                accepted = new_merit <= merit + ENERGY_ROUNDING * merit.abs();
+                // Energy alone cannot judge a mixing that moves a few elements near a lost
+                // stability (its change lies below the energy's rounding), and a smaller
+                // residual alone would lead back to that unstable state: both must agree.
+                accepted = new_merit <= merit + ENERGY_ROUNDING * merit.abs() && self.residual_norm() < current;
                 if accepted {
                     merit = new_merit;
                 } else {
                     history.clear();
-                    rejected = true;
                 }
             }
-            if rejected {
-                (change, merit) =
-                    self.forward_tracking(operator, heights, depth, state, report, rounds, &applied, &image, merit)?;
-            } else if !accepted {
-                // The first round of the mixing (empty memory) is the plain one.
-                self.traction.copy_from_slice(&image);
-                report.attachment_rounds += 1;
-                change = self.round(operator, heights, depth, state, report, rounds)?;
-                merit = self.energy(state, heights, depth, Interface::Law);
+            if !accepted {
+                // The plain round (the first of a step, after a rejected mixing, or while
+                // escaping), with the line search when it grows the residual.
+                let plain;
+                (change, merit, plain) = self.forward_tracking(
+                    operator, heights, depth, state, report, rounds, &applied, &image, merit, current,
+                )?;
+                escaping = plain > current;
             }
             // The applied tractions were −tensile_pressure; their image is in `traction`.
             let mut residual_change = vec![0.0; len];
@@ -213,12 +238,13 @@ impl CohesiveSolver {
         }
     }
 
-    /// The plain round from `applied` (whose image is `image` and energy `merit`), then
-    /// rounds from applied + β·(image − applied) for β = 2, 4, … while the energy of their
-    /// states decreases: a line search that crosses the slow escape from a state that lost
-    /// its stability (where the plain round moves by little and mixing extrapolates back
-    /// towards the unstable state). Ends on the state of the best β; returns the last
-    /// round's change and that state's energy.
+    /// The plain round from `applied` (whose image is `image`, energy `merit` and residual
+    /// `current`); when it grows the residual (an escape from a state that lost its
+    /// stability, where the plain round moves by little and mixing extrapolates back
+    /// towards the unstable state), rounds from applied + β·(image − applied) follow for
+    /// β = 2, 4, … while the energy of their states decreases: a forward-tracking line
+    /// search. Ends on the state of the best β; returns the last round's change, that
+    /// state's energy and the plain round's change.
     #[allow(clippy::too_many_arguments)]
     fn forward_tracking<O: ElasticOperator + ?Sized>(
         &mut self,
@@ -231,14 +257,17 @@ impl CohesiveSolver {
         applied: &[f64],
         image: &[f64],
         merit: f64,
-    ) -> Result<(f64, f64), SolveError> {
+        current: f64,
+    ) -> Result<(f64, f64, f64), SolveError> {
         self.traction.copy_from_slice(image);
         report.attachment_rounds += 1;
         let mut change = self.round(operator, heights, depth, state, report, rounds)?;
+        let plain = self.residual_norm();
         let mut best = (1.0, self.energy(state, heights, depth, Interface::Law));
-        // A plain round that barely moves the energy is converging, not escaping.
-        if merit - best.1 <= ENERGY_ROUNDING * merit.abs() {
-            return Ok((change, best.1));
+        // A plain round that shrinks the residual is converging, not escaping (the energy
+        // cannot tell: near a lost stability its changes lie below its rounding).
+        if plain <= current {
+            return Ok((change, best.1, plain));
         }
         let mut trial = vec![0.0; applied.len()];
         let mut beta = 2.0;
@@ -256,7 +285,7 @@ impl CohesiveSolver {
             } else if energy <= merit {
                 // Past the best, but still below the start: kept (the energy still decreases
                 // from round to round), saving the round that would return to the best.
-                return Ok((change, energy));
+                return Ok((change, energy, plain));
             } else {
                 break;
             }
@@ -268,6 +297,6 @@ impl CohesiveSolver {
         report.attachment_rounds += 1;
         change = self.round(operator, heights, depth, state, report, rounds)?;
         best.1 = self.energy(state, heights, depth, Interface::Law);
-        Ok((change, best.1))
+        Ok((change, best.1, plain))
     }
 }
