@@ -7,6 +7,11 @@ use adhesim::analysis::reference::MaugisDugdale;
 use adhesim::NormalSolver;
 use std::path::Path;
 
+/// The scenario `text` with `overrides`, read as `adhesim run` reads it.
+fn loaded(text: &str, overrides: &[String]) -> ValidScenario {
+    load(text, "test", Path::new("."), overrides).unwrap()
+}
+
 fn error_of(text: &str) -> String {
     load(text, "test", Path::new("."), &[])
         .err()
@@ -71,7 +76,7 @@ fn cohesive_laws_run_on_periodic_grids() {
         "law = \"exponential\"\nrange = 0.1",
     ] {
         let periodic = with_adhesion(keys).replace("size = 1.0", "size = 1.0\nboundary = \"periodic\"");
-        let scenario = load(&periodic, "test", Path::new("."), &[]).unwrap();
+        let scenario = loaded(&periodic, &[]);
         assert!(matches!(scenario.normal_solver(), NormalSolver::Cohesive(_)), "{keys}");
     }
 }
@@ -80,28 +85,16 @@ fn cohesive_laws_run_on_periodic_grids() {
 /// has no law key (summary.json unchanged); `dugdale` builds the cohesive solver.
 #[test]
 fn the_law_picks_the_solver() {
-    let jkr = load(MINIMAL, "test", Path::new("."), &[]).unwrap();
+    let jkr = loaded(MINIMAL, &[]);
     assert!(matches!(jkr.normal_solver(), NormalSolver::Adhesive(_)));
     assert!(jkr.derived.maugis_parameter.is_none());
     let echoed = serde_json::to_string(&jkr.file.adhesion).unwrap();
     assert_eq!(echoed, r#"{"work_of_adhesion":0.01}"#);
-    let dugdale = load(
-        &with_adhesion("law = \"dugdale\"\ncohesive_stress = 0.5"),
-        "test",
-        Path::new("."),
-        &[],
-    )
-    .unwrap();
+    let dugdale = loaded(&with_adhesion("law = \"dugdale\"\ncohesive_stress = 0.5"), &[]);
     assert!(matches!(dugdale.normal_solver(), NormalSolver::Cohesive(_)));
     assert!((dugdale.derived.maugis_parameter.unwrap() - maugis_of_minimal(0.5)).abs() < 1e-12);
     assert!(dugdale.derived.tabor_parameter.is_none());
-    let exponential = load(
-        &with_adhesion("law = \"exponential\"\nrange = 0.05"),
-        "test",
-        Path::new("."),
-        &[],
-    )
-    .unwrap();
+    let exponential = loaded(&with_adhesion("law = \"exponential\"\nrange = 0.05"), &[]);
     assert!(matches!(exponential.normal_solver(), NormalSolver::Cohesive(_)));
     // μ = (Rγ0²/(E*²ρ³))^(1/3) with E* = 2 (MINIMAL's material).
     let expected = (1e-4 / (4.0 * 0.05f64.powi(3))).cbrt();
@@ -114,9 +107,9 @@ fn the_law_picks_the_solver() {
 #[test]
 fn an_unresolved_zone_is_warned_about() {
     let text = include_str!("../../../scenarios/cohesive/maugis_lambda1.toml");
-    let resolved = load(text, "test", Path::new("."), &[]).unwrap();
+    let resolved = loaded(text, &[]);
     assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
-    let coarse = load(text, "test", Path::new("."), &["grid.n=64".to_string()]).unwrap();
+    let coarse = loaded(text, &["grid.n=64".to_string()]);
     let warning = coarse.warnings.join("\n");
     assert!(
         warning.contains("spans 5.4 elements") && warning.contains("grid.n"),
@@ -129,9 +122,9 @@ fn an_unresolved_zone_is_warned_about() {
 #[test]
 fn an_unresolved_exponential_range_is_warned_about() {
     let text = include_str!("../../../scenarios/cohesive/exponential_mu1.toml");
-    let resolved = load(text, "test", Path::new("."), &[]).unwrap();
+    let resolved = loaded(text, &[]);
     assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
-    let coarse = load(text, "test", Path::new("."), &["grid.n=16".to_string()]).unwrap();
+    let coarse = loaded(text, &["grid.n=16".to_string()]);
     let warning = coarse.warnings.join("\n");
     assert!(
         warning.contains("cohesive length") && warning.contains("adhesion.range") && warning.contains("grid.n"),
@@ -142,7 +135,7 @@ fn an_unresolved_exponential_range_is_warned_about() {
 /// Runs a scenario of `scenarios/cohesive/` and returns (simulated, Maugis) largest
 /// adhesive force.
 fn maugis_scenario(text: &str, overrides: &[String]) -> (f64, f64) {
-    let scenario = load(text, "test", Path::new("."), overrides).unwrap();
+    let scenario = loaded(text, overrides);
     let outcome = run(&scenario, &mut ()).unwrap();
     let RunResults::Indentation(results) = outcome.results else {
         panic!("an indentation")
@@ -194,7 +187,7 @@ fn dugdale_scenario_lambda_one_gives_maugis_pull_off() {
 #[test]
 fn exponential_scenario_pulls_off_between_the_limits() {
     let text = include_str!("../../../scenarios/cohesive/exponential_mu1.toml");
-    let scenario = load(text, "test", Path::new("."), &[]).unwrap();
+    let scenario = loaded(text, &[]);
     assert!((scenario.derived.tabor_parameter.unwrap() - 1.0).abs() < 1e-6);
     let outcome = run(&scenario, &mut ()).unwrap();
     let RunResults::Indentation(results) = outcome.results else {
@@ -247,13 +240,10 @@ fn trapezoid_keys_are_checked_by_name() {
         error.contains("adhesion.softening_fraction is not a key of adhesion.law = \"jkr\""),
         "{error}"
     );
-    let trapezoid = load(
+    let trapezoid = loaded(
         &with_adhesion("law = \"trapezoid\"\ncohesive_stress = 0.5\nsoftening_fraction = 1.0"),
-        "test",
-        Path::new("."),
         &[],
-    )
-    .unwrap();
+    );
     assert!(matches!(trapezoid.normal_solver(), NormalSolver::Cohesive(_)));
     assert!((trapezoid.derived.maugis_parameter.unwrap() - maugis_of_minimal(0.5)).abs() < 1e-12);
 }
@@ -269,7 +259,7 @@ fn trapezoid_pulls_off_between_the_limits_and_near_dugdale() {
     let text = include_str!("../../../scenarios/cohesive/maugis_lambda0p3.toml");
     let pull_off = |overrides: &[&str]| {
         let overrides: Vec<String> = overrides.iter().map(|o| o.to_string()).collect();
-        let scenario = load(text, "test", Path::new("."), &overrides).unwrap();
+        let scenario = loaded(text, &overrides);
         let outcome = run(&scenario, &mut ()).unwrap();
         let RunResults::Indentation(results) = outcome.results else {
             panic!("an indentation")
@@ -326,7 +316,7 @@ fn dugdale_alone_is_refused_under_translation() {
 fn rolled(overrides: &[&str]) -> (ValidScenario, TranslationResults) {
     let text = include_str!("../../../scenarios/fig6.toml");
     let overrides: Vec<String> = overrides.iter().map(|o| o.to_string()).collect();
-    let scenario = load(text, "test", Path::new("."), &overrides).unwrap();
+    let scenario = loaded(text, &overrides);
     let outcome = run(&scenario, &mut ()).unwrap();
     let RunResults::Translation(results) = outcome.results else {
         panic!("a roll")
@@ -394,13 +384,13 @@ fn an_unresolved_softening_length_is_warned_about_under_translation() {
         ]
     };
     // (The Maugis zone at pull-off, 0.8 elements, is warned about as for Dugdale.)
-    let resolved = load(text, "test", Path::new("."), &keys("1.0")).unwrap();
+    let resolved = loaded(text, &keys("1.0"));
     assert!(
         !resolved.warnings.iter().any(|w| w.contains("softening length")),
         "{:?}",
         resolved.warnings
     );
-    let coarse = load(text, "test", Path::new("."), &keys("0.2")).unwrap();
+    let coarse = loaded(text, &keys("0.2"));
     let warning = coarse.warnings.join("\n");
     assert!(
         warning.contains("softening length") && warning.contains("adhesion.softening_fraction = 0.2"),
