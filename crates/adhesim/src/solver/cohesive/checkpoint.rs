@@ -85,3 +85,37 @@ impl CohesiveSolver {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::{Boundary, Grid};
+    use crate::material::ElasticMaterial;
+    use crate::solver::{CohesiveParams, Dugdale};
+
+    fn solver(n: usize) -> CohesiveSolver {
+        let grid = Grid::new(n, 0.3, Boundary::Free).unwrap();
+        let law = Dugdale::new(0.04, vec![1e-4; grid.len()]);
+        CohesiveSolver::new(
+            grid,
+            ElasticMaterial::new(1.0).unwrap(),
+            Box::new(law),
+            CohesiveParams::default(),
+        )
+    }
+
+    /// A checkpoint of another grid size is refused, naming both sizes, and changes nothing.
+    #[test]
+    fn a_checkpoint_of_another_grid_is_refused() {
+        let mut saved = solver(32).checkpoint();
+        saved.traction[5] = 0.04;
+        let mut other = solver(16);
+        let before = other.checkpoint();
+        let error = other.restore(&saved).unwrap_err();
+        assert!(error.contains("1024") && error.contains("256"), "{error}");
+        assert_eq!(other.checkpoint(), before);
+        let mut same = solver(32);
+        same.restore(&saved).unwrap();
+        assert_eq!(same.checkpoint(), saved);
+    }
+}

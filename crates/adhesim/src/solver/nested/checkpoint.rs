@@ -133,3 +133,51 @@ impl NestedActiveSet {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Profile, Sphere};
+    use crate::grid::{Boundary, Grid};
+    use crate::material::ElasticMaterial;
+    use crate::solver::{ContactState, NestedParams};
+
+    /// A solver on an n × n free grid after a Hertz solve at depth 1e-3 (windows in use).
+    fn solved(n: usize) -> NestedActiveSet {
+        let grid = Grid::new(n, 0.45, Boundary::Free).unwrap();
+        let material = ElasticMaterial::new(1.0).unwrap();
+        let mut solver = NestedActiveSet::new(grid, material, NestedParams::default());
+        let heights = Sphere::new(1.0).unwrap().heights(&grid);
+        let mut state = ContactState::new(&grid);
+        solver
+            .solve(&mut FreeOperator::new(grid, material), &heights, 1e-3, &mut state)
+            .unwrap();
+        solver
+    }
+
+    /// A checkpoint of another grid, or whose window would not fit its level, is refused
+    /// and leaves the solver as it was; one of the same grid is taken back as saved.
+    #[test]
+    fn restore_checks_the_grid_and_the_windows() {
+        let saved = solved(64).checkpoint();
+        assert!(saved.fine_window.is_some() && saved.levels[0].window.is_some());
+        assert!(saved.last_depth == Some(1e-3) && saved.window_applications > 0);
+        let mut other = solved(32);
+        let before = other.checkpoint();
+        assert!(other.restore(&saved).unwrap_err().contains("checkpoint"));
+        assert_eq!(other.checkpoint(), before, "nothing changed");
+        let mut fresh = solved(64);
+        let mut too_wide = saved.clone();
+        too_wide.levels[0].window = Some(33);
+        let before = fresh.checkpoint();
+        assert!(fresh.restore(&too_wide).is_err());
+        assert_eq!(fresh.checkpoint(), before, "nothing changed");
+        let mut changed = saved.clone();
+        changed.fine_window = None;
+        changed.last_depth = Some(2e-3);
+        fresh.restore(&changed).unwrap();
+        assert_eq!(fresh.checkpoint(), changed);
+        fresh.restore(&saved).unwrap();
+        assert_eq!(fresh.checkpoint(), saved);
+    }
+}
