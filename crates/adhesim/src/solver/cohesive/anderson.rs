@@ -244,7 +244,7 @@ impl CohesiveSolver {
     /// towards the unstable state), rounds from applied + β·(image − applied) follow for
     /// β = 2, 4, … while the energy of their states decreases: a forward-tracking line
     /// search. Ends on the state of the best β; returns the last round's change, that
-    /// state's energy and the plain round's change.
+    /// state's energy and the plain round's residual ‖F(t) − t‖₂.
     #[allow(clippy::too_many_arguments)]
     fn forward_tracking<O: ElasticOperator + ?Sized>(
         &mut self,
