@@ -7,11 +7,12 @@
 //! With the `serde` feature the checkpoint also goes through JSON bytes and back (the form
 //! the scenario crate writes); without it, through a clone.
 
+use adhesim::analysis::reference::cohesive_stress_for;
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, Detachment, ElasticMaterial, FreeOperator, Grid,
-    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, PeriodicKernel, PeriodicOperator, Profile,
-    ProtocolSummary, StepRecord, StepView, WavySphere,
+    AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, CohesiveLaw, CohesiveParams, CohesiveSolver, Detachment,
+    Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid, IndentCheckpoint, IndentPulloff, NormalSolver, Observer,
+    PeriodicKernel, PeriodicOperator, Profile, ProtocolSummary, Sphere, StepRecord, StepView, WavySphere,
 };
 use std::ops::ControlFlow;
 
@@ -77,21 +78,31 @@ fn summary_bits(summary: &ProtocolSummary) -> String {
     format!("{summary:?}")
 }
 
-/// Runs uninterrupted (with and without checkpoints taken: taking them changes nothing),
-/// then continues from each checkpoint in a fresh operator and solver made by `make`.
+/// Runs the wavy sphere of [`check_resumes_on`] on an n × n grid.
 fn check_resumes(
     n: usize,
     make: impl Fn(&Grid) -> NormalSolver,
     at: impl Fn(usize, usize) -> Vec<usize>,
 ) -> (usize, usize) {
     let (grid, heights, start) = wavy_sphere(n);
+    check_resumes_on((grid, &heights), &protocol(start), make, at).0
+}
+
+/// Runs uninterrupted (with and without checkpoints taken: taking them changes nothing),
+/// then continues from each checkpoint in a fresh operator and solver made by `make`.
+/// Returns the approach and total steps, and the checkpoints taken.
+fn check_resumes_on(
+    (grid, heights): (Grid, &[f64]),
+    protocol: &IndentPulloff,
+    make: impl Fn(&Grid) -> NormalSolver,
+    at: impl Fn(usize, usize) -> Vec<usize>,
+) -> ((usize, usize), Vec<IndentCheckpoint>) {
     let material = ElasticMaterial::new(1.0).unwrap();
-    let protocol = protocol(start);
     let mut plain = Vec::new();
     let plain_summary = protocol
         .run(
             &mut FreeOperator::new(grid, material),
-            &heights,
+            heights,
             &mut make(&grid),
             &mut plain,
         )
@@ -108,7 +119,7 @@ fn check_resumes(
     let summary = protocol
         .run(
             &mut FreeOperator::new(grid, material),
-            &heights,
+            heights,
             &mut make(&grid),
             &mut taker,
         )
@@ -123,7 +134,7 @@ fn check_resumes(
         let resumed = protocol
             .run_from(
                 &mut FreeOperator::new(grid, material),
-                &heights,
+                heights,
                 &mut make(&grid),
                 &mut rest,
                 Some(&restored),
@@ -137,7 +148,7 @@ fn check_resumes(
             k - 1
         );
     }
-    (approach, plain.len())
+    ((approach, plain.len()), taker.taken)
 }
 
 fn adhesive(params: AdhesiveParams) -> impl Fn(&Grid) -> NormalSolver {
@@ -252,32 +263,173 @@ fn periodic_ccg_resumes_bit_for_bit() {
     }
 }
 
-/// Solvers without checkpoint support (the nested non-adhesive active set) decline: no
-/// checkpoint is offered and the run is the plain one.
+/// The nested non-adhesive active set of a free grid at n = 64 (one coarse level of 32, so
+/// the coarse level's window and operator are in play): its contact windows keep their
+/// sides from step to step, and the retraction's unloads restart cold from the last depth,
+/// so both are part of its checkpoint. Resumes after every step.
 #[test]
-fn unsupported_solvers_offer_no_checkpoint() {
-    let (grid, heights, start) = wavy_sphere(32);
-    let material = ElasticMaterial::new(1.0).unwrap();
-    let solver = adhesim::protocol::non_adhesive_solver(grid, material);
-    assert!(solver.checkpoint().is_none() && !solver.supports_checkpoints());
-    let mut taker = Taker {
-        records: Vec::new(),
-        at: (0..1000).collect(),
-        taken: Vec::new(),
-    };
-    let protocol = IndentPulloff {
-        max_retract_steps: 3,
-        ..protocol(start)
-    };
-    let mut solver = solver;
-    let _ = protocol.run(
-        &mut FreeOperator::new(grid, material),
-        &heights,
-        &mut solver,
-        &mut taker,
+fn nested_non_adhesive_resumes_after_every_step() {
+    let make = |grid: &Grid| adhesim::protocol::non_adhesive_solver(*grid, ElasticMaterial::new(1.0).unwrap());
+    let (grid, heights, start) = wavy_sphere(64);
+    assert!(make(&grid).supports_checkpoints());
+    let ((approach, total), taken) = check_resumes_on((grid, &heights), &protocol(start), make, |_, total| {
+        (1..total).collect()
+    });
+    assert!(approach > 10 && total > approach, "{approach} of {total}");
+    assert_carries_windows(&taken);
+}
+
+/// Some checkpoint holds a fine and a coarse contact window and a last depth (else the
+/// test would not exercise what the nested solver carries).
+fn assert_carries_windows(taken: &[IndentCheckpoint]) {
+    let texts: Vec<String> = taken.iter().map(|c| format!("{:?}", c.solver)).collect();
+    assert!(
+        texts.iter().any(|t| t.contains("fine_window: Some(")
+            && t.contains("LevelCheckpoint { window: Some(")
+            && t.contains("last_depth: Some(")),
+        "no checkpoint with windows: {:?}",
+        texts.first()
     );
-    assert!(!taker.records.is_empty());
-    assert!(taker.taken.is_empty());
+}
+
+/// The smooth sphere R = E* = 1 on an n × n free grid of side `size`, indented to 2e-3
+/// from first contact and pulled off in steps of `depth_step`.
+fn smooth_sphere(n: usize, size: f64, depth_step: f64) -> (Grid, Vec<f64>, IndentPulloff) {
+    let grid = Grid::new(n, size, Boundary::Free).unwrap();
+    let heights = Sphere::new(1.0).unwrap().heights(&grid);
+    let protocol = IndentPulloff {
+        start_depth: 0.0,
+        max_depth: 2e-3,
+        depth_step,
+        max_retract_steps: 10_000,
+        jump_force_threshold: 0.0,
+    };
+    (grid, heights, protocol)
+}
+
+/// A cohesive solver of `law` (made for the grid), nested (free grids) or CCG.
+fn cohesive(law: impl Fn(&Grid) -> Box<dyn CohesiveLaw>, params: CohesiveParams) -> impl Fn(&Grid) -> NormalSolver {
+    move |grid: &Grid| {
+        let material = ElasticMaterial::new(1.0).unwrap();
+        NormalSolver::Cohesive(Box::new(CohesiveSolver::new(*grid, material, law(grid), params)))
+    }
+}
+
+fn dugdale(grid: &Grid) -> Box<dyn CohesiveLaw> {
+    // Maugis' λ = 0.3 at γ0 = 1e-4 (tests/validation_maugis.rs's fast case).
+    let sigma = cohesive_stress_for(1.0, 1.0, 1e-4, 0.3);
+    Box::new(Dugdale::new(sigma, vec![1e-4; grid.len()]))
+}
+
+fn exponential(grid: &Grid) -> Box<dyn CohesiveLaw> {
+    // Tabor's μ = 1 at γ0 = 1e-4: ρ = γ0^(2/3) (tests/validation_exponential.rs).
+    Box::new(Exponential::new(1e-8f64.cbrt(), vec![1e-4; grid.len()]))
+}
+
+/// Maugis–Dugdale (plain rounds on the zone's active set) at n = 64 with the nested
+/// compressive solver: its tractions, the compressive warm start and the nested solver's
+/// windows carry from step to step; every checkpoint resumes bit for bit (force, contact,
+/// dissipated energy and every other field of every record, and the totals).
+#[test]
+fn dugdale_smooth_sphere_resumes_bit_for_bit() {
+    let (grid, heights, protocol) = smooth_sphere(64, 0.45, 1e-4);
+    let make = cohesive(dugdale, CohesiveParams::default());
+    let ((approach, total), taken) = check_resumes_on((grid, &heights), &protocol, make, spread);
+    assert!(approach > 10 && total > approach + 5, "{approach} of {total}");
+    assert!(
+        taken.iter().any(|c| c.summary.dissipated_energy != 0.0),
+        "a jump dissipated"
+    );
+    assert_carries_windows(&taken);
+}
+
+/// The exponential law (Anderson-mixed rounds, an approach from where its pull is
+/// negligible, a pull-off that ends when the tension does) at n = 64: resumes bit for bit
+/// after every step of the retraction and in the approach.
+#[test]
+fn exponential_smooth_sphere_resumes_bit_for_bit() {
+    let (grid, heights, protocol) = smooth_sphere(64, 0.41, 2e-4);
+    let make = cohesive(exponential, CohesiveParams::default());
+    let at = |approach: usize, total: usize| {
+        let mut at = vec![1, approach / 2, approach];
+        at.extend(approach + 1..total);
+        at
+    };
+    let ((approach, total), taken) = check_resumes_on((grid, &heights), &protocol, make, at);
+    assert!(approach > 10 && total > approach + 5, "{approach} of {total}");
+    assert_carries_windows(&taken);
+}
+
+/// With the CCG compressive solver (`nested = false`), which carries nothing of its own:
+/// the tractions and the compressive warm start suffice.
+#[test]
+fn dugdale_with_ccg_compressive_solver_resumes_bit_for_bit() {
+    let (grid, heights, protocol) = smooth_sphere(32, 0.45, 2e-4);
+    let params = CohesiveParams {
+        nested: false,
+        ..CohesiveParams::default()
+    };
+    check_resumes_on((grid, &heights), &protocol, cohesive(dugdale, params), spread);
+}
+
+/// A maker of a solver for a grid.
+type MakeSolver = dyn Fn(&Grid) -> NormalSolver;
+
+/// A checkpoint of one kind of solver put into another is an error naming both, not a
+/// panic or a silently different run: cohesive → JKR-type, JKR-type → cohesive, nested
+/// non-adhesive → cohesive, and a cohesive law's nested compressive solver → its CCG.
+#[test]
+fn a_checkpoint_of_another_kind_of_solver_is_refused() {
+    let (grid, heights, protocol) = smooth_sphere(64, 0.45, 2e-4);
+    let protocol = IndentPulloff {
+        max_depth: 1e-3,
+        ..protocol
+    };
+    let material = ElasticMaterial::new(1.0).unwrap();
+    let take = |make: &MakeSolver| {
+        let mut taker = Taker {
+            records: Vec::new(),
+            at: vec![3],
+            taken: Vec::new(),
+        };
+        let _ = protocol.run(
+            &mut FreeOperator::new(grid, material),
+            &heights,
+            &mut make(&grid),
+            &mut taker,
+        );
+        taker.taken.remove(0)
+    };
+    let nested_cohesive = cohesive(dugdale, CohesiveParams::default());
+    let ccg_cohesive = cohesive(
+        dugdale,
+        CohesiveParams {
+            nested: false,
+            ..CohesiveParams::default()
+        },
+    );
+    let jkr = adhesive(AdhesiveParams::default());
+    let nested = move |grid: &Grid| adhesim::protocol::non_adhesive_solver(*grid, material);
+    let cases: [(&MakeSolver, &MakeSolver, &str); 4] = [
+        (&nested_cohesive, &jkr, "JKR-type"),
+        (&jkr, &nested_cohesive, "cohesive"),
+        (&nested, &nested_cohesive, "nested active set"),
+        (&nested_cohesive, &ccg_cohesive, "other compressive solver"),
+    ];
+    for (from, into, says) in cases {
+        let checkpoint = round_trip(&take(from));
+        let error = protocol
+            .run_from(
+                &mut FreeOperator::new(grid, material),
+                &heights,
+                &mut into(&grid),
+                &mut Vec::new(),
+                Some(&checkpoint),
+            )
+            .unwrap_err();
+        let text = error.to_string();
+        assert!(text.contains("checkpoint") && text.contains(says), "{text}");
+    }
 }
 
 /// A checkpoint of another grid is refused with an error, not a panic.

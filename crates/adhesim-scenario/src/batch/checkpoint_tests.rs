@@ -197,6 +197,58 @@ fn a_killed_case_resumes_from_its_checkpoint_byte_identically() {
     assert_same(&case_files(dir.path(), &case.id), &plain);
 }
 
+/// A Maugis–Dugdale smooth sphere (λ = 0.3, scenarios/cohesive/maugis_lambda0p3.toml at
+/// n = 64 in steps of 1e-4): a cohesive law's solver and its nested compressive solver.
+const DUGDALE: &str = r#"
+[grid]
+n = 64
+size = 0.45
+boundary = "free"
+
+[material]
+contact_modulus = 1.0
+
+[adhesion]
+work_of_adhesion = 1e-4
+law = "dugdale"
+cohesive_stress = 1.235285e-02
+
+[indenter]
+shape = "sphere"
+radius = 1.0
+
+[protocol]
+kind = "indent_pulloff"
+max_depth = 2e-3
+step = 1e-4
+
+[output]
+snapshot_steps = [3, 25]
+jump_force_threshold = 0.01
+"#;
+
+/// The cohesive case killed while reporting step 8 (approach) and step 25 (retraction),
+/// each continued by the next batch from the checkpoint after the step before (the run goes
+/// on with the killed step): byte-identical to the uninterrupted
+/// run (cohesive runs now write checkpoints; before, a killed one restarted from scratch).
+#[test]
+fn a_killed_cohesive_case_resumes_from_its_checkpoint_byte_identically() {
+    let case = real_case(DUGDALE);
+    let (_plain_dir, plain) = uninterrupted(&case);
+    let curve = String::from_utf8(plain.iter().find(|(n, _)| n == "curve.csv").unwrap().1.clone()).unwrap();
+    assert!(curve.lines().count() > 30, "{} steps", curve.lines().count() - 1);
+    for at in [8, 25] {
+        let dir = tempfile::tempdir().unwrap();
+        killed_run(&case, dir.path(), at);
+        assert_eq!(
+            run_batch(&case, dir.path()),
+            (vec![case.id.clone()], Some(at)),
+            "resumed at step {at}"
+        );
+        assert_same(&case_files(dir.path(), &case.id), &plain);
+    }
+}
+
 /// A checkpoint whose body is cut, one of another scenario, and one of another grid under
 /// this case's header: each is warned about and the case restarts from scratch, with the
 /// files of the uninterrupted run.

@@ -139,8 +139,33 @@ pub(super) struct WindowLevel {
 }
 
 impl WindowLevel {
-    fn side(&self) -> usize {
+    /// The window's side in elements: with the grid and the material, all a window carries
+    /// from one solve to the next (see [`WindowLevel::enter`] and `nested/checkpoint.rs`).
+    pub(super) fn side(&self) -> usize {
         self.window.side
+    }
+
+    /// A window of `side` × `side` elements of `grid` (operator, preconditioner and
+    /// buffers planned; placed at the grid's corner until [`WindowLevel::enter`] places it).
+    fn new(grid: &Grid, material: ElasticMaterial, side: usize) -> Self {
+        let window_grid = window_grid(side, grid).expect("a window of a valid free grid is valid");
+        WindowLevel {
+            operator: FreeOperator::new(window_grid, material),
+            heights: vec![0.0; window_grid.len()],
+            state: ContactState::new(&window_grid),
+            workspace: Workspace::new(&window_grid, material.contact_modulus()),
+            window: Window {
+                row: 0,
+                column: 0,
+                side,
+            },
+        }
+    }
+
+    /// The window of `side` that a solver on `grid` had kept (a checkpoint put back); None
+    /// when no window of that side fits the grid.
+    pub(super) fn restored(grid: &Grid, material: ElasticMaterial, side: usize) -> Option<Self> {
+        (side >= 1 && side <= grid.nx().min(grid.ny())).then(|| Self::new(grid, material, side))
     }
 
     /// Chooses the window for the contact in `state` on `grid` (reusing `cache` when its
@@ -164,18 +189,7 @@ impl WindowLevel {
             .as_ref()
             .is_some_and(|level| level.side() >= side && level.side() <= 2 * side);
         if !reusable {
-            let window_grid = window_grid(side, grid).expect("a window of a valid free grid is valid");
-            *cache = Some(WindowLevel {
-                operator: FreeOperator::new(window_grid, material),
-                heights: vec![0.0; window_grid.len()],
-                state: ContactState::new(&window_grid),
-                workspace: Workspace::new(&window_grid, material.contact_modulus()),
-                window: Window {
-                    row: 0,
-                    column: 0,
-                    side,
-                },
-            });
+            *cache = Some(WindowLevel::new(grid, material, side));
         }
         let level = cache.as_mut()?;
         level.window = Window::place(&bounds, level.side(), counts);

@@ -21,8 +21,10 @@ pub use adhesive::{
 };
 pub use ccg::{Ccg, CcgParams};
 pub use certificate::LATTICE_INVERSE_DIAGONAL;
-pub use cohesive::{Acceleration, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, Exponential, Trapezoid};
-pub use nested::{NestedActiveSet, NestedParams};
+pub use cohesive::{
+    Acceleration, CohesiveCheckpoint, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, Exponential, Trapezoid,
+};
+pub use nested::{NestedActiveSet, NestedCheckpoint, NestedParams};
 pub use state::ContactState;
 
 use crate::elastic::ElasticOperator;

@@ -1,3 +1,7 @@
+mod checkpoint;
+
+pub use checkpoint::NestedCheckpoint;
+
 use super::contact_window::WindowLevel;
 use super::{dot, masked_pcg, ContactState, PcgBuffers, SolveError, SolveReport};
 use crate::elastic::{ElasticOperator, FreeOperator, SpectralPreconditioner};

@@ -3,10 +3,12 @@
 //! the trait; the solver and the protocols stay as they are.
 
 mod anderson;
+mod checkpoint;
 mod exponential;
 mod law;
 mod trapezoid;
 
+pub use checkpoint::CohesiveCheckpoint;
 pub use exponential::Exponential;
 pub use law::{CohesiveLaw, Dugdale};
 pub use trapezoid::Trapezoid;
