@@ -12,7 +12,7 @@ pub const NEGLIGIBLE_FRACTION: f64 = 1e-3;
 /// the indenter, of range ρ (the smooth law of the Adhesion and ContactMechanics
 /// packages' smooth contact systems; e.g. Müser 2014, *Beilstein J. Nanotechnol.* 5, 419).
 /// It acts on every element; [`range`](CohesiveLaw::range) is infinite, and an element
-/// whose traction is at most [`NEGLIGIBLE_FRACTION`] of the largest counts as outside the
+/// whose traction is at most `NEGLIGIBLE_FRACTION` of the largest counts as outside the
 /// cohesive zone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Exponential {
@@ -77,7 +77,7 @@ impl CohesiveLaw for Exponential {
         NEGLIGIBLE_FRACTION
     }
 
-    /// ρ·ln(1/[`NEGLIGIBLE_FRACTION`]): t(g)/t(0) = e^(−g/ρ) falls to the fraction.
+    /// ρ·ln(1/`NEGLIGIBLE_FRACTION`): t(g)/t(0) = e^(−g/ρ) falls to the fraction.
     fn negligible_separation(&self) -> f64 {
         -self.range * NEGLIGIBLE_FRACTION.ln()
     }

@@ -121,7 +121,7 @@ impl CohesiveLaw for Trapezoid {
         true
     }
 
-    /// The traction change of a gap change of [`GAP_RESOLUTION`]·δ2 on the softening part,
+    /// The traction change of a gap change of `GAP_RESOLUTION`·δ2 on the softening part,
     /// |t'|·GAP_RESOLUTION·δ2 = σ0·GAP_RESOLUTION/s (the same on every element).
     fn traction_resolution(&self) -> f64 {
         self.cohesive_stress * GAP_RESOLUTION / self.softening_fraction
