@@ -144,7 +144,7 @@ pub struct PinnedPhase {
     pub reversal: usize,
     /// Index of the last pinned sample.
     pub last: usize,
-    /// Depth retracted while pinned, depth[reversal] − depth[last].
+    /// Depth retracted while pinned, `depth[reversal] − depth[last]`.
     pub depth_span: f64,
 }
 

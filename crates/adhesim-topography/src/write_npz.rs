@@ -202,7 +202,7 @@ fn deflate_pays(data: &ArrayData<'_>) -> bool {
 
 /// Writes `arrays` to `path` as an `.npz` archive, as `numpy.savez_compressed` does: member
 /// `NAME.npy` per array, DEFLATE-compressed, except members that deflate would shrink by
-/// less than a quarter ([`WORTHWHILE_RATIO`]), which are stored (`numpy.load` reads both).
+/// less than a quarter (`WORTHWHILE_RATIO`), which are stored (`numpy.load` reads both).
 /// Names must be distinct; float values finite.
 pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<(), TopographyError> {
     let path = path.as_ref();

@@ -1,5 +1,5 @@
-//! Sweep files: a base scenario plus parameters to vary ([vary] cartesian product, [zip]
-//! equal-length lists, [random] seeded draws), pseudo-keys for dimensionless inputs, and
+//! Sweep files: a base scenario plus parameters to vary (`[vary]` cartesian product, `[zip]`
+//! equal-length lists, `[random]` seeded draws), pseudo-keys for dimensionless inputs, and
 //! the deterministic case list.
 
 use crate as scenario;
