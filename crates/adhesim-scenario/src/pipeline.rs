@@ -6,7 +6,7 @@ use crate::model::{TranslationSetup, ValidScenario};
 use crate::results::{fit_results, Results, RunResults};
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Profile,
+    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolCheckpoint,
     ProtocolError, ProtocolSummary, StepRecord, StepView, TranslationSummary,
 };
 use std::ops::ControlFlow;
@@ -134,17 +134,17 @@ impl Observer for Recording<'_> {
         self.inner.wants_checkpoint()
     }
 
-    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
         self.inner.on_checkpoint(checkpoint)
     }
 }
 
-/// Where a run of an indentation goes on from: the protocol's checkpoint and the records
-/// of the steps before it.
+/// Where a run goes on from: the protocol's checkpoint and the records of the steps
+/// before it.
 #[derive(Debug, Clone)]
 pub struct Resume {
     /// The protocol's state after its last step.
-    pub protocol: IndentCheckpoint,
+    pub protocol: ProtocolCheckpoint,
     /// The records of the steps done.
     pub records: Vec<StepRecord>,
 }
@@ -156,8 +156,8 @@ pub fn run(scenario: &ValidScenario, observer: &mut dyn Observer) -> Result<RunO
     run_from(scenario, observer, None)
 }
 
-/// As [`run`], an indentation continued from `resume` when given (a translation ignores
-/// it): the outcome is that of the uninterrupted run, bit for bit.
+/// As [`run`], continued from `resume` when given: the outcome is that of the
+/// uninterrupted run, bit for bit. A checkpoint of the other kind of protocol is an error.
 pub fn run_from(
     scenario: &ValidScenario,
     observer: &mut dyn Observer,
@@ -169,6 +169,20 @@ pub fn run_from(
         Some(Resume { protocol, records }) => (Some(protocol), records),
         None => (None, Vec::new()),
     };
+    let (indentation_start, translation_start) = match start {
+        Some(ProtocolCheckpoint::Indentation(c)) => (Some(c), None),
+        Some(ProtocolCheckpoint::Translation(c)) => (None, Some(c)),
+        None => (None, None),
+    };
+    let wrong_kind = match scenario.protocol_setup() {
+        ProtocolSetup::Indentation(_) => translation_start.is_some(),
+        ProtocolSetup::Translation(_) => indentation_start.is_some(),
+    };
+    if wrong_kind {
+        return Err(ProtocolError::InvalidParameter(
+            "the checkpoint is of another protocol than this run's".into(),
+        ));
+    }
     let mut recording = Recording {
         records,
         inner: observer,
@@ -180,7 +194,7 @@ pub fn run_from(
                 &scenario.heights,
                 &mut solver,
                 &mut recording,
-                start.as_ref(),
+                indentation_start.as_deref(),
             )?;
             let records = recording.records;
             let (fits, _) = fit_results(scenario, &records);
@@ -194,10 +208,13 @@ pub fn run_from(
             })
         }
         ProtocolSetup::Translation(setup) => {
-            recording.records.clear();
-            let summary = setup
-                .protocol
-                .run(&mut operator, &setup.contact, &mut solver, &mut recording)?;
+            let summary = setup.protocol.run_from(
+                &mut operator,
+                &setup.contact,
+                &mut solver,
+                &mut recording,
+                translation_start.as_deref(),
+            )?;
             let records = recording.records;
             let results = analyse_translation(scenario, setup, &summary, &records);
             Ok(RunOutcome {

@@ -96,8 +96,8 @@ pub use geometry::{
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
-    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary, SolverCheckpoint,
-    StepRecord, StepView, Translation, TranslationSummary,
+    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
+    SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

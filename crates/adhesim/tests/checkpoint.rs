@@ -12,7 +12,8 @@ use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, CohesiveLaw, CohesiveParams, CohesiveSolver, Detachment,
     Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid, IndentCheckpoint, IndentPulloff, NormalSolver, Observer,
-    PeriodicKernel, PeriodicOperator, Profile, ProtocolSummary, Sphere, StepRecord, StepView, WavySphere,
+    PeriodicKernel, PeriodicOperator, Profile, ProtocolCheckpoint, ProtocolSummary, Sphere, StepRecord, StepView,
+    WavySphere,
 };
 use std::ops::ControlFlow;
 
@@ -51,8 +52,11 @@ impl Observer for Taker {
         self.at.contains(&self.records.len())
     }
 
-    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
-        self.taken.push(checkpoint);
+    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
+        let ProtocolCheckpoint::Indentation(checkpoint) = checkpoint else {
+            panic!("an indentation offered {}'s checkpoint", checkpoint.protocol_name());
+        };
+        self.taken.push(*checkpoint);
         ControlFlow::Continue(())
     }
 }

@@ -296,3 +296,85 @@ fn no_checkpoints_means_no_resume() {
     assert!(pending.resumable.is_empty());
     assert!(!folder.exists(), "discarded");
 }
+
+/// A roll (scenarios/fig6.toml's kind at n = 40, 16 approach and 24 roll steps): the
+/// translation protocols write checkpoints too.
+const ROLL: &str = r#"
+[grid]
+n = 40
+size = 0.4
+boundary = "free"
+
+[material]
+contact_modulus = 1.0
+
+[adhesion]
+work_of_adhesion = 2e-5
+
+[indenter]
+shape = "wavy_sphere"
+radius = 1.0
+amplitude = 5.627e-4
+wavelength = 0.05
+angle = 0.0
+
+[protocol]
+kind = "roll"
+depth = 5.0
+depth_unit = "jkr"
+approach_steps = 16
+distance = 1.0
+distance_unit = "wavelength"
+steps = 24
+stationary_from = 0.5
+
+[output]
+snapshot_steps = [3, 30]
+jump_force_threshold = 0.01
+"#;
+
+/// The roll killed while reporting step 10 (approach), step 16 (its first rolling step)
+/// and step 33 (the stationary part), each continued by the next batch from the checkpoint
+/// after the step before: byte-identical to the uninterrupted run, the snapshot strip of
+/// consecutive steps and the stationary means included (before, a killed translation
+/// restarted from scratch).
+#[test]
+fn a_killed_roll_resumes_from_its_checkpoint_byte_identically() {
+    let case = real_case(ROLL);
+    let (_plain_dir, plain) = uninterrupted(&case);
+    let curve = String::from_utf8(plain.iter().find(|(n, _)| n == "curve.csv").unwrap().1.clone()).unwrap();
+    assert_eq!(curve.lines().count(), 41, "a header and 40 steps");
+    for at in [10, 16, 33] {
+        let dir = tempfile::tempdir().unwrap();
+        killed_run(&case, dir.path(), at);
+        assert_eq!(
+            run_batch(&case, dir.path()),
+            (vec![case.id.clone()], Some(at)),
+            "resumed at step {at}"
+        );
+        assert_same(&case_files(dir.path(), &case.id), &plain);
+    }
+}
+
+/// An indentation's checkpoint put into a roll's folder (under the roll's header) is
+/// warned about and the case restarts from scratch, with the uninterrupted run's files.
+#[test]
+fn a_checkpoint_of_another_protocol_restarts_the_case() {
+    let case = real_case(ROLL);
+    let (_plain_dir, plain) = uninterrupted(&case);
+    let indentation = real_case(SCENARIO);
+    let other_dir = tempfile::tempdir().unwrap();
+    let other = killed_run(&indentation, other_dir.path(), 8);
+    let text = std::fs::read_to_string(other.join(CHECKPOINT_FILE)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let folder = killed_run(&case, dir.path(), 20);
+    std::fs::write(
+        folder.join(CHECKPOINT_FILE),
+        text.replacen(&indentation.hash, &case.hash, 1),
+    )
+    .unwrap();
+    let (resumable, first) = run_batch(&case, dir.path());
+    assert_eq!(resumable, vec![case.id.clone()]);
+    assert_eq!(first, Some(0), "restarted from scratch");
+    assert_same(&case_files(dir.path(), &case.id), &plain);
+}

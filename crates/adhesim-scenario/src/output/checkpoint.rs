@@ -11,7 +11,7 @@
 //! folder is continued, then the body.
 
 use super::observer::ObserverState;
-use adhesim::{IndentCheckpoint, StepRecord};
+use adhesim::{ProtocolCheckpoint, StepRecord};
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::io::BufRead;
@@ -21,8 +21,9 @@ use std::time::Duration;
 /// The checkpoint's file name in a run folder.
 pub const CHECKPOINT_FILE: &str = "checkpoint.json";
 
-/// The version of the file's layout.
-const FORMAT: &str = "adhesim-checkpoint-1";
+/// The version of the file's layout (2: the protocol's state is tagged `Indentation` or
+/// `Translation`).
+const FORMAT: &str = "adhesim-checkpoint-2";
 
 /// When a run writes checkpoints, and for which case.
 #[derive(Debug, Clone, PartialEq)]
@@ -108,7 +109,7 @@ pub fn read_header(path: &Path) -> Result<CheckpointHeader> {
 
 #[derive(Serialize)]
 struct BodyRef<'a> {
-    protocol: &'a IndentCheckpoint,
+    protocol: &'a ProtocolCheckpoint,
     records: &'a [StepRecord],
     observer: &'a ObserverState,
 }
@@ -116,7 +117,7 @@ struct BodyRef<'a> {
 /// The second line of `checkpoint.json`.
 #[derive(Deserialize)]
 pub(crate) struct Body {
-    pub protocol: IndentCheckpoint,
+    pub protocol: ProtocolCheckpoint,
     pub records: Vec<StepRecord>,
     pub observer: ObserverState,
 }
@@ -125,11 +126,11 @@ pub(crate) struct Body {
 pub(crate) fn write(
     folder: &Path,
     policy: &CheckpointPolicy,
-    protocol: &IndentCheckpoint,
+    protocol: &ProtocolCheckpoint,
     records: &[StepRecord],
     observer: &ObserverState,
 ) -> Result<()> {
-    let header = CheckpointHeader::current(&policy.case_hash, protocol.steps_done);
+    let header = CheckpointHeader::current(&policy.case_hash, protocol.steps_done());
     let mut bytes = serde_json::to_vec(&header)?;
     bytes.push(b'\n');
     serde_json::to_writer(
@@ -162,7 +163,7 @@ pub(crate) fn read(folder: &Path, policy: &CheckpointPolicy, elements: usize) ->
         .map(|(_, body)| body)
         .ok_or_else(|| anyhow!("it has no body"))?;
     let body: Body = serde_json::from_str(body).map_err(|error| anyhow!("its body is not valid ({error})"))?;
-    let steps = body.protocol.steps_done;
+    let steps = body.protocol.steps_done();
     if steps != header.steps_done || body.records.len() != steps {
         bail!(
             "its header says {} steps, its body holds {} records after step {steps}",
@@ -170,10 +171,10 @@ pub(crate) fn read(folder: &Path, policy: &CheckpointPolicy, elements: usize) ->
             body.records.len()
         );
     }
-    if body.protocol.state.pressure.len() != elements || !body.observer.fits(elements) {
+    if body.protocol.state().pressure.len() != elements || !body.observer.fits(elements) {
         bail!(
             "it is of {} elements, the grid has {elements}",
-            body.protocol.state.pressure.len()
+            body.protocol.state().pressure.len()
         );
     }
     Ok(Some(body))

@@ -10,7 +10,7 @@ use super::timings::PhaseTimings;
 use crate::{RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
 use adhesim::analysis::reference::Jkr;
 use adhesim::protocol::bit_string;
-use adhesim::{Grid, IndentCheckpoint, Observer, StepRecord, StepView};
+use adhesim::{Grid, Observer, ProtocolCheckpoint, StepRecord, StepView};
 use anyhow::{Context, Result};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs::File;
@@ -181,7 +181,7 @@ impl<'a> RunObserver<'a> {
         })
     }
 
-    /// Writes a checkpoint into `folder` every `policy.every` of wall time (indentations
+    /// Writes a checkpoint into `folder` every `policy.every` of wall time (every protocol,
     /// on solvers that support them; docs/sweeps.md, "Resuming a case mid-run").
     pub fn enable_checkpoints(&mut self, folder: &Path, policy: &CheckpointPolicy) {
         self.checkpoints = Some(Checkpoints {
@@ -373,7 +373,7 @@ impl Observer for RunObserver<'_> {
 
     /// Writes the checkpoint; a failure to write it is a warning on stderr (once), not a
     /// failure of the run (the run goes on without).
-    fn on_checkpoint(&mut self, checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
         let state = self.state();
         let Some(c) = &mut self.checkpoints else {
             return ControlFlow::Continue(());

@@ -144,11 +144,13 @@ pub fn run_into_folder(
 fn take_checkpoint(scenario: &ValidScenario, out: &Path, policy: &CheckpointPolicy) -> Option<checkpoint::Body> {
     // (The solver is only built to ask where a checkpoint is there.)
     let path = out.join(checkpoint::CHECKPOINT_FILE);
-    let found = if path.exists()
-        && matches!(scenario.protocol_setup(), ProtocolSetup::Indentation(_))
-        && scenario.normal_solver().supports_checkpoints()
-    {
-        checkpoint::read(out, policy, scenario.grid.len())
+    let found = if path.exists() && scenario.normal_solver().supports_checkpoints() {
+        checkpoint::read(out, policy, scenario.grid.len()).and_then(|body| match body {
+            Some(body) if !of_this_protocol(scenario, &body.protocol) => {
+                Err(anyhow!("it is of {}, this case is not", body.protocol.protocol_name()))
+            }
+            body => Ok(body),
+        })
     } else {
         Ok(None)
     };
@@ -168,6 +170,20 @@ fn take_checkpoint(scenario: &ValidScenario, out: &Path, policy: &CheckpointPoli
             None
         }
     }
+}
+
+/// Whether `checkpoint` is of the scenario's kind of protocol.
+fn of_this_protocol(scenario: &ValidScenario, checkpoint: &adhesim::ProtocolCheckpoint) -> bool {
+    matches!(
+        (scenario.protocol_setup(), checkpoint),
+        (
+            ProtocolSetup::Indentation(_),
+            adhesim::ProtocolCheckpoint::Indentation(_)
+        ) | (
+            ProtocolSetup::Translation(_),
+            adhesim::ProtocolCheckpoint::Translation(_)
+        )
+    )
 }
 
 /// Counters of a run, with the per-step averages and the observer's phase timings.

@@ -1,4 +1,4 @@
-use super::{IndentCheckpoint, NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use super::{IndentCheckpoint, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, StepRecord, StepView};
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
 use crate::solver::ContactState;
@@ -253,7 +253,7 @@ impl RunState {
             summary: self.summary,
             solver,
         };
-        match observer.on_checkpoint(checkpoint) {
+        match observer.on_checkpoint(ProtocolCheckpoint::Indentation(Box::new(checkpoint))) {
             ControlFlow::Continue(()) => Ok(()),
             ControlFlow::Break(()) => Err(ProtocolError::Interrupted(self.step - 1)),
         }

@@ -8,7 +8,7 @@ mod checkpoint;
 mod indentation;
 mod translation;
 
-pub use checkpoint::{IndentCheckpoint, SolverCheckpoint};
+pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{IndentPulloff, ProtocolSummary};
 pub use translation::{Translation, TranslationSummary};
 
@@ -139,15 +139,16 @@ pub trait Observer {
     /// Called after each step.
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()>;
 
-    /// Asked after each step of a protocol that offers checkpoints (an indentation, on a
-    /// solver that supports them): whether to take one now. Default: never.
+    /// Asked after each step of a protocol that offers checkpoints (an indentation or a
+    /// translation, on a solver that supports them): whether to take one now. Default:
+    /// never.
     fn wants_checkpoint(&mut self) -> bool {
         false
     }
 
     /// The checkpoint asked for by [`wants_checkpoint`](Self::wants_checkpoint), after the
     /// step [`on_step`](Self::on_step) has seen; `Break` stops the protocol as there.
-    fn on_checkpoint(&mut self, _checkpoint: IndentCheckpoint) -> ControlFlow<()> {
+    fn on_checkpoint(&mut self, _checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
 }

@@ -1,4 +1,6 @@
-use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use super::{
+    NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, StepRecord, StepView, TranslationCheckpoint,
+};
 use crate::elastic::ElasticOperator;
 use crate::geometry::{Kinematics, TranslatingContact};
 use crate::solver::ContactState;
@@ -31,6 +33,7 @@ pub struct Translation {
 
 /// Results of a translation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TranslationSummary {
     /// Steps done (approach and travel).
     pub steps: usize,
@@ -80,72 +83,138 @@ impl Translation {
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
+        self.run_from(operator, contact, solver, observer, None)
+    }
+
+    /// As [`run`](Self::run), continued from `start` (a checkpoint of a run of the same
+    /// protocol, contact and kind of solver) when given: the steps after it are those of
+    /// the uninterrupted run, bit for bit. After every step but the last the observer is
+    /// offered a checkpoint ([`Observer::wants_checkpoint`]).
+    pub fn run_from<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        contact: &TranslatingContact,
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+        start: Option<&TranslationCheckpoint>,
+    ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
         let grid = *operator.grid();
         solver.reset();
-        let mut state = ContactState::new(&grid);
-        let mut previous = state.contact.clone();
-        let mut heights = vec![0.0; grid.len()];
-        let mut summary = TranslationSummary::default();
-        let mut cumulative = 0.0;
         let phase = match contact.kinematics() {
             Kinematics::Roll => Phase::Roll,
             _ => Phase::Slide,
         };
         let schedule = self.schedule(phase);
-        let forward_end = self.approach_steps + self.steps;
-        let mut stationary = Vec::new();
-        for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
+        let mut run = match start {
+            Some(checkpoint) => {
+                checkpoint.check(&grid, schedule.len())?;
+                solver
+                    .restore(&checkpoint.solver, &checkpoint.state)
+                    .map_err(ProtocolError::InvalidParameter)?;
+                checkpoint.clone()
+            }
+            None => TranslationCheckpoint {
+                steps_done: 0,
+                state: ContactState::new(&grid),
+                cumulative_dissipated_energy: 0.0,
+                summary: TranslationSummary::default(),
+                stationary: Vec::new(),
+                solver: super::SolverCheckpoint::Stateless,
+            },
+        };
+        let mut previous = run.state.contact.clone();
+        let mut heights = vec![0.0; grid.len()];
+        for step in run.steps_done..schedule.len() {
+            let (stage, depth, offset) = schedule[step];
             contact.fill_heights(&grid, offset, &mut heights);
-            previous.copy_from_slice(&state.contact);
-            let mut tangential_before = 0.0;
-            let moving = stage != Phase::Approach;
-            let report = solver
-                .step_probed(operator, &heights, depth, &mut state, &mut |solved| {
-                    if moving {
-                        tangential_before = contact.tangential_force(&grid, &solved.pressure, offset);
-                    }
-                })
-                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
-            cumulative += report.dissipated_energy;
-            let mut record = StepRecord::measure(
-                step,
-                stage,
-                depth,
-                offset,
-                report,
-                &state,
-                &grid,
-                cumulative,
-                self.jump_force_threshold,
-            );
-            if moving {
-                record.force_tangential = contact.tangential_force(&grid, &state.pressure, offset);
-                record.force_tangential_before_change = tangential_before;
-            }
-            summary.steps += 1;
-            summary.solves += report.solves;
-            summary.cg_iterations += report.cg_iterations;
-            summary.operator_applications += report.operator_applications;
-            summary.jumps += record.jumped as usize;
-            summary.touches_border |= record.touches_border;
-            if stage != Phase::Approach && step < forward_end {
-                summary.dissipated_energy += report.dissipated_energy;
-                if offset > self.stationary_from * self.distance {
-                    stationary.push(record);
-                }
-            }
+            previous.copy_from_slice(&run.state.contact);
+            let record = self.run_step(
+                operator,
+                contact,
+                solver,
+                &mut run,
+                (step, stage, depth, offset),
+                &heights,
+            )?;
             if let ControlFlow::Break(()) = observer.on_step(StepView {
                 record: &record,
-                state: &state,
+                state: &run.state,
                 previous_contact: &previous,
             }) {
                 return Err(ProtocolError::Interrupted(step));
             }
+            run.steps_done = step + 1;
+            if run.steps_done < schedule.len() && solver.supports_checkpoints() && observer.wants_checkpoint() {
+                if let Some(saved) = solver.checkpoint() {
+                    run.solver = saved;
+                    let offered = ProtocolCheckpoint::Translation(Box::new(run.clone()));
+                    run.solver = super::SolverCheckpoint::Stateless;
+                    if let ControlFlow::Break(()) = observer.on_checkpoint(offered) {
+                        return Err(ProtocolError::Interrupted(step));
+                    }
+                }
+            }
         }
-        stationary_means(&mut summary, &stationary);
+        let mut summary = run.summary;
+        stationary_means(&mut summary, &run.stationary);
         Ok(summary)
     }
+
+    /// One step (`step`, its stage, depth and offset) on `heights`: the solve, the record
+    /// and the totals of `run`.
+    fn run_step<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        contact: &TranslatingContact,
+        solver: &mut NormalSolver,
+        run: &mut TranslationCheckpoint,
+        (step, stage, depth, offset): (usize, Phase, f64, f64),
+        heights: &[f64],
+    ) -> Result<StepRecord, ProtocolError> {
+        let grid = *operator.grid();
+        let forward_end = self.approach_steps + self.steps;
+        let mut tangential_before = 0.0;
+        let moving = stage != Phase::Approach;
+        let report = solver
+            .step_probed(operator, heights, depth, &mut run.state, &mut |solved| {
+                if moving {
+                    tangential_before = contact.tangential_force(&grid, &solved.pressure, offset);
+                }
+            })
+            .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+        run.cumulative_dissipated_energy += report.dissipated_energy;
+        let mut record = StepRecord::measure(
+            step,
+            stage,
+            depth,
+            offset,
+            report,
+            &run.state,
+            &grid,
+            run.cumulative_dissipated_energy,
+            self.jump_force_threshold,
+        );
+        if moving {
+            record.force_tangential = contact.tangential_force(&grid, &run.state.pressure, offset);
+            record.force_tangential_before_change = tangential_before;
+        }
+        let summary = &mut run.summary;
+        summary.steps += 1;
+        summary.solves += report.solves;
+        summary.cg_iterations += report.cg_iterations;
+        summary.operator_applications += report.operator_applications;
+        summary.jumps += record.jumped as usize;
+        summary.touches_border |= record.touches_border;
+        if stage != Phase::Approach && step < forward_end {
+            summary.dissipated_energy += report.dissipated_energy;
+            if offset > self.stationary_from * self.distance {
+                run.stationary.push(record);
+            }
+        }
+        Ok(record)
+    }
+
     /// The parameters a run needs, checked before anything is allocated.
     fn check(&self) -> Result<(), ProtocolError> {
         if self.steps == 0 || self.approach_steps == 0 {

@@ -55,6 +55,10 @@ pub struct StudyArgs {
     /// finished writes the tables and figures.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
+    /// Wall time between mid-run checkpoints of a running run (0: none); a killed run goes
+    /// on from its last checkpoint when the study is run again (docs/sweeps.md).
+    #[arg(long, value_name = "SECONDS", default_value_t = batch::DEFAULT_CHECKPOINT_SECONDS)]
+    pub checkpoint_every: f64,
 }
 
 /// The study file.
@@ -346,7 +350,10 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
     let shard = batch::parse_shard(args.shard.as_deref())?;
-    let batch = Batch::open(&plan.out, shard)?;
+    let mut batch = Batch::open(&plan.out, shard)?;
+    batch
+        .set_checkpoint_seconds(args.checkpoint_every)
+        .context("--checkpoint-every")?;
     let adopted = runs::adopt_old_cache(&plan.out, &plan.runs, &batch)?;
     if adopted > 0 && !args.quiet {
         eprintln!(

@@ -5,8 +5,10 @@
 //! after `set`, plus the run's overrides) and the library's results revision.
 
 use adhesim_scenario::batch::{results_hash, Batch, BatchCase};
+use adhesim_scenario::output::checkpoint::CheckpointPolicy;
+use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
 use adhesim_scenario::{RunResults, TranslationResults, ValidScenario};
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
@@ -71,20 +73,44 @@ impl BatchCase for StudyRun {
     }
 
     fn run(&self, folder: &Path) -> Result<()> {
+        self.run_with(folder, None)
+    }
+
+    fn run_checkpointed(&self, folder: &Path, policy: &CheckpointPolicy) -> Result<()> {
+        self.run_with(folder, Some(policy))
+    }
+}
+
+impl StudyRun {
+    /// Runs the scenario into the case folder through the output layer of `adhesim run`
+    /// (curve.csv, summary.json, fields.npz; no pictures), with mid-run checkpoints by
+    /// `policy` when given, then writes the study's record of it.
+    fn run_with(&self, folder: &Path, policy: Option<&CheckpointPolicy>) -> Result<()> {
         let start = Instant::now();
-        let text = match self.kind {
-            RunKind::Normal => {
-                let (gamma_approach, gamma_pulloff) = normal_gammas(&self.scenario)?;
-                serde_json::to_string_pretty(&NormalRecord {
-                    gamma_approach,
-                    gamma_pulloff,
-                    wall_seconds: start.elapsed().as_secs_f64(),
-                })?
-            }
-            RunKind::Translation => serde_json::to_string_pretty(&CaseRecord {
-                results: translation_results(&self.scenario)?,
-                wall_seconds: start.elapsed().as_secs_f64(),
+        let options = FolderRunOptions {
+            pictures: None,
+            netcdf: false,
+            checkpoint: policy,
+        };
+        let results = run_into_folder(&self.scenario, folder, options, &mut ())?
+            .outcome
+            .results;
+        let wall_seconds = start.elapsed().as_secs_f64();
+        let text = match (self.kind, results) {
+            (RunKind::Normal, RunResults::Indentation(results)) => serde_json::to_string_pretty(&NormalRecord {
+                gamma_approach: results.fits.gamma_approach,
+                gamma_pulloff: results.fits.gamma_pulloff,
+                wall_seconds,
             })?,
+            (RunKind::Translation, RunResults::Translation(results)) => {
+                serde_json::to_string_pretty(&CaseRecord { results, wall_seconds })?
+            }
+            (RunKind::Normal, RunResults::Translation(_)) => {
+                bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\"")
+            }
+            (RunKind::Translation, RunResults::Indentation(_)) => {
+                bail!("protocol.kind = \"indent_pulloff\" is not a translation")
+            }
         };
         let path = folder.join(RECORD);
         std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
@@ -148,28 +174,6 @@ pub fn load<T: for<'de> Deserialize<'de>>(folder: &Path) -> Result<T> {
             path.display()
         )
     })
-}
-
-/// γ1, γ2 of an indent_pulloff run (the same pipeline and fits as `adhesim run`).
-fn normal_gammas(scenario: &ValidScenario) -> Result<(Option<f64>, Option<f64>)> {
-    match adhesim_scenario::run(scenario, &mut ())
-        .map_err(|e| anyhow!(e))?
-        .results
-    {
-        RunResults::Indentation(results) => Ok((results.fits.gamma_approach, results.fits.gamma_pulloff)),
-        RunResults::Translation(_) => bail!("the normal run of a study must be protocol.kind = \"indent_pulloff\""),
-    }
-}
-
-/// The analysed results of a roll / slide run, without writing anything.
-fn translation_results(scenario: &ValidScenario) -> Result<TranslationResults> {
-    match adhesim_scenario::run(scenario, &mut ())
-        .map_err(|e| anyhow!(e))?
-        .results
-    {
-        RunResults::Translation(results) => Ok(results),
-        RunResults::Indentation(_) => bail!("protocol.kind = \"indent_pulloff\" is not a translation"),
-    }
 }
 
 /// A normal run's record: γ1, γ2 and its wall time.
