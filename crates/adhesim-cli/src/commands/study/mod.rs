@@ -59,6 +59,11 @@ pub struct StudyArgs {
     /// on from its last checkpoint when the study is run again (docs/sweeps.md).
     #[arg(long, value_name = "SECONDS", default_value_t = batch::DEFAULT_CHECKPOINT_SECONDS)]
     pub checkpoint_every: f64,
+    /// Run nothing: write the tables and figures of the α whose runs have all finished
+    /// (interim results of a long study; safe beside the study running in the same folder,
+    /// which it does not lock).
+    #[arg(long)]
+    pub tables_only: bool,
 }
 
 /// The study file.
@@ -324,11 +329,12 @@ type Finished = (
     Vec<(adhesim_scenario::TranslationResults, f64)>,
 );
 
-fn read_runs(plan: &StudyPlan, batch: &Batch) -> Result<Finished> {
+/// Reads the runs of the α marked in `complete`.
+fn read_runs(plan: &StudyPlan, complete: &[bool]) -> Result<Finished> {
     let mut gammas = vec![(None, None, None); plan.amplitudes.len()];
     let (mut keys, mut results) = (Vec::new(), Vec::new());
-    for run in &plan.runs {
-        let folder = batch.case_folder(&run.id);
+    for run in plan.runs.iter().filter(|run| complete[run.alpha_index]) {
+        let folder = plan.out.join("cases").join(&run.id);
         match run.kind {
             RunKind::Normal => {
                 let record: NormalRecord = runs::load(&folder)?;
@@ -349,6 +355,9 @@ pub fn run(args: &StudyArgs) -> Result<()> {
     let start = Instant::now();
     let (study, _origin) = read_study(args)?;
     let plan = plan(args, study)?;
+    if args.tables_only {
+        return write_tables(&plan, args, start);
+    }
     let shard = batch::parse_shard(args.shard.as_deref())?;
     let mut batch = Batch::open(&plan.out, shard)?;
     batch
@@ -380,17 +389,52 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         }
         return Ok(());
     }
-    let (gammas, case_keys, case_results) = read_runs(&plan, &batch)?;
+    write_tables(&plan, args, start)
+}
+
+/// Whether every run of each α has finished successfully.
+fn complete_alphas(plan: &StudyPlan) -> Vec<bool> {
+    (0..plan.amplitudes.len())
+        .map(|i| {
+            plan.runs
+                .iter()
+                .filter(|run| run.alpha_index == i)
+                .all(|run| batch::case_state(&plan.out, run.id(), run.hash()) == CaseState::Finished { ok: true })
+        })
+        .collect()
+}
+
+/// Writes table.csv, alphas.csv, study.json and the figures from the α whose runs have
+/// all finished (every α, after a whole study); study.json lists the others.
+fn write_tables(plan: &StudyPlan, args: &StudyArgs, start: Instant) -> Result<()> {
+    let complete = complete_alphas(plan);
+    let pending: Vec<f64> = (plan.study.alphas.iter().zip(&complete))
+        .filter(|(_, done)| !**done)
+        .map(|(&alpha, _)| alpha)
+        .collect();
+    if pending.len() == complete.len() {
+        eprintln!(
+            "adhesim study: no α of {} has all its runs finished yet: no tables written",
+            plan.out.display()
+        );
+        return Ok(());
+    }
+    let (gammas, case_keys, case_results) = read_runs(plan, &complete)?;
     let StudyPlan {
         study,
         jkr,
         amplitudes,
         out,
         ..
-    } = &plan;
+    } = plan;
     let jkr = *jkr;
     let (rows, per_case) = tables::case_rows(&case_keys, case_results, study, amplitudes, &gammas, &jkr);
-    let alpha_rows = tables::alpha_rows(study, amplitudes, &gammas, &rows, &per_case, &jkr);
+    // One row per α of the study, in its order: the complete ones are kept.
+    let alpha_rows: Vec<_> = tables::alpha_rows(study, amplitudes, &gammas, &rows, &per_case, &jkr)
+        .into_iter()
+        .zip(&complete)
+        .filter_map(|(row, &done)| done.then_some(row))
+        .collect();
     let a_jkr = jkr.critical_radius();
     write_csv(&out.join("table.csv"), &rows)?;
     write_csv(&out.join("alphas.csv"), &alpha_rows)?;
@@ -405,6 +449,8 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         "a_jkr": a_jkr,
         "cases": rows.len(),
         "normal_runs": plan.normal_runs(),
+        // α whose runs are not all finished (an interim `--tables-only`): not in the tables.
+        "unfinished_alphas": pending,
         "wall_seconds": start.elapsed().as_secs_f64(),
         "jobs": args.jobs,
         "alphas": alpha_rows,
@@ -414,7 +460,10 @@ pub fn run(args: &StudyArgs) -> Result<()> {
         (serde_json::to_string_pretty(&json)? + "\n").as_bytes(),
     )?;
     if !args.quiet {
-        print_report(&plan, &rows, &alpha_rows, &plots, start);
+        print_report(plan, &rows, &alpha_rows, &plots, start);
+        if !pending.is_empty() {
+            outln!("  (interim: the runs of α = {pending:?} are not all finished; they are not in the tables)");
+        }
     }
     Ok(())
 }
