@@ -237,15 +237,22 @@ fn a_killed_cohesive_case_resumes_from_its_checkpoint_byte_identically() {
     let (_plain_dir, plain) = uninterrupted(&case);
     let curve = String::from_utf8(plain.iter().find(|(n, _)| n == "curve.csv").unwrap().1.clone()).unwrap();
     assert!(curve.lines().count() > 30, "{} steps", curve.lines().count() - 1);
-    for at in [8, 25] {
+    assert_killed_runs_resume(&case, &[8, 25], &plain);
+}
+
+/// The case killed while reporting each step of `at`, each time continued by the next
+/// batch from the checkpoint after the step before (the run goes on with the killed step):
+/// byte-identical to the uninterrupted run's files `plain`.
+fn assert_killed_runs_resume(case: &RealCase, at: &[usize], plain: &[(String, Vec<u8>)]) {
+    for &at in at {
         let dir = tempfile::tempdir().unwrap();
-        killed_run(&case, dir.path(), at);
+        killed_run(case, dir.path(), at);
         assert_eq!(
-            run_batch(&case, dir.path()),
+            run_batch(case, dir.path()),
             (vec![case.id.clone()], Some(at)),
             "resumed at step {at}"
         );
-        assert_same(&case_files(dir.path(), &case.id), &plain);
+        assert_same(&case_files(dir.path(), &case.id), plain);
     }
 }
 
@@ -344,16 +351,7 @@ fn a_killed_roll_resumes_from_its_checkpoint_byte_identically() {
     let (_plain_dir, plain) = uninterrupted(&case);
     let curve = String::from_utf8(plain.iter().find(|(n, _)| n == "curve.csv").unwrap().1.clone()).unwrap();
     assert_eq!(curve.lines().count(), 41, "a header and 40 steps");
-    for at in [10, 16, 33] {
-        let dir = tempfile::tempdir().unwrap();
-        killed_run(&case, dir.path(), at);
-        assert_eq!(
-            run_batch(&case, dir.path()),
-            (vec![case.id.clone()], Some(at)),
-            "resumed at step {at}"
-        );
-        assert_same(&case_files(dir.path(), &case.id), &plain);
-    }
+    assert_killed_runs_resume(&case, &[10, 16, 33], &plain);
 }
 
 /// An indentation's checkpoint put into a roll's folder (under the roll's header) is

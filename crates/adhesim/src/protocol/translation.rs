@@ -112,7 +112,11 @@ impl Translation {
                 solver
                     .restore(&checkpoint.solver, &checkpoint.state)
                     .map_err(ProtocolError::InvalidParameter)?;
-                checkpoint.clone()
+                // The solver's part now lives in the solver; the run carries the rest.
+                TranslationCheckpoint {
+                    solver: super::SolverCheckpoint::Stateless,
+                    ..checkpoint.clone()
+                }
             }
             None => TranslationCheckpoint {
                 steps_done: 0,
