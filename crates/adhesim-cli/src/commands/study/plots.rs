@@ -7,6 +7,15 @@ use anyhow::Result;
 use plotters::style::RGBColor;
 use std::path::Path;
 
+/// The α range a horizontal reference line spans: the study's, widened by a tenth on each
+/// side, so that it shows also where only one α has finished (interim tables).
+fn reference_span(alphas: &[AlphaRow]) -> (f64, f64) {
+    let lo = alphas.iter().map(|a| a.alpha).fold(f64::INFINITY, f64::min);
+    let hi = alphas.iter().map(|a| a.alpha).fold(0.0, f64::max);
+    let margin = 0.1 * (hi - lo).max(0.1 * hi);
+    (lo - margin, hi + margin)
+}
+
 fn by_alpha(alphas: &[AlphaRow], f: impl Fn(&AlphaRow) -> Option<f64>) -> Vec<(f64, f64)> {
     alphas.iter().filter_map(|a| f(a).map(|y| (a.alpha, y))).collect()
 }
@@ -21,7 +30,8 @@ const GAMMAS: [GammaSeries; 4] = [
         Mark::LinePoints,
         |a| a.gamma3_norm,
     ),
-    ("γ3 (F_N vs half-width)", PALETTE[3], Mark::Dashed, |a| {
+    // Outline diamonds, not a dashed line: a line of one point (one α) draws nothing.
+    ("γ3 (F_N vs half-width)", PALETTE[3], Mark::Marker(3), |a| {
         a.gamma3_half_width_norm
     }),
     ("γ1 (approach)", PALETTE[2], Mark::LinePoints, |a| {
@@ -75,11 +85,7 @@ pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Ve
             .with(series)],
         )?);
     }
-    let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
-    let (lo, hi) = (
-        x.iter().copied().fold(f64::INFINITY, f64::min),
-        x.iter().copied().fold(0.0, f64::max),
-    );
+    let (lo, hi) = reference_span(alphas);
     files.extend(write_panels(
         dir,
         "fig8",
@@ -126,11 +132,7 @@ fn error_band(alphas: &[AlphaRow]) -> Vec<Series> {
 }
 
 pub fn sliding_plots(dir: &Path, alphas: &[AlphaRow]) -> Result<Vec<String>> {
-    let x: Vec<f64> = alphas.iter().map(|a| a.alpha).collect();
-    let (lo, hi) = (
-        x.iter().copied().fold(f64::INFINITY, f64::min),
-        x.iter().copied().fold(0.0, f64::max),
-    );
+    let (lo, hi) = reference_span(alphas);
     // Two panels: the per-step mean on its own scale (with the standard error over the
     // cases where there are several), then both means, whose scales differ by 10–50×.
     let per_step = || {
