@@ -9,6 +9,7 @@
 //! executor's worker, a Dask worker); the parent rebuilds `table.csv` at the end.
 
 use adhesim_scenario::batch::{self, case_state, Batch, CaseState};
+use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder::Shard;
 use adhesim_scenario::sweep::{self, plan, Plan, SweepCase};
 use pyo3::exceptions::PyValueError;
@@ -43,9 +44,11 @@ fn sweep_cases(plan: &Plan) -> Vec<SweepCase<'_>> {
 /// tables of `sweep_text` (`vary`, `zip`, `random`, `set`, `derived`, as in a sweep
 /// file): builds and checks the plan, takes the folder's lock and writes `sweep.json`
 /// (refused where `out` holds another sweep). `base` resolves the scenario's relative
-/// paths; `series` labels the table's rows.
+/// paths; `series` labels the table's rows. With `checkpoint_seconds` > 0, killed runs
+/// that left a mid-run checkpoint are kept for their cases to go on from (see
+/// [`SweepFolder::pending`] and [`_sweep_run_case`]); with 0 they are discarded.
 #[pyfunction]
-#[pyo3(signature = (out, sweep_text, scenario_text, origin, base, series, check_memory, jobs))]
+#[pyo3(signature = (out, sweep_text, scenario_text, origin, base, series, check_memory, jobs, checkpoint_seconds=0.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn _sweep_open(
     out: PathBuf,
@@ -56,6 +59,7 @@ pub fn _sweep_open(
     series: &str,
     check_memory: bool,
     jobs: usize,
+    checkpoint_seconds: f64,
 ) -> PyResult<SweepFolder> {
     let mut sweep_table = adhesim_scenario::parse_toml(sweep_text, "the sweep's arguments")
         .map_err(|e| crate::convert::scenario_error(&e, ""))?;
@@ -72,9 +76,11 @@ pub fn _sweep_open(
         }
     }
     let mut batch = Batch::open(&out, Shard::ALL).map_err(value_error)?;
-    // Each case runs through `_sweep_run_case`, without mid-run checkpoints (docs/sweeps.md,
-    // "Resuming a case mid-run"): leftovers of killed cases are discarded, as before.
-    batch.set_checkpoint_seconds(0.0).map_err(value_error)?;
+    // Each case runs through `_sweep_run_case`, with mid-run checkpoints every
+    // `checkpoint_seconds` (docs/sweeps.md, "Resuming a case mid-run").
+    batch
+        .set_checkpoint_seconds(checkpoint_seconds)
+        .map_err(|e| value_error(e.context("checkpoint_every")))?;
     sweep::write_plan(&out, &plan).map_err(value_error)?;
     Ok(SweepFolder {
         dir: out,
@@ -102,13 +108,18 @@ impl SweepFolder {
         Ok(list)
     }
 
-    /// Indices of the cases still to run (missing, broken, of another hash; failed ones
-    /// too with `retry_failed`); removes what killed runs of them left.
-    fn pending(&self, retry_failed: bool) -> PyResult<Vec<usize>> {
+    /// The cases still to run (missing, broken, of another hash; failed ones too with
+    /// `retry_failed`): (index, the folder of a killed run with a checkpoint to go on from,
+    /// or None); removes what other killed runs of them left.
+    fn pending(&self, retry_failed: bool) -> PyResult<Vec<(usize, Option<PathBuf>)>> {
         let batch = self.batch()?;
         let cases = sweep_cases(&self.plan);
-        let pending = batch.pending(&cases, retry_failed).map_err(value_error)?;
-        Ok(pending.todo.iter().map(|case| case.case.index).collect())
+        let mut pending = batch.pending(&cases, retry_failed).map_err(value_error)?;
+        let todo: Vec<(usize, String)> = pending.todo.iter().map(|c| (c.case.index, c.case.id.clone())).collect();
+        Ok(todo
+            .into_iter()
+            .map(|(index, id)| (index, pending.resumable.remove(&id)))
+            .collect())
     }
 
     /// Rebuilds `table.csv` and the master-curve plots from the finished case folders;
@@ -144,10 +155,19 @@ impl SweepFolder {
 
 /// Runs case `index` of the sweep in `out` (opened by `_sweep_open`) into
 /// `out/cases/<id>/`, computed in `out/tmp/` and renamed into place with its `done`
-/// marker; a case already finished there is not run again. Returns (ran, error message
-/// of a failed case or None). The GIL is released while it runs.
+/// marker; a case already finished there is not run again. With `checkpoint_seconds` > 0
+/// the run writes a mid-run checkpoint that often, and goes on from the one in `resume`
+/// (the folder of a killed run that `pending` named). Returns (ran, error message of a
+/// failed case or None). The GIL is released while it runs.
 #[pyfunction]
-pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(bool, Option<String>)> {
+#[pyo3(signature = (out, index, checkpoint_seconds=0.0, resume=None))]
+pub fn _sweep_run_case(
+    py: Python<'_>,
+    out: PathBuf,
+    index: usize,
+    checkpoint_seconds: f64,
+    resume: Option<PathBuf>,
+) -> PyResult<(bool, Option<String>)> {
     let plan = sweep::read_plan(&out).map_err(value_error)?;
     let Some(case) = plan.cases.get(index) else {
         return Err(PyValueError::new_err(format!(
@@ -160,6 +180,8 @@ pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(
         let message = (!ok).then(|| error_text(&out, &case.id));
         return Ok((false, message));
     }
+    let policy = CheckpointPolicy::every_seconds(checkpoint_seconds, &case.hash)
+        .map_err(|e| value_error(e.context("checkpoint_every")))?;
     let sweep_case = SweepCase {
         plan: &plan,
         case,
@@ -174,7 +196,7 @@ pub fn _sweep_run_case(py: Python<'_>, out: PathBuf, index: usize) -> PyResult<(
         .build()
         .map_err(|e| PyValueError::new_err(format!("cannot build a thread pool: {e}")))?;
     let failure = py
-        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case, None, None)))
+        .detach(|| pool.install(|| batch::run_case(&out, &sweep_case, policy.as_ref(), resume.as_deref())))
         .map_err(|e| value_error(e.context(format!("case {}", case.id))))?;
     Ok((true, failure))
 }

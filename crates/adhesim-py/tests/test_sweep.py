@@ -6,6 +6,8 @@ import concurrent.futures
 import json
 import os
 import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -118,6 +120,46 @@ def test_a_lost_case_is_the_only_one_run_again(command_line_sweep, tmp_path):
     assert done_markers(out)[first.name] == markers[first.name]
     assert not list((out / "tmp").iterdir())
     assert_same_sweep(out, cli_out)
+
+
+# The wavy sphere of BASE on 64 × 64 in 60 steps per branch: long enough (seconds) for a
+# checkpoint before the case ends.
+LONG = BASE.replace("n = 32", "n = 64").replace("steps = 12", "steps = 60")
+
+
+def test_a_killed_case_goes_on_from_its_checkpoint(tmp_path, capfd):
+    """A worker killed (SIGKILL) mid-case after a checkpoint: the next call goes on from
+    it ("resumed case ... at step k" on stderr) and the case folder is the uninterrupted
+    run's (curve.csv, fields.npz byte-identical; summary.json but its timings)."""
+    base = tmp_path / "base.toml"
+    base.write_text(LONG)
+    vary = {"alpha": [0.8]}
+    reference = tmp_path / "reference"
+    adhesim.sweep(base, vary=vary, out=reference, series="s", checkpoint_every=0.05)
+    killed = tmp_path / "killed"
+    script = (f"import adhesim; adhesim.sweep({str(base)!r}, vary={vary!r}, out={str(killed)!r}, "
+              f"series='s', checkpoint_every=0.05)")
+    child = subprocess.Popen([sys.executable, "-c", script], stderr=subprocess.DEVNULL)
+    start = time.monotonic()
+    while not list(killed.glob("tmp/*/checkpoint.json")):
+        assert time.monotonic() - start < 120, "no checkpoint written"
+        assert child.poll() is None, "the case ended before a checkpoint"
+        time.sleep(0.002)
+    time.sleep(0.05)
+    child.kill()
+    child.wait()
+    if list(killed.glob("cases/*/done")):
+        return  # the case finished before the kill (a very fast machine): nothing to resume
+    capfd.readouterr()
+    cases = adhesim.sweep(base, vary=vary, out=killed, series="s", checkpoint_every=0.05)
+    assert cases.ran == 1
+    assert "resumed case " in capfd.readouterr().err
+    (case,) = [p.name for p in (reference / "cases").iterdir()]
+    for name in ("curve.csv", "fields.npz"):
+        assert (killed / "cases" / case / name).read_bytes() == (reference / "cases" / case / name).read_bytes()
+    assert without_timings(killed / "cases" / case / "summary.json") == without_timings(
+        reference / "cases" / case / "summary.json")
+    assert (killed / "table.csv").read_bytes() == (reference / "table.csv").read_bytes()
 
 
 def test_a_dask_cluster_runs_the_sweep(command_line_sweep):

@@ -52,10 +52,13 @@ class SweepResult(list):
         )
 
 
-def _run_case(out: str, index: int) -> Tuple[bool, Optional[str]]:
+def _run_case(out: str, index: int, checkpoint_every: float = 0.0,
+              resume: Optional[str] = None) -> Tuple[bool, Optional[str]]:
     """Runs case ``index`` of the sweep in ``out`` (in whatever process calls it):
-    (whether it ran, the error of a failed case or None). A finished case is not redone."""
-    return _adhesim._sweep_run_case(out, index)
+    (whether it ran, the error of a failed case or None). A finished case is not redone.
+    With ``checkpoint_every`` > 0 the run writes a mid-run checkpoint that often (seconds)
+    and goes on from the one in ``resume``, the folder of a killed run."""
+    return _adhesim._sweep_run_case(out, index, checkpoint_every, resume)
 
 
 def _cell(text: str) -> Any:
@@ -115,6 +118,7 @@ def sweep(
     overrides: Optional[Mapping[str, Any]] = None,
     allow_large: bool = False,
     retry_failed: bool = False,
+    checkpoint_every: float = 600.0,
     **keyword_overrides: Any,
 ) -> SweepResult:
     """Runs a parameter sweep of a scenario as ``adhesim sweep`` does.
@@ -151,6 +155,11 @@ def sweep(
         Run even when a case's grid is estimated to need more memory than is available.
     retry_failed : bool
         Also redo the cases that finished with an error.
+    checkpoint_every : float
+        Seconds of wall time between mid-run checkpoints of a running case (0: none), as
+        ``adhesim sweep --checkpoint-every``: a case whose worker was killed goes on from
+        its last checkpoint when the sweep is called again with the same ``out``
+        (docs/sweeps.md, "Resuming a case mid-run").
 
     Returns
     -------
@@ -182,22 +191,24 @@ def sweep(
     if out is None:
         with tempfile.TemporaryDirectory(prefix="adhesim-sweep-") as temporary:
             result = _sweep_into(scenario, tables, Path(temporary) / "sweep", executor, series or "sweep",
-                                 progress, allow_large, retry_failed)
+                                 progress, allow_large, retry_failed, checkpoint_every)
             result.out = None
             return result
     out = Path(out)
     return _sweep_into(scenario, tables, out, executor, series or out.resolve().name, progress,
-                       allow_large, retry_failed)
+                       allow_large, retry_failed, checkpoint_every)
 
 
-def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_large, retry_failed):
+def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_large, retry_failed,
+                checkpoint_every):
     text, origin, base = _scenario_text(scenario)
     sweep_text = _adhesim._toml_document(tables)
-    folder = _adhesim._sweep_open(str(out), sweep_text, text, origin, str(base), series, not allow_large, 1)
+    folder = _adhesim._sweep_open(str(out), sweep_text, text, origin, str(base), series, not allow_large, 1,
+                                  float(checkpoint_every))
     try:
         cases = folder.cases()
         todo = folder.pending(retry_failed)
-        _run_cases(out, cases, todo, executor, progress)
+        _run_cases(out, cases, todo, executor, progress, float(checkpoint_every))
         table_path, failed = folder.finish()
     finally:
         folder.close()
@@ -218,17 +229,20 @@ def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_l
     return results
 
 
-def _run_cases(out: Path, cases, todo: List[int], executor, progress) -> None:
-    """Runs the cases ``todo`` in this process or on ``executor``; waits for all of them."""
+def _run_cases(out: Path, cases, todo: List[Tuple[int, Optional[str]]], executor, progress,
+               checkpoint_every: float) -> None:
+    """Runs the cases ``todo`` ((index, folder of a killed run to go on from or None)) in
+    this process or on ``executor``; waits for all of them."""
     if executor is None:
-        for done, index in enumerate(todo, start=1):
-            _run_case(str(out), index)
+        for done, (index, resume) in enumerate(todo, start=1):
+            _run_case(str(out), index, checkpoint_every, resume)
             if progress is not None:
                 progress(done, len(todo), cases[index])
         return
     from concurrent.futures import FIRST_COMPLETED, wait
 
-    pending = {executor.submit(_run_case, str(out), index): index for index in todo}
+    pending = {executor.submit(_run_case, str(out), index, checkpoint_every, resume): index
+               for index, resume in todo}
     done = 0
     try:
         while pending:
