@@ -251,6 +251,7 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
                 build(&normal, &base_dir, &changes).context("the normal (indent_pulloff) run of the study")?;
             let mut run = StudyRun::new(&format!("normal-{i}"), &normal, &changes, scenario, RunKind::Normal);
             run.what = format!("normal run α = {}", study.alphas[i]);
+            run.progress = !args.quiet;
             run.alpha_index = i;
             runs.push(run);
         }
@@ -283,6 +284,7 @@ fn plan(args: &StudyArgs, study: StudyFile) -> Result<StudyPlan> {
                     theta_label(shown_angle)
                 );
                 (run.alpha_index, run.depth, run.angle) = (i, d, angle);
+                run.progress = !args.quiet;
                 runs.push(run);
             }
         }

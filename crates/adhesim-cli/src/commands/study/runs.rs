@@ -4,14 +4,16 @@
 //! a killed study resumes where it stopped. The hash covers the exact scenario it ran (base
 //! after `set`, plus the run's overrides) and the library's results revision.
 
+use adhesim::StepRecord;
 use adhesim_scenario::batch::{results_hash, Batch, BatchCase};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
+use adhesim_scenario::output::observer::RunProgress;
 use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
 use adhesim_scenario::{RunResults, TranslationResults, ValidScenario};
 use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// The file of a finished run's results in its case folder.
 const RECORD: &str = "record.json";
@@ -35,6 +37,8 @@ pub struct StudyRun {
     hash: String,
     /// How progress lines and failures name the run.
     pub what: String,
+    /// Print a progress line on stderr now and then while the run goes on.
+    pub progress: bool,
     pub kind: RunKind,
     /// Index of its α in the study file.
     pub alpha_index: usize,
@@ -54,6 +58,7 @@ impl StudyRun {
             id: format!("{name}-{hash}"),
             hash,
             what: String::new(),
+            progress: false,
             kind,
             alpha_index: 0,
             depth: 0.0,
@@ -92,7 +97,13 @@ impl StudyRun {
             netcdf: false,
             checkpoint: policy,
         };
-        let results = run_into_folder(&self.scenario, folder, options, &mut ())?
+        let mut heartbeat = Heartbeat {
+            what: &self.what,
+            steps: self.scenario.expected_steps(),
+            last: Instant::now(),
+        };
+        let progress: &mut dyn RunProgress = if self.progress { &mut heartbeat } else { &mut () };
+        let results = run_into_folder(&self.scenario, folder, options, progress)?
             .outcome
             .results;
         let wall_seconds = start.elapsed().as_secs_f64();
@@ -114,6 +125,28 @@ impl StudyRun {
         };
         let path = folder.join(RECORD);
         std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
+    }
+}
+
+/// Wall time between two progress lines of a running run.
+const HEARTBEAT: Duration = Duration::from_secs(60);
+
+/// A line on stderr at most once a minute while a run goes on (a slide of a
+/// paper-resolution study takes half an hour): the run and its step.
+struct Heartbeat<'a> {
+    what: &'a str,
+    /// Steps the protocol will report (an estimate for an indentation).
+    steps: usize,
+    last: Instant,
+}
+
+impl RunProgress for Heartbeat<'_> {
+    fn step(&mut self, record: &StepRecord) -> Result<()> {
+        if self.last.elapsed() >= HEARTBEAT {
+            eprintln!("  {}: step {} of about {}", self.what, record.step + 1, self.steps);
+            self.last = Instant::now();
+        }
+        Ok(())
     }
 }
 
