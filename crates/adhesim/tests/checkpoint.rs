@@ -12,10 +12,13 @@ use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, CohesiveLaw, CohesiveParams, CohesiveSolver, Detachment,
     Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid, IndentCheckpoint, IndentPulloff, NormalSolver, Observer,
-    PeriodicKernel, PeriodicOperator, Profile, ProtocolCheckpoint, ProtocolSummary, Sphere, StepRecord, StepView,
-    WavySphere,
+    PeriodicKernel, PeriodicOperator, Profile, ProtocolSummary, Sphere, WavySphere,
 };
-use std::ops::ControlFlow;
+
+mod checkpoint_common;
+use checkpoint_common::{bits, round_trip};
+
+type Taker = checkpoint_common::Taker<IndentCheckpoint>;
 
 /// The Fig. 1 wavy sphere (α ≈ 1, scenarios/fig1.toml's kind) on an n × n free grid.
 fn wavy_sphere(n: usize) -> (Grid, Vec<f64>, f64) {
@@ -33,49 +36,6 @@ fn protocol(start: f64) -> IndentPulloff {
         max_retract_steps: 10_000,
         jump_force_threshold: 0.0,
     }
-}
-
-/// Keeps every record and the checkpoints after the steps in `at` (steps done).
-struct Taker {
-    records: Vec<StepRecord>,
-    at: Vec<usize>,
-    taken: Vec<IndentCheckpoint>,
-}
-
-impl Observer for Taker {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        self.records.push(*view.record);
-        ControlFlow::Continue(())
-    }
-
-    fn wants_checkpoint(&mut self) -> bool {
-        self.at.contains(&self.records.len())
-    }
-
-    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
-        let ProtocolCheckpoint::Indentation(checkpoint) = checkpoint else {
-            panic!("an indentation offered {}'s checkpoint", checkpoint.protocol_name());
-        };
-        self.taken.push(*checkpoint);
-        ControlFlow::Continue(())
-    }
-}
-
-/// The checkpoint as a fresh process would read it back.
-fn round_trip(checkpoint: &IndentCheckpoint) -> IndentCheckpoint {
-    #[cfg(feature = "serde")]
-    {
-        let bytes = serde_json::to_vec(checkpoint).unwrap();
-        let back: IndentCheckpoint = serde_json::from_slice(&bytes).unwrap();
-        assert_eq!(format!("{back:?}"), format!("{checkpoint:?}"));
-        back
-    }
-    #[cfg(not(feature = "serde"))]
-    checkpoint.clone()
-}
-
-fn bits(records: &[StepRecord]) -> Vec<String> {
-    records.iter().map(|r| format!("{r:?}")).collect()
 }
 
 fn summary_bits(summary: &ProtocolSummary) -> String {

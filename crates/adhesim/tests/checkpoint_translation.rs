@@ -9,55 +9,15 @@
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, CohesiveParams, CohesiveSolver, ElasticMaterial, Exponential,
-    FreeOperator, Grid, Kinematics, NormalSolver, Observer, ProtocolCheckpoint, StepRecord, StepView,
-    TranslatingContact, Translation, TranslationCheckpoint, WavySphere,
+    FreeOperator, Grid, Kinematics, NormalSolver, TranslatingContact, Translation, TranslationCheckpoint, WavySphere,
 };
-use std::ops::ControlFlow;
+
+mod checkpoint_common;
+use checkpoint_common::{bits, round_trip};
+
+type Taker = checkpoint_common::Taker<TranslationCheckpoint>;
 
 const GAMMA: f64 = 2e-5;
-
-/// Keeps every record and the checkpoints after the steps in `at` (steps done).
-struct Taker {
-    records: Vec<StepRecord>,
-    at: Vec<usize>,
-    taken: Vec<TranslationCheckpoint>,
-}
-
-impl Observer for Taker {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        self.records.push(*view.record);
-        ControlFlow::Continue(())
-    }
-
-    fn wants_checkpoint(&mut self) -> bool {
-        self.at.contains(&self.records.len())
-    }
-
-    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
-        let ProtocolCheckpoint::Translation(checkpoint) = checkpoint else {
-            panic!("a translation offered {}'s checkpoint", checkpoint.protocol_name());
-        };
-        self.taken.push(*checkpoint);
-        ControlFlow::Continue(())
-    }
-}
-
-/// The checkpoint as a fresh process would read it back.
-fn round_trip(checkpoint: &TranslationCheckpoint) -> TranslationCheckpoint {
-    #[cfg(feature = "serde")]
-    {
-        let bytes = serde_json::to_vec(checkpoint).unwrap();
-        let back: TranslationCheckpoint = serde_json::from_slice(&bytes).unwrap();
-        assert_eq!(format!("{back:?}"), format!("{checkpoint:?}"));
-        back
-    }
-    #[cfg(not(feature = "serde"))]
-    checkpoint.clone()
-}
-
-fn bits(records: &[StepRecord]) -> Vec<String> {
-    records.iter().map(|r| format!("{r:?}")).collect()
-}
 
 /// A wavy sphere at α ≈ 0.6 (the rough rolling regime of tests/validation_translation.rs)
 /// on an n × n free grid, moved by `kinematics` over one wavelength after 12 approach steps.
