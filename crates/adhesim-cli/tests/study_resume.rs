@@ -4,13 +4,10 @@
 //! case mid-run"); `--tables-only` writes the interim tables of the α whose runs are done.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 mod common;
-use common::{adhesim, repo, stderr, write};
-
-const BIN: &str = env!("CARGO_BIN_EXE_adhesim");
+use common::{adhesim, kill_after_checkpoint, repo, stderr, write};
 
 fn args(study: &Path, out: &Path) -> Vec<String> {
     let mut args: Vec<String> = [
@@ -69,29 +66,8 @@ fn a_study_killed_mid_roll_resumes_from_the_checkpoint() {
 
     let killed = dir.path().join("killed");
     let args = args(&study, &killed);
-    let mut child = Command::new(BIN)
-        .args(&args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let checkpoint = || {
-        roll_folder(&killed.join("tmp"))
-            .map(|p| p.join("checkpoint.json"))
-            .filter(|p| p.exists())
-    };
-    let start = Instant::now();
-    while checkpoint().is_none() {
-        assert!(start.elapsed() < Duration::from_secs(300), "no checkpoint written");
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the study ended before a checkpoint"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    std::thread::sleep(Duration::from_millis(50));
-    child.kill().unwrap();
-    child.wait().unwrap();
+    let checkpoint = || roll_folder(&killed.join("tmp")).is_some_and(|p| p.join("checkpoint.json").exists());
+    kill_after_checkpoint(&args, checkpoint, Duration::from_secs(300), Duration::from_millis(50));
     if roll_folder(&killed.join("cases")).is_some() {
         // The roll finished before the kill (a very fast machine): nothing to resume.
         return;

@@ -7,7 +7,9 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{adhesim, assert_fails_with, assert_ok, read_json, scenarios_dir, sweeps_dir, write, BIN};
+use common::{
+    adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, sweeps_dir, write, BIN,
+};
 
 /// Eight cases of a few tenths of a second each (64×64 grid).
 const SLOW_SWEEP: &str = r#"
@@ -420,12 +422,6 @@ fn a_case_killed_mid_run_resumes_from_its_checkpoint() {
 
     let killed = temp.path().join("killed");
     let args = run(&killed);
-    let mut child = Command::new(BIN)
-        .args(&args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
     let checkpoint = || -> Option<std::path::PathBuf> {
         let entries = std::fs::read_dir(killed.join("tmp")).ok()?;
         entries
@@ -433,18 +429,12 @@ fn a_case_killed_mid_run_resumes_from_its_checkpoint() {
             .map(|e| e.path().join("checkpoint.json"))
             .find(|p| p.exists())
     };
-    let start = Instant::now();
-    while checkpoint().is_none() {
-        assert!(start.elapsed() < Duration::from_secs(120), "no checkpoint written");
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the case ended before a checkpoint"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    std::thread::sleep(Duration::from_millis(100));
-    child.kill().unwrap();
-    child.wait().unwrap();
+    kill_after_checkpoint(
+        &args,
+        || checkpoint().is_some(),
+        Duration::from_secs(120),
+        Duration::from_millis(100),
+    );
     if !finished_cases(&killed).is_empty() {
         // The case finished before the kill (a very fast machine): nothing to resume.
         return;

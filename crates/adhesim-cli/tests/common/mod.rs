@@ -137,3 +137,29 @@ pub fn npy_bytes(shape: (usize, usize), values: &[f64]) -> Vec<u8> {
     }
     bytes
 }
+
+/// Runs `adhesim ARGS` and kills it (SIGKILL) `settle` after `checkpoint` first finds a
+/// mid-run checkpoint (within `limit`; the command must not end before).
+pub fn kill_after_checkpoint(
+    args: &[String],
+    checkpoint: impl Fn() -> bool,
+    limit: std::time::Duration,
+    settle: std::time::Duration,
+) {
+    use std::time::{Duration, Instant};
+    let mut child = Command::new(BIN)
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !checkpoint() {
+        assert!(start.elapsed() < limit, "no checkpoint written");
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before a checkpoint");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    std::thread::sleep(settle);
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
