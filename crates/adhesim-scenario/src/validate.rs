@@ -2,7 +2,7 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
-use crate::cohesive::{softening_resolution_warning, zone_resolution_warning};
+use crate::cohesive::{translation_pinning_warning, zone_resolution_warning};
 use crate::error::ScenarioError;
 use crate::guards::{resolution_warnings, step_count};
 use crate::model::*;
@@ -115,11 +115,12 @@ impl ScenarioFile {
             &indenter,
             material.contact_modulus(),
         ));
-        warnings.extend(softening_resolution_warning(
+        let kind = self.protocol.kind();
+        warnings.extend(translation_pinning_warning(
             &self.adhesion,
             &grid,
             material.contact_modulus(),
-            self.protocol.kind().is_translation(),
+            kind.is_translation().then(|| kind.name()),
         ));
         for map in roughness.iter().chain(&substrate_roughness) {
             warnings.extend(map.warnings.iter().cloned());
