@@ -169,13 +169,13 @@ fn write_curve(path: &str, records: &[StepRecord]) {
     let mut file = std::io::BufWriter::new(std::fs::File::create(path).expect("curve file"));
     writeln!(
         file,
-        "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached"
+        "step,depth,force_normal,contact_elements,radius,solves,cg_iterations,fft_pairs,attached,detached,attachment_rounds"
     )
     .expect("write");
     for r in records {
         writeln!(
             file,
-            "{},{:e},{:e},{},{:e},{},{},{},{},{}",
+            "{},{:e},{:e},{},{:e},{},{},{},{},{},{}",
             r.step,
             r.depth,
             r.force_normal,
@@ -185,7 +185,8 @@ fn write_curve(path: &str, records: &[StepRecord]) {
             r.report.cg_iterations,
             r.report.operator_applications,
             r.report.attached,
-            r.report.detached
+            r.report.detached,
+            r.report.attachment_rounds
         )
         .expect("write");
     }
