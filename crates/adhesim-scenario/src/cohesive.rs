@@ -172,10 +172,17 @@ pub(crate) fn zone_resolution_warning(
     // The longer element side: the coarser direction decides the resolution.
     let delta = grid.dx().max(grid.dy());
     let elements = width / delta;
+    // The first-order estimate +0.4·Δ/(c − a) was measured down to about one element; below,
+    // the zone is not resolved at all and no percentage is meaningful.
+    let error = if elements >= 1.0 {
+        format!("may be too large by up to about {:.0} %", 40.0 / elements)
+    } else {
+        "is not Maugis': with the zone inside one element each element detaches at sigma0 like a stress criterion"
+            .into()
+    };
     (elements < MIN_ZONE_ELEMENTS).then(|| {
         format!(
-            "the cohesive zone at Maugis' pull-off (c - a = {width:.4e}, adhesion.cohesive_stress = {stress}) spans {elements:.1} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ZONE_ELEMENTS}: the pull-off force may be too large by up to about {:.0} % (first order in the element size, docs/validation.md §10); raise grid.n or lower grid.size",
-            40.0 / elements
+            "the cohesive zone at Maugis' pull-off (c - a = {width:.4e}, adhesion.cohesive_stress = {stress}) spans {elements:.1} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ZONE_ELEMENTS}: the pull-off force {error} (first order in the element size, docs/validation.md §10); raise grid.n or lower grid.size"
         )
     })
 }
@@ -222,6 +229,31 @@ pub(crate) fn dugdale_pinning_per_width(cohesive_stress: f64, element: f64, cont
     4.0 * cohesive_stress * cohesive_stress * element / (std::f64::consts::PI * contact_modulus)
 }
 
+/// Elements across Dugdale's zone ℓ below which the pinning estimate was not measured
+/// (0.78 of it at ℓ = 0.5Δ, 0.88–1.11 from 1Δ, docs/validation.md §15).
+const MIN_PINNING_ESTIMATE_ELEMENTS: f64 = 0.5;
+
+/// The caveat appended to the pinning estimate when ℓ spans fewer than
+/// [`MIN_PINNING_ESTIMATE_ELEMENTS`] elements.
+fn pinning_caveat(zone_elements: f64) -> String {
+    if zone_elements < MIN_PINNING_ESTIMATE_ELEMENTS {
+        format!(
+            " (here l spans {zone_elements:.2e} elements, fewer than {MIN_PINNING_ESTIMATE_ELEMENTS}, where the estimate was not measured: each element then detaches at sigma0 like a stress criterion)"
+        )
+    } else {
+        String::new()
+    }
+}
+
+/// The ratio of two forces for a message: two decimals, or a power of ten when far from 1.
+fn ratio_text(ratio: f64) -> String {
+    if (0.01..100.0).contains(&ratio.abs()) {
+        format!("{ratio:.2}")
+    } else {
+        format!("{ratio:.2e}")
+    }
+}
+
 /// A warning when a translation (roll, slide, translate) runs a law whose zone's edge the
 /// grid pins: Dugdale always ([`dugdale_pinning_per_width`]); the trapezoidal law when its
 /// softening length s·ℓ spans fewer than [`MIN_SOFTENING_ELEMENTS`] elements.
@@ -238,9 +270,10 @@ pub(crate) fn translation_pinning_warning(
     let delta = grid.dx().max(grid.dy());
     match law_name(section) {
         LawName::Dugdale => Some(format!(
-            "adhesion.law = \"dugdale\" with protocol.kind = \"{kind}\": an element carries sigma0 or nothing, so the zone's edge moves by whole elements and the grid pins it, a spurious tangential force of about gamma0*2b*delta/l = {:.4e} times the contact width 2b (l = pi*E*gamma0/(4*sigma0^2) = {length:.4e} spans {:.2} elements of {delta:.4e}; first order in the element size, measured 0.88-1.11 of the estimate on a smooth sphere, whose true rolling resistance is 0, docs/validation.md §15); it can exceed the resistance of the surface itself: compare summary.json's estimate with the mean tangential force, or use adhesion.law = \"trapezoid\" with a resolved softening length (§16)",
+            "adhesion.law = \"dugdale\" with protocol.kind = \"{kind}\": an element carries sigma0 or nothing, so the zone's edge moves by whole elements and the grid pins it, a spurious tangential force of about gamma0*2b*delta/l = {:.4e} times the contact width 2b (l = pi*E*gamma0/(4*sigma0^2) = {length:.4e} spans {:.2} elements of {delta:.4e}; first order in the element size, measured 0.88-1.11 of the estimate on a smooth sphere, whose true rolling resistance is 0, docs/validation.md §15){}; it can exceed the resistance of the surface itself: compare summary.json's estimate with the mean tangential force, or use adhesion.law = \"trapezoid\" with a resolved softening length (§16)",
             dugdale_pinning_per_width(stress, delta, contact_modulus),
-            length / delta
+            length / delta,
+            pinning_caveat(length / delta)
         )),
         LawName::Trapezoid => {
             let fraction = section.softening_fraction?;
@@ -269,17 +302,20 @@ pub(crate) fn dugdale_pinning_estimate(scenario: &ValidScenario, results: &RunRe
     };
     let delta = scenario.grid.dx().max(scenario.grid.dy());
     let width = 2.0 * results.contact_half_width;
-    let pinning = width * dugdale_pinning_per_width(stress, delta, scenario.material.contact_modulus());
+    let modulus = scenario.material.contact_modulus();
+    let pinning = width * dugdale_pinning_per_width(stress, delta, modulus);
+    let zone = std::f64::consts::PI * modulus * scenario.file.adhesion.work_of_adhesion / (4.0 * stress * stress);
     let against = match results.mean_tangential_force {
         Some(force) if force.is_finite() && pinning > 0.0 => {
             format!(
-                "against the mean tangential force {force:.4e} ({:.2} of it)",
-                force / pinning
+                "against the mean tangential force {force:.4e} ({} of it)",
+                ratio_text(force / pinning)
             )
         }
         _ => "the run has no mean tangential force to set beside it".to_string(),
     };
     Some(format!(
-        "Dugdale's lattice pinning for this run's mean contact width 2b = {width:.4e}: gamma0*2b*delta/l = {pinning:.4e}, {against}; the part of the force the grid makes is first order in the element size (docs/validation.md §15)"
+        "Dugdale's lattice pinning for this run's mean contact width 2b = {width:.4e}: gamma0*2b*delta/l = {pinning:.4e}, {against}; the part of the force the grid makes is first order in the element size (docs/validation.md §15){}",
+        pinning_caveat(zone / delta)
     ))
 }

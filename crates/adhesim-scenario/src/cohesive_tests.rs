@@ -113,7 +113,15 @@ fn an_unresolved_zone_is_warned_about() {
     let coarse = loaded(text, &["grid.n=64".to_string()]);
     let warning = coarse.warnings.join("\n");
     assert!(
-        warning.contains("spans 5.4 elements") && warning.contains("grid.n"),
+        warning.contains("spans 5.4 elements") && warning.contains("grid.n") && warning.contains("about 7 %"),
+        "{warning}"
+    );
+    // A zone inside one element gets no percentage (the first-order estimate would give
+    // thousands of per cent): it says the law then acts as a stress criterion.
+    let inside = loaded(text, &["adhesion.cohesive_stress=100".to_string()]);
+    let warning = inside.warnings.join("\n");
+    assert!(
+        warning.contains("stress criterion") && !warning.contains(" %"),
         "{warning}"
     );
 }
@@ -324,6 +332,23 @@ fn every_law_runs_under_translation_dugdale_with_its_pinning_warned() {
     )
     .unwrap();
     assert!(!pinning(&indentation), "{:?}", indentation.warnings);
+    // A zone far inside one element: the estimate is given with the caveat that it was
+    // not measured there.
+    let unresolved = load(
+        text,
+        "test",
+        Path::new("."),
+        &with(&["adhesion.law=\"dugdale\"", "adhesion.cohesive_stress=1e3"], "roll"),
+    )
+    .unwrap();
+    assert!(
+        unresolved
+            .warnings
+            .iter()
+            .any(|w| w.contains("the grid pins it") && w.contains("was not measured")),
+        "{:?}",
+        unresolved.warnings
+    );
 }
 
 /// Dugdale's rolling resistance on the smooth sphere of `fig6.toml` (amplitude 0, whose
