@@ -4,8 +4,8 @@
 Reads the runs' summary.json (performance) and the normal runs' record.json of
 `adhesim study` output (or of its snapshot under docs/data/paper/campaign/) and prints,
 per α, the translations' wall time, FFT pairs per step and the share of the approach, then
-the totals. A run resumed from a checkpoint reports the wall time of its last process only
-(its FFT pairs are the whole run's), so a study that was cut off reads low; runs without a
+the totals. A run resumed from a checkpoint reports the wall time of its last process only,
+but its phase times add up over the processes: the larger of the two is taken. Runs without a
 summary.json (studies before 2026-11-27 kept record.json only) are not counted.
 
     python3 scripts/study_times.py docs/data/paper/campaign/fig7_rolling_512
@@ -34,9 +34,8 @@ def main():
         approach = perf.get("phase_steps", {}).get("approach", 0)
         approach_seconds = perf.get("phase_seconds", {}).get("approach", 0.0)
         alpha_index = int(name.split("-")[1])
-        by_alpha.setdefault(alpha_index, []).append(
-            (perf["wall_seconds"], perf["fft_pairs_per_step"], approach, approach_seconds)
-        )
+        seconds = max(perf["wall_seconds"], sum(perf.get("phase_seconds", {}).values()))
+        by_alpha.setdefault(alpha_index, []).append((seconds, perf["fft_pairs_per_step"], approach, approach_seconds))
     total = 0.0
     runs = 0
     for alpha_index in sorted(by_alpha):
