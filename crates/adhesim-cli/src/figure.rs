@@ -20,6 +20,7 @@ use std::sync::OnceLock;
 
 mod axes;
 pub mod files;
+mod legend;
 
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 /// The family name the bundled font is registered under.
@@ -130,7 +131,8 @@ pub struct Panel {
     scientific_ticks: bool,
     include_y: Vec<f64>,
     guides_y: Vec<f64>,
-    legend: SeriesLabelPosition,
+    /// Where the legend goes; None: the emptiest corner ([`legend::emptiest_corner`]).
+    legend: Option<SeriesLabelPosition>,
 }
 
 impl Panel {
@@ -148,7 +150,7 @@ impl Panel {
             scientific_ticks: false,
             include_y: Vec::new(),
             guides_y: Vec::new(),
-            legend: SeriesLabelPosition::UpperLeft,
+            legend: None,
         }
     }
 
@@ -203,9 +205,9 @@ impl Panel {
         self
     }
 
-    /// Where the legend goes [default: upper left].
+    /// Where the legend goes [default: the corner that covers the fewest data].
     pub fn legend_at(mut self, position: SeriesLabelPosition) -> Self {
-        self.legend = position;
+        self.legend = Some(position);
         self
     }
 
@@ -386,10 +388,21 @@ where
             add_legend(drawn, &series.label, series.mark, series.colour);
         }
     }
-    if panel.series.iter().any(|s| !s.label.is_empty() && !s.points.is_empty()) {
+    let labelled: Vec<&str> = panel
+        .series
+        .iter()
+        .filter(|s| !s.label.is_empty() && !s.points.is_empty())
+        .map(|s| s.label.as_str())
+        .collect();
+    if !labelled.is_empty() {
+        let longest = labelled.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+        let position = panel
+            .legend
+            .clone()
+            .unwrap_or_else(|| legend::emptiest_corner(panel, (x0, x1), (y0, y1), labelled.len(), longest));
         chart
             .configure_series_labels()
-            .position(panel.legend.clone())
+            .position(position)
             .label_font((FAMILY, 13))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.3))
