@@ -388,18 +388,7 @@ where
             add_legend(drawn, &series.label, series.mark, series.colour);
         }
     }
-    let labelled: Vec<&str> = panel
-        .series
-        .iter()
-        .filter(|s| !s.label.is_empty() && !s.points.is_empty())
-        .map(|s| s.label.as_str())
-        .collect();
-    if !labelled.is_empty() {
-        let longest = labelled.iter().map(|l| l.chars().count()).max().unwrap_or(0);
-        let position = panel
-            .legend
-            .clone()
-            .unwrap_or_else(|| legend::emptiest_corner(panel, (x0, x1), (y0, y1), labelled.len(), longest));
+    if let Some(position) = legend::position(panel, (x0, x1), (y0, y1)) {
         chart
             .configure_series_labels()
             .position(position)

@@ -15,10 +15,27 @@ const CORNERS: [SeriesLabelPosition; 4] = [
 /// Samples taken along each segment of a line, so that a line through a corner counts.
 const SAMPLES_PER_SEGMENT: usize = 16;
 
+/// Where the legend of `panel` goes on the plot area x in `x_range`, y in `y_range`: where
+/// the panel says, else [`emptiest_corner`]; None when no drawn series has a label.
+pub(super) fn position(panel: &Panel, x_range: (f64, f64), y_range: (f64, f64)) -> Option<SeriesLabelPosition> {
+    let labels = panel
+        .series
+        .iter()
+        .filter(|s| !s.label.is_empty() && !s.points.is_empty());
+    let count = labels.clone().count();
+    let longest = labels.map(|s| s.label.chars().count()).max()?;
+    Some(
+        panel
+            .legend
+            .clone()
+            .unwrap_or_else(|| emptiest_corner(panel, x_range, y_range, count, longest)),
+    )
+}
+
 /// The corner of the plot area (x in `x_range`, y in `y_range`, drawn on log axes where
 /// `log_x`, `log_y`) whose legend box, of `labels` lines of up to `longest` characters,
 /// covers the fewest points of the panel's series (lines sampled along their segments).
-pub(super) fn emptiest_corner(
+fn emptiest_corner(
     panel: &Panel,
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
@@ -39,7 +56,8 @@ pub(super) fn emptiest_corner(
     let mut counts = [0usize; 4];
     let mut count = |x: f64, y: f64| {
         let (u, v) = (scale(x, (x0, x1), panel.log_x), scale(y, (y0, y1), panel.log_y));
-        if !(u.is_finite() && v.is_finite()) || !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
+        // A NaN or infinite coordinate lies in no range.
+        if !((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)) {
             return;
         }
         let (left, right, top, bottom) = (u <= width, u >= 1.0 - width, v >= 1.0 - height, v <= height);
