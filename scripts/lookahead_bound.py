@@ -87,31 +87,41 @@ def neighbours(contact):
     return out & ~contact
 
 
-def main():
-    n, approach_steps = int(sys.argv[1]), int(sys.argv[2])
-    layers = [int(a) for a in sys.argv[3].split(",")]
-    # The Fig. 1 wavy sphere: R = E* = 1, L = 0.8, lambda = 0.05, h = 0.0025, to 15|d_JKR|.
-    size, gamma, wavelength, amplitude = 0.8, 6.16850275068085e-4, 0.05, 0.0025
-    dx = size / n
-    x = (np.arange(n) - n / 2 + 0.5) * dx
-    xx, yy = np.meshgrid(x, x, indexing="ij")
-    z = (xx**2 + yy**2) / 2 + amplitude * np.sin(2 * np.pi * xx / wavelength) * np.sin(2 * np.pi * yy / wavelength)
-    z -= z.min()
-    critical = np.sqrt(gamma / (0.473201004409338 * dx))  # Pohrt & Popov's detachment stress
-    d_jkr = (3 * np.pi**2 * gamma**2 / 64) ** (1 / 3)
-    space = HalfSpace(n, dx)
+class Fig1:
+    """The Fig. 1 wavy sphere on an n x n grid: R = E* = 1, L = 0.8, lambda = 0.05,
+    h = 0.0025, gamma0 = 6.1685e-4, and its all-violator peel."""
 
-    def peel(contact, depth, p):
+    def __init__(self, n):
+        size, gamma, wavelength, amplitude = 0.8, 6.16850275068085e-4, 0.05, 0.0025
+        dx = size / n
+        x = (np.arange(n) - n / 2 + 0.5) * dx
+        xx, yy = np.meshgrid(x, x, indexing="ij")
+        waves = amplitude * np.sin(2 * np.pi * xx / wavelength) * np.sin(2 * np.pi * yy / wavelength)
+        self.z = (xx**2 + yy**2) / 2 + waves
+        self.z -= self.z.min()
+        self.critical = np.sqrt(gamma / (0.473201004409338 * dx))  # Pohrt & Popov's detachment stress
+        self.d_jkr = (3 * np.pi**2 * gamma**2 / 64) ** (1 / 3)
+        self.space = HalfSpace(n, dx)
+
+    def peel(self, contact, depth, p):
+        """The largest stable subset of `contact` (all violators per round): set, p, u, solves."""
         contact = contact.copy()
         solves = 0
         while True:
-            p, u = solve(space, depth - z, contact, p)
+            p, u = solve(self.space, depth - self.z, contact, p)
             solves += 1
-            violators = contact & (p < -critical)
+            violators = contact & (p < -self.critical)
             if not violators.any():
                 return contact, p, u, solves
             contact &= ~violators
             p = np.where(violators, 0.0, p)
+
+
+def main():
+    n, approach_steps = int(sys.argv[1]), int(sys.argv[2])
+    layers = [int(a) for a in sys.argv[3].split(",")]
+    problem = Fig1(n)
+    z, d_jkr, peel = problem.z, problem.d_jkr, problem.peel
 
     def reach(contact, k, banned):
         domain = contact.copy()

@@ -11,27 +11,11 @@ fixed point, and the end is a fixed point: the same contact set as the trial-rin
 Needs numpy; the solver and rule replica of scripts/lookahead_bound.py."""
 import sys
 import numpy as np
-from lookahead_bound import HalfSpace, solve, neighbours
+from lookahead_bound import Fig1, neighbours
 
 n, approach_steps, reach = int(sys.argv[1]), int(sys.argv[2]), int(sys.argv[3])
-size, gamma, wavelength, amplitude = 0.8, 6.16850275068085e-4, 0.05, 0.0025
-dx = size / n
-x = (np.arange(n) - n / 2 + 0.5) * dx
-xx, yy = np.meshgrid(x, x, indexing="ij")
-z = (xx**2 + yy**2) / 2 + amplitude * np.sin(2 * np.pi * xx / wavelength) * np.sin(2 * np.pi * yy / wavelength)
-z -= z.min()
-critical = np.sqrt(gamma / (0.473201004409338 * dx))
-d_jkr = (3 * np.pi**2 * gamma**2 / 64) ** (1 / 3)
-space = HalfSpace(n, dx)
-
-def peel(contact, depth, p):
-    contact = contact.copy(); solves = 0
-    while True:
-        p, u = solve(space, depth - z, contact, p); solves += 1
-        v = contact & (p < -critical)
-        if not v.any():
-            return contact, p, u, solves
-        contact &= ~v; p = np.where(v, 0.0, p)
+problem = Fig1(n)
+z, d_jkr, peel = problem.z, problem.d_jkr, problem.peel
 
 def dilate(mask, r):
     out = mask.copy()
