@@ -131,7 +131,7 @@ pub struct Panel {
     scientific_ticks: bool,
     include_y: Vec<f64>,
     guides_y: Vec<f64>,
-    /// Where the legend goes; None: the emptiest corner ([`legend::emptiest_corner`]).
+    /// Where the legend goes; None: the corner that covers the fewest data (`legend::position`).
     legend: Option<SeriesLabelPosition>,
 }
 

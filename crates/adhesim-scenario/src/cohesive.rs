@@ -175,14 +175,17 @@ pub(crate) fn zone_resolution_warning(
     // The first-order estimate +0.4·Δ/(c − a) was measured down to about one element; below,
     // the zone is not resolved at all and no percentage is meaningful.
     let error = if elements >= 1.0 {
-        format!("may be too large by up to about {:.0} %", 40.0 / elements)
+        format!(
+            "may be too large by up to about {:.0} % (first order in the element size, docs/validation.md §10)",
+            40.0 / elements
+        )
     } else {
-        "is not Maugis': with the zone inside one element each element detaches at sigma0 like a stress criterion"
+        "is not Maugis': with the zone inside one element each element detaches at sigma0 like a stress criterion (docs/validation.md §10)"
             .into()
     };
     (elements < MIN_ZONE_ELEMENTS).then(|| {
         format!(
-            "the cohesive zone at Maugis' pull-off (c - a = {width:.4e}, adhesion.cohesive_stress = {stress}) spans {elements:.1} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ZONE_ELEMENTS}: the pull-off force {error} (first order in the element size, docs/validation.md §10); raise grid.n or lower grid.size"
+            "the cohesive zone at Maugis' pull-off (c - a = {width:.4e}, adhesion.cohesive_stress = {stress}) spans {elements:.1} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_ZONE_ELEMENTS}: the pull-off force {error}; raise grid.n or lower grid.size"
         )
     })
 }
