@@ -223,6 +223,13 @@ pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, c
 /// and 1 element, and below 1e-7 of it from 1.5 (docs/validation.md §16).
 pub(crate) const MIN_SOFTENING_ELEMENTS: f64 = 1.0;
 
+/// The plane-strain Dugdale zone at a crack tip, ℓ = πE*γ0/(4σ0²) (Maugis 2000, *Contact,
+/// Adhesion and Rupture of Elastic Solids*, §5): what a cohesive stress σ0 needs to carry
+/// the stress intensity √(2E*γ0).
+pub(crate) fn dugdale_zone_length(work_of_adhesion: f64, cohesive_stress: f64, contact_modulus: f64) -> f64 {
+    std::f64::consts::PI * contact_modulus * work_of_adhesion / (4.0 * cohesive_stress * cohesive_stress)
+}
+
 /// Dugdale's lattice pinning per unit contact width, γ0·Δ/ℓ = 4σ0²Δ/(πE*) with
 /// ℓ = πE*γ0/(4σ0²): an element carries σ0 or nothing, so under translation the zone's edge
 /// moves by whole elements, and a contact 2b wide meets a spurious tangential resistance of
@@ -269,7 +276,7 @@ pub(crate) fn translation_pinning_warning(
     let kind = translation?;
     let stress = section.cohesive_stress?;
     let gamma = section.work_of_adhesion;
-    let length = std::f64::consts::PI * contact_modulus * gamma / (4.0 * stress * stress);
+    let length = dugdale_zone_length(gamma, stress, contact_modulus);
     let delta = grid.dx().max(grid.dy());
     match law_name(section) {
         LawName::Dugdale => Some(format!(
@@ -307,7 +314,7 @@ pub(crate) fn dugdale_pinning_estimate(scenario: &ValidScenario, results: &RunRe
     let width = 2.0 * results.contact_half_width;
     let modulus = scenario.material.contact_modulus();
     let pinning = width * dugdale_pinning_per_width(stress, delta, modulus);
-    let zone = std::f64::consts::PI * modulus * scenario.file.adhesion.work_of_adhesion / (4.0 * stress * stress);
+    let zone = dugdale_zone_length(scenario.file.adhesion.work_of_adhesion, stress, modulus);
     let against = match results.mean_tangential_force {
         Some(force) if force.is_finite() && pinning > 0.0 => {
             format!(

@@ -4,7 +4,6 @@ use super::tables::{AlphaRow, Row};
 use crate::figure::{Mark, Panel, Series, INK, PALETTE};
 use crate::tangential_plots::write_panels;
 use anyhow::Result;
-use plotters::chart::SeriesLabelPosition;
 use plotters::style::RGBColor;
 use std::path::Path;
 
@@ -96,9 +95,6 @@ pub fn rolling_plots(dir: &Path, rows: &[Row], alphas: &[AlphaRow]) -> Result<Ve
             "γ / γ0",
         )
         .include_y(0.0)
-        // γ1 rises with α, so the lower right corner is empty; the upper left holds the
-        // small-α γ2 and γ3 points.
-        .legend_at(SeriesLabelPosition::LowerRight)
         .with(
             GAMMAS
                 .iter()
