@@ -11,6 +11,7 @@
 
 use super::dot;
 use crate::elastic::influence::love_coefficient;
+use rayon::prelude::*;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
 /// The tension of a peeling front is shed far along the front: 8, 12 and 16 give 113, 101
@@ -44,7 +45,23 @@ pub(crate) struct PeelPredictor {
     matrix: Vec<f64>,
     /// Tension rise per unit tension released, per window element.
     rises: Vec<f64>,
+    /// Windows of a planned batch of releases ([`plan_batch`](Self::plan_batch)), in order.
+    planned: Vec<Planned>,
+    /// Per element: its place in the planned batch plus one, 0 if not in it.
+    batch_rank: Vec<u32>,
+    /// One dense matrix per thread for the planned windows.
+    matrices: Vec<Vec<f64>>,
 }
+
+/// The window of one release of a planned batch, and its rises per unit tension released.
+#[derive(Default)]
+struct Planned {
+    window: Vec<(i64, i64)>,
+    rises: Vec<f64>,
+}
+
+/// Batches shorter than this are replayed one release at a time (the same bits either way).
+const PLAN_MIN_BATCH: usize = 8;
 
 impl PeelPredictor {
     pub(crate) fn new(len: usize) -> Self {
@@ -65,30 +82,22 @@ impl PeelPredictor {
             window: Vec::new(),
             matrix: Vec::new(),
             rises: Vec::new(),
+            planned: Vec::new(),
+            batch_rank: vec![0; len],
+            matrices: vec![Vec::new(); rayon::current_num_threads().max(1)],
         }
     }
 
+    #[cfg(test)]
     fn kernel(&self, a: i64, b: i64) -> f64 {
-        let side = 2 * SPAN + 1;
-        self.kernel[((a + SPAN) * side + b + SPAN) as usize]
+        kernel_at(&self.kernel, a, b)
     }
 
     /// Whether contact element (row, column) lies within `BAND` of a free element (cached).
     fn in_strip(&mut self, n: usize, row: i64, column: i64, contact: &impl Fn(usize) -> bool) -> bool {
         let k = row as usize * n + column as usize;
         if self.near_free[k] == 0 {
-            let mut near = false;
-            'search: for a in -BAND..=BAND {
-                for b in -BAND..=BAND {
-                    let (r, c) = (row + a, column + b);
-                    let inside = r >= 0 && c >= 0 && (r as usize) < n && (c as usize) < n;
-                    if inside && !contact(r as usize * n + c as usize) {
-                        near = true;
-                        break 'search;
-                    }
-                }
-            }
-            self.near_free[k] = if near { 1 } else { 2 };
+            self.near_free[k] = if near_free(n, row, column, contact) { 1 } else { 2 };
             self.touched.push(k);
         }
         self.near_free[k] == 1
@@ -99,19 +108,7 @@ impl PeelPredictor {
     /// holds the strip's contact elements within `RADIUS` (at most `MAX_WINDOW`, the nearest)
     /// and their tension rises per unit tension released.
     pub(crate) fn release(&mut self, n: usize, centre: (i64, i64), contact: impl Fn(usize) -> bool) {
-        // The released element is free now: its strip neighbours are near a free element.
-        for a in -BAND..=BAND {
-            for b in -BAND..=BAND {
-                let (r, c) = (centre.0 + a, centre.1 + b);
-                if r >= 0 && c >= 0 && (r as usize) < n && (c as usize) < n {
-                    let k = r as usize * n + c as usize;
-                    if self.near_free[k] == 0 {
-                        self.touched.push(k);
-                    }
-                    self.near_free[k] = 1;
-                }
-            }
-        }
+        self.mark_released(n, centre);
         self.window.clear();
         for index in 0..self.disk.len() {
             let (row, column) = (centre.0 + self.disk[index].0, centre.1 + self.disk[index].1);
@@ -123,20 +120,82 @@ impl PeelPredictor {
                 }
             }
         }
-        let size = self.window.len();
-        self.matrix.clear();
-        self.rises.clear();
-        self.matrix.resize(size * size, 0.0);
-        for (i, &(ri, ci)) in self.window.iter().enumerate() {
-            // Lower triangle only: the factorisation reads nothing else.
-            for (j, &(rj, cj)) in self.window[..=i].iter().enumerate() {
-                self.matrix[i * size + j] = self.kernel(ri - rj, ci - cj);
-            }
-            self.rises.push(self.kernel(ri - centre.0, ci - centre.1));
+        solve_rises(&self.kernel, &self.window, centre, &mut self.matrix, &mut self.rises);
+    }
+
+    /// Computes, on all threads, the windows of releasing `batch` one after the other from
+    /// `contact` (the j-th with the first j released), as [`release`](Self::release) would
+    /// in that order: a window depends on which elements are in contact, never on the
+    /// tensions, and the strip cache that `release` keeps equals a fresh look at the
+    /// contact (a release marks its own strip). The same bits, in parallel. Returns whether
+    /// the batch was planned (short batches are not: replay them with `release`).
+    pub(crate) fn plan_batch(&mut self, n: usize, batch: &[usize], contact: &[bool]) -> bool {
+        if batch.len() < PLAN_MIN_BATCH {
+            return false;
         }
-        if size > 0 {
-            factorise(&mut self.matrix, size);
-            substitute(&self.matrix, size, &mut self.rises);
+        for (place, &k) in batch.iter().enumerate() {
+            self.batch_rank[k] = place as u32 + 1;
+        }
+        if self.planned.len() < batch.len() {
+            self.planned.resize_with(batch.len(), Planned::default);
+        }
+        let per_thread = batch.len().div_ceil(self.matrices.len());
+        let (kernel, disk, rank) = (&self.kernel, &self.disk, &self.batch_rank);
+        self.planned[..batch.len()]
+            .par_chunks_mut(per_thread)
+            .zip(batch.par_chunks(per_thread))
+            .zip(self.matrices.par_iter_mut())
+            .enumerate()
+            .for_each(|(chunk, ((planned, released), matrix))| {
+                for (offset, (slot, &k)) in planned.iter_mut().zip(released).enumerate() {
+                    // Released so far: batch[..=place].
+                    let place = (chunk * per_thread + offset) as u32 + 1;
+                    let in_contact = |e: usize| contact[e] && !(rank[e] != 0 && rank[e] <= place);
+                    let centre = ((k / n) as i64, (k % n) as i64);
+                    slot.window.clear();
+                    for &(a, b) in disk {
+                        let (row, column) = (centre.0 + a, centre.1 + b);
+                        let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
+                        if inside
+                            && in_contact(row as usize * n + column as usize)
+                            && near_free(n, row, column, &in_contact)
+                        {
+                            slot.window.push((row, column));
+                            if slot.window.len() == MAX_WINDOW {
+                                break;
+                            }
+                        }
+                    }
+                    solve_rises(kernel, &slot.window, centre, matrix, &mut slot.rises);
+                }
+            });
+        for &k in batch {
+            self.batch_rank[k] = 0;
+        }
+        true
+    }
+
+    /// The window of the `place`-th release of the planned batch, as [`window`](Self::window).
+    pub(crate) fn planned_window(&self, place: usize) -> impl Iterator<Item = ((i64, i64), f64)> + '_ {
+        let planned = &self.planned[place];
+        planned.window.iter().cloned().zip(planned.rises.iter().cloned())
+    }
+
+    /// The released element is free now: its strip neighbours are near a free element
+    /// (the cache kept for [`release`](Self::release); also called for each release of a
+    /// planned batch, for the releases replayed after it).
+    pub(crate) fn mark_released(&mut self, n: usize, centre: (i64, i64)) {
+        for a in -BAND..=BAND {
+            for b in -BAND..=BAND {
+                let (r, c) = (centre.0 + a, centre.1 + b);
+                if r >= 0 && c >= 0 && (r as usize) < n && (c as usize) < n {
+                    let k = r as usize * n + c as usize;
+                    if self.near_free[k] == 0 {
+                        self.touched.push(k);
+                    }
+                    self.near_free[k] = 1;
+                }
+            }
         }
     }
 
@@ -151,6 +210,45 @@ impl PeelPredictor {
             self.near_free[k] = 0;
         }
         self.touched.clear();
+    }
+}
+
+fn kernel_at(kernel: &[f64], a: i64, b: i64) -> f64 {
+    let side = 2 * SPAN + 1;
+    kernel[((a + SPAN) * side + b + SPAN) as usize]
+}
+
+/// Whether contact element (row, column) lies within `BAND` (Chebyshev) of a free element.
+fn near_free(n: usize, row: i64, column: i64, contact: &impl Fn(usize) -> bool) -> bool {
+    for a in -BAND..=BAND {
+        for b in -BAND..=BAND {
+            let (r, c) = (row + a, column + b);
+            let inside = r >= 0 && c >= 0 && (r as usize) < n && (c as usize) < n;
+            if inside && !contact(r as usize * n + c as usize) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// The rises of the window's elements per unit tension released at `centre`: the dense
+/// system K_AA δt_A = K_Av (lower triangle assembled, Cholesky, substitution).
+fn solve_rises(kernel: &[f64], window: &[(i64, i64)], centre: (i64, i64), matrix: &mut Vec<f64>, rises: &mut Vec<f64>) {
+    let size = window.len();
+    matrix.clear();
+    rises.clear();
+    matrix.resize(size * size, 0.0);
+    for (i, &(ri, ci)) in window.iter().enumerate() {
+        // Lower triangle only: the factorisation reads nothing else.
+        for (j, &(rj, cj)) in window[..=i].iter().enumerate() {
+            matrix[i * size + j] = kernel_at(kernel, ri - rj, ci - cj);
+        }
+        rises.push(kernel_at(kernel, ri - centre.0, ci - centre.1));
+    }
+    if size > 0 {
+        factorise(matrix, size);
+        substitute(matrix, size, rises);
     }
 }
 
@@ -210,5 +308,41 @@ mod tests {
         assert!(neighbour > 0.0, "{neighbour}");
         predictor.finish();
         assert!(predictor.near_free.iter().all(|&v| v == 0));
+    }
+
+    /// A planned batch gives every release the window and rises, to the bit, that the
+    /// one-at-a-time replay gives in the same order: on a rough contact (a disc with
+    /// holes), releasing 40 elements of its edge, neighbours of each other included.
+    #[test]
+    fn a_planned_batch_replays_the_releases_bit_for_bit() {
+        let n = 64;
+        let mut contact: Vec<bool> = (0..n * n)
+            .map(|k| {
+                let (r, c) = ((k / n) as f64 - 31.5, (k % n) as f64 - 31.5);
+                r * r + c * c < 26.0 * 26.0 && (k * 2_654_435_761) % 97 > 6
+            })
+            .collect();
+        let edge: Vec<usize> = (0..n * n)
+            .filter(|&k| contact[k] && near_free(n, (k / n) as i64, (k % n) as i64, &|e: usize| contact[e]))
+            .step_by(3)
+            .take(40)
+            .collect();
+        assert_eq!(edge.len(), 40);
+        let mut planner = PeelPredictor::new(n * n);
+        assert!(planner.plan_batch(n, &edge, &contact));
+        let mut serial = PeelPredictor::new(n * n);
+        for (place, &k) in edge.iter().enumerate() {
+            contact[k] = false;
+            serial.release(n, ((k / n) as i64, (k % n) as i64), |e| contact[e]);
+            let one: Vec<((i64, i64), u64)> = serial.window().map(|(w, r)| (w, r.to_bits())).collect();
+            let planned: Vec<((i64, i64), u64)> =
+                planner.planned_window(place).map(|(w, r)| (w, r.to_bits())).collect();
+            assert!(!one.is_empty());
+            assert_eq!(one, planned, "release {place} (element {k})");
+        }
+        serial.finish();
+        assert!(planner.batch_rank.iter().all(|&r| r == 0));
+        // Too short a batch is left to the one-at-a-time replay.
+        assert!(!planner.plan_batch(n, &edge[..PLAN_MIN_BATCH - 1], &contact));
     }
 }

@@ -284,6 +284,10 @@ impl AdhesiveSolver {
             return;
         };
         let start = std::time::Instant::now();
+        // The first batch (the violators of the solve) is released in this order whatever
+        // the tensions: its windows are computed ahead, on all threads (the same bits).
+        let planned = predictor.plan_batch(n, &peel.queue, &state.contact);
+        let batch = peel.queue.len();
         let mut head = 0;
         while head < peel.queue.len() {
             let released = peel.queue[head];
@@ -292,8 +296,18 @@ impl AdhesiveSolver {
             // Released for the window of the next ones; restored below.
             state.contact[released] = false;
             let centre = ((released / n) as i64, (released % n) as i64);
-            predictor.release(n, centre, |k| state.contact[k]);
-            for ((row, column), rise) in predictor.window() {
+            let from_plan = planned && head <= batch;
+            if from_plan {
+                predictor.mark_released(n, centre);
+            } else {
+                predictor.release(n, centre, |k| state.contact[k]);
+            }
+            let rises: &mut dyn Iterator<Item = ((i64, i64), f64)> = if from_plan {
+                &mut predictor.planned_window(head - 1)
+            } else {
+                &mut predictor.window()
+            };
+            for ((row, column), rise) in rises {
                 let k = row as usize * n + column as usize;
                 if !self.trial[k] {
                     continue;
