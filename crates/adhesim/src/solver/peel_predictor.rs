@@ -109,17 +109,11 @@ impl PeelPredictor {
     /// and their tension rises per unit tension released.
     pub(crate) fn release(&mut self, n: usize, centre: (i64, i64), contact: impl Fn(usize) -> bool) {
         self.mark_released(n, centre);
-        self.window.clear();
-        for index in 0..self.disk.len() {
-            let (row, column) = (centre.0 + self.disk[index].0, centre.1 + self.disk[index].1);
-            let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
-            if inside && contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact) {
-                self.window.push((row, column));
-                if self.window.len() == MAX_WINDOW {
-                    break;
-                }
-            }
-        }
+        let (mut window, disk) = (std::mem::take(&mut self.window), std::mem::take(&mut self.disk));
+        collect_window(&disk, n, centre, &mut window, |row, column| {
+            contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact)
+        });
+        (self.window, self.disk) = (window, disk);
         solve_rises(&self.kernel, &self.window, centre, &mut self.matrix, &mut self.rises);
     }
 
@@ -152,20 +146,9 @@ impl PeelPredictor {
                     let place = (chunk * per_thread + offset) as u32 + 1;
                     let in_contact = |e: usize| contact[e] && !(rank[e] != 0 && rank[e] <= place);
                     let centre = ((k / n) as i64, (k % n) as i64);
-                    slot.window.clear();
-                    for &(a, b) in disk {
-                        let (row, column) = (centre.0 + a, centre.1 + b);
-                        let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
-                        if inside
-                            && in_contact(row as usize * n + column as usize)
-                            && near_free(n, row, column, &in_contact)
-                        {
-                            slot.window.push((row, column));
-                            if slot.window.len() == MAX_WINDOW {
-                                break;
-                            }
-                        }
-                    }
+                    collect_window(disk, n, centre, &mut slot.window, |row, column| {
+                        in_contact(row as usize * n + column as usize) && near_free(n, row, column, &in_contact)
+                    });
                     solve_rises(kernel, &slot.window, centre, matrix, &mut slot.rises);
                 }
             });
@@ -210,6 +193,28 @@ impl PeelPredictor {
             self.near_free[k] = 0;
         }
         self.touched.clear();
+    }
+}
+
+/// The window of a release at `centre`: the offsets of `disk` (nearest first) inside the
+/// grid where `keep(row, column)` (in contact, in the strip), at most `MAX_WINDOW`.
+fn collect_window(
+    disk: &[(i64, i64)],
+    n: usize,
+    centre: (i64, i64),
+    window: &mut Vec<(i64, i64)>,
+    mut keep: impl FnMut(i64, i64) -> bool,
+) {
+    window.clear();
+    for &(a, b) in disk {
+        let (row, column) = (centre.0 + a, centre.1 + b);
+        let inside = row >= 0 && column >= 0 && (row as usize) < n && (column as usize) < n;
+        if inside && keep(row, column) {
+            window.push((row, column));
+            if window.len() == MAX_WINDOW {
+                break;
+            }
+        }
     }
 }
 
