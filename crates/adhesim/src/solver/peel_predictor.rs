@@ -40,22 +40,21 @@ pub(crate) struct PeelPredictor {
     near_free: Vec<u8>,
     /// Elements whose `near_free` entry is set (reset by [`finish`](Self::finish)).
     touched: Vec<usize>,
-    /// The window: (row, column) of its elements.
-    window: Vec<(i64, i64)>,
+    /// The window of the last [`release`](Self::release) and its rises.
+    last: Released,
     matrix: Vec<f64>,
-    /// Tension rise per unit tension released, per window element.
-    rises: Vec<f64>,
     /// Windows of a planned batch of releases ([`plan_batch`](Self::plan_batch)), in order.
-    planned: Vec<Planned>,
+    planned: Vec<Released>,
     /// Per element: its place in the planned batch plus one, 0 if not in it.
     batch_rank: Vec<u32>,
     /// One dense matrix per thread for the planned windows.
     matrices: Vec<Vec<f64>>,
 }
 
-/// The window of one release of a planned batch, and its rises per unit tension released.
+/// The window of one release, (row, column) of its elements, and their tension rises per
+/// unit tension released.
 #[derive(Default)]
-struct Planned {
+struct Released {
     window: Vec<(i64, i64)>,
     rises: Vec<f64>,
 }
@@ -79,9 +78,8 @@ impl PeelPredictor {
             disk,
             near_free: vec![0; len],
             touched: Vec::new(),
-            window: Vec::new(),
+            last: Released::default(),
             matrix: Vec::new(),
-            rises: Vec::new(),
             planned: Vec::new(),
             batch_rank: vec![0; len],
             matrices: vec![Vec::new(); rayon::current_num_threads().max(1)],
@@ -93,28 +91,34 @@ impl PeelPredictor {
         kernel_at(&self.kernel, a, b)
     }
 
-    /// Whether contact element (row, column) lies within `BAND` of a free element (cached).
-    fn in_strip(&mut self, n: usize, row: i64, column: i64, contact: &impl Fn(usize) -> bool) -> bool {
-        let k = row as usize * n + column as usize;
-        if self.near_free[k] == 0 {
-            self.near_free[k] = if near_free(n, row, column, contact) { 1 } else { 2 };
-            self.touched.push(k);
-        }
-        self.near_free[k] == 1
-    }
-
     /// Releases the element at `centre` (row, column) of an n×n grid from the contact given
     /// by `contact(k)` (which must already exclude it): afterwards [`window`](Self::window)
     /// holds the strip's contact elements within `RADIUS` (at most `MAX_WINDOW`, the nearest)
     /// and their tension rises per unit tension released.
     pub(crate) fn release(&mut self, n: usize, centre: (i64, i64), contact: impl Fn(usize) -> bool) {
         self.mark_released(n, centre);
-        let (mut window, disk) = (std::mem::take(&mut self.window), std::mem::take(&mut self.disk));
-        collect_window(&disk, n, centre, &mut window, |row, column| {
-            contact(row as usize * n + column as usize) && self.in_strip(n, row, column, &contact)
+        let Self {
+            kernel,
+            disk,
+            near_free: cache,
+            touched,
+            last,
+            matrix,
+            ..
+        } = self;
+        collect_window(disk, n, centre, &mut last.window, |row, column| {
+            let k = row as usize * n + column as usize;
+            if !contact(k) {
+                return false;
+            }
+            // In the strip: looked up once per replay (cached; releases mark their own).
+            if cache[k] == 0 {
+                cache[k] = if near_free(n, row, column, &contact) { 1 } else { 2 };
+                touched.push(k);
+            }
+            cache[k] == 1
         });
-        (self.window, self.disk) = (window, disk);
-        solve_rises(&self.kernel, &self.window, centre, &mut self.matrix, &mut self.rises);
+        solve_rises(kernel, &last.window, centre, matrix, &mut last.rises);
     }
 
     /// Computes, on all threads, the windows of releasing `batch` one after the other from
@@ -131,7 +135,7 @@ impl PeelPredictor {
             self.batch_rank[k] = place as u32 + 1;
         }
         if self.planned.len() < batch.len() {
-            self.planned.resize_with(batch.len(), Planned::default);
+            self.planned.resize_with(batch.len(), Released::default);
         }
         let per_thread = batch.len().div_ceil(self.matrices.len());
         let (kernel, disk, rank) = (&self.kernel, &self.disk, &self.batch_rank);
@@ -158,12 +162,6 @@ impl PeelPredictor {
         true
     }
 
-    /// The window of the `place`-th release of the planned batch, as [`window`](Self::window).
-    pub(crate) fn planned_window(&self, place: usize) -> impl Iterator<Item = ((i64, i64), f64)> + '_ {
-        let planned = &self.planned[place];
-        planned.window.iter().cloned().zip(planned.rises.iter().cloned())
-    }
-
     /// The released element is free now: its strip neighbours are near a free element
     /// (the cache kept for [`release`](Self::release); also called for each release of a
     /// planned batch, for the releases replayed after it).
@@ -182,9 +180,12 @@ impl PeelPredictor {
         }
     }
 
-    /// The window of the last release: (row, column) and tension rise per unit released.
-    pub(crate) fn window(&self) -> impl Iterator<Item = ((i64, i64), f64)> + '_ {
-        self.window.iter().cloned().zip(self.rises.iter().cloned())
+    /// A release's window, (row, column) and tension rise per unit released: of the last
+    /// [`release`](Self::release) (`planned` None) or of the release at that place of the
+    /// planned batch ([`plan_batch`](Self::plan_batch)).
+    pub(crate) fn window(&self, planned: Option<usize>) -> impl Iterator<Item = ((i64, i64), f64)> + '_ {
+        let released = planned.map_or(&self.last, |place| &self.planned[place]);
+        released.window.iter().cloned().zip(released.rises.iter().cloned())
     }
 
     /// Ends a replay: forgets the cached strip (the contact changes before the next one).
@@ -298,7 +299,7 @@ mod tests {
         let n = 32;
         // Contact: columns < 20; release (16, 19) on its edge.
         predictor.release(n, (16, 19), |k| k % n < 20 && k != 16 * n + 19);
-        let window: Vec<((i64, i64), f64)> = predictor.window().collect();
+        let window: Vec<((i64, i64), f64)> = predictor.window(None).collect();
         assert!(!window.is_empty());
         assert!(window.iter().all(|&((_, c), _)| (17..20).contains(&c)), "{window:?}");
         for &((ri, ci), _) in &window {
@@ -339,9 +340,8 @@ mod tests {
         for (place, &k) in edge.iter().enumerate() {
             contact[k] = false;
             serial.release(n, ((k / n) as i64, (k % n) as i64), |e| contact[e]);
-            let one: Vec<((i64, i64), u64)> = serial.window().map(|(w, r)| (w, r.to_bits())).collect();
-            let planned: Vec<((i64, i64), u64)> =
-                planner.planned_window(place).map(|(w, r)| (w, r.to_bits())).collect();
+            let one: Vec<((i64, i64), u64)> = serial.window(None).map(|(w, r)| (w, r.to_bits())).collect();
+            let planned: Vec<((i64, i64), u64)> = planner.window(Some(place)).map(|(w, r)| (w, r.to_bits())).collect();
             assert!(!one.is_empty());
             assert_eq!(one, planned, "release {place} (element {k})");
         }

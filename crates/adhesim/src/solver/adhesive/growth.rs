@@ -302,12 +302,7 @@ impl AdhesiveSolver {
             } else {
                 predictor.release(n, centre, |k| state.contact[k]);
             }
-            let rises: &mut dyn Iterator<Item = ((i64, i64), f64)> = if from_plan {
-                &mut predictor.planned_window(head - 1)
-            } else {
-                &mut predictor.window()
-            };
-            for ((row, column), rise) in rises {
+            for ((row, column), rise) in predictor.window(from_plan.then(|| head - 1)) {
                 let k = row as usize * n + column as usize;
                 if !self.trial[k] {
                     continue;
