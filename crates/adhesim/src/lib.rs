@@ -88,7 +88,11 @@ pub mod rng;
 pub mod solver;
 pub mod surface;
 
-pub use elastic::{ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator};
+pub use elastic::cerruti::ShearMaterial;
+pub use elastic::{
+    ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator, TangentialOperator,
+    TangentialOperatorError,
+};
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,
     TranslatingContact, Waviness, WavySphere,
@@ -97,11 +101,13 @@ pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
     IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
-    SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint, TranslationSummary,
+    Shear, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint,
+    TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,
-    CohesiveSolver, ContactState, Control, Detachment, Dugdale, Exponential, NestedActiveSet, NestedParams, SolveError,
-    SolveReport, StepReport, Trapezoid,
+    CohesiveSolver, Complementarity, ContactState, Control, Detachment, Dugdale, Exponential, FrictionLaw,
+    FrictionLawError, NestedActiveSet, NestedParams, SlipStatus, SolveError, SolveReport, StepReport, TangentialError,
+    TangentialParams, TangentialReport, TangentialSolver, TangentialState, Trapezoid,
 };
 pub use surface::{Amplitudes, PsdBin, RmsTarget, RoughSurface, SelfAffine, SurfaceError, SurfaceStatistics};

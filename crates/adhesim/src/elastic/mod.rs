@@ -1,18 +1,22 @@
-//! Linear elastic half-space: pressure → normal surface displacement.
+//! Linear elastic half-space: pressure → normal surface displacement; shear traction →
+//! tangential surface displacement ([`TangentialOperator`]).
 //!
 //! Sign convention: pressure p > 0 is compressive, displacement u > 0 points into the
 //! body. Both operators discretise Boussinesq's solution with uniform pressure on square
 //! elements and collocation at element centres.
 
+pub mod cerruti;
 mod free;
 pub mod influence;
 mod periodic;
 mod preconditioner;
 mod spectral;
+mod tangential;
 
 pub use free::FreeOperator;
 pub use periodic::{PeriodicKernel, PeriodicOperator};
 pub use preconditioner::SpectralPreconditioner;
+pub use tangential::{TangentialOperator, TangentialOperatorError};
 
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;

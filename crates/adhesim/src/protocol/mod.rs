@@ -6,10 +6,12 @@
 pub mod bit_string;
 mod checkpoint;
 mod indentation;
+mod shear;
 mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{IndentPulloff, ProtocolSummary};
+pub use shear::{contact_split, Shear, ShearSummary};
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
@@ -17,7 +19,7 @@ use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use crate::solver::{
     AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, Control, NestedActiveSet, NestedParams, SolveError,
-    SolveReport, StepReport,
+    SolveReport, StepReport, TangentialError,
 };
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -34,6 +36,8 @@ pub enum Phase {
     Roll,
     /// Sliding at fixed indentation.
     Slide,
+    /// Tangential shift with friction at fixed indentation.
+    Shear,
 }
 
 impl Phase {
@@ -44,6 +48,7 @@ impl Phase {
             Self::Retract => "retract",
             Self::Roll => "roll",
             Self::Slide => "slide",
+            Self::Shear => "shear",
         }
     }
 }
@@ -85,6 +90,22 @@ pub struct StepRecord {
     /// An element on the border of a free grid is in contact, or (a cohesive law) in its
     /// cohesive zone (domain too small).
     pub touches_border: bool,
+    /// Contact elements sticking (friction at the interface; 0 without).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub stick_elements: usize,
+    /// Contact elements slipping (friction at the interface; 0 without).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub slip_elements: usize,
+    /// Contact area ahead of the line through the indenter's axis perpendicular to the
+    /// shift (friction at the interface; 0 without).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub area_front: f64,
+    /// Contact area behind that line.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub area_rear: f64,
+    /// Energy dissipated by friction up to and including this step.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub cumulative_frictional_dissipation: f64,
 }
 
 impl StepRecord {
@@ -120,6 +141,7 @@ impl StepRecord {
             jumped: (report.attached + report.detached) > 0
                 && (report.force - report.force_before_change).abs() > jump_force_threshold,
             touches_border: grid.boundary() == Boundary::Free && state.touches_border(grid),
+            ..Self::default()
         }
     }
 }
@@ -180,6 +202,16 @@ pub enum ProtocolError {
         depth: f64,
         /// The solver's error.
         source: SolveError,
+    },
+    /// A tangential (friction) solve failed.
+    #[error("step {step} (shift {shift:e}): {source}")]
+    Tangential {
+        /// Step at which it failed.
+        step: usize,
+        /// The indenter's shift at that step.
+        shift: f64,
+        /// The tangential solver's error.
+        source: TangentialError,
     },
     /// The observer asked to stop.
     #[error("stopped by the observer at step {0}")]

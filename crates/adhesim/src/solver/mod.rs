@@ -14,6 +14,7 @@ mod local_peel;
 mod nested;
 mod peel_predictor;
 mod state;
+mod tangential;
 
 pub use adhesive::{
     critical_stress, detachment_element_size, AdhesiveCheckpoint, AdhesiveParams, AdhesiveSolver, Attachment,
@@ -26,6 +27,10 @@ pub use cohesive::{
 };
 pub use nested::{NestedActiveSet, NestedCheckpoint, NestedParams};
 pub use state::ContactState;
+pub use tangential::{
+    Complementarity, FrictionLaw, FrictionLawError, SlipStatus, TangentialError, TangentialParams, TangentialReport,
+    TangentialSolver, TangentialState,
+};
 
 use crate::elastic::ElasticOperator;
 use rayon::prelude::*;

@@ -1,0 +1,200 @@
+//! The tangential half-space operator: shear tractions → tangential surface displacements.
+
+use super::cerruti::{cerruti_rectangle, CerrutiCoefficients, ShearMaterial};
+use super::spectral::SpectralConvolution;
+use crate::grid::{Boundary, Grid};
+use thiserror::Error;
+
+/// Why a tangential operator cannot be built.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum TangentialOperatorError {
+    /// Periodic grids leave the mean tangential displacement undefined (as the mean
+    /// normal one): they need a force-controlled shear, which is not implemented.
+    #[error("tangential contact needs a free grid (grid.boundary = \"free\"); a periodic grid leaves the mean tangential displacement undefined")]
+    Periodic,
+    /// G must be finite and positive, ν in (−1, 1/2].
+    #[error("shear modulus must be finite and > 0 and Poisson's ratio in (-1, 0.5], got G = {shear_modulus}, ν = {poisson_ratio}")]
+    InvalidMaterial {
+        /// G.
+        shear_modulus: f64,
+        /// ν.
+        poisson_ratio: f64,
+    },
+}
+
+/// Non-periodic tangential half-space by DC-FFT (Liu, Wang & Liu 2000) with Cerruti's
+/// exact element coefficients ([`cerruti_rectangle`]): u_x = K_xx∗q_x + K_xy∗q_y,
+/// u_y = K_xy∗q_x + K_yy∗q_y, each a linear convolution made cyclic by zero padding.
+///
+/// Goodman's approximation: the normal displacement of a shear traction and the
+/// tangential displacement of a pressure, both ∝ (1 − 2ν), are left out (exact at
+/// ν = 1/2, docs/physics.md §9.1).
+pub struct TangentialOperator {
+    grid: Grid,
+    material: ShearMaterial,
+    xx: SpectralConvolution,
+    yy: SpectralConvolution,
+    /// None at ν = 0, where the cross coefficient vanishes.
+    xy: Option<SpectralConvolution>,
+    scratch: Vec<f64>,
+    self_compliance: f64,
+    transforms: u64,
+}
+
+impl TangentialOperator {
+    /// Plans the transforms and computes the three kernel spectra.
+    pub fn new(grid: Grid, material: ShearMaterial) -> Result<Self, TangentialOperatorError> {
+        if grid.boundary() == Boundary::Periodic {
+            return Err(TangentialOperatorError::Periodic);
+        }
+        let (g, nu) = (material.shear_modulus, material.poisson_ratio);
+        if !(g.is_finite() && g > 0.0 && nu > -1.0 && nu <= 0.5) {
+            return Err(TangentialOperatorError::InvalidMaterial {
+                shear_modulus: g,
+                poisson_ratio: nu,
+            });
+        }
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let (dx, dy) = (grid.dx(), grid.dy());
+        // Signed offset in elements of a wrapped index of a 2n-periodic padded axis; the
+        // index n (no offset of the data window reaches it) is None.
+        let wrap = |i: usize, n: usize| -> Option<f64> {
+            match i {
+                i if i < n => Some(i as f64),
+                i if i == n => None,
+                i => Some(-((2 * n - i) as f64)),
+            }
+        };
+        let engine = |component: fn(CerrutiCoefficients) -> f64| {
+            SpectralConvolution::new((nx, ny), (2 * nx, 2 * ny), |i, row: &mut [f64]| {
+                let eta = wrap(i, ny);
+                for (j, entry) in row.iter_mut().enumerate() {
+                    *entry = match (eta, wrap(j, nx)) {
+                        (Some(eta), Some(xi)) => component(cerruti_rectangle(xi * dx, eta * dy, dx, dy, material)),
+                        _ => 0.0,
+                    };
+                }
+            })
+        };
+        let xx = engine(|c| c.xx);
+        let yy = engine(|c| c.yy);
+        let xy = (nu != 0.0).then(|| engine(|c| c.xy));
+        Ok(Self {
+            grid,
+            material,
+            xx,
+            yy,
+            xy,
+            scratch: vec![0.0; grid.len()],
+            self_compliance: cerruti_rectangle(0.0, 0.0, dx, dy, material).xx,
+            transforms: 0,
+        })
+    }
+
+    /// The grid the operator acts on.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// G and ν of the half-space.
+    pub fn material(&self) -> ShearMaterial {
+        self.material
+    }
+
+    /// K_xx(0,0): the tangential displacement of an element under its own unit traction
+    /// along x.
+    pub fn self_compliance(&self) -> f64 {
+        self.self_compliance
+    }
+
+    /// Writes (u_x, u_y) = K (q_x, q_y); each slice holds one value per element, row-major.
+    ///
+    /// # Panics
+    /// If a slice length differs from the number of elements.
+    pub fn apply(&mut self, traction: [&[f64]; 2], displacement: [&mut [f64]; 2]) {
+        let [qx, qy] = traction;
+        let [ux, uy] = displacement;
+        self.xx.convolve(qx, ux);
+        self.yy.convolve(qy, uy);
+        self.transforms += 2;
+        if let Some(xy) = &mut self.xy {
+            xy.convolve(qy, &mut self.scratch);
+            for (u, &v) in ux.iter_mut().zip(&self.scratch) {
+                *u += v;
+            }
+            xy.convolve(qx, &mut self.scratch);
+            for (u, &v) in uy.iter_mut().zip(&self.scratch) {
+                *u += v;
+            }
+            self.transforms += 2;
+        }
+    }
+
+    /// Forward + inverse transform pairs done so far (two or four per application).
+    pub fn transform_pairs(&self) -> u64 {
+        self.transforms
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A direct O(N⁴) sum of the coefficients, the reference of the convolution.
+    fn direct(grid: &Grid, material: ShearMaterial, qx: &[f64], qy: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let n = grid.len();
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        for target in 0..n {
+            let (x, y) = grid.centre(target);
+            for source in 0..n {
+                let (xs, ys) = grid.centre(source);
+                let c = cerruti_rectangle(x - xs, y - ys, grid.dx(), grid.dy(), material);
+                ux[target] += c.xx * qx[source] + c.xy * qy[source];
+                uy[target] += c.xy * qx[source] + c.yy * qy[source];
+            }
+        }
+        (ux, uy)
+    }
+
+    #[test]
+    fn convolution_equals_the_direct_sum_on_a_rectangular_grid() {
+        // DC-FFT is exact up to round-off: 1e-12 of the largest displacement.
+        let grid = Grid::rectangular(12, 9, 1.2, 0.72, Boundary::Free).unwrap();
+        let material = ShearMaterial {
+            shear_modulus: 0.8,
+            poisson_ratio: 0.3,
+        };
+        let n = grid.len();
+        let qx: Vec<f64> = (0..n).map(|k| ((k * 37 % 11) as f64 - 4.0) / 7.0).collect();
+        let qy: Vec<f64> = (0..n).map(|k| ((k * 53 % 13) as f64 - 6.0) / 9.0).collect();
+        let mut operator = TangentialOperator::new(grid, material).unwrap();
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        operator.apply([&qx, &qy], [&mut ux, &mut uy]);
+        let (rx, ry) = direct(&grid, material, &qx, &qy);
+        let scale = rx.iter().chain(&ry).fold(0.0f64, |m, v| m.max(v.abs()));
+        for k in 0..n {
+            assert!((ux[k] - rx[k]).abs() < 1e-12 * scale, "ux[{k}] {} vs {}", ux[k], rx[k]);
+            assert!((uy[k] - ry[k]).abs() < 1e-12 * scale, "uy[{k}] {} vs {}", uy[k], ry[k]);
+        }
+        assert_eq!(operator.transform_pairs(), 4);
+    }
+
+    #[test]
+    fn refuses_periodic_grids_and_bad_constants() {
+        let periodic = Grid::new(8, 1.0, Boundary::Periodic).unwrap();
+        let material = ShearMaterial {
+            shear_modulus: 1.0,
+            poisson_ratio: 0.5,
+        };
+        assert_eq!(
+            TangentialOperator::new(periodic, material).err(),
+            Some(TangentialOperatorError::Periodic)
+        );
+        let free = Grid::new(8, 1.0, Boundary::Free).unwrap();
+        let bad = ShearMaterial {
+            shear_modulus: 1.0,
+            poisson_ratio: 0.6,
+        };
+        assert!(TangentialOperator::new(free, bad).is_err());
+    }
+}

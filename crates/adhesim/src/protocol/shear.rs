@@ -1,0 +1,276 @@
+//! Shear at fixed indentation: indent, then shift the indenter tangentially with friction
+//! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §9).
+
+use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use crate::elastic::{ElasticOperator, TangentialOperator};
+use crate::grid::Grid;
+use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver, TangentialState};
+use std::ops::ControlFlow;
+
+/// Indent to `depth` in `approach_steps` displacement steps, then shift the indenter by
+/// `distance` along the in-plane angle `direction` in `steps` quasi-static steps at fixed
+/// depth (and back to the start in as many more with `return_stroke`).
+///
+/// The shift is a small rigid-body displacement, as in Cattaneo–Mindlin: the profile stays
+/// where it is, and with Goodman's approximation the normal problem does not change during
+/// the shift, so the contact set and pressure are those at the end of the approach and
+/// only the tangential problem is solved per shift step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shear {
+    /// Depth of first contact (the approach starts there).
+    pub start_depth: f64,
+    /// Indentation held during the shift.
+    pub depth: f64,
+    /// Steps of the approach to `depth`.
+    pub approach_steps: usize,
+    /// Shift of the indenter (length units).
+    pub distance: f64,
+    /// Steps of the shift.
+    pub steps: usize,
+    /// Direction of the shift in the plane, radians from +x.
+    pub direction: f64,
+    /// Shift back to the start after the forward stroke.
+    pub return_stroke: bool,
+    /// A step is a jump when the normal force changes by more than this at fixed depth.
+    pub jump_force_threshold: f64,
+}
+
+/// Totals of a shear run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ShearSummary {
+    /// Steps done (approach and shift).
+    pub steps: usize,
+    /// Normal fixed-set solves.
+    pub solves: usize,
+    /// CG iterations, normal and tangential.
+    pub cg_iterations: usize,
+    /// FFT pairs, normal and tangential.
+    pub operator_applications: u64,
+    /// FFT pairs of the tangential solves alone.
+    pub tangential_transform_pairs: u64,
+    /// Active-set rounds of the tangential solves.
+    pub tangential_rounds: usize,
+    /// Largest tangential force along the shift during the forward stroke (the static
+    /// friction force when gross slip follows).
+    pub peak_tangential_force: f64,
+    /// Tangential force at the end of the forward stroke.
+    pub final_tangential_force: f64,
+    /// Normal force during the shift.
+    pub normal_force: f64,
+    /// Contact area during the shift.
+    pub area: f64,
+    /// Energy dissipated by friction (Δ²Σ q·Δs over slipping elements, all steps).
+    pub frictional_dissipation: f64,
+    /// Energy released by normal configuration changes (adhesive jumps) on the approach.
+    pub dissipated_energy: f64,
+    /// The worst optimality conditions met by any step.
+    pub complementarity: Complementarity,
+    /// Some step had contact on the border of a free grid.
+    pub touches_border: bool,
+}
+
+impl Shear {
+    /// Runs the approach and the shift; reports each step to `observer`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn run<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        shear_operator: &mut TangentialOperator,
+        friction: &mut TangentialSolver,
+        observer: &mut dyn Observer,
+    ) -> Result<ShearSummary, ProtocolError> {
+        self.check()?;
+        let grid = *operator.grid();
+        solver.reset();
+        let mut state = ContactState::new(&grid);
+        let mut previous = state.contact.clone();
+        let mut summary = ShearSummary::default();
+        let depth_step = (self.depth - self.start_depth) / self.approach_steps as f64;
+        for step in 0..self.approach_steps {
+            let depth = if step + 1 == self.approach_steps {
+                self.depth
+            } else {
+                self.start_depth + (step + 1) as f64 * depth_step
+            };
+            previous.copy_from_slice(&state.contact);
+            let report = solver
+                .step(operator, heights, depth, &mut state)
+                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+            summary.dissipated_energy += report.dissipated_energy;
+            summary.solves += report.solves;
+            summary.cg_iterations += report.cg_iterations;
+            summary.operator_applications += report.operator_applications;
+            let mut record = self.record(
+                step,
+                Phase::Approach,
+                depth,
+                report,
+                &state,
+                &grid,
+                summary.dissipated_energy,
+            );
+            let (stick, front, rear) = contact_split(&grid, &state.contact, self.direction);
+            (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
+            self.report(&mut summary, &record, &state, &previous, observer)?;
+        }
+        let mut tangential = TangentialState::new(grid.len());
+        let unit = [self.direction.cos(), self.direction.sin()];
+        let legs = if self.return_stroke { 2 } else { 1 };
+        previous.copy_from_slice(&state.contact);
+        summary.normal_force = state.force(grid.element_area());
+        summary.area = state.contact_elements() as f64 * grid.element_area();
+        for k in 1..=legs * self.steps {
+            let step = self.approach_steps + k - 1;
+            let forward = k <= self.steps;
+            let travelled = if forward { k } else { 2 * self.steps - k };
+            let shift = self.distance * travelled as f64 / self.steps as f64;
+            let report = friction
+                .step(
+                    shear_operator,
+                    &state,
+                    [shift * unit[0], shift * unit[1]],
+                    &mut tangential,
+                )
+                .map_err(|source| ProtocolError::Tangential { step, shift, source })?;
+            summary.tangential_transform_pairs += report.transform_pairs;
+            summary.operator_applications += report.transform_pairs;
+            summary.cg_iterations += report.cg_iterations;
+            summary.tangential_rounds += report.rounds;
+            summary.frictional_dissipation += report.dissipated_energy;
+            worst(&mut summary.complementarity, report.complementarity);
+            let normal = StepReport {
+                force: summary.normal_force,
+                force_before_change: summary.normal_force,
+                ..StepReport::default()
+            };
+            let mut record = self.record(
+                step,
+                Phase::Shear,
+                self.depth,
+                normal,
+                &state,
+                &grid,
+                summary.dissipated_energy,
+            );
+            let along = report.force[0] * unit[0] + report.force[1] * unit[1];
+            record.offset = shift;
+            record.force_tangential = along;
+            record.force_tangential_before_change = along;
+            record.stick_elements = report.stick_elements;
+            record.slip_elements = report.slip_elements;
+            record.cumulative_frictional_dissipation = summary.frictional_dissipation;
+            (_, record.area_front, record.area_rear) = contact_split(&grid, &state.contact, self.direction);
+            if forward {
+                summary.peak_tangential_force = summary.peak_tangential_force.max(along);
+                summary.final_tangential_force = along;
+            }
+            self.report(&mut summary, &record, &state, &previous, observer)?;
+        }
+        Ok(summary)
+    }
+
+    /// The parameters are usable.
+    fn check(&self) -> Result<(), ProtocolError> {
+        let invalid = |message: String| Err(ProtocolError::InvalidParameter(message));
+        if self.approach_steps == 0 || self.steps == 0 {
+            return invalid(format!(
+                "approach_steps ({}) and steps ({}) must be >= 1",
+                self.approach_steps, self.steps
+            ));
+        }
+        if !(self.depth.is_finite() && self.depth > self.start_depth) {
+            return invalid(format!(
+                "depth ({}) must exceed the depth of first contact ({})",
+                self.depth, self.start_depth
+            ));
+        }
+        if !(self.distance.is_finite() && self.direction.is_finite()) {
+            return invalid(format!(
+                "distance ({}) and direction ({}) must be finite",
+                self.distance, self.direction
+            ));
+        }
+        Ok(())
+    }
+
+    /// The step's record with the contact measured about the indenter axis at the origin.
+    #[allow(clippy::too_many_arguments)]
+    fn record(
+        &self,
+        step: usize,
+        phase: Phase,
+        depth: f64,
+        report: StepReport,
+        state: &ContactState,
+        grid: &Grid,
+        dissipated: f64,
+    ) -> StepRecord {
+        StepRecord::measure(
+            step,
+            phase,
+            depth,
+            0.0,
+            report,
+            state,
+            grid,
+            dissipated,
+            self.jump_force_threshold,
+        )
+    }
+
+    /// Totals, then the observer.
+    fn report(
+        &self,
+        summary: &mut ShearSummary,
+        record: &StepRecord,
+        state: &ContactState,
+        previous: &[bool],
+        observer: &mut dyn Observer,
+    ) -> Result<(), ProtocolError> {
+        summary.steps += 1;
+        summary.touches_border |= record.touches_border;
+        match observer.on_step(StepView {
+            record,
+            state,
+            previous_contact: previous,
+        }) {
+            ControlFlow::Continue(()) => Ok(()),
+            ControlFlow::Break(()) => Err(ProtocolError::Interrupted(record.step)),
+        }
+    }
+}
+
+/// The worse of each optimality measure.
+fn worst(into: &mut Complementarity, from: Complementarity) {
+    into.stick_residual = into.stick_residual.max(from.stick_residual);
+    into.bound_excess = into.bound_excess.max(from.bound_excess);
+    into.slip_misalignment = into.slip_misalignment.max(from.slip_misalignment);
+    into.backward_slip = into.backward_slip.max(from.backward_slip);
+}
+
+/// (elements in contact, front area, rear area): the contact split at the line through
+/// the indenter's axis perpendicular to the shift, front = ahead of it. An element centred
+/// on the line counts half to each side (the paper's Figs. 17 and 19).
+pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f64, f64) {
+    let (ux, uy) = (direction.cos(), direction.sin());
+    let (mut count, mut front, mut rear) = (0, 0.0, 0.0);
+    let area = grid.element_area();
+    let tolerance = 1e-9 * grid.dx().min(grid.dy());
+    for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
+        count += 1;
+        let (x, y) = grid.centre(k);
+        let along = x * ux + y * uy;
+        if along > tolerance {
+            front += area;
+        } else if along < -tolerance {
+            rear += area;
+        } else {
+            front += 0.5 * area;
+            rear += 0.5 * area;
+        }
+    }
+    (count, front, rear)
+}

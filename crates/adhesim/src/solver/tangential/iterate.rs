@@ -1,0 +1,223 @@
+//! The rounds of the tangential active set: CG on the face of the sets, the set changes,
+//! and the final measurements.
+
+use super::{SlipStatus, TangentialError, TangentialReport, TangentialSolver, TangentialState};
+use crate::elastic::TangentialOperator;
+use crate::solver::ContactState;
+
+/// The free part of element i's traction change: both components on a sticking element,
+/// the component along the tangent (−e_y, e_x) of its traction's circle on a slipping one
+/// (its magnitude is held at the bound), none elsewhere. `unit` holds e per element.
+#[inline]
+fn project(status: SlipStatus, unit: (f64, f64), v: (f64, f64)) -> (f64, f64) {
+    match status {
+        SlipStatus::Stick => v,
+        SlipStatus::Slip => {
+            let (tx, ty) = (-unit.1, unit.0);
+            let along = v.0 * tx + v.1 * ty;
+            (along * tx, along * ty)
+        }
+        SlipStatus::Open => (0.0, 0.0),
+    }
+}
+
+impl TangentialSolver {
+    /// The linear solve of one Newton round, CG on the face of the current sets: sticking
+    /// tractions free (their slip must vanish), slipping ones free to turn along their
+    /// circle's tangent t by θ, held there by the spring σ of the linearised projection
+    /// (t·s = σθ); the rest fixed. Leaves u = K q up to the CG's recursion in
+    /// `state.displacement`. Returns the iterations.
+    ///
+    /// Preconditioned by the diagonal K_ii + σ_i: without it the stiff springs of elements
+    /// with a small bound (the contact's edge) stall CG. Stops at ‖w − u‖₂ ≤ `tolerance`·‖w‖₂
+    /// over the face.
+    pub(super) fn solve_face(
+        &mut self,
+        operator: &mut TangentialOperator,
+        state: &mut TangentialState,
+        tolerance: f64,
+    ) -> Result<usize, TangentialError> {
+        let n = state.status.len();
+        let diagonal = operator.self_compliance();
+        {
+            let [ux, uy] = &mut state.displacement;
+            operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
+        }
+        let mut target_norm = 0.0;
+        let (mut rr, mut rz) = (0.0, 0.0);
+        for i in 0..n {
+            let status = self.face_status(state.status[i], i);
+            if status != SlipStatus::Open {
+                target_norm += self.target[0][i].powi(2) + self.target[1][i].powi(2);
+            }
+            // The spring's force is zero at the round's start (θ = 0).
+            let v = (
+                self.target[0][i] - state.displacement[0][i],
+                self.target[1][i] - state.displacement[1][i],
+            );
+            let (rx, ry) = project(status, self.unit[i], v);
+            (self.residual[0][i], self.residual[1][i]) = (rx, ry);
+            let inverse = 1.0 / (diagonal + self.spring[i]);
+            (self.direction[0][i], self.direction[1][i]) = (rx * inverse, ry * inverse);
+            rr += rx * rx + ry * ry;
+            rz += (rx * rx + ry * ry) * inverse;
+        }
+        let goal = tolerance * target_norm.sqrt();
+        let mut iterations = 0;
+        while rr.sqrt() > goal {
+            if iterations >= self.params.max_iterations {
+                return Err(TangentialError::NotConverged {
+                    iterations,
+                    relative_residual: rr.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
+                    tolerance,
+                });
+            }
+            {
+                let [ax, ay] = &mut self.applied;
+                operator.apply([&self.direction[0], &self.direction[1]], [ax, ay]);
+            }
+            let mut curvature = 0.0;
+            for i in 0..n {
+                let (dx, dy) = (self.direction[0][i], self.direction[1][i]);
+                curvature += dx * self.applied[0][i] + dy * self.applied[1][i] + self.spring[i] * (dx * dx + dy * dy);
+            }
+            if !(curvature.is_finite() && curvature > 0.0) {
+                return Err(TangentialError::NonFinite(iterations));
+            }
+            let alpha = rz / curvature;
+            let (mut next, mut next_rz) = (0.0, 0.0);
+            for i in 0..n {
+                let status = self.face_status(state.status[i], i);
+                let (dx, dy) = (self.direction[0][i], self.direction[1][i]);
+                let (ax, ay) = project(status, self.unit[i], (self.applied[0][i], self.applied[1][i]));
+                let spring = self.spring[i];
+                for c in 0..2 {
+                    state.displacement[c][i] += alpha * self.applied[c][i];
+                }
+                state.traction[0][i] += alpha * dx;
+                state.traction[1][i] += alpha * dy;
+                self.residual[0][i] -= alpha * (ax + spring * dx);
+                self.residual[1][i] -= alpha * (ay + spring * dy);
+                let squared = self.residual[0][i].powi(2) + self.residual[1][i].powi(2);
+                next += squared;
+                next_rz += squared / (diagonal + spring);
+            }
+            let beta = next_rz / rz;
+            (rr, rz) = (next, next_rz);
+            for i in 0..n {
+                let inverse = 1.0 / (diagonal + self.spring[i]);
+                for c in 0..2 {
+                    self.direction[c][i] = self.residual[c][i] * inverse + beta * self.direction[c][i];
+                }
+            }
+            iterations += 1;
+        }
+        if !rr.is_finite() {
+            return Err(TangentialError::NonFinite(iterations));
+        }
+        Ok(iterations)
+    }
+
+    /// The status as the face sees it: a slipping element without a bound is fixed (its
+    /// traction is zero).
+    #[inline]
+    fn face_status(&self, status: SlipStatus, i: usize) -> SlipStatus {
+        if status == SlipStatus::Slip && self.bound[i] == 0.0 {
+            SlipStatus::Open
+        } else {
+            status
+        }
+    }
+
+    /// The semismooth Newton point of every contact element with a bound, from u = K q in
+    /// `state.displacement`: z = q + ρ(w − u) with ρ = 1/K_ii (Alart & Curnier 1991). Inside
+    /// its disc (|z| ≤ g) the element sticks; outside it slips with q = g·z/|z| and the
+    /// spring σ = (|z| − g)/(gρ) of the projection's tangent. Returns the number of status
+    /// changes and the largest turn of a slipping traction.
+    pub(super) fn classify(&mut self, normal: &ContactState, state: &mut TangentialState, rho: f64) -> (usize, f64) {
+        let mut changes = 0;
+        let mut largest_turn = 0.0f64;
+        for i in 0..state.status.len() {
+            self.spring[i] = 0.0;
+            let bound = self.bound[i];
+            if !normal.contact[i] || bound == 0.0 {
+                continue;
+            }
+            let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
+            let zx = qx + rho * (self.target[0][i] - state.displacement[0][i]);
+            let zy = qy + rho * (self.target[1][i] - state.displacement[1][i]);
+            let magnitude = zx.hypot(zy);
+            let was = state.status[i];
+            if magnitude <= bound {
+                if was != SlipStatus::Stick {
+                    state.status[i] = SlipStatus::Stick;
+                    changes += 1;
+                }
+                continue;
+            }
+            let (ex, ey) = (zx / magnitude, zy / magnitude);
+            if was == SlipStatus::Slip {
+                largest_turn = largest_turn.max((ex - self.unit[i].0).hypot(ey - self.unit[i].1));
+            } else {
+                state.status[i] = SlipStatus::Slip;
+                changes += 1;
+            }
+            self.unit[i] = (ex, ey);
+            self.spring[i] = (magnitude - bound) / (bound * rho);
+            state.traction[0][i] = bound * ex;
+            state.traction[1][i] = bound * ey;
+        }
+        (changes, largest_turn)
+    }
+
+    /// Slip, dissipation, counts, force and the optimality conditions of the final
+    /// fields; records the shift.
+    pub(super) fn finish(
+        &self,
+        operator: &TangentialOperator,
+        normal: &ContactState,
+        shift: [f64; 2],
+        state: &mut TangentialState,
+        scale: f64,
+        report: &mut TangentialReport,
+    ) {
+        let area = operator.grid().element_area();
+        let largest_bound = self.bound.iter().fold(0.0f64, |m, &b| m.max(b));
+        let mut c = super::Complementarity::default();
+        let mut dissipated = 0.0;
+        for i in 0..state.status.len() {
+            if !normal.contact[i] {
+                continue;
+            }
+            let sx = self.target[0][i] - state.displacement[0][i];
+            let sy = self.target[1][i] - state.displacement[1][i];
+            let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
+            let magnitude = qx.hypot(qy);
+            c.bound_excess = c.bound_excess.max((magnitude - self.bound[i]).max(0.0));
+            match state.status[i] {
+                SlipStatus::Stick => c.stick_residual = c.stick_residual.max(sx.hypot(sy)),
+                SlipStatus::Slip => {
+                    state.slip[0][i] += sx;
+                    state.slip[1][i] += sy;
+                    dissipated += area * (qx * sx + qy * sy);
+                    if magnitude > 0.0 {
+                        let along = (sx * qx + sy * qy) / magnitude;
+                        let across = (sx * qy - sy * qx) / magnitude;
+                        c.slip_misalignment = c.slip_misalignment.max(across.abs());
+                        c.backward_slip = c.backward_slip.max(-along);
+                    }
+                }
+                SlipStatus::Open => {}
+            }
+        }
+        c.stick_residual /= scale;
+        c.slip_misalignment /= scale;
+        c.backward_slip = c.backward_slip.max(0.0) / scale;
+        c.bound_excess /= largest_bound.max(f64::MIN_POSITIVE);
+        report.complementarity = c;
+        report.dissipated_energy = dissipated;
+        (report.stick_elements, report.slip_elements) = state.counts();
+        report.force = state.force(area);
+        state.shift = shift;
+    }
+}

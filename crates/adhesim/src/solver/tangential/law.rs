@@ -1,0 +1,111 @@
+//! Interface laws: the largest shear traction an element in contact can carry.
+
+use thiserror::Error;
+
+/// A friction law's bound on |q| per contact element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FrictionLaw {
+    /// Coulomb: |q| ≤ μ·max(p, 0). With adhesion, only compressive pressure bounds the
+    /// traction: a tensile element (the adhesive edge of a JKR-type contact) carries no
+    /// shear and slips freely (docs/physics.md §9.3).
+    Coulomb {
+        /// μ.
+        coefficient: f64,
+    },
+    /// Constant shear strength (Tresca; the paper's area friction, Eqs. 16–18):
+    /// |q| ≤ τ0 in every contact element, tensile ones included.
+    ShearStrength {
+        /// τ0.
+        shear_strength: f64,
+    },
+    /// Both: |q| ≤ max(τ0 + μp, 0).
+    CoulombShear {
+        /// μ.
+        coefficient: f64,
+        /// τ0.
+        shear_strength: f64,
+    },
+}
+
+/// A friction law's parameter is out of range.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FrictionLawError {
+    /// μ must be finite and ≥ 0.
+    #[error("friction coefficient must be finite and >= 0, got {0}")]
+    Coefficient(f64),
+    /// τ0 must be finite and ≥ 0.
+    #[error("shear strength must be finite and >= 0, got {0}")]
+    ShearStrength(f64),
+}
+
+fn check(value: f64, error: fn(f64) -> FrictionLawError) -> Result<f64, FrictionLawError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(error(value))
+    }
+}
+
+impl FrictionLaw {
+    /// Coulomb's law of coefficient μ.
+    pub fn coulomb(coefficient: f64) -> Result<Self, FrictionLawError> {
+        Ok(Self::Coulomb {
+            coefficient: check(coefficient, FrictionLawError::Coefficient)?,
+        })
+    }
+
+    /// A constant shear strength τ0.
+    pub fn shear_strength(shear_strength: f64) -> Result<Self, FrictionLawError> {
+        Ok(Self::ShearStrength {
+            shear_strength: check(shear_strength, FrictionLawError::ShearStrength)?,
+        })
+    }
+
+    /// τ0 + μp.
+    pub fn coulomb_shear(coefficient: f64, shear_strength: f64) -> Result<Self, FrictionLawError> {
+        Ok(Self::CoulombShear {
+            coefficient: check(coefficient, FrictionLawError::Coefficient)?,
+            shear_strength: check(shear_strength, FrictionLawError::ShearStrength)?,
+        })
+    }
+
+    /// The bound on |q| of a contact element under pressure p (> 0 compressive).
+    pub fn bound(&self, pressure: f64) -> f64 {
+        match *self {
+            Self::Coulomb { coefficient } => coefficient * pressure.max(0.0),
+            Self::ShearStrength { shear_strength } => shear_strength,
+            Self::CoulombShear {
+                coefficient,
+                shear_strength,
+            } => (shear_strength + coefficient * pressure).max(0.0),
+        }
+    }
+
+    /// The name as written in scenario files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Coulomb { .. } => "coulomb",
+            Self::ShearStrength { .. } => "shear_strength",
+            Self::CoulombShear { .. } => "coulomb_shear",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_follow_each_law() {
+        let coulomb = FrictionLaw::coulomb(0.5).unwrap();
+        assert_eq!(coulomb.bound(2.0), 1.0);
+        assert_eq!(coulomb.bound(-2.0), 0.0);
+        let tresca = FrictionLaw::shear_strength(0.3).unwrap();
+        assert_eq!(tresca.bound(-5.0), 0.3);
+        let both = FrictionLaw::coulomb_shear(0.5, 0.3).unwrap();
+        assert_eq!(both.bound(2.0), 1.3);
+        assert_eq!(both.bound(-2.0), 0.0);
+        assert_eq!(FrictionLaw::coulomb(-1.0), Err(FrictionLawError::Coefficient(-1.0)));
+        assert!(FrictionLaw::shear_strength(f64::NAN).is_err());
+    }
+}

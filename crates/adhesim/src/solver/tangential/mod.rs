@@ -1,0 +1,358 @@
+//! Tangential contact with friction: shear tractions, stick and slip, with memory.
+//!
+//! The normal problem decides the contact set C and the pressure p (Goodman's
+//! approximation: a shear traction does not move the surface normally, docs/physics.md
+//! §9.1); on C a [`FrictionLaw`] bounds each traction, |q_i| ≤ g_i. The indenter is shifted
+//! tangentially by δ. An element sticks when its relative tangential displacement is that
+//! of the last step: u_i = u_i⁻ + Δδ =: w_i. An element slips when |q_i| = g_i, with q_i
+//! along its slip increment Δs_i = w_i − u_i (friction drags the body along). These are the
+//! optimality conditions of min ½qᵀKq − qᵀw over the discs |q_i| ≤ g_i (Kalker 1990, *Three-
+//! Dimensional Elastic Bodies in Rolling Contact*, §5), a strictly convex problem with one
+//! solution per step.
+//!
+//! Solved by Kalker's active set: with the slip tractions held, conjugate gradients solve
+//! K_SS q_S = w_S − K_SL q_L on the stick set S; then a stick element over its bound
+//! slips along its traction, a slip element whose slip runs against its traction sticks,
+//! and each slip traction turns to its slip increment; repeated until no element changes
+//! and no slip traction turns by more than `direction_tolerance`. Every element's
+//! optimality conditions are measured and reported ([`Complementarity`]).
+
+mod law;
+
+pub use law::{FrictionLaw, FrictionLawError};
+
+use super::ContactState;
+use crate::elastic::TangentialOperator;
+use thiserror::Error;
+
+/// The tangential state of an element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SlipStatus {
+    /// Not in contact: no traction.
+    #[default]
+    Open,
+    /// In contact, |q| below its bound, no relative motion in this step.
+    Stick,
+    /// In contact, |q| at its bound, along the slip.
+    Slip,
+}
+
+impl SlipStatus {
+    /// 0 open, 1 stick, 2 slip (as the field files store it).
+    pub fn code(self) -> u8 {
+        match self {
+            Self::Open => 0,
+            Self::Stick => 1,
+            Self::Slip => 2,
+        }
+    }
+}
+
+/// Tangential fields of a configuration; also the memory of the next step.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TangentialState {
+    /// Shear traction (q_x, q_y) on the body, per element.
+    pub traction: [Vec<f64>; 2],
+    /// Tangential surface displacement (u_x, u_y) = K q, per element.
+    pub displacement: [Vec<f64>; 2],
+    /// Accumulated slip (s_x, s_y) of each element: the sum of its slip increments.
+    pub slip: [Vec<f64>; 2],
+    /// Open, stick or slip, per element.
+    pub status: Vec<SlipStatus>,
+    /// The indenter's tangential shift δ of the last step.
+    pub shift: [f64; 2],
+}
+
+impl TangentialState {
+    /// No traction, no shift.
+    pub fn new(elements: usize) -> Self {
+        let zeros = || [vec![0.0; elements], vec![0.0; elements]];
+        Self {
+            traction: zeros(),
+            displacement: zeros(),
+            slip: zeros(),
+            status: vec![SlipStatus::Open; elements],
+            shift: [0.0; 2],
+        }
+    }
+
+    /// Δ²Σq: the tangential force on the body (the indenter's resistance to its shift).
+    pub fn force(&self, element_area: f64) -> [f64; 2] {
+        [0, 1].map(|c| element_area * self.traction[c].iter().sum::<f64>())
+    }
+
+    /// (stick, slip) element counts.
+    pub fn counts(&self) -> (usize, usize) {
+        let stick = self.status.iter().filter(|s| **s == SlipStatus::Stick).count();
+        let slip = self.status.iter().filter(|s| **s == SlipStatus::Slip).count();
+        (stick, slip)
+    }
+}
+
+/// Stopping rules of the tangential solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialParams {
+    /// CG on the stick set stops at ‖w − u‖₂ ≤ tolerance·‖w‖₂ over it; the slip decisions
+    /// use 10·tolerance·max|w| as their displacement tolerance.
+    pub tolerance: f64,
+    /// CG iterations per active-set round.
+    pub max_iterations: usize,
+    /// Active-set rounds per step.
+    pub max_rounds: usize,
+    /// A slip traction turning by less than this (radians) no longer counts as a change.
+    pub direction_tolerance: f64,
+}
+
+impl Default for TangentialParams {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_iterations: 2000,
+            max_rounds: 200,
+            direction_tolerance: 1e-8,
+        }
+    }
+}
+
+/// How well a solution meets the optimality conditions, each relative: displacements to
+/// max|w| over C, tractions to the largest bound.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Complementarity {
+    /// max over stick elements of |w − u|.
+    pub stick_residual: f64,
+    /// max over contact elements of (|q| − g)⁺.
+    pub bound_excess: f64,
+    /// max over slip elements of the slip increment's part across the traction.
+    pub slip_misalignment: f64,
+    /// max over slip elements of the slip increment's part against the traction.
+    pub backward_slip: f64,
+}
+
+/// What a tangential step did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TangentialReport {
+    /// Active-set rounds.
+    pub rounds: usize,
+    /// CG iterations over all rounds.
+    pub cg_iterations: usize,
+    /// Forward + inverse FFT pairs spent.
+    pub transform_pairs: u64,
+    /// Elements sticking.
+    pub stick_elements: usize,
+    /// Elements slipping.
+    pub slip_elements: usize,
+    /// Δ²Σq at the end of the step.
+    pub force: [f64; 2],
+    /// Δ²Σ q·Δs over the slipping elements: the energy friction dissipated in the step.
+    pub dissipated_energy: f64,
+    /// The optimality conditions as met.
+    pub complementarity: Complementarity,
+}
+
+/// Why a tangential step failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum TangentialError {
+    /// CG on the stick set reached its iteration limit.
+    #[error("tangential CG did not converge in {iterations} iterations: residual {relative_residual:.3e} relative, tolerance {tolerance:.1e}")]
+    NotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// ‖w − u‖₂/‖w‖₂ over the stick set.
+        relative_residual: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
+    /// The stick and slip sets still changed after the round limit.
+    #[error("stick and slip sets still changing after {rounds} active-set rounds ({changes} changes in the last)")]
+    SetsNotSettled {
+        /// Rounds done.
+        rounds: usize,
+        /// Elements that changed in the last round.
+        changes: usize,
+    },
+    /// A non-finite number appeared.
+    #[error("non-finite value in the tangential solve at CG iteration {0}")]
+    NonFinite(usize),
+    /// The normal state does not match the operator's grid.
+    #[error("normal state has {got} elements, the grid {expected}")]
+    GridMismatch {
+        /// The grid's elements.
+        expected: usize,
+        /// The state's.
+        got: usize,
+    },
+}
+
+/// CG tolerance of the rounds whose sets still change.
+const LOOSE_TOLERANCE: f64 = 1e-5;
+/// Below this largest turn (radians) with no set change, the rounds solve tightly.
+const LOOSE_TURN: f64 = 1e-3;
+
+/// Kalker's active-set solver of the tangential problem (see the module).
+pub struct TangentialSolver {
+    law: FrictionLaw,
+    params: TangentialParams,
+    /// w = u⁻ + Δδ per component.
+    target: [Vec<f64>; 2],
+    /// CG residual w − u on the stick set.
+    residual: [Vec<f64>; 2],
+    /// CG search direction (zero off the stick set).
+    direction: [Vec<f64>; 2],
+    /// K·direction.
+    applied: [Vec<f64>; 2],
+    /// g per element (0 off contact).
+    bound: Vec<f64>,
+    /// Unit direction e of each slipping traction in the current round.
+    unit: Vec<(f64, f64)>,
+    /// Spring σ of each slipping traction's turn in the current round.
+    spring: Vec<f64>,
+}
+
+impl TangentialSolver {
+    /// A solver of `law` with `params`.
+    pub fn new(law: FrictionLaw, params: TangentialParams) -> Self {
+        Self {
+            law,
+            params,
+            target: [Vec::new(), Vec::new()],
+            residual: [Vec::new(), Vec::new()],
+            direction: [Vec::new(), Vec::new()],
+            applied: [Vec::new(), Vec::new()],
+            bound: Vec::new(),
+            unit: Vec::new(),
+            spring: Vec::new(),
+        }
+    }
+
+    /// The interface law.
+    pub fn law(&self) -> FrictionLaw {
+        self.law
+    }
+
+    /// One quasi-static step to the shift `shift` = δ on the contact set and pressure of
+    /// `normal`; `state` holds the last step's fields and receives this one's.
+    pub fn step(
+        &mut self,
+        operator: &mut TangentialOperator,
+        normal: &ContactState,
+        shift: [f64; 2],
+        state: &mut TangentialState,
+    ) -> Result<TangentialReport, TangentialError> {
+        let n = operator.grid().len();
+        if normal.contact.len() != n || state.status.len() != n {
+            return Err(TangentialError::GridMismatch {
+                expected: n,
+                got: normal.contact.len().min(state.status.len()),
+            });
+        }
+        let pairs_before = operator.transform_pairs();
+        self.prepare(normal, shift, state, n);
+        let scale = self.target_scale(normal);
+        let rho = 1.0 / operator.self_compliance();
+        let mut report = TangentialReport::default();
+        // Inexact Newton: while the sets still change, a loose solve decides them as well;
+        // the rounds that may end the step solve to the full tolerance.
+        let mut settling = true;
+        loop {
+            let tolerance = if settling {
+                LOOSE_TOLERANCE.max(self.params.tolerance)
+            } else {
+                self.params.tolerance
+            };
+            report.cg_iterations += self.solve_face(operator, state, tolerance)?;
+            report.rounds += 1;
+            let (changes, turn) = self.classify(normal, state, rho);
+            if !settling && changes == 0 && turn <= self.params.direction_tolerance {
+                break;
+            }
+            settling = changes > 0 || turn > LOOSE_TURN;
+            if report.rounds >= self.params.max_rounds {
+                return Err(TangentialError::SetsNotSettled {
+                    rounds: report.rounds,
+                    changes,
+                });
+            }
+        }
+        // The displacement of the final tractions, exactly (the last turns of slip
+        // tractions below the direction tolerance are not yet in u).
+        {
+            let [ux, uy] = &mut state.displacement;
+            operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
+        }
+        self.finish(operator, normal, shift, state, scale, &mut report);
+        report.transform_pairs = operator.transform_pairs() - pairs_before;
+        Ok(report)
+    }
+
+    /// Targets, bounds and the starting sets: open off contact; an element with no bound
+    /// slips freely; a slipping element keeps its direction at its new bound; the others
+    /// (new ones with no traction) start stuck.
+    fn prepare(&mut self, normal: &ContactState, shift: [f64; 2], state: &mut TangentialState, n: usize) {
+        for buffer in [
+            &mut self.target,
+            &mut self.residual,
+            &mut self.direction,
+            &mut self.applied,
+        ] {
+            for component in buffer.iter_mut() {
+                component.clear();
+                component.resize(n, 0.0);
+            }
+        }
+        self.bound.clear();
+        self.bound.resize(n, 0.0);
+        self.unit.clear();
+        self.unit.resize(n, (0.0, 0.0));
+        self.spring.clear();
+        self.spring.resize(n, 0.0);
+        let increment = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
+        for i in 0..n {
+            for c in 0..2 {
+                self.target[c][i] = state.displacement[c][i] + increment[c];
+            }
+            if !normal.contact[i] {
+                state.status[i] = SlipStatus::Open;
+                state.traction[0][i] = 0.0;
+                state.traction[1][i] = 0.0;
+                continue;
+            }
+            let bound = self.law.bound(normal.pressure[i]);
+            self.bound[i] = bound;
+            let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
+            let magnitude = qx.hypot(qy);
+            if bound == 0.0 {
+                state.status[i] = SlipStatus::Slip;
+                state.traction[0][i] = 0.0;
+                state.traction[1][i] = 0.0;
+            } else if state.status[i] == SlipStatus::Slip && magnitude > 0.0 {
+                self.unit[i] = (qx / magnitude, qy / magnitude);
+                state.traction[0][i] = bound * qx / magnitude;
+                state.traction[1][i] = bound * qy / magnitude;
+            } else {
+                state.status[i] = SlipStatus::Stick;
+            }
+        }
+    }
+
+    /// max|w| over the contact set (1 where it vanishes: nothing moves).
+    fn target_scale(&self, normal: &ContactState) -> f64 {
+        let scale = (0..normal.contact.len())
+            .filter(|&i| normal.contact[i])
+            .map(|i| self.target[0][i].hypot(self.target[1][i]))
+            .fold(0.0, f64::max);
+        if scale > 0.0 {
+            scale
+        } else {
+            1.0
+        }
+    }
+}
+
+mod iterate;
+
+#[cfg(test)]
+mod tests;
