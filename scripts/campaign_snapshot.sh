@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Keeps the finished cases of a sweep or study folder in the repository so that a later
-# session (whose machine starts without the folder) resumes the campaign instead of redoing
+# run (whose machine starts without the folder) resumes the campaign instead of redoing
 # them: copies sweep.json (a sweep) and, per finished case, its `done` marker, case.json,
 # scenario.toml, summary.json and record.json (a study's run) where present: enough for
 # `adhesim sweep` / `adhesim study` to count the case as finished and to rebuild the tables

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Per-run and whole-study times of a rolling or sliding study folder (BENCHMARKS.md §0).
+"""Per-run and whole-study times of a rolling or sliding study folder (BENCHMARKS.md §How
+fast is a run of each kind › Rolling and sliding studies at 16 per λ).
 
 Reads the runs' summary.json (performance) and the normal runs' record.json of
 `adhesim study` output (or of its snapshot under docs/data/paper/campaign/) and prints,

@@ -1,5 +1,5 @@
-//! The same scenario gives a bit-identical curve.csv on 1 and 2 threads (issue #3): FFT
-//! rows and columns are transformed independently of how rayon splits them and all
+//! The same scenario gives a bit-identical curve.csv on 1 and 2 threads (docs/validation.md
+//! §6): FFT rows and columns are transformed independently of how rayon splits them and all
 //! reductions are sequential.
 
 use std::path::Path;

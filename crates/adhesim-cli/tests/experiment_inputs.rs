@@ -1,7 +1,8 @@
-//! Bad experiment inputs (issue 16 item 5): every one is an error naming the key or the file
-//! (with line and column for log cells), or a run that succeeds with a warning that counts what
-//! was dropped. Each sequence is a small synthetic one (6 frames of 320×240 at 1 frame/s, the
-//! log sampled at the frame times t = 0 … 5, the header on line 1 and frame k on line k + 2).
+//! Bad experiment inputs (first robustness audit, docs/reliability.md): every one is an error
+//! naming the key or the file (with line and column for log cells), or a run that succeeds with
+//! a warning that counts what was dropped. Each sequence is a small synthetic one (6 frames of
+//! 320×240 at 1 frame/s, the log sampled at the frame times t = 0 … 5, the header on line 1 and
+//! frame k on line k + 2).
 
 use std::path::{Path, PathBuf};
 

@@ -1,4 +1,5 @@
-//! Speed run of `adhesim experiment` on 1,000 synthetic 1600×1200 frames (BENCHMARKS.md §5).
+//! Speed run of `adhesim experiment` on 1,000 synthetic 1600×1200 frames (BENCHMARKS.md
+//! §How fast is a run of each kind › Experiment analysis).
 //!
 //! Ignored by default: it writes ≈ 1.7 GB of PNG frames and takes minutes. Run with
 //! `cargo test --release -p adhesim-cli --test experiment_speed -- --ignored --nocapture`.
@@ -10,7 +11,8 @@ use std::process::Command;
 
 /// Analysis throughput ≥ ADHESIM_MIN_FPS frames/s (summary.json `frames_per_second`, decode
 /// included), and every frame with > 2,000 true contact pixels within 1 % of the true area.
-/// Wall-clock rates depend on what else runs on the machine; see BENCHMARKS.md §5.
+/// Wall-clock rates depend on what else runs on the machine; see BENCHMARKS.md §How fast is
+/// a run of each kind › Experiment analysis.
 #[test]
 #[ignore]
 fn thousand_frames_1600x1200() {

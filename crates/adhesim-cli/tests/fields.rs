@@ -1,4 +1,4 @@
-//! `fields.npz` (issue #18 item 4): a run of the default scenario (Fig. 1, on a coarse grid)
+//! `fields.npz` (docs/output.md): a run of the default scenario (Fig. 1, on a coarse grid)
 //! writes the documented arrays with the documented shapes and dtypes, read back by a
 //! small numpy-free reader (zip + `.npy` header); the fields agree with `curve.csv` and the
 //! `.npy` snapshot files; `--fields netcdf` adds `fields.nc`; one check with Python's numpy

@@ -177,8 +177,9 @@ fn sweeps_with_too_many_cases_are_refused_before_they_are_built() {
 }
 
 /// A sweep whose `--jobs` concurrent cases of its largest grid need more than the memory
-/// available is refused before any case allocates (issue #16: a sweep of large grids ran
-/// into the OOM killer). grid.n = 1024 (free) is estimated at 0.41 GiB per run.
+/// available is refused before any case allocates (first robustness audit,
+/// docs/reliability.md: a sweep of large grids ran into the OOM killer). grid.n = 1024
+/// (free) is estimated at 0.41 GiB per run.
 #[test]
 fn a_sweep_whose_concurrent_cases_exceed_the_memory_is_refused() {
     let temp = tempfile::tempdir().unwrap();
@@ -335,10 +336,10 @@ fn a_bad_adhesion_map_is_an_error_naming_the_key() {
     }
 }
 
-/// Issue #29: map values that keep γ finite and ≥ 0 but put one element's critical stress σ_c
-/// outside the solver's single-precision range (1e296 overflowed mid-run; 1e-303 ended in a
-/// "did not converge" whose residual was below its tolerance) are refused before the run,
-/// naming the element, its γ and the map.
+/// Second robustness audit (docs/reliability.md): map values that keep γ finite and ≥ 0 but put
+/// one element's critical stress σ_c outside the solver's single-precision range (1e296
+/// overflowed mid-run; 1e-303 ended in a "did not converge" whose residual was below its
+/// tolerance) are refused before the run, naming the element, its γ and the map.
 #[test]
 fn adhesion_maps_beyond_single_precision_are_refused_naming_the_element() {
     let temp = tempfile::tempdir().unwrap();

@@ -1,4 +1,4 @@
-//! Issue #29, reliability second pass: the reproducers of the probe of 1,418 hostile inputs
+//! The second robustness audit: the reproducers of the probe of 1,418 hostile inputs
 //! (`docs/reliability.md`, "Defects and tests"). Each one aborted, hung, named the wrong key
 //! or exited 0 with a wrong result before its fix.
 
@@ -371,10 +371,10 @@ fn every_command_checks_the_memory_limit() {
     assert!(output.status.success(), "{}", stderr(&output));
 }
 
-/// Issue #29: all lengths scaled by 1e-20 (inside the documented window; γ scaled with them,
-/// E* kept). The normalised results must equal the unscaled file's, and forces scale by
-/// 1e-40 (F ∝ γR), to the CG tolerance (relative residual 1e-6: the two runs stop their
-/// solves at different roundings; measured 3e-9).
+/// Second robustness audit (docs/reliability.md): all lengths scaled by 1e-20 (inside the
+/// documented window; γ scaled with them, E* kept). The normalised results must equal the
+/// unscaled file's, and forces scale by 1e-40 (F ∝ γR), to the CG tolerance (relative residual
+/// 1e-6: the two runs stop their solves at different roundings; measured 3e-9).
 #[test]
 fn lengths_scaled_by_1e_minus_20_give_the_same_normalised_results() {
     let temp = tempfile::tempdir().unwrap();

@@ -1,6 +1,6 @@
-//! Rectangular grids end to end (issue #26 item 2): `[grid] n = [nx, ny]`, `size = [sx, sy]`,
-//! a measured Nx × Ny map pressed on the matching grid, fields of shape (ny, nx), and the
-//! keys named in every refusal.
+//! Rectangular grids end to end (docs/validation.md §12): `[grid] n = [nx, ny]`,
+//! `size = [sx, sy]`, a measured Nx × Ny map pressed on the matching grid, fields of shape
+//! (ny, nx), and the keys named in every refusal.
 
 mod common;
 

@@ -389,7 +389,7 @@ fn a_case_failing_in_its_run_is_counted() {
     let message = stderr(&output);
     assert!(!output.status.success(), "a failed case gave exit 0: {message}");
     assert!(!message.contains("panicked"), "panic: {message}");
-    // Once validation refuses E* = 1e300 up front (issue 16 item 1) the sweep fails before
+    // Once validation refuses E* = 1e300 up front (docs/reliability.md) the sweep fails before
     // any case runs; either way it does not exit 0.
     if out.join("cases").exists() {
         assert!(message.contains("1 of 2 cases failed"), "stderr: {message}");
@@ -430,10 +430,10 @@ fn a_locked_study_folder_is_refused() {
     holder.stop();
 }
 
-/// Issue #29: a PNG that fails to write (the disk fills, here a file-size limit of 64 KiB
-/// under `ulimit -f`, which the ~100 KiB height map of a 128² map passes first) is named in
-/// the error, and neither it nor its temporary file is left; the smaller files written
-/// before it are whole (the PSD's PNG has the bytes of an unlimited run).
+/// Second robustness audit (docs/reliability.md): a PNG that fails to write (the disk fills,
+/// here a file-size limit of 64 KiB under `ulimit -f`, which the ~100 KiB height map of a 128²
+/// map passes first) is named in the error, and neither it nor its temporary file is left; the
+/// smaller files written before it are whole (the PSD's PNG has the bytes of an unlimited run).
 #[cfg(target_os = "linux")]
 #[test]
 fn a_png_that_cannot_be_written_whole_is_named_and_not_left_cut() {

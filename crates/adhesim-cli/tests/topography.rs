@@ -1,5 +1,5 @@
-//! `adhesim topography FILE|SCENARIO` (issue #18 item 2): statistics, PSD and pictures of a
-//! scenario's random roughness and of an instrument file; errors name the file or section.
+//! `adhesim topography FILE|SCENARIO` (docs/topography-files.md): statistics, PSD and pictures
+//! of a scenario's random roughness and of an instrument file; errors name the file or section.
 
 use adhesim_topography::{write_npz, NamedArray};
 use std::path::Path;
@@ -127,11 +127,12 @@ fn fixture(name: &str) -> std::path::PathBuf {
         .join(name)
 }
 
-/// Issue 26: an x3p map of 650 × 650 points with dx = 1.277e-7 m ≠ dy = 3.146e-7 m gave an
-/// rms slope of 0.0878 and an rms curvature of 2.84e5 (the resampling to the finer spacing
-/// was skipped); SurfaceTopography 1.27.1 gives rms_gradient 0.06207007399844295 and
-/// rms_curvature_from_area 111566.12196886608. The same stencils on the same points agree
-/// to the rounding of the sums: 1e-9 relative.
+/// Conformance with SurfaceTopography (docs/topography-files.md): an x3p map of 650 × 650
+/// points with dx = 1.277e-7 m ≠ dy = 3.146e-7 m gave an rms slope of 0.0878 and an rms
+/// curvature of 2.84e5 (the resampling to the finer spacing was skipped); SurfaceTopography
+/// 1.27.1 gives rms_gradient 0.06207007399844295 and rms_curvature_from_area
+/// 111566.12196886608. The same stencils on the same points agree to the rounding of the sums:
+/// 1e-9 relative.
 #[test]
 fn unequal_spacings_give_surfacetopographys_slope_and_curvature() {
     let dir = tempfile::tempdir().unwrap();
@@ -150,9 +151,10 @@ fn unequal_spacings_give_surfacetopographys_slope_and_curvature() {
     close(&stats["size_y"], 0.0002044783737930349);
 }
 
-/// Issue 26: a .sur map with 233 009 invalid points had an rms height of 3.71e-4 m (the
-/// invalid points counted, at the mean height); SurfaceTopography, which leaves them out,
-/// gives 0.0011131994265859693 m. Same points, same sum: 1e-9 relative.
+/// Conformance with SurfaceTopography (docs/topography-files.md): a .sur map with 233 009
+/// invalid points had an rms height of 3.71e-4 m (the invalid points counted, at the mean
+/// height); SurfaceTopography, which leaves them out, gives 0.0011131994265859693 m. Same
+/// points, same sum: 1e-9 relative.
 #[test]
 fn invalid_points_are_left_out_of_the_statistics() {
     let dir = tempfile::tempdir().unwrap();
@@ -242,9 +244,9 @@ fn gwy_object(type_name: &str, components: &[(&str, u8, Vec<u8>)]) -> Vec<u8> {
     out
 }
 
-/// Issue 26: a .gwy whose SI units are empty was refused with a hint to --spacing, which did
-/// not help. The error now names the flag that does (--lateral-unit, then --height-unit), and
-/// with both the map reads: xreal = 6 in µm over 3 points is dx = 2 µm.
+/// Units (docs/topography-files.md): a .gwy whose SI units are empty was refused with a hint to
+/// --spacing, which did not help. The error now names the flag that does (--lateral-unit, then
+/// --height-unit), and with both the map reads: xreal = 6 in µm over 3 points is dx = 2 µm.
 #[test]
 fn an_empty_unit_gwy_reads_with_the_units_the_error_names() {
     let dir = tempfile::tempdir().unwrap();

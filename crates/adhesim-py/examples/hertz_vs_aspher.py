@@ -1,6 +1,7 @@
 """One Hertz solve at N = 512 from Python: adhesim against ASPHER, side by side in one
-process (BENCHMARKS.md §7). The problem of bench/compare (R = E* = 1, L = 1, contact
-radius L/4, element centres at (i - N/2) L/N), ROUNDS interleaved rounds, medians.
+process (BENCHMARKS.md §How do we compare with the peers). The problem of bench/compare
+(R = E* = 1, L = 1, contact radius L/4, element centres at (i - N/2) L/N), ROUNDS
+interleaved rounds, medians.
 
     pip install "aspher==0.1.3.post1"   # builds from source; needs libeigen3-dev
     RAYON_NUM_THREADS=1 OMP_NUM_THREADS=1 python crates/adhesim-py/examples/hertz_vs_aspher.py 512 3

@@ -1,4 +1,5 @@
-"""Overhead of `adhesim.run` against the command line for one scenario (BENCHMARKS.md §7).
+"""Overhead of `adhesim.run` against the command line for one scenario (BENCHMARKS.md
+§The Python call).
 
 Interleaves ROUNDS runs of `adhesim run SCENARIO --quiet` (a process: start-up, run,
 curve.csv, snapshots, figures, summary.json) and of `adhesim.run(SCENARIO, out=...)` in

@@ -9,7 +9,7 @@ import pytest
 def sigint_raises_keyboard_interrupt():
     """Python turns SIGINT into KeyboardInterrupt only if its parent did not ignore the
     signal (a CI runner may start it with SIGINT ignored): install the default handler,
-    as an interactive session has it, for the test's duration."""
+    as an interactive interpreter has it, for the test's duration."""
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     yield
     signal.signal(signal.SIGINT, previous)

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Runs every code block of a documentation page (docs/python.md) as the page shows it, in
 order, from a fresh folder that stands in for the repository root, so the page and its test
-cannot drift apart (issue #28 item 6).
+cannot drift apart.
 
-- ``sh`` blocks run in bash (``-e -o pipefail``), as one shell session would: once a block
+- ``sh`` blocks run in bash (``-e -o pipefail``), as one shell would: once a block
   has created ``.venv`` (the page's install block does, and activates it), the later blocks
   run with it activated.
 - ``python`` blocks run one by one as scripts (``python block.py``) with that venv's

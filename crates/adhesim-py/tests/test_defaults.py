@@ -1,6 +1,6 @@
 """The solvers' default parameters come from the Rust library's Default impls: listed by
 `defaults()`, used when an argument is left out, and written by hand nowhere in the
-Python signatures, stubs or docstrings (issue #28, numpy conventions)."""
+Python signatures, stubs or docstrings (docs/python.md, "Object reference")."""
 
 import ast
 import inspect

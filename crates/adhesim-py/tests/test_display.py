@@ -1,5 +1,5 @@
 """Reprs show the object's parameters; RunResult._repr_html_ is a summary table plus the
-force curve when matplotlib is importable (issue #28, numpy conventions)."""
+force curve when matplotlib is importable (docs/python.md, "Object reference")."""
 
 import base64
 import re

@@ -1,5 +1,5 @@
-"""The Python functions and classes of the package have numpy-style docstrings (issue
-#28, numpy conventions): numpydoc section headers, never Google-style ``Args:``, and a
+"""The Python functions and classes of the package have numpy-style docstrings
+(docs/python.md): numpydoc section headers, never Google-style ``Args:``, and a
 ``Parameters`` section that names every parameter of the signature."""
 
 import inspect

@@ -118,8 +118,9 @@ def test_gap_needs_a_solve(grid):
         adhesim.ContactState(grid).gap
 
 
-# Issue #29: sizes the library cannot index or hold raised a Rust panic, aborted the
-# interpreter, or were accepted; each is now a Python exception naming what and why.
+# Second robustness audit (docs/reliability.md): sizes the library cannot index or hold
+# raised a Rust panic, aborted the interpreter, or were accepted; each is now a Python
+# exception naming what and why.
 def test_issue29_grids_beyond_the_index_range_or_floating_point_are_refused():
     with pytest.raises(ValueError, match=r"too large"):
         adhesim.Grid(2**32, 1.0)

@@ -1,5 +1,6 @@
-"""Rectangular grids (issue #26 item 2): Grid(nx, ny, size_x, size_y) beside Grid(n, size),
-fields of shape (ny, nx), and Hertz on a 96 x 64 grid equal to the same case on a square.
+"""Rectangular grids (docs/validation.md §12): Grid(nx, ny, size_x, size_y) beside
+Grid(n, size), fields of shape (ny, nx), and Hertz on a 96 x 64 grid equal to the same case
+on a square.
 
 The contact (a = sqrt(R d) = 0.2 = 12.8 dx) lies far from every edge of both grids, which
 have the same elements: the free half-space sees the same case, so the forces agree to

@@ -443,7 +443,7 @@ def _toml(value):
 
 @pytest.mark.skipif(cli_binary() is None, reason="ADHESIM_BIN is not set to a built `adhesim` binary")
 def test_cli_fields_npz_follows_the_documented_contract(tmp_path):
-    """Issue #18: the built-in default scenario (`adhesim` without a subcommand, the
+    """The built-in default scenario (`adhesim` without a subcommand, the
     paper's Fig. 1 case) at n = 32 through the binary; its fields.npz read with plain
     numpy.load has the names, shapes and dtypes of docs/output.md, and each snapshot's
     Δ²·Σ pressure is the step's force_normal in curve.csv. Tolerance: relative 1e-12 of

@@ -1,6 +1,6 @@
-"""adhesim.surface and adhesim.read_topography (issue 26 item 6): the generator's rms, the
-statistics against closed forms and numpy, invalid points left out, the harmonic filling, and
-SurfaceTopography's values on its x3p fixture read through Python."""
+"""adhesim.surface and adhesim.read_topography (docs/topography-files.md): the generator's
+rms, the statistics against closed forms and numpy, invalid points left out, the harmonic
+filling, and SurfaceTopography's values on its x3p fixture read through Python."""
 
 import pathlib
 

@@ -1,5 +1,6 @@
-"""Fields are read-only arrays, not fresh copies (issue #28, numpy conventions): the same
-array at each access until the owner changes, and writing into one raises ValueError."""
+"""Fields are read-only arrays, not fresh copies (docs/python.md, "Units, signs, arrays"):
+the same array at each access until the owner changes, and writing into one raises
+ValueError."""
 
 from pathlib import Path
 

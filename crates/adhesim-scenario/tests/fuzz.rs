@@ -1,7 +1,8 @@
-//! Fuzz test of the scenario reader, validator and pipeline (issue #16 item 6): scenario
-//! texts built from the repository's scenario files, with a line dropped now and then and
-//! random `--set` overrides drawn from the key list whose values are mutated (NaN, ±inf, 0,
-//! negatives, 1e±300, wrong types, garbage). Asserted through the library API:
+//! Fuzz test of the scenario reader, validator and pipeline (docs/reliability.md, "Fuzz
+//! test"): scenario texts built from the repository's scenario files, with a line dropped
+//! now and then and random `--set` overrides drawn from the key list whose values are
+//! mutated (NaN, ±inf, 0, negatives, 1e±300, wrong types, garbage). Asserted through the
+//! library API:
 //! - nothing panics (reading, overriding, validating or running);
 //! - an error names a key (a dotted key, a `[section]`, or the word "key") or the file;
 //! - a scenario that validates with a small grid runs to `Ok` with only finite numbers in
@@ -181,8 +182,9 @@ const VALUES: [&str; 52] = [
     "\"filtered\"",
     "\"slide\"",
     "{ hurst = 0.5, rms_slope = 0.1, seed = 2 }",
-    // Issue #29: file keys naming a folder or a device (a device read without end, a
-    // folder failed with a bare "Is a directory"), per-element γ beyond the solver's range.
+    // Second robustness audit (docs/reliability.md): file keys naming a folder or a device (a
+    // device read without end, a folder failed with a bare "Is a directory"), per-element γ
+    // beyond the solver's range.
     "\".\"",
     "\"/dev/zero\"",
     "{ kind = \"map\", file = \".\" }",

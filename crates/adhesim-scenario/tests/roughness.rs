@@ -1,4 +1,4 @@
-//! `[roughness]` and `[substrate_roughness]` (issue #18 item 2): every validation error names
+//! `[roughness]` and `[substrate_roughness]` (docs/cli.md): every validation error names
 //! `roughness.KEY` and its value; a `rough_sphere` runs, and its heights minus the
 //! paraboloid have the requested rms height.
 

@@ -1,7 +1,7 @@
-//! Measured roughness files in a scenario (issue 26): the unit of a file that records none is
-//! a key (`roughness.height_unit`), never metres by default; a map with invalid points needs
-//! `roughness.invalid_points` ("interpolate" or "refuse"), and the choice is in the derived
-//! values of summary.json.
+//! Measured roughness files in a scenario (docs/topography-files.md): the unit of a file that
+//! records none is a key (`roughness.height_unit`), never metres by default; a map with invalid
+//! points needs `roughness.invalid_points` ("interpolate" or "refuse"), and the choice is in
+//! the derived values of summary.json.
 
 use adhesim_scenario::{load, InvalidPoints, ValidScenario};
 use adhesim_topography::{write_npz, NamedArray};

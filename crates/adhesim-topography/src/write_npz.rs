@@ -174,7 +174,7 @@ const SAMPLE_CHUNK_BYTES: usize = 16 * 1024;
 /// Compressed members must be at most this fraction of their size in the samples; a member
 /// deflate shrinks less is stored. Dense smooth doubles (displacement and gap fields)
 /// shrink by only 10–25 % at a cost of about 3 ms per MB, which was most of the output time
-/// of a whole Hertz run at N = 512 (BENCHMARKS.md, issue #14 item 7).
+/// of a whole Hertz run at N = 512 (docs/history.md §2026-11-23: the non-adhesive whole run).
 const WORTHWHILE_RATIO: f64 = 0.75;
 
 /// Whether DEFLATE at level 1 shrinks the values of `data` to at most
@@ -229,7 +229,8 @@ pub fn write_npz(path: impl AsRef<Path>, arrays: &[NamedArray<'_>]) -> Result<()
         .compression_method(zip::CompressionMethod::Deflated)
         // Level 1: the fields are doubles, which deflate shrinks by their runs of zeros
         // (free elements, no contact) about as well at the fastest level; at level 6 the
-        // compression took a quarter of a whole Hertz run at N = 512 (BENCHMARKS.md).
+        // compression took a quarter of a whole Hertz run at N = 512 (docs/history.md
+        // §2026-11-23: the non-adhesive whole run).
         .compression_level(Some(1))
         .large_file(large_file);
     let stored = zip::write::SimpleFileOptions::default()

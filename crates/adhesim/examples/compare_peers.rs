@@ -1,6 +1,6 @@
-//! adhesim's side of the peer comparison in `bench/compare/` (issue #7): the same three
-//! problems the Python drivers give ASPHER, Tamaas and ContactMechanics, timed and
-//! printed as one JSON object on stdout.
+//! adhesim's side of the peer comparison in `bench/compare/` (BENCHMARKS.md §How do we
+//! compare with the peers): the same three problems the Python drivers give ASPHER, Tamaas
+//! and ContactMechanics, timed and printed as one JSON object on stdout.
 //!
 //! `cargo run --release -p adhesim --example compare_peers -- [options]`
 //!

@@ -1,5 +1,6 @@
 //! The paper's Fig. 1 cycle (wavy sphere, α = 1, to 15|d_JKR| and back) at grid size N,
-//! with the solver's performance counters: the case of issue #7's speed goal.
+//! with the solver's performance counters: the case of the adhesive step's speed goal
+//! (BENCHMARKS.md §How fast is a run of each kind › The paper's Fig. 1 cycle at N = 512).
 //!
 //! `cargo run --release -p adhesim --example fig1_cycle -- [N] [approach steps] [curve.csv]`
 //!
@@ -13,7 +14,7 @@
 //! two layers of elements per trial ring (`AdhesiveParams::trial_ring_layers`) and
 //! `ADHESIM_ATTACHMENT=penetration` attaches by penetration only
 //! (`Attachment::PenetrationOnly`): different rules, whose physics cost is measured in
-//! BENCHMARKS.md.
+//! BENCHMARKS.md §What did not pay.
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
 use adhesim::solver::{Attachment, PredictedGrowth};

@@ -13,7 +13,8 @@
 //! before each change is exact up to the CG tolerance (measured 3e-6 at a_JKR/Δ = 16).
 //! `cargo test --release -p adhesim --example jkr_pull_off` runs it at a_JKR/Δ = 8 (about
 //! a second). `ADHESIM_RING_LAYERS=2` attaches two layers of elements per trial ring
-//! (`AdhesiveParams::trial_ring_layers`; BENCHMARKS.md measures what it changes).
+//! (`AdhesiveParams::trial_ring_layers`; BENCHMARKS.md §What did not pay measures what it
+//! changes).
 #![allow(clippy::needless_range_loop)]
 use adhesim::analysis::reference::Jkr;
 use adhesim::{

@@ -1,5 +1,6 @@
 //! Warm against cold nested start of `NestedActiveSet` when a Hertz contact is unloaded:
-//! the measurement behind `NestedParams::cold_restart_fraction` (issue #14 item 7).
+//! the measurement behind `NestedParams::warm_unload` (BENCHMARKS.md §What did not pay,
+//! warm starts on unloads).
 //!
 //! `cargo run --release -p adhesim --example nested_unload -- [N]`
 //!

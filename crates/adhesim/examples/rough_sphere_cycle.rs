@@ -1,5 +1,5 @@
 //! One adhesive indent–pull-off cycle of a rough sphere on a free half-space: the cost and
-//! the outputs of one case of the rough-sphere study (issue #18 item 2).
+//! the outputs of one case of the rough-sphere study (docs/rough-spheres.md).
 //!
 //! `cargo run --release -p adhesim --example rough_sphere_cycle -- [n] [hurst] [rms_slope] [seed] [steps]`
 //! (defaults 128 0.8 0.05 1 300)

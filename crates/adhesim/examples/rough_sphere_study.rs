@@ -1,4 +1,4 @@
-//! The rough-sphere study (issue #18 item 5): adhesive indent–pull-off cycles of spheres
+//! The rough-sphere study: adhesive indent–pull-off cycles of spheres
 //! carrying random self-affine roughness on a free half-space, for several Hurst exponents,
 //! rms slopes and seeds; one table row per case (docs/rough-spheres.md).
 //!

@@ -1,10 +1,11 @@
-//! Time per single-precision application of the free operator with row windows (issue #14
-//! item 5): the full `apply_single` against `apply_single_rows` with the input's support on
-//! a centred band of N, N/2 or N/4 rows, (a) all output rows kept (what the masked PCG of
-//! the fixed-set solves does: it updates the displacement everywhere) and (b) only the
-//! band's output rows (the bound for a caller that reads the band only). Median of
-//! samples (CPU time of the process and wall time per application), per thread count. Also checks that every timed windowed result
-//! has the full result's bits on its output rows.
+//! Time per single-precision application of the free operator with row windows
+//! (docs/history.md §2026-11-23: row-window transforms): the full `apply_single` against
+//! `apply_single_rows` with the input's support on a centred band of N, N/2 or N/4 rows, (a)
+//! all output rows kept (what the masked PCG of the fixed-set solves does: it updates the
+//! displacement everywhere) and (b) only the band's output rows (the bound for a caller that
+//! reads the band only). Median of samples (CPU time of the process and wall time per
+//! application), per thread count. Also checks that every timed windowed result has the full
+//! result's bits on its output rows.
 //!
 //! `cargo run --release -p adhesim --example row_window_apply -- [N ...] [--threads T ...] [--repeats R]`
 //! (default: N = 256 512, threads 1 2, 41 repeats).

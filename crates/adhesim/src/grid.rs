@@ -214,7 +214,8 @@ mod tests {
     fn rejects_bad_grids() {
         assert_eq!(Grid::new(1, 1.0, Boundary::Free), Err(GridError::TooFewElements(1)));
         assert!(Grid::new(4, 0.0, Boundary::Free).is_err());
-        // Issue #29: n² wrapped to 0 elements at n = 2³²; a subnormal element was accepted.
+        // Second robustness audit (docs/reliability.md): n² wrapped to 0 elements at
+        // n = 2³²; a subnormal element was accepted.
         assert_eq!(
             Grid::new(1 << 32, 1.0, Boundary::Periodic),
             Err(GridError::TooManyElements(1 << 32))

@@ -1,8 +1,8 @@
 //! Polonsky & Keer (1999)'s constrained conjugate gradients under load control on a
-//! periodic strip contact (issue #27). The heights are y-independent (a 1-D profile), so
-//! every element of a row of the strip has bitwise the same gap (a power-of-two FFT of a
-//! y-uniform field is exact). When the active set shrinks to one row, the mean-free gap
-//! g − ḡ on it is zero, but a plainly rounded mean left it a uniform vector of rounding
+//! periodic strip contact (docs/validation.md §13). The heights are y-independent (a 1-D
+//! profile), so every element of a row of the strip has bitwise the same gap (a power-of-two
+//! FFT of a y-uniform field is exact). When the active set shrinks to one row, the mean-free
+//! gap g − ḡ on it is zero, but a plainly rounded mean left it a uniform vector of rounding
 //! size; along a uniform vector the load-constrained curvature Σ(r − r̄)t vanishes too, so
 //! the step τ = Σg·t / Σ(r − r̄)t was rounding over rounding (4e16 on the case below),
 //! wiped the pressure, and the cold restart retraced the same path forever (NotConverged).
@@ -100,9 +100,9 @@ fn load_controlled_ccg_converges_on_a_strip_one_row_wide() {
     assert!(one_row > 10, "{one_row} one-row contacts");
 }
 
-/// Issue #27's instance: the mean-gap solve of the cohesive step on the 128 × 128 cell
-/// (its secant iteration on the load passes through one-row contacts) reaches the depth
-/// within the solver's depth tolerance, 1e-10 of max(height range, |d|).
+/// The instance of docs/validation.md §13: the mean-gap solve of the cohesive step on the
+/// 128 × 128 cell (its secant iteration on the load passes through one-row contacts) reaches
+/// the depth within the solver's depth tolerance, 1e-10 of max(height range, |d|).
 #[test]
 fn mean_gap_solve_of_issue_27_converges() {
     let (grid, heights) = strip(128);

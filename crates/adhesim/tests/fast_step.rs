@@ -146,10 +146,10 @@ fn wavy_sphere_sets_are_unchanged() {
 }
 
 /// Two layers per trial ring (`AdhesiveParams::trial_ring_layers` = 2, a different closure
-/// rule measured in BENCHMARKS.md) on the wavy sphere of the test above: the fast rule, its
-/// certificates checked, reaches the reference rule's sets under that rule too (the trial
-/// test of the certified stops must see the same two-step reach as the candidates, or a
-/// step would end on an unconverged state), and the approach contact is never smaller than
+/// rule measured in BENCHMARKS.md §What did not pay) on the wavy sphere of the test above: the
+/// fast rule, its certificates checked, reaches the reference rule's sets under that rule too
+/// (the trial test of the certified stops must see the same two-step reach as the candidates,
+/// or a step would end on an unconverged state), and the approach contact is never smaller than
 /// with one layer (F2, docs/fast-step.md §1: the inner layer is tested with the outer one
 /// attached) and larger at some step (the option takes effect).
 #[test]

@@ -1,5 +1,6 @@
-//! The contact window of `NestedActiveSet` (issue #14 items 5 and 7): pre-solving each level
-//! on the contact's bounding box must give the solution of the whole grid. Both runs
+//! The contact window of `NestedActiveSet` (docs/history.md §2026-11-23: the non-adhesive
+//! whole run): pre-solving each level on the contact's bounding box must give the solution
+//! of the whole grid. Both runs
 //! converge to a relative residual of 1e-10 on the same set, so their forces agree far
 //! below the 1e-8 asserted here (the two differ only in the rounding of their transforms
 //! and in where their CG iterations stopped inside the tolerance); the sets must be equal.

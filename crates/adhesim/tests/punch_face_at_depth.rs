@@ -1,8 +1,8 @@
 //! An adhesive flat punch retracted to exactly the depth of its face (d = 0) while the face
-//! is in contact (issue #16: `scenarios/fig12_*.toml` with `protocol.steps = 2` reached
-//! d = 0 on its second retraction step and failed with "solver did not converge in 5000
-//! iterations: residual 3e264": the fixed-set right-hand side d − z was 0 on the whole
-//! contact set, so the relative CG criterion asked for a residual of exactly 0).
+//! is in contact (first robustness audit, docs/reliability.md: `scenarios/fig12_*.toml` with
+//! `protocol.steps = 2` reached d = 0 on its second retraction step and failed with "solver did
+//! not converge in 5000 iterations: residual 3e264": the fixed-set right-hand side d − z was 0
+//! on the whole contact set, so the relative CG criterion asked for a residual of exactly 0).
 //!
 //! Closed form: on a fixed contact disc of radius a the force is Boussinesq's F = 2aE*d
 //! (Johnson 1985, Sect. 3.8), linear in d and 0 at d = 0.

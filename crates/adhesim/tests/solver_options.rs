@@ -1,9 +1,9 @@
 //! Speed-ups of the adhesive step must not change results: carried bans during
 //! retraction, the preconditioner and the looser relative CG tolerance (1e-6 instead of
 //! 1e-9; the front criterion decides) give the same curves as the plain algorithm of the
-//! docs/physics.md §2.4 (same contact sets; forces equal to the CG tolerance). Since
-//! issue #14 the default also stops solves on certified decisions and releases certified
-//! elements without a solve (docs/fast-step.md); the plain algorithm is the reference rule.
+//! docs/physics.md §2.4 (same contact sets; forces equal to the CG tolerance). The default
+//! also stops solves on certified decisions and releases certified elements without a
+//! solve (docs/fast-step.md); the plain algorithm is the reference rule.
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,

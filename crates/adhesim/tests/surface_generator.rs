@@ -250,9 +250,9 @@ fn invalid_parameters_are_named_errors() {
     assert!((surface.cutoff_wavevector - TAU / 0.125).abs() < 1e-12);
 }
 
-/// Issue #26 item 2: on a free rectangle of square elements the surface is the square
-/// grid's of the longer side, cut (the same realisation, bit for bit); a periodic rectangle
-/// or rectangular elements are refused with the grid named.
+/// Rectangular grids (docs/validation.md §12): on a free rectangle of square elements the
+/// surface is the square grid's of the longer side, cut (the same realisation, bit for bit); a
+/// periodic rectangle or rectangular elements are refused with the grid named.
 #[test]
 fn rectangles_cut_the_square_realisation_or_are_refused() {
     use adhesim::{Boundary, Grid, RmsTarget, SelfAffine, SurfaceError};

@@ -6,9 +6,9 @@ use adhesim::{
     Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FlatPunch, FreeOperator, Grid, Profile, Sphere,
 };
 
-/// Hertz, free boundary, a = √(Rd) = 32Δ on a 128² grid. Tolerances (issue #2): force
-/// within 0.5 % (the prototype's discretisation error at a = 32Δ is ~1e-4), contact radius
-/// within one element (staircase boundary), pressure within 2 % of p0 away from the edge
+/// Hertz, free boundary, a = √(Rd) = 32Δ on a 128² grid. Tolerances (docs/validation.md §2):
+/// force within 0.5 % (the prototype's discretisation error at a = 32Δ is ~1e-4), contact
+/// radius within one element (staircase boundary), pressure within 2 % of p0 away from the edge
 /// (r < 0.9a, where the square-root edge is resolved by several elements).
 #[test]
 fn hertz_displacement_control() {
@@ -119,8 +119,8 @@ fn non_convergence_is_an_error() {
     }
 }
 
-/// Flat circular punch of radius a = 24Δ: stiffness F/d within 2 % of 2E*a (issue #2;
-/// the staircase face and the edge singularity cost ~1 % at this resolution).
+/// Flat circular punch of radius a = 24Δ: stiffness F/d within 2 % of 2E*a (docs/validation.md
+/// §2; the staircase face and the edge singularity cost ~1 % at this resolution).
 #[test]
 fn flat_punch_stiffness() {
     let n = 64;
@@ -202,12 +202,12 @@ fn nested_active_set_matches_ccg_and_hertz() {
     assert!(matches!(error, SolveError::PeriodicUnsupported { .. }), "{error}");
 }
 
-/// Unloading (issue #14 item 7): from a = 32Δ at N = 128 to half the depth (a = 22.6Δ)
-/// and to zero. The default cold restart and the warm start (`warm_unload`) must agree to
-/// 1e-7 (both converge to a relative residual of 1e-10) and with Hertz to 0.5 % (the bound
-/// of the loading test; a = 22.6Δ still resolves the edge to ~2e-4); at zero depth the
-/// cold restart finds no contact with a handful of fine applications instead of a warm
-/// descent from thousands of elements.
+/// Unloading (BENCHMARKS.md §What did not pay, warm starts on unloads): from a = 32Δ at N = 128
+/// to half the depth (a = 22.6Δ) and to zero. The default cold restart and the warm start
+/// (`warm_unload`) must agree to 1e-7 (both converge to a relative residual of 1e-10) and with
+/// Hertz to 0.5 % (the bound of the loading test; a = 22.6Δ still resolves the edge to ~2e-4);
+/// at zero depth the cold restart finds no contact with a handful of fine applications instead
+/// of a warm descent from thousands of elements.
 #[test]
 fn nested_unload_cold_restart_matches_warm_start_and_hertz() {
     use adhesim::{NestedActiveSet, NestedParams};

@@ -34,10 +34,11 @@ fn pull_off_force_converges_at_first_order() {
 }
 
 /// Two layers per trial ring (`AdhesiveParams::trial_ring_layers` = 2, the rule-level
-/// change measured in BENCHMARKS.md, "two layers per trial ring"): the pull-off force must
-/// still lie within ±50 % of the first-order mesh error 1.4Δ/a_JKR, the tolerance of
-/// [`pull_off_force_converges_at_first_order`] for the exact rule (the same closed form, the
-/// same mesh error; the rule changes only which closures are tested), at a_JKR/Δ = 8 and 16.
+/// change measured in BENCHMARKS.md §What did not pay, two layers per trial ring): the
+/// pull-off force must still lie within ±50 % of the first-order mesh error 1.4Δ/a_JKR, the
+/// tolerance of [`pull_off_force_converges_at_first_order`] for the exact rule (the same
+/// closed form, the same mesh error; the rule changes only which closures are tested), at
+/// a_JKR/Δ = 8 and 16.
 #[test]
 fn two_layer_rings_keep_the_jkr_pull_off_force() {
     for resolution in [8.0, 16.0] {
@@ -143,9 +144,10 @@ fn loop_area_equals_dissipated_energy() {
     }
 }
 
-/// Issue #3 targets at a_JKR/Δ = 64 (≥ 60): pull-off force within 3 %, retraction branch
-/// within 0.03|F_JKR| for d ≥ 0.5|d_JKR|, approach within 0.05|F_JKR| for d ≥ 2|d_JKR|,
-/// final jump near −2.08|d_JKR| (0.15 tolerance: the last stage involves few elements).
+/// The JKR validation targets (docs/validation.md §3) at a_JKR/Δ = 64 (≥ 60): pull-off force
+/// within 3 %, retraction branch within 0.03|F_JKR| for d ≥ 0.5|d_JKR|, approach within
+/// 0.05|F_JKR| for d ≥ 2|d_JKR|, final jump near −2.08|d_JKR| (0.15 tolerance: the last stage
+/// involves few elements).
 #[test]
 #[ignore = "minutes: run with cargo test --release -- --ignored"]
 fn jkr_targets_at_high_resolution() {
@@ -156,12 +158,12 @@ fn jkr_targets_at_high_resolution() {
     check_branches(&case, &summary, &records, 0.03, 0.05, 0.15);
 }
 
-/// Issue #29: γ → 0 through the adhesive solver. The cycle's dissipated energy is then the
-/// CG error of ∮F dd (loading and unloading pass through the same unique non-adhesive
-/// states), of either sign: it must be negligible against the work of the loading branch,
-/// and the per-step values (signed by design: docs/validation.md §4) must cancel. The bound
-/// 1e-4 is a hundredfold the CG tolerance's relative residual 1e-6 (an energy error is
-/// second order in the pressure error, but the ~200 steps' errors add up).
+/// Second robustness audit (docs/reliability.md): γ → 0 through the adhesive solver. The
+/// cycle's dissipated energy is then the CG error of ∮F dd (loading and unloading pass through
+/// the same unique non-adhesive states), of either sign: it must be negligible against the work
+/// of the loading branch, and the per-step values (signed by design: docs/validation.md §4)
+/// must cancel. The bound 1e-4 is a hundredfold the CG tolerance's relative residual 1e-6 (an
+/// energy error is second order in the pressure error, but the ~200 steps' errors add up).
 #[test]
 fn vanishing_adhesion_dissipates_nothing_beyond_the_solver_error() {
     // the grid and depths of the a_JKR/Δ = 8 case (to 2|d_JKR| in steps of |d_JKR|/50);

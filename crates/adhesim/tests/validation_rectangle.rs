@@ -1,4 +1,4 @@
-//! Rectangular grids (Nx ≠ Ny, Δx ≠ Δy; issue #26 item 2) against closed forms and
+//! Rectangular grids (Nx ≠ Ny, Δx ≠ Δy; docs/validation.md §12) against closed forms and
 //! against the same physical case on a square grid.
 
 mod common;

@@ -273,7 +273,7 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             map.nx, map.ny, map.dx, map.dy, map.height_unit, map.lateral_unit
         ),
     ];
-    // Issue #29: a spacing of 1e±300 overflows the wavevectors and the PSD's areas.
+    // A spacing of 1e±300 overflows the wavevectors and the PSD's areas (docs/reliability.md).
     let sane = |d: f64| d.is_finite() && (1e-150..=1e150).contains(&d);
     if !(sane(map.dx) && sane(map.dy)) {
         bail!(
@@ -283,8 +283,8 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
             map.dy
         );
     }
-    // Issue #29: heights near 1e300 gave an rms height of inf (exit 0) and a PSD plot of
-    // unbounded ticks; beyond 1e150 their squares overflow.
+    // Heights near 1e300 (docs/reliability.md) gave an rms height of inf (exit 0) and a PSD
+    // plot of unbounded ticks; beyond 1e150 their squares overflow.
     let valid = |i: usize| map.mask.as_ref().is_none_or(|m| m[i]);
     if let Some(h) = (0..map.heights.len())
         .filter(|&i| valid(i))

@@ -101,8 +101,9 @@ mod tests {
         assert!(b / a <= LARGEST_LOG_RATIO * (1.0 + 1e-12), "{a} {b}");
     }
 
-    /// Issue #29: `topography --spacing 1e300` gave the PSD plot a log range from 0 or to ∞,
-    /// and plotters' tick loop allocated until the process was killed.
+    /// Second robustness audit (docs/reliability.md): `topography --spacing 1e300` gave the PSD
+    /// plot a log range from 0 or to ∞, and plotters' tick loop allocated until the process was
+    /// killed.
     #[test]
     fn panels_of_absurd_ranges_are_drawn() {
         use crate::figure::{Figure, Mark, Panel, Series, PALETTE};

@@ -294,9 +294,10 @@ mod tests {
 
     #[test]
     fn row_windows_give_the_bits_of_the_full_transform() {
-        // Issue #14 item 5: inside the output window the row-pruned convolution must equal
-        // the full one bit for bit (f64 and f32, free and periodic), and leave the other
-        // output rows untouched. Tolerance: none (to_bits).
+        // Row windows (docs/history.md §2026-11-23: row-window transforms): inside the
+        // output window the row-pruned convolution must equal the full one bit for bit (f64
+        // and f32, free and periodic), and leave the other output rows untouched. Tolerance:
+        // none (to_bits).
         let mut random = Lcg(0x5eed_0014);
         let material = ElasticMaterial::new(1.7).unwrap();
         for n in [16, 17, 24, 31, 32, 48, 64] {
@@ -355,7 +356,7 @@ mod tests {
         // Every signed offset of the padded kernel, against a direct evaluation: for element
         // sizes whose corner arguments round differently from one element to the next
         // (0.013, 0.3/64) and for a power of two, where neighbours share their corners.
-        // Rectangles: a different count and spacing along y (issue #26 item 2).
+        // Rectangles: a different count and spacing along y (docs/validation.md §12).
         let cases = [
             (12, 12, 0.013, 0.013, 2.5),
             (10, 10, 0.3 / 64.0, 0.3 / 64.0, 1.0),

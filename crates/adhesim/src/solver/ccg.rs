@@ -315,10 +315,10 @@ impl Ccg {
         }
         if load.is_some() {
             // Polonsky & Keer's (1999) shift ḡ must come out exact when the gaps on I are all
-            // equal (one row of a strip contact, issue #27). A rounded ḡ left g − ḡ a uniform
-            // vector of rounding size, along which the curvature Σ(r − r̄)t vanishes too: the
-            // step Σg·t / Σ(r − r̄)t was rounding over rounding (4e16 there), it wiped the
-            // pressure, and the cold restart retraced the same path without end.
+            // equal (one row of a strip contact, docs/validation.md §13). A rounded ḡ left
+            // g − ḡ a uniform vector of rounding size, along which the curvature Σ(r − r̄)t
+            // vanishes too: the step Σg·t / Σ(r − r̄)t was rounding over rounding (4e16 there),
+            // it wiped the pressure, and the cold restart retraced the same path without end.
             mean_gap = refined_mean(&self.gap, pressure, mean_gap / active as f64, active);
             progress.found_depth = mean_gap;
             self.gap.iter_mut().for_each(|g| *g -= mean_gap);

@@ -1,5 +1,6 @@
 //! The contact's bounding box as a grid of its own, for the rounds of [`super::NestedActiveSet`]
-//! (issue #14 item 5: transforms and loops restricted to where the work is).
+//! (transforms and loops restricted to where the work is; docs/history.md §2026-11-23: the
+//! non-adhesive whole run).
 //!
 //! On a free half-space the elastic response of elements inside a square window of side B
 //! is the DC-FFT convolution on a B×B grid of the same element size: Love's coefficients

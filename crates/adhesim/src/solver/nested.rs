@@ -24,7 +24,7 @@ pub struct NestedParams {
     /// Keep a warm start when the depth decreases from the previous solve (default
     /// false: an unload starts cold, with the nested continuation, which measured 1.2–2×
     /// cheaper than the warm start for every unload fraction at N = 512; the warm start
-    /// stays for loading. See `BENCHMARKS.md`, issue #14 item 7).
+    /// stays for loading. See BENCHMARKS.md §What did not pay, warm starts on unloads).
     pub warm_unload: bool,
     /// Pre-solve each level on the contact's bounding box as a grid of its own (default
     /// true; see the `contact_window` module): the same solution, from transforms of twice
@@ -395,8 +395,8 @@ fn solve_in_window(
 
 /// Residual reduction of a round whose set changed in the round before (or that starts a
 /// level): N = 512 Hertz, 28 → 20 CG iterations on the fine level, the same set (1e-3:
-/// 23, 1e-1: 18 but two more rounds; BENCHMARKS.md, issue #14 item 7). Convergence is
-/// still decided by a round on an unchanged set at the full tolerance.
+/// 23, 1e-1: 18 but two more rounds; docs/history.md §2026-11-23: the non-adhesive whole
+/// run). Convergence is still decided by a round on an unchanged set at the full tolerance.
 const LOOSE_ROUND_REDUCTION: f64 = 1e-2;
 
 /// First set without information: the elements the rigid indenter penetrates, p = 0.

@@ -19,7 +19,8 @@ use rayon::prelude::*;
 /// prediction), at a dense-solve cost growing as the cube of the strip's length. 16 cuts
 /// the FFT pairs further (N = 512, Fig. 1: 252.2 → 223.0 per step, the same contact sets)
 /// but not the time: the longer one-thread replays eat the saved transforms (n = 256, the
-/// 512² rule: 1.16× the CPU, 1.27× the wall; BENCHMARKS.md §0, 2026-11-26), so 12 stays.
+/// 512² rule: 1.16× the CPU, 1.27× the wall; BENCHMARKS.md §What did not pay, replay
+/// radius 16), so 12 stays.
 const RADIUS: i64 = 12;
 /// ... and within this distance (Chebyshev) of a free element: the edge strip.
 const BAND: i64 = 2;

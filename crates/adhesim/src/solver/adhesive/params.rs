@@ -99,7 +99,8 @@ pub enum PredictedGrowth {
     /// Always (where it applies).
     On,
     /// On grids of at least [`PREDICTION_MIN_ELEMENTS`] elements, where it pays in wall
-    /// time on 2 cores (Fig. 1 cycle, BENCHMARKS.md): at 512², 153.6 s instead of 171.8 s;
+    /// time on 2 cores (Fig. 1 cycle, docs/history.md §2026-11-23: threads, and predicted
+    /// growth on by default from 512² (commit 66838ca)): at 512², 153.6 s instead of 171.8 s;
     /// at 256², 22 % fewer FFT pairs but the same CPU time and 8–12 % more wall time (the
     /// replays run on one thread); at 128², 15–25 % more CPU (the patchy Fig. 2 contact at
     /// h = 0.006: about 3× the wall time).
@@ -112,7 +113,8 @@ pub enum PredictedGrowth {
 pub struct AdhesiveParams {
     /// CG stops when ‖r‖_C ≤ this·‖d − z‖_C (default 1e-6; the front criterion below is
     /// the one the contact set depends on: 1e-9 gives the same contact sets at every step
-    /// with 35 % more CG iterations, see BENCHMARKS.md) ...
+    /// with 35 % more CG iterations, see docs/history.md §2026-11-23: the adhesive step,
+    /// first round (tolerances, single precision)) ...
     pub relative_tolerance: f64,
     /// ... and max|r_i| ≤ this·K(0,0)·σ_c,min (default 1e-4): the stress error at the front
     /// must be far below σ_c or the contact set flickers.
@@ -142,10 +144,10 @@ pub struct AdhesiveParams {
     /// lifted only when the contact is larger than at every earlier retry of the step, so
     /// the step still ends.
     pub retry_after_growth: bool,
-    /// The pre-issue-14 rule (default false): every fixed-set solve converges fully before
-    /// its release decisions. Otherwise a solve whose release decisions are certified
-    /// (docs/fast-step.md) stops early; contact sets are the same, the reference mode is
-    /// kept to show it.
+    /// The rule before certified early stops (default false): every fixed-set solve converges
+    /// fully before its release decisions. Otherwise a solve whose release decisions are
+    /// certified (docs/fast-step.md) stops early; contact sets are the same, the reference mode
+    /// is kept to show it.
     pub reference_rule: bool,
     /// Predicted-subset growth on the approach (docs/fast-step.md §3): after the solve with
     /// a full trial ring, attach only the members a local replay of the peel predicts to
@@ -162,7 +164,7 @@ pub struct AdhesiveParams {
     /// on the Fig. 1 cycle) but more solves per ring. It is a different closure rule: the
     /// inner layer is tested with the outer one attached (F2 of docs/fast-step.md raises
     /// its pressures), so the approach branch changes (γ1 up by 3–5 % on the Fig. 1 cycle;
-    /// BENCHMARKS.md, "two layers per trial ring"). Kept for that measurement;
+    /// BENCHMARKS.md §What did not pay, two layers per trial ring). Kept for that measurement;
     /// predicted-subset growth is used with 1 only. `NonZeroUsize`: a ring of 0 layers
     /// would attach nothing.
     pub trial_ring_layers: NonZeroUsize,
