@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 mod common;
+mod shear;
 use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
 
 /// Runs a scenario file of the repository with overrides; returns (out dir, summary).

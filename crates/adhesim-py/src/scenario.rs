@@ -145,7 +145,7 @@ pub fn _run_scenario<'py>(
         Some(out) => run_in_folder(py, &scenario, &out, force, progress)?,
         None => run_in_memory(py, &scenario, progress)?,
     };
-    let columns = CurveColumns::new(scenario.jkr);
+    let columns = CurveColumns::of(&scenario);
     let result = PyDict::new(py);
     result.set_item("columns", curve_arrays(py, &columns, &outcome.records)?)?;
     result.set_item("csv", curve_text(&columns, &outcome.records))?;

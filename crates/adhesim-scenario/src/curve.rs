@@ -117,7 +117,19 @@ const TRAILING: [CurveColumn; 8] = [
     integer("touches_border", |r, _| Integer(u64::from(r.touches_border))),
 ];
 
-/// The columns of one run's `curve.csv` (they depend on whether the JKR scales exist).
+/// The columns of a run with friction at the interface, after the solver's counters.
+const FRICTION: [CurveColumn; 5] = [
+    integer("n_stick", |r, _| Integer(r.stick_elements as u64)),
+    integer("n_slip", |r, _| Integer(r.slip_elements as u64)),
+    float("area_front", |r, _| Float(r.area_front)),
+    float("area_rear", |r, _| Float(r.area_rear)),
+    float("frictional_dissipation", |r, _| {
+        Float(r.cumulative_frictional_dissipation)
+    }),
+];
+
+/// The columns of one run's `curve.csv` (they depend on whether the JKR scales exist and
+/// whether the interface has friction).
 #[derive(Debug, Clone)]
 pub struct CurveColumns {
     columns: Vec<CurveColumn>,
@@ -142,6 +154,16 @@ impl CurveColumns {
                 work_of_adhesion: 1.0,
             }),
         }
+    }
+
+    /// The columns of a scenario's run: with the friction columns where it has
+    /// `[friction]`.
+    pub fn of(scenario: &crate::model::ValidScenario) -> Self {
+        let mut columns = Self::new(scenario.jkr);
+        if scenario.shear.is_some() {
+            columns.columns.extend(FRICTION);
+        }
+        columns
     }
 
     /// The columns in file order.

@@ -6,8 +6,10 @@ use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+mod friction;
 mod per_axis;
 mod roughness;
+pub use friction::{CouplingName, FrictionLawName, FrictionSection, ShearProtocol, ShearSetup};
 pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, RoughnessMode, RoughnessSection};
 
@@ -32,6 +34,9 @@ pub struct ScenarioFile {
     /// Roughness of the substrate of a `slide` (fixed to the half-space).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub substrate_roughness: Option<RoughnessSection>,
+    /// Friction at the interface (`kind = "shear"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionSection>,
 }
 
 /// `[analysis]`: numbers the analysis of a run needs but the run does not produce.
@@ -267,6 +272,8 @@ pub enum ProtocolKind {
     Slide,
     /// The frictionless control: the whole rough profile translates over a smooth body.
     Translate,
+    /// A tangential shift with friction at fixed indentation.
+    Shear,
 }
 
 impl ProtocolKind {
@@ -276,12 +283,13 @@ impl ProtocolKind {
             Self::Roll => "roll",
             Self::Slide => "slide",
             Self::Translate => "translate",
+            Self::Shear => "shear",
         }
     }
 
     /// Roll, slide or translate: motion at fixed indentation.
     pub fn is_translation(self) -> bool {
-        !matches!(self, Self::IndentPulloff)
+        matches!(self, Self::Roll | Self::Slide | Self::Translate)
     }
 }
 
@@ -312,6 +320,7 @@ pub enum ProtocolSection {
     Roll(MotionProtocol),
     Slide(SlideProtocol),
     Translate(MotionProtocol),
+    Shear(ShearProtocol),
 }
 
 impl ProtocolSection {
@@ -321,6 +330,7 @@ impl ProtocolSection {
             Self::Roll(_) => ProtocolKind::Roll,
             Self::Slide(_) => ProtocolKind::Slide,
             Self::Translate(_) => ProtocolKind::Translate,
+            Self::Shear(_) => ProtocolKind::Shear,
         }
     }
 
@@ -330,13 +340,14 @@ impl ProtocolSection {
             Self::IndentPulloff(p) => p.depth_unit,
             Self::Roll(p) | Self::Translate(p) => p.depth_unit,
             Self::Slide(p) => p.depth_unit,
+            Self::Shear(p) => p.depth_unit,
         }
     }
 
     /// Roll, slide, translate: the motion's keys and (slide only) `substrate_angle`.
     pub fn motion(&self) -> Option<(MotionProtocol, Option<f64>)> {
         match self {
-            Self::IndentPulloff(_) => None,
+            Self::IndentPulloff(_) | Self::Shear(_) => None,
             Self::Roll(p) | Self::Translate(p) => Some((p.clone(), None)),
             Self::Slide(p) => Some((
                 MotionProtocol {
@@ -497,6 +508,8 @@ pub struct ValidScenario {
     pub jump_force_threshold: f64,
     /// roll / slide / translate: the motion (`None` for indent_pulloff).
     pub translation: Option<TranslationSetup>,
+    /// shear: the protocol and the interface law (`None` otherwise).
+    pub shear: Option<ShearSetup>,
     /// Resolution warnings (elements per wavelength, across a punch, per a_JKR), for
     /// stderr and `summary.json`.
     pub warnings: Vec<String>,

@@ -61,7 +61,7 @@ pub(crate) fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> R
     Ok(())
 }
 
-const SECTIONS: [&str; 9] = [
+const SECTIONS: [&str; 10] = [
     "grid",
     "material",
     "adhesion",
@@ -71,6 +71,7 @@ const SECTIONS: [&str; 9] = [
     "analysis",
     "roughness",
     "substrate_roughness",
+    "friction",
 ];
 
 /// Deserialises the table section by section so that every message names the dotted key.
@@ -113,6 +114,7 @@ pub(crate) fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
     let analysis = section(table, "analysis", false)?.unwrap_or_default();
     let roughness = section(table, "roughness", false)?;
     let substrate_roughness = section(table, "substrate_roughness", false)?;
+    let friction = section(table, "friction", false)?;
     Ok(ScenarioFile {
         grid,
         material,
@@ -123,6 +125,7 @@ pub(crate) fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
         analysis,
         roughness,
         substrate_roughness,
+        friction,
     })
 }
 

@@ -2,12 +2,14 @@
 //! normal solver and protocol → the caller's observer sees every step → results.
 
 use crate::cohesive::cohesive_solver;
-use crate::model::{TranslationSetup, ValidScenario};
+use crate::model::{ShearSetup, TranslationSetup, ValidScenario};
 use crate::results::{fit_results, Results, RunResults};
+use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolCheckpoint,
-    ProtocolError, ProtocolSummary, StepRecord, StepView, TranslationSummary,
+    ProtocolError, ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialOperator, TangentialParams,
+    TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -18,11 +20,16 @@ pub enum ProtocolSetup<'a> {
     Indentation(IndentPulloff),
     /// roll / slide / translate at fixed depth.
     Translation(&'a TranslationSetup),
+    /// shear at fixed depth with friction at the interface.
+    Shear(&'a ShearSetup),
 }
 
 impl ValidScenario {
     /// The scenario's protocol.
     pub fn protocol_setup(&self) -> ProtocolSetup<'_> {
+        if let Some(setup) = &self.shear {
+            return ProtocolSetup::Shear(setup);
+        }
         match &self.translation {
             Some(setup) => ProtocolSetup::Translation(setup),
             None => ProtocolSetup::Indentation(IndentPulloff {
@@ -62,6 +69,10 @@ impl ValidScenario {
                 let p = &setup.protocol;
                 p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
             }
+            ProtocolSetup::Shear(setup) => {
+                let p = &setup.protocol;
+                p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
+            }
         }
     }
 }
@@ -71,6 +82,7 @@ impl ValidScenario {
 pub enum ProtocolReport {
     Indentation(ProtocolSummary),
     Translation(TranslationSummary),
+    Shear(ShearSummary),
 }
 
 /// Counters of a run (for the performance section of `summary.json`).
@@ -97,6 +109,13 @@ impl ProtocolReport {
                 touches_border: s.touches_border,
             },
             Self::Translation(s) => Counters {
+                steps: s.steps,
+                solves: s.solves,
+                cg_iterations: s.cg_iterations,
+                operator_applications: s.operator_applications,
+                touches_border: s.touches_border,
+            },
+            Self::Shear(s) => Counters {
                 steps: s.steps,
                 solves: s.solves,
                 cg_iterations: s.cg_iterations,
@@ -177,6 +196,8 @@ pub fn run_from(
     let wrong_kind = match scenario.protocol_setup() {
         ProtocolSetup::Indentation(_) => translation_start.is_some(),
         ProtocolSetup::Translation(_) => indentation_start.is_some(),
+        // A shear run takes no checkpoints: any is another protocol's.
+        ProtocolSetup::Shear(_) => indentation_start.is_some() || translation_start.is_some(),
     };
     if wrong_kind {
         return Err(ProtocolError::InvalidParameter(
@@ -207,6 +228,7 @@ pub fn run_from(
                 records,
             })
         }
+        ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut operator, &mut solver, recording),
         ProtocolSetup::Translation(setup) => {
             let summary = setup.protocol.run_from(
                 &mut operator,
@@ -224,6 +246,33 @@ pub fn run_from(
             })
         }
     }
+}
+
+/// A shear run: the tangential operator and solver beside the normal ones.
+fn run_shear(
+    scenario: &ValidScenario,
+    setup: &ShearSetup,
+    operator: &mut HalfSpace,
+    solver: &mut NormalSolver,
+    mut recording: Recording<'_>,
+) -> Result<RunOutcome, ProtocolError> {
+    let mut shear_operator = TangentialOperator::new(scenario.grid, setup.material)
+        .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+    let mut friction = TangentialSolver::new(setup.law, TangentialParams::default());
+    let summary = setup.protocol.run(
+        operator,
+        &scenario.heights,
+        solver,
+        &mut shear_operator,
+        &mut friction,
+        &mut recording,
+    )?;
+    let records = recording.records;
+    Ok(RunOutcome {
+        results: RunResults::Shear(ShearResults::new(&summary, &records, &setup.protocol)),
+        report: ProtocolReport::Shear(summary),
+        records,
+    })
 }
 
 /// The library's friction analysis with the scenario's inputs.

@@ -16,6 +16,8 @@ pub enum RunResults {
     Indentation(Results),
     /// roll, slide, translate.
     Translation(TranslationResults),
+    /// shear.
+    Shear(crate::shear::ShearResults),
 }
 
 /// Results of an indentation / pull-off run. Entries that do not apply (fits not yet

@@ -32,10 +32,15 @@ impl SnapshotPlan {
     pub fn new(scenario: &ValidScenario) -> Self {
         let output = &scenario.file.output;
         let mut chosen: BTreeSet<usize> = output.snapshot_steps.iter().map(|&s| s as usize).collect();
-        if let ProtocolSetup::Translation(setup) = scenario.protocol_setup() {
+        let forward_end = match scenario.protocol_setup() {
+            ProtocolSetup::Translation(setup) => Some(setup.protocol.approach_steps + setup.protocol.steps - 1),
+            ProtocolSetup::Shear(setup) => Some(setup.protocol.approach_steps + setup.protocol.steps - 1),
+            ProtocolSetup::Indentation(_) => None,
+        };
+        if let Some(step) = forward_end {
             if chosen.is_empty() && output.snapshot_every == 0 {
                 // The end of the forward stroke.
-                chosen.insert(setup.protocol.approach_steps + setup.protocol.steps - 1);
+                chosen.insert(step);
             }
         }
         Self {
@@ -225,7 +230,8 @@ impl SnapshotFields {
         let grid = scenario.grid;
         let moving: Option<&TranslatingContact> = match scenario.protocol_setup() {
             ProtocolSetup::Translation(setup) => Some(&setup.contact),
-            ProtocolSetup::Indentation(_) => None,
+            // A shear's shift is small and leaves the profile where it is.
+            ProtocolSetup::Indentation(_) | ProtocolSetup::Shear(_) => None,
         };
         let mut profile = match moving {
             Some(_) => vec![0.0; grid.len()],

@@ -144,6 +144,7 @@ impl ScenarioFile {
                 tau0,
                 wavelength,
             }),
+            shear: None,
             roughness: None,
             warnings: Vec::new(),
         })

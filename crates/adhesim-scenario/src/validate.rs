@@ -147,10 +147,11 @@ impl ScenarioFile {
             derived,
             substrate_roughness: substrate_roughness.map(|map| map.heights),
         };
-        let mut valid = if self.protocol.kind().is_translation() {
-            self.validate_translation(inputs)?
-        } else {
-            self.validate_indentation(inputs, heights, start_depth)?
+        self.check_friction_pairing()?;
+        let mut valid = match self.protocol.kind() {
+            ProtocolKind::Shear => self.validate_shear(inputs, heights, start_depth)?,
+            kind if kind.is_translation() => self.validate_translation(inputs)?,
+            _ => self.validate_indentation(inputs, heights, start_depth)?,
         };
         warnings.extend(crate::guards::contact_radius_warning(&valid));
         valid.warnings = warnings;
@@ -292,6 +293,7 @@ impl ScenarioFile {
             derived,
             jump_force_threshold,
             translation: None,
+            shear: None,
             warnings: Vec::new(),
             roughness: None,
         })

@@ -227,7 +227,7 @@ fn small_run_overrides(text: &str, n: usize, steps: usize) -> Vec<String> {
 }
 
 fn dotted_key_in(message: &str) -> bool {
-    const SECTIONS: [&str; 10] = [
+    const SECTIONS: [&str; 11] = [
         "grid",
         "material",
         "adhesion",
@@ -237,6 +237,7 @@ fn dotted_key_in(message: &str) -> bool {
         "analysis",
         "roughness",
         "substrate_roughness",
+        "friction",
         "--set",
     ];
     message.contains("key")

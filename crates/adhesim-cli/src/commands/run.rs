@@ -3,7 +3,7 @@
 //! pictures and progress bar (`crate::output`), then the report on stdout.
 
 use crate::{output, resources};
-use adhesim::{ProtocolSummary, TranslationSummary};
+use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
 use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
@@ -134,6 +134,7 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
         match &outcome.report {
             ProtocolReport::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
             ProtocolReport::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
+            ProtocolReport::Shear(summary) => print_shear(summary, outcome, wall_seconds),
         }
         outln!("outputs in {}/", out.display());
         outln!(
@@ -160,6 +161,33 @@ fn print_indentation(scenario: &ValidScenario, summary: &ProtocolSummary, wall_s
             summary.jumps
         );
     }
+}
+
+fn print_shear(summary: &ShearSummary, outcome: &RunOutcome, wall_seconds: f64) {
+    outln!("adhesim: shear {} steps in {:.1} s", summary.steps, wall_seconds);
+    let RunResults::Shear(results) = &outcome.results else {
+        return;
+    };
+    outln!(
+        "  F_N = {:.4e}, peak F_T = {:.4e} ({:.4} F_N), contact area {:.4e}",
+        summary.normal_force,
+        summary.peak_tangential_force,
+        summary.peak_tangential_force / summary.normal_force,
+        summary.area
+    );
+    match results.mean_shear_stress {
+        Some(tau) => outln!(
+            "  gross slip: sliding F_T = {:.4e}, τ = F_T/A = {tau:.4e}",
+            summary.final_tangential_force
+        ),
+        None => outln!("  partial slip at the end of the stroke (no gross slip)"),
+    }
+    outln!(
+        "  frictional dissipation {:.4e}; {} tangential rounds, {} FFT pairs",
+        summary.frictional_dissipation,
+        summary.tangential_rounds,
+        summary.tangential_transform_pairs
+    );
 }
 
 fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, outcome: &RunOutcome, wall_seconds: f64) {

@@ -1,7 +1,6 @@
 //! `curve.csv` written as the steps come (moved from the command line's `output.rs`).
 
 use crate::CurveColumns;
-use adhesim::analysis::reference::Jkr;
 use adhesim::StepRecord;
 use anyhow::{Context, Result};
 use std::fs::File;
@@ -20,13 +19,12 @@ pub struct CurveCsv {
 
 impl CurveCsv {
     /// Creates `PATH.partial` and writes its header.
-    pub fn create(path: &Path, jkr: Option<Jkr>) -> Result<Self> {
+    pub fn create(path: &Path, columns: CurveColumns) -> Result<Self> {
         let mut partial = path.as_os_str().to_owned();
         partial.push(".partial");
         let partial = PathBuf::from(partial);
         let file = File::create(&partial).with_context(|| format!("cannot create {}", partial.display()))?;
         let writer = csv::Writer::from_writer(BufWriter::new(file));
-        let columns = CurveColumns::new(jkr);
         let mut csv = Self {
             writer,
             columns,

@@ -7,8 +7,7 @@ use super::checkpoint::CheckpointPolicy;
 use super::curve_csv::CurveCsv;
 use super::fields::FieldsRecorder;
 use super::timings::PhaseTimings;
-use crate::{RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
-use adhesim::analysis::reference::Jkr;
+use crate::{CurveColumns, RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
 use adhesim::protocol::bit_string;
 use adhesim::{Grid, Observer, ProtocolCheckpoint, StepRecord, StepView};
 use anyhow::{Context, Result};
@@ -150,14 +149,14 @@ impl<'a> RunObserver<'a> {
     pub fn new(
         out: &Path,
         grid: Grid,
-        jkr: Option<Jkr>,
+        columns: CurveColumns,
         plan: SnapshotPlan,
         progress: &'a mut dyn RunProgress,
         pictures: Option<&'a dyn RunPictures>,
     ) -> Result<Self> {
         let snapshots = out.join("snapshots");
         std::fs::create_dir_all(&snapshots).with_context(|| format!("cannot create {}", snapshots.display()))?;
-        let csv = CurveCsv::create(&out.join("curve.csv"), jkr)?;
+        let csv = CurveCsv::create(&out.join("curve.csv"), columns)?;
         Ok(Self {
             csv,
             grid,

@@ -66,7 +66,7 @@ pub fn run_into_folder(
     let mut observer = RunObserver::new(
         out,
         scenario.grid,
-        scenario.jkr,
+        crate::curve::CurveColumns::of(scenario),
         SnapshotPlan::new(scenario),
         progress,
         options.pictures,

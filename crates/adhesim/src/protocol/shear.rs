@@ -141,9 +141,12 @@ impl Shear {
             summary.tangential_rounds += report.rounds;
             summary.frictional_dissipation += report.dissipated_energy;
             worst(&mut summary.complementarity, report.complementarity);
+            // The normal problem is unchanged; the step's counters are the tangential solve's.
             let normal = StepReport {
                 force: summary.normal_force,
                 force_before_change: summary.normal_force,
+                cg_iterations: report.cg_iterations,
+                operator_applications: report.transform_pairs,
                 ..StepReport::default()
             };
             let mut record = self.record(

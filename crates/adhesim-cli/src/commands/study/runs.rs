@@ -122,6 +122,7 @@ impl StudyRun {
             (RunKind::Translation, RunResults::Indentation(_)) => {
                 bail!("protocol.kind = \"indent_pulloff\" is not a translation")
             }
+            (_, RunResults::Shear(_)) => bail!("protocol.kind = \"shear\" is not a run of a study"),
         };
         let path = folder.join(RECORD);
         std::fs::write(&path, text + "\n").with_context(|| format!("cannot write {}", path.display()))

@@ -10,12 +10,15 @@
 //! Dimensional Elastic Bodies in Rolling Contact*, §5), a strictly convex problem with one
 //! solution per step.
 //!
-//! Solved by Kalker's active set: with the slip tractions held, conjugate gradients solve
-//! K_SS q_S = w_S − K_SL q_L on the stick set S; then a stick element over its bound
-//! slips along its traction, a slip element whose slip runs against its traction sticks,
-//! and each slip traction turns to its slip increment; repeated until no element changes
-//! and no slip traction turns by more than `direction_tolerance`. Every element's
-//! optimality conditions are measured and reported ([`Complementarity`]).
+//! Solved by a semismooth Newton active set (Alart & Curnier 1991, *Comput. Methods Appl.
+//! Mech. Eng.* 92, 353; Kalker's active set with the slip directions in the Newton
+//! step): each element's point z = q + ρ(w − u), ρ = 1/K_ii, decides it: inside its disc it
+//! sticks, outside it slips with q = g·z/|z|. The Newton step is one linear solve by
+//! preconditioned CG on the face of the sets: sticking tractions free, slipping ones
+//! free only to turn along their circle, held by the spring of the projection's
+//! derivative. Rounds repeat until no element changes and no slipping traction turns by
+//! more than `direction_tolerance`; every element's optimality conditions are then
+//! measured and reported ([`Complementarity`]).
 
 mod law;
 
@@ -94,12 +97,12 @@ impl TangentialState {
 /// Stopping rules of the tangential solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialParams {
-    /// CG on the stick set stops at ‖w − u‖₂ ≤ tolerance·‖w‖₂ over it; the slip decisions
-    /// use 10·tolerance·max|w| as their displacement tolerance.
+    /// The final Newton rounds' CG stops at ‖w − u‖₂ ≤ tolerance·‖w‖₂ over the face
+    /// (rounds whose sets still change solve to 1e-5).
     pub tolerance: f64,
-    /// CG iterations per active-set round.
+    /// CG iterations per Newton round.
     pub max_iterations: usize,
-    /// Active-set rounds per step.
+    /// Newton rounds per step.
     pub max_rounds: usize,
     /// A slip traction turning by less than this (radians) no longer counts as a change.
     pub direction_tolerance: f64,
@@ -192,7 +195,7 @@ const LOOSE_TOLERANCE: f64 = 1e-5;
 /// Below this largest turn (radians) with no set change, the rounds solve tightly.
 const LOOSE_TURN: f64 = 1e-3;
 
-/// Kalker's active-set solver of the tangential problem (see the module).
+/// The semismooth Newton active-set solver of the tangential problem (see the module).
 pub struct TangentialSolver {
     law: FrictionLaw,
     params: TangentialParams,

@@ -1,0 +1,86 @@
+//! `[friction]` and `[protocol] kind = "shear"` as written in a scenario file, and the
+//! validated shear setup.
+
+use super::DepthUnit;
+use adhesim::{FrictionLaw, Shear, ShearMaterial};
+use serde::{Deserialize, Serialize};
+
+/// `[friction]`: the interface law of tangential contact (docs/physics.md §9).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSection {
+    pub law: FrictionLawName,
+    /// μ of `coulomb` and `coulomb_shear`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coefficient: Option<f64>,
+    /// τ0 of `shear_strength` and `coulomb_shear`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_strength: Option<f64>,
+    /// Normal–tangential coupling; only `"none"` (Goodman's approximation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coupling: Option<CouplingName>,
+}
+
+/// `friction.law`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionLawName {
+    Coulomb,
+    ShearStrength,
+    CoulombShear,
+}
+
+impl FrictionLawName {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Coulomb => "coulomb",
+            Self::ShearStrength => "shear_strength",
+            Self::CoulombShear => "coulomb_shear",
+        }
+    }
+}
+
+/// `friction.coupling`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CouplingName {
+    /// Goodman's approximation: shear does not move the surface normally, pressure does
+    /// not move it tangentially (exact at ν = 1/2).
+    #[default]
+    None,
+    /// The coupled operator (ν < 1/2): not available yet, refused with its reason.
+    Full,
+}
+
+/// `kind = "shear"`: approach to `depth`, then shift the indenter tangentially by
+/// `distance` at fixed depth.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShearProtocol {
+    #[serde(default)]
+    pub depth_unit: DepthUnit,
+    /// Indentation held during the shift (in `depth_unit`).
+    pub depth: f64,
+    /// Steps of the approach to `depth` (default 50).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_steps: Option<i64>,
+    /// Shift of the indenter (length units).
+    pub distance: f64,
+    /// Steps of the shift.
+    pub steps: i64,
+    /// Direction of the shift, degrees from +x (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<f64>,
+    /// Shift back to the start after the forward stroke.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_stroke: Option<bool>,
+}
+
+/// A validated shear run: the library's protocol, the interface law and the half-space's
+/// tangential constants.
+#[derive(Debug, Clone, Copy)]
+pub struct ShearSetup {
+    pub protocol: Shear,
+    pub law: FrictionLaw,
+    pub material: ShearMaterial,
+}

@@ -1,0 +1,281 @@
+//! Friction at the interface: `[friction]` and `[protocol] kind = "shear"` validated into
+//! a [`ShearSetup`], and the `results` of a shear run.
+
+use crate::error::ScenarioError;
+use crate::guards::step_count;
+use crate::model::*;
+use crate::translation::{ValidatedSections, DEFAULT_APPROACH_STEPS};
+use crate::validate::{finite, positive};
+use adhesim::{Boundary, Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
+use anyhow::{bail, Result};
+use serde::Serialize;
+
+impl ScenarioFile {
+    /// `[friction]` only with `kind = "shear"`, and `kind = "shear"` only with it.
+    pub(crate) fn check_friction_pairing(&self) -> Result<()> {
+        let kind = self.protocol.kind();
+        match (&self.friction, kind) {
+            (Some(_), ProtocolKind::Shear) | (None, ProtocolKind::IndentPulloff) => Ok(()),
+            (None, ProtocolKind::Shear) => bail!(ScenarioError::missing(
+                "friction",
+                "a [friction] section with protocol.kind = \"shear\"",
+                "protocol.kind = \"shear\" needs a [friction] section (friction.law = \"coulomb\", \"shear_strength\" or \"coulomb_shear\")"
+            )),
+            (Some(_), _) => bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                format!("\"{}\"", kind.name()),
+                "\"shear\" with [friction]",
+                format!(
+                    "[friction] acts in protocol.kind = \"shear\" only, got \"{}\" (roll, slide and translate keep a frictionless interface)",
+                    kind.name()
+                )
+            )),
+            (None, _) => Ok(()),
+        }
+    }
+
+    /// `[protocol]` of kind shear with its `[friction]` (and `[output]`).
+    pub(crate) fn validate_shear(
+        self,
+        inputs: ValidatedSections,
+        heights: Vec<f64>,
+        start_depth: f64,
+    ) -> Result<ValidScenario> {
+        let ValidatedSections {
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            unit,
+            jkr,
+            derived,
+            ..
+        } = inputs;
+        let ProtocolSection::Shear(p) = &self.protocol else {
+            bail!("[protocol]: validate_shear needs protocol.kind = \"shear\"");
+        };
+        let Some(friction) = &self.friction else {
+            bail!("[friction]: validate_shear needs a [friction] section");
+        };
+        let law = friction_law(friction)?;
+        let shear_material = self.shear_material(material.contact_modulus())?;
+        if grid.boundary() == Boundary::Periodic {
+            bail!(ScenarioError::invalid_as(
+                "grid.boundary",
+                "\"periodic\"",
+                "\"free\" with [friction]",
+                "[friction] needs grid.boundary = \"free\": a periodic grid leaves the mean tangential displacement undefined (it would need a force-controlled shear)"
+            ));
+        }
+        let law_name = self.adhesion.law.unwrap_or_default();
+        if law_name != LawName::Jkr {
+            bail!(ScenarioError::invalid_as(
+                "adhesion.law",
+                format!("{law_name:?}").to_lowercase(),
+                "\"jkr\" with [friction]",
+                "[friction] works with the JKR-type adhesion (adhesion.law = \"jkr\", or work_of_adhesion = 0); a cohesive law's tractions across gaps have no friction law yet"
+            ));
+        }
+        if !self.analysis.is_empty() {
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                "\"shear\"",
+                "\"roll\" or \"slide\" with [analysis]",
+                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only, got \"shear\" (its friction is [friction])"
+            ));
+        }
+        let raw_depth = p.depth;
+        let depth = finite("protocol.depth", raw_depth)? * unit;
+        if depth <= start_depth {
+            bail!(ScenarioError::invalid_as(
+                "protocol.depth",
+                raw_depth,
+                format!("> {:.6e} (the depth of first contact)", start_depth / unit),
+                format!(
+                    "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
+                    start_depth / unit
+                )
+            ));
+        }
+        let distance = positive("protocol.distance", p.distance)?;
+        let steps = step_count("protocol.steps", p.steps)?;
+        let approach_steps = step_count(
+            "protocol.approach_steps",
+            p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS),
+        )?;
+        let depth_step = (depth - start_depth) / approach_steps as f64;
+        self.check_step(
+            start_depth,
+            depth,
+            depth_step,
+            "protocol.approach_steps, protocol.depth",
+        )?;
+        let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
+        let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
+        let protocol = Shear {
+            start_depth,
+            depth,
+            approach_steps,
+            distance,
+            steps,
+            direction,
+            return_stroke: p.return_stroke.unwrap_or(false),
+            jump_force_threshold,
+        };
+        Ok(ValidScenario {
+            file: self,
+            grid,
+            material,
+            gamma,
+            gamma0,
+            indenter,
+            heights,
+            start_depth,
+            max_depth: depth,
+            depth_step,
+            approach_steps,
+            max_retract_steps: 0,
+            jkr,
+            derived,
+            jump_force_threshold,
+            translation: None,
+            shear: Some(ShearSetup {
+                protocol,
+                law,
+                material: shear_material,
+            }),
+            roughness: None,
+            warnings: Vec::new(),
+        })
+    }
+
+    /// G and ν: tangential contact needs Poisson's ratio, so `[material]` must give
+    /// youngs_modulus and poisson_ratio.
+    fn shear_material(&self, contact_modulus: f64) -> Result<ShearMaterial> {
+        let Some(poisson_ratio) = self.material.poisson_ratio else {
+            bail!(ScenarioError::missing(
+                "material.poisson_ratio",
+                "material.youngs_modulus and material.poisson_ratio with [friction]",
+                "material.poisson_ratio is required with [friction] (tangential contact needs Poisson's ratio): give [material] youngs_modulus and poisson_ratio instead of contact_modulus"
+            ));
+        };
+        Ok(ShearMaterial::from_contact_modulus(contact_modulus, poisson_ratio))
+    }
+}
+
+/// The interface law of `[friction]`, each law taking exactly its own keys.
+fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
+    let law = section.law;
+    let needed = |key: &str, value: Option<f64>| -> Result<f64> {
+        value.ok_or_else(|| {
+            ScenarioError::missing(
+                &format!("friction.{key}"),
+                format!("with friction.law = \"{}\"", law.name()),
+                format!("friction.law = \"{}\" needs friction.{key}", law.name()),
+            )
+            .into()
+        })
+    };
+    let unused = |key: &str, value: Option<f64>| -> Result<()> {
+        match value {
+            Some(v) => bail!(ScenarioError::invalid_as(
+                &format!("friction.{key}"),
+                v,
+                format!("absent with friction.law = \"{}\"", law.name()),
+                format!(
+                    "friction.{key} is not a key of friction.law = \"{}\", got {v}",
+                    law.name()
+                )
+            )),
+            None => Ok(()),
+        }
+    };
+    let non_negative = |key: &str, value: f64| -> Result<f64> {
+        if value.is_finite() && value >= 0.0 {
+            Ok(value)
+        } else {
+            Err(ScenarioError::invalid(&format!("friction.{key}"), value, "finite and >= 0").into())
+        }
+    };
+    if section.coupling == Some(CouplingName::Full) {
+        bail!(ScenarioError::invalid_as(
+            "friction.coupling",
+            "\"full\"",
+            "\"none\"",
+            "friction.coupling = \"full\" (the coupled normal–tangential operator) is not implemented; use \"none\" (Goodman's approximation, exact at material.poisson_ratio = 0.5)"
+        ));
+    }
+    let (coefficient, shear_strength) = (section.coefficient, section.shear_strength);
+    let built = match law {
+        FrictionLawName::Coulomb => {
+            unused("shear_strength", shear_strength)?;
+            FrictionLaw::coulomb(non_negative("coefficient", needed("coefficient", coefficient)?)?)
+        }
+        FrictionLawName::ShearStrength => {
+            unused("coefficient", coefficient)?;
+            FrictionLaw::shear_strength(non_negative(
+                "shear_strength",
+                needed("shear_strength", shear_strength)?,
+            )?)
+        }
+        FrictionLawName::CoulombShear => FrictionLaw::coulomb_shear(
+            non_negative("coefficient", needed("coefficient", coefficient)?)?,
+            non_negative("shear_strength", needed("shear_strength", shear_strength)?)?,
+        ),
+    };
+    Ok(built?)
+}
+
+/// The `results` of a shear run in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ShearResults {
+    /// Peak tangential force before gross slip (null when the stroke ends in partial slip).
+    pub static_friction_force: Option<f64>,
+    /// Tangential force at the end of the forward stroke when every contact element slips
+    /// (null otherwise).
+    pub sliding_friction_force: Option<f64>,
+    /// F_T/A in gross slip: the paper's τ (null otherwise).
+    pub mean_shear_stress: Option<f64>,
+    /// Largest tangential force of the forward stroke.
+    pub peak_tangential_force: f64,
+    /// Normal force during the shift.
+    pub normal_force: f64,
+    /// Contact area during the shift.
+    pub contact_area: f64,
+    /// A at the peak over A at rest: 1 with Goodman's approximation, where the normal
+    /// problem does not see the shear.
+    pub contact_area_reduction: f64,
+    /// Energy dissipated by friction over the run.
+    pub frictional_dissipation: f64,
+    /// Energy released by normal jumps on the approach.
+    pub dissipated_energy: f64,
+    /// The worst optimality conditions of any tangential step.
+    pub complementarity: Complementarity,
+    pub border_contact: bool,
+}
+
+impl ShearResults {
+    /// The results of a run from its summary and records.
+    pub fn new(summary: &ShearSummary, records: &[StepRecord], protocol: &Shear) -> Self {
+        let forward_end = records
+            .iter()
+            .filter(|r| r.phase == Some(adhesim::Phase::Shear))
+            .nth(protocol.steps - 1);
+        let gross_slip = forward_end.is_some_and(|r| r.stick_elements == 0 && r.slip_elements > 0);
+        let sliding = gross_slip.then_some(summary.final_tangential_force);
+        Self {
+            static_friction_force: gross_slip.then_some(summary.peak_tangential_force),
+            sliding_friction_force: sliding,
+            mean_shear_stress: sliding.filter(|_| summary.area > 0.0).map(|f| f / summary.area),
+            peak_tangential_force: summary.peak_tangential_force,
+            normal_force: summary.normal_force,
+            contact_area: summary.area,
+            contact_area_reduction: 1.0,
+            frictional_dissipation: summary.frictional_dissipation,
+            dissipated_energy: summary.dissipated_energy,
+            complementarity: summary.complementarity,
+            border_contact: summary.touches_border,
+        }
+    }
+}
