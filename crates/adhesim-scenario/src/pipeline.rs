@@ -8,8 +8,8 @@ use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolCheckpoint,
-    ProtocolError, ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialOperator, TangentialParams,
-    TangentialSolver, TranslationSummary,
+    ProtocolError, ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver,
+    TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -256,14 +256,12 @@ fn run_shear(
     solver: &mut NormalSolver,
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut shear_operator = TangentialOperator::new(scenario.grid, setup.material)
-        .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
     let mut friction = TangentialSolver::new(setup.law, TangentialParams::default());
     let summary = setup.protocol.run(
         operator,
         &scenario.heights,
         solver,
-        &mut shear_operator,
+        setup.material,
         &mut friction,
         &mut recording,
     )?;

@@ -19,6 +19,8 @@ use rustfft::{Fft, FftNum, FftPlanner};
 use std::ops::Range;
 use std::sync::Arc;
 
+mod pair;
+
 /// Working precision of a [`SpectralConvolution`].
 pub(crate) trait Precision: FftNum + Default {
     /// Rounds an f64 to this precision.
@@ -142,6 +144,11 @@ impl<T: Precision> SpectralConvolution<T> {
         single
     }
 
+    /// The kernel spectrum, laid out as [`convolve_pair`](Self::convolve_pair)'s `cross`.
+    pub(crate) fn into_kernel(self) -> Vec<T> {
+        self.kernel
+    }
+
     /// Overwrites the kernel spectrum with `value(row_frequency, column_frequency)`
     /// (already normalised by padded_x·padded_y).
     pub(crate) fn set_kernel_spectrum(&mut self, value: impl Fn(usize, usize) -> f64 + Sync) {
@@ -155,17 +162,21 @@ impl<T: Precision> SpectralConvolution<T> {
 
     /// output = kernel ∗ input on the Nx×Ny data window.
     pub(crate) fn convolve(&mut self, input: &[f64], output: &mut [f64]) {
-        let (n, rows) = (self.nx, self.ny);
-        // Rows holding a nonzero value, first to last: the transforms of the others are
-        // skipped with the bits unchanged ([`convolve_rows`](Self::convolve_rows)). An
-        // all-zero input keeps every row, so that even the signs of its zeros stay.
+        let input_rows = self.data_rows(input);
+        self.convolve_rows(input, output, input_rows, 0..self.ny);
+    }
+
+    /// Rows holding a nonzero value, first to last: the transforms of the others are
+    /// skipped with the bits unchanged ([`convolve_rows`](Self::convolve_rows)). An
+    /// all-zero input keeps every row, so that even the signs of its zeros stay.
+    fn data_rows(&self, input: &[f64]) -> Range<usize> {
+        let n = self.nx;
         let first = input.iter().position(|&v| v != 0.0).map(|k| k / n);
         let last = input.iter().rposition(|&v| v != 0.0).map(|k| k / n + 1);
-        let input_rows = match (first, last) {
+        match (first, last) {
             (Some(first), Some(last)) => first..last,
-            _ => 0..rows,
-        };
-        self.convolve_rows(input, output, input_rows, 0..rows);
+            _ => 0..self.ny,
+        }
     }
 
     /// output = kernel ∗ input on the output rows `output_rows`, for an input that is zero
@@ -187,7 +198,7 @@ impl<T: Precision> SpectralConvolution<T> {
         output_rows: Range<usize>,
     ) {
         let (n, rows, columns) = (self.nx, self.ny, self.spectrum_columns);
-        let (padded_x, padded) = (self.padded_x, self.padded_y);
+        let padded = self.padded_y;
         assert_eq!(input.len(), n * rows, "input field does not match the grid");
         assert_eq!(output.len(), n * rows, "output field does not match the grid");
         assert!(
@@ -200,30 +211,10 @@ impl<T: Precision> SpectralConvolution<T> {
         );
         let blocks = self.blocks.len();
 
-        // 1. Row transforms of the input's rows (zero rows and the padded rows: skipped).
-        let forward_rows = &self.forward_rows;
-        let input_window = &input[input_rows.start * n..input_rows.end * n];
-        let rows_per_block = block_len(input_rows.len(), blocks);
-        self.row_spectra[input_rows.start * columns..input_rows.end * columns]
-            .par_chunks_mut(rows_per_block * columns)
-            .zip(input_window.par_chunks(rows_per_block * n))
-            .zip(self.blocks.par_iter_mut())
-            .for_each(|((spectra, data), scratch)| {
-                for (spectrum, row) in spectra.chunks_mut(columns).zip(data.chunks(n)) {
-                    for (target, &value) in scratch.real_row[..n].iter_mut().zip(row) {
-                        *target = T::narrow(value);
-                    }
-                    scratch.real_row[n..].fill(T::zero());
-                    forward_rows
-                        .process_with_scratch(&mut scratch.real_row, spectrum, &mut scratch.real_scratch)
-                        .expect("forward row transform");
-                }
-            });
-
+        self.forward_rows_of(input, &input_rows);
         if output_rows.is_empty() {
             return;
         }
-
         // 2. Per tile of TILE columns: gather the input rows, column transforms, kernel
         // product, inverse column transforms, and keep the output rows, while the tile stays
         // in cache (a transpose of the whole spectrum and back is memory-bound at large N).
@@ -270,7 +261,40 @@ impl<T: Precision> SpectralConvolution<T> {
                 }
             });
 
-        // 3. Gather each kept output row from the tiles and transform it to real space.
+        self.inverse_rows_into(output, &output_rows);
+    }
+
+    /// Forward row transforms of the input's rows `input_rows` into `row_spectra` (zero
+    /// rows and the padded rows: skipped).
+    fn forward_rows_of(&mut self, input: &[f64], input_rows: &Range<usize>) {
+        let (n, columns) = (self.nx, self.spectrum_columns);
+        let blocks = self.blocks.len();
+        let forward_rows = &self.forward_rows;
+        let input_window = &input[input_rows.start * n..input_rows.end * n];
+        let rows_per_block = block_len(input_rows.len(), blocks);
+        self.row_spectra[input_rows.start * columns..input_rows.end * columns]
+            .par_chunks_mut(rows_per_block * columns)
+            .zip(input_window.par_chunks(rows_per_block * n))
+            .zip(self.blocks.par_iter_mut())
+            .for_each(|((spectra, data), scratch)| {
+                for (spectrum, row) in spectra.chunks_mut(columns).zip(data.chunks(n)) {
+                    for (target, &value) in scratch.real_row[..n].iter_mut().zip(row) {
+                        *target = T::narrow(value);
+                    }
+                    scratch.real_row[n..].fill(T::zero());
+                    forward_rows
+                        .process_with_scratch(&mut scratch.real_row, spectrum, &mut scratch.real_scratch)
+                        .expect("forward row transform");
+                }
+            });
+    }
+
+    /// Gathers each kept output row (`output_rows`) from the tiles of `kept` and transforms
+    /// it to real space.
+    fn inverse_rows_into(&mut self, output: &mut [f64], output_rows: &Range<usize>) {
+        let (n, columns, padded_x) = (self.nx, self.spectrum_columns, self.padded_x);
+        let blocks = self.blocks.len();
+        let tile_len = output_rows.len() * TILE;
         let kept = &self.kept;
         let inverse_rows = &self.inverse_rows;
         let rows_per_block = block_len(output_rows.len(), blocks);

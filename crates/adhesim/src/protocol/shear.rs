@@ -2,8 +2,9 @@
 //! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §9).
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
+use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::{ElasticOperator, TangentialOperator};
-use crate::grid::Grid;
+use crate::grid::{Boundary, Grid};
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver, TangentialState};
 use std::ops::ControlFlow;
 
@@ -78,12 +79,17 @@ impl Shear {
         operator: &mut O,
         heights: &[f64],
         solver: &mut NormalSolver,
-        shear_operator: &mut TangentialOperator,
+        material: ShearMaterial,
         friction: &mut TangentialSolver,
         observer: &mut dyn Observer,
     ) -> Result<ShearSummary, ProtocolError> {
         self.check()?;
         let grid = *operator.grid();
+        if grid.boundary() == Boundary::Periodic {
+            return Err(ProtocolError::InvalidParameter(
+                crate::elastic::TangentialOperatorError::Periodic.to_string(),
+            ));
+        }
         solver.reset();
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
@@ -116,7 +122,11 @@ impl Shear {
             (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
             self.report(&mut summary, &record, &state, &previous, observer)?;
         }
-        let mut tangential = TangentialState::new(grid.len());
+        let window = ContactWindow::around(&grid, &state.contact)?;
+        let normal = window.gather(&state);
+        let mut shear_operator = TangentialOperator::new(window.grid, material)
+            .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+        let mut tangential = TangentialState::new(window.grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
         let legs = if self.return_stroke { 2 } else { 1 };
         previous.copy_from_slice(&state.contact);
@@ -129,8 +139,8 @@ impl Shear {
             let shift = self.distance * travelled as f64 / self.steps as f64;
             let report = friction
                 .step(
-                    shear_operator,
-                    &state,
+                    &mut shear_operator,
+                    &normal,
                     [shift * unit[0], shift * unit[1]],
                     &mut tangential,
                 )
@@ -243,6 +253,66 @@ impl Shear {
             ControlFlow::Continue(()) => Ok(()),
             ControlFlow::Break(()) => Err(ProtocolError::Interrupted(record.step)),
         }
+    }
+}
+
+/// The contact's bounding box as a free grid of its own. The shear tractions vanish
+/// outside the contact and only the displacements on it enter the tangential problem, so
+/// the DC-FFT convolution on this window is the full grid's, restricted (the same
+/// coefficients; only the transforms' sizes, and so their rounding, differ), at a fraction
+/// of its cost.
+struct ContactWindow {
+    grid: Grid,
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+    nx: usize,
+}
+
+impl ContactWindow {
+    /// The window of `contact` on `grid` (at least 2×2 elements, as a grid needs).
+    fn around(grid: &Grid, contact: &[bool]) -> Result<Self, ProtocolError> {
+        let nx = grid.nx();
+        let (mut rows, mut columns) = ((usize::MAX, 0), (usize::MAX, 0));
+        for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
+            let (i, j) = (k / nx, k % nx);
+            rows = (rows.0.min(i), rows.1.max(i + 1));
+            columns = (columns.0.min(j), columns.1.max(j + 1));
+        }
+        let span = |(start, end): (usize, usize), n: usize| {
+            let (start, end) = if start >= end { (0, 2) } else { (start, end) };
+            let end = end.max(start + 2).min(n);
+            end.saturating_sub(2).min(start)..end
+        };
+        let rows = span(rows, grid.ny());
+        let columns = span(columns, nx);
+        let window = Grid::rectangular(
+            columns.len(),
+            rows.len(),
+            columns.len() as f64 * grid.dx(),
+            rows.len() as f64 * grid.dy(),
+            Boundary::Free,
+        )
+        .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+        Ok(Self {
+            grid: window,
+            rows,
+            columns,
+            nx,
+        })
+    }
+
+    /// The normal state on the window (pressure and contact; the normal displacement is
+    /// not used by the tangential solve).
+    fn gather(&self, state: &ContactState) -> ContactState {
+        let mut window = ContactState::new(&self.grid);
+        let width = self.columns.len();
+        for (r, i) in self.rows.clone().enumerate() {
+            for (c, j) in self.columns.clone().enumerate() {
+                window.pressure[r * width + c] = state.pressure[i * self.nx + j];
+                window.contact[r * width + c] = state.contact[i * self.nx + j];
+            }
+        }
+        window
     }
 }
 

@@ -213,6 +213,9 @@ pub struct TangentialSolver {
     unit: Vec<(f64, f64)>,
     /// Spring σ of each slipping traction's turn in the current round.
     spring: Vec<f64>,
+    /// The tractions before the last step and that step's shift increment: the predictor
+    /// of the next step's start (None before a first step on this grid).
+    history: Option<([Vec<f64>; 2], [f64; 2])>,
 }
 
 impl TangentialSolver {
@@ -228,6 +231,7 @@ impl TangentialSolver {
             bound: Vec::new(),
             unit: Vec::new(),
             spring: Vec::new(),
+            history: None,
         }
     }
 
@@ -253,7 +257,10 @@ impl TangentialSolver {
             });
         }
         let pairs_before = operator.transform_pairs();
+        let before = state.traction.clone();
+        let increment = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
         self.prepare(normal, shift, state, n);
+        self.predict(normal, increment, state);
         let scale = self.target_scale(normal);
         let rho = 1.0 / operator.self_compliance();
         let mut report = TangentialReport::default();
@@ -287,6 +294,7 @@ impl TangentialSolver {
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
         self.finish(operator, normal, shift, state, scale, &mut report);
+        self.history = Some((before, increment));
         report.transform_pairs = operator.transform_pairs() - pairs_before;
         Ok(report)
     }
@@ -337,6 +345,41 @@ impl TangentialSolver {
                 state.traction[1][i] = bound * qy / magnitude;
             } else {
                 state.status[i] = SlipStatus::Stick;
+            }
+        }
+    }
+
+    /// The start of a step that continues the last one in the same direction: the last
+    /// step's traction change, scaled to this step's shift increment, added to each
+    /// contact element's traction and put back in its disc (on the circle: slipping along
+    /// it). Only the starting point of the Newton rounds changes, not their solution.
+    fn predict(&mut self, normal: &ContactState, increment: [f64; 2], state: &mut TangentialState) {
+        let Some((before, last)) = &self.history else {
+            return;
+        };
+        let last_squared = last[0] * last[0] + last[1] * last[1];
+        let along = increment[0] * last[0] + increment[1] * last[1];
+        if before[0].len() != state.status.len() || !(last_squared > 0.0 && along > 0.0) {
+            return;
+        }
+        let ratio = along / last_squared;
+        for i in 0..state.status.len() {
+            let bound = self.bound[i];
+            if !normal.contact[i] || bound == 0.0 {
+                continue;
+            }
+            let qx = state.traction[0][i] + ratio * (state.traction[0][i] - before[0][i]);
+            let qy = state.traction[1][i] + ratio * (state.traction[1][i] - before[1][i]);
+            let magnitude = qx.hypot(qy);
+            if magnitude >= bound {
+                state.status[i] = SlipStatus::Slip;
+                self.unit[i] = (qx / magnitude, qy / magnitude);
+                state.traction[0][i] = bound * self.unit[i].0;
+                state.traction[1][i] = bound * self.unit[i].1;
+            } else {
+                state.status[i] = SlipStatus::Stick;
+                state.traction[0][i] = qx;
+                state.traction[1][i] = qy;
             }
         }
     }
