@@ -5,7 +5,7 @@ use super::DepthUnit;
 use adhesim::{FrictionLaw, Shear, ShearMaterial};
 use serde::{Deserialize, Serialize};
 
-/// `[friction]`: the interface law of tangential contact (docs/physics.md §9).
+/// `[friction]`: the interface law of tangential contact (docs/physics.md §8).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSection {

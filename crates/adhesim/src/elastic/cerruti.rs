@@ -8,7 +8,7 @@
 //! and by a normal displacement (1 − 2ν)x/r² that Goodman's approximation leaves out (it
 //! vanishes at ν = 1/2). Integrated over a Δx × Δy element with the primitives
 //! ∫∫ 1/r = s·asinh(t/|s|) + t·asinh(s/|t|) (Love 1929), ∫∫ s²/r³ = t·asinh(s/|t|),
-//! ∫∫ t²/r³ = s·asinh(t/|s|) and ∫∫ st/r³ = −r (docs/physics.md §9.1), each taken over the
+//! ∫∫ t²/r³ = s·asinh(t/|s|) and ∫∫ st/r³ = −r (docs/physics.md §8.1), each taken over the
 //! element's four corners.
 
 use super::influence::love_primitive;

@@ -28,7 +28,7 @@ pub enum TangentialOperatorError {
 ///
 /// Goodman's approximation: the normal displacement of a shear traction and the
 /// tangential displacement of a pressure, both ∝ (1 − 2ν), are left out (exact at
-/// ν = 1/2, docs/physics.md §9.1).
+/// ν = 1/2, docs/physics.md §8.1).
 pub struct TangentialOperator {
     grid: Grid,
     material: ShearMaterial,

@@ -1,5 +1,5 @@
 //! Shear at fixed indentation: indent, then shift the indenter tangentially with friction
-//! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §9).
+//! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §8).
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
@@ -325,8 +325,9 @@ fn worst(into: &mut Complementarity, from: Complementarity) {
 }
 
 /// (elements in contact, front area, rear area): the contact split at the line through
-/// the indenter's axis perpendicular to the shift, front = ahead of it. An element centred
-/// on the line counts half to each side (the paper's Figs. 17 and 19).
+/// the indenter's axis perpendicular to the shift; front = strictly ahead of it, rear = the
+/// rest, as the analysis of filmed experiments splits it (docs/physics.md §7; the paper's
+/// Figs. 17 and 19).
 pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f64, f64) {
     let (ux, uy) = (direction.cos(), direction.sin());
     let (mut count, mut front, mut rear) = (0, 0.0, 0.0);
@@ -335,14 +336,10 @@ pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f
     for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
         count += 1;
         let (x, y) = grid.centre(k);
-        let along = x * ux + y * uy;
-        if along > tolerance {
+        if x * ux + y * uy > tolerance {
             front += area;
-        } else if along < -tolerance {
-            rear += area;
         } else {
-            front += 0.5 * area;
-            rear += 0.5 * area;
+            rear += area;
         }
     }
     (count, front, rear)

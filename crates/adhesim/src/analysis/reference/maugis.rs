@@ -3,7 +3,7 @@
 //! D. Maugis, "Adhesion of spheres: the JKR-DMT transition using a Dugdale model", *J.
 //! Colloid Interface Sci.* 150 (1992) 243–269. A constant tensile traction σ0 acts where
 //! the gap lies below δc = γ0/σ0, between the contact radius a and the zone's outer edge
-//! c = m·a. In Maugis' reduced units (docs/physics.md §8)
+//! c = m·a. In Maugis' reduced units (docs/physics.md §4)
 //!
 //! - A = a/(πγ0R²/K)^(1/3), P̄ = P/(πγ0R), δ̄ = δ/(π²γ0²R/K²)^(1/3), K = 4E*/3,
 //! - 1 = (λA²/2)[√(m²−1) + (m²−2)·atan√(m²−1)] + (4λ²A/3)[√(m²−1)·atan√(m²−1) − m + 1],

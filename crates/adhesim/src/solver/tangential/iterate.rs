@@ -156,6 +156,14 @@ impl TangentialSolver {
                 continue;
             }
             let (ex, ey) = (zx / magnitude, zy / magnitude);
+            if was == SlipStatus::Slip && ex * self.unit[i].0 + ey * self.unit[i].1 < 0.0 {
+                // A slip that turns over (a reversal) passes through the disc: the element
+                // sticks first and its stuck traction decides where it slips, if it does.
+                // Turning it over directly lets elements that barely slip flip each round.
+                state.status[i] = SlipStatus::Stick;
+                changes += 1;
+                continue;
+            }
             if was == SlipStatus::Slip {
                 largest_turn = largest_turn.max((ex - self.unit[i].0).hypot(ey - self.unit[i].1));
             } else {

@@ -7,7 +7,7 @@ use thiserror::Error;
 pub enum FrictionLaw {
     /// Coulomb: |q| ≤ μ·max(p, 0). With adhesion, only compressive pressure bounds the
     /// traction: a tensile element (the adhesive edge of a JKR-type contact) carries no
-    /// shear and slips freely (docs/physics.md §9.3).
+    /// shear and slips freely (docs/physics.md §8.2).
     Coulomb {
         /// μ.
         coefficient: f64,

@@ -109,3 +109,29 @@ fn shear_strength_slides_at_tau0_times_area() {
     assert!(last.force[1].abs() < 1e-12 * expected);
     assert_eq!(last.stick_elements, 0);
 }
+
+#[test]
+fn reversal_after_gross_slip_settles() {
+    // A stroke reversal after gross slip: every slipping traction must turn over (the
+    // Mindlin–Deresiewicz unloading); the rounds must settle and the optimality hold.
+    let delta_x = 1.0 / 128.0;
+    let (grid, normal, mut operator) = pressed_sphere(48, 48.0 * delta_x, (16.0 * delta_x) * (16.0 * delta_x));
+    let tau0 = 0.01;
+    let mut solver = TangentialSolver::new(FrictionLaw::shear_strength(tau0).unwrap(), TangentialParams::default());
+    let mut state = TangentialState::new(grid.len());
+    for step in 1..=8 {
+        solver
+            .step(&mut operator, &normal, [0.002 * step as f64, 0.0], &mut state)
+            .unwrap();
+    }
+    for step in (0..8).rev() {
+        let report = solver
+            .step(&mut operator, &normal, [0.002 * step as f64, 0.0], &mut state)
+            .unwrap_or_else(|e| panic!("back to {step}: {e}"));
+        let c = report.complementarity;
+        assert!(
+            c.stick_residual < 1e-8 && c.slip_misalignment < 1e-6 && c.backward_slip < 1e-8,
+            "{c:?}"
+        );
+    }
+}
