@@ -118,8 +118,13 @@ struct Report {
 
 /// `adhesim topography`.
 pub fn command(args: &TopographyArgs) -> Result<()> {
-    if args.bins < 2 {
-        bail!("--bins must be >= 2, got {}", args.bins);
+    let max_bins = adhesim::surface::MAX_PSD_BINS;
+    if !(2..=max_bins).contains(&args.bins) {
+        bail!("--bins must be 2 … {max_bins}, got {}", args.bins);
+    }
+    if let Some(limit) = crate::resources::memory_limit(false)? {
+        let bytes = args.bins as u128 * adhesim_scenario::memory::PSD_BYTES_PER_BIN;
+        crate::resources::check_allocation(&format!("--bins {}", args.bins), bytes, &limit)?;
     }
     if let Some(spacing) = args.spacing {
         if !(spacing.is_finite() && spacing > 0.0) {
