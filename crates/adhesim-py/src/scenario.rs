@@ -173,7 +173,12 @@ fn run_in_memory(
     let outcome = match (outcome, observer.progress.error.take()) {
         (_, Some(error)) => return Err(error),
         (Ok(outcome), None) => outcome,
-        (Err(error), None) => return Err(crate::convert::SolveError::new_err(format!("run failed: {error}"))),
+        (Err(error), None) => {
+            return Err(crate::convert::SolveError::new_err(format!(
+                "run failed: {}",
+                adhesim_scenario::output::run::protocol_error_line(scenario, &error)
+            )))
+        }
     };
     let performance = performance(start.elapsed().as_secs_f64(), &outcome, &observer.timings);
     let summary = adhesim_scenario::Summary::new(scenario, &outcome, performance, &observer.warnings);

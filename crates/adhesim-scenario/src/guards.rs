@@ -37,7 +37,7 @@ fn material_keys(m: &MaterialSection) -> String {
 }
 
 /// A number as a user would write it: `1e300` rather than 301 digits.
-fn show(value: f64) -> String {
+pub(crate) fn show(value: f64) -> String {
     if value != 0.0 && !(1e-4..1e6).contains(&value.abs()) {
         format!("{value:e}")
     } else {
