@@ -644,3 +644,90 @@ fn a_failed_run_leaves_no_file_under_a_final_name() {
     assert_fails_with(&output, &["adhesion.range = 5e-324", "1e-150..1e150"]);
     assert!(!dir.path().join("nan").join("curve.csv").exists());
 }
+
+/// A grid size of 1e-310 was refused as "[grid]: grid element size size/n … Δ² = 0e0",
+/// where every other message names `grid.size` and prints numbers as a person writes them.
+#[test]
+fn a_grid_of_subnormal_elements_is_named_as_grid_size_in_plain_numbers() {
+    let output = adhesim(&["run", &hertz(), "--set", "grid.size=1e-310"]);
+    assert_fails_with(
+        &output,
+        &[
+            "grid.size = 1e-310 with grid.n = 64 makes elements of side 1.5625e-312 and area 0",
+            "choose a grid.size commensurate with grid.n",
+        ],
+    );
+    assert!(!stderr(&output).contains("0e0"), "{}", stderr(&output));
+}
+
+/// Degenerate law parameters: `cohesive_stress = 5e-324` gave F_ad = 0 (Dugdale) and
+/// `range = 5e-324` NaN rows (exponential); refused before the run, naming the key.
+#[test]
+fn degenerate_law_parameters_are_refused_naming_the_key() {
+    let dugdale = scenarios_dir().join("cohesive").join("maugis_lambda1.toml");
+    let output = adhesim(&["run", dugdale.to_str().unwrap(), "--set", "adhesion.cohesive_stress=5e-324"]);
+    assert_fails_with(&output, &["adhesion.cohesive_stress = 5e-324", "1e-150..1e150"]);
+}
+
+/// A sphere with `protocol.step = 1e6` |d_JKR| "ran" one step each way and reported a
+/// dissipated energy of 57,198 without a word: warned on stderr and in summary.json.
+#[test]
+fn a_single_approach_step_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let jkr = scenarios_dir().join("jkr.toml");
+    let output = adhesim(&[
+        "run",
+        jkr.to_str().unwrap(),
+        "--set",
+        "grid.n=32",
+        "--set",
+        "protocol.steps=1",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let expected = "in 1 approach step of";
+    assert!(stderr(&output).contains(expected), "{}", stderr(&output));
+    if output.status.success() {
+        let summary = read_json(&out.join("summary.json"));
+        let warnings = summary["warnings"].as_array().unwrap();
+        assert!(
+            warnings.iter().any(|w| w.as_str().unwrap().contains(expected)),
+            "{warnings:?}"
+        );
+    }
+}
+
+/// `plot master` drew NaN, inf, text and α ≤ 0 rows, and exited 0 with no figure when
+/// every α was 0: each such row is an error naming the table, its line, the case and the
+/// column; a table of good rows is drawn.
+#[test]
+fn plot_master_rejects_rows_it_cannot_draw() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = "case,johnson_parameter,gamma_approach_norm,gamma_pulloff_norm,adhesive_force_ratio,status,series\n";
+    let good = "0000-a,0.5,0.9,1.2,1.1,ok,s\n0001-b,1.0,0.8,1.4,1.2,ok,s\n";
+    let out = dir.path().join("plots");
+    let plot = |name: &str, rows: &str| {
+        let table = write(dir.path(), name, &format!("{header}{good}{rows}"));
+        adhesim(&["plot", "master", table.to_str().unwrap(), "--out", out.to_str().unwrap()])
+    };
+    for (row, column, value) in [
+        ("0002-c,nan,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"nan\""),
+        ("0002-c,0,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"0\""),
+        ("0002-c,-1,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"-1\""),
+        ("0002-c,2.0,inf,1.4,1.2,ok,s\n", "gamma_approach_norm", "\"inf\""),
+        ("0002-c,2.0,0.8,abc,1.2,ok,s\n", "gamma_pulloff_norm", "\"abc\""),
+    ] {
+        let output = plot("t.csv", row);
+        let expected = format!("t.csv line 4 (case 0002-c): {column} = {value} cannot be drawn");
+        assert_fails_with(&output, &[&expected]);
+    }
+    // A failed case's row is not drawn and not checked; an empty value is no value.
+    let output = plot("t.csv", "0002-c,nan,,,,error,s\n0003-d,2.0,,1.3,,ok,s\n");
+    assert!(output.status.success(), "{}", stderr(&output));
+    // Every α 0: nothing to draw is an error, not exit 0 without a figure.
+    let table = write(dir.path(), "zero.csv", &format!("{header}0000-a,0,0.9,1.2,1.1,error,s\n"));
+    let output = adhesim(&["plot", "master", table.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_fails_with(&output, &["nothing to draw"]);
+}

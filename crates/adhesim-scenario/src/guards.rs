@@ -445,6 +445,25 @@ pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
     })
 }
 
+/// A warning when an indentation approaches in a single depth step: its retraction then
+/// moves in steps as large, and the jumps and the dissipated energy of such a run are not
+/// results (a sphere with `protocol.step = 1e6` |d_JKR| "ran" one step each way and
+/// reported a dissipated energy of 57,198).
+pub(crate) fn single_step_warning(valid: &ValidScenario) -> Option<String> {
+    if valid.translation.is_some() || valid.approach_steps > 1 {
+        return None;
+    }
+    let keys = match &valid.file.protocol {
+        crate::model::ProtocolSection::IndentPulloff(p) if p.step.is_some() => "protocol.step",
+        _ => "protocol.steps",
+    };
+    Some(format!(
+        "the indentation reaches protocol.max_depth in {} approach step of {} (from {keys}): one step per branch cannot resolve the force curve, its jumps or the dissipated energy; choose a smaller protocol.step or more protocol.steps",
+        valid.approach_steps,
+        show(valid.depth_step)
+    ))
+}
+
 /// Bytes a run on an `n`×`n` grid needs, an upper estimate: the FFT buffers of the elastic
 /// operator on the padded grid (2n per side for a free boundary, n for a periodic one: the
 /// kernel spectrum and two work spectra of complex f64, two real padded buffers) and about

@@ -153,6 +153,7 @@ impl ScenarioFile {
             self.validate_indentation(inputs, heights, start_depth)?
         };
         warnings.extend(crate::guards::contact_radius_warning(&valid));
+        warnings.extend(crate::guards::single_step_warning(&valid));
         valid.warnings = warnings;
         valid.roughness = roughness.map(|map| map.heights);
         Ok(valid)
