@@ -12,7 +12,7 @@ use std::process::Command;
 /// included), and every frame with > 2,000 true contact pixels within 1 % of the true area.
 /// Wall-clock rates depend on what else runs on the machine; see BENCHMARKS.md §5.
 #[test]
-#[ignore]
+#[ignore = "a wall-clock benchmark of 1,000 frames (BENCHMARKS.md §5): cargo test --release -p adhesim-cli --test experiment_speed -- --ignored"]
 fn thousand_frames_1600x1200() {
     let temp = tempfile::tempdir().unwrap();
     let dir = std::env::var_os("ADHESIM_SPEED_DIR").map_or_else(|| temp.path().to_path_buf(), Into::into);
