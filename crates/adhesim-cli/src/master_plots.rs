@@ -83,7 +83,11 @@ pub fn command(args: &PlotArgs) -> Result<()> {
             if written.is_empty() {
                 bail!(
                     "no finished row of {} has a johnson_parameter > 0: nothing to draw",
-                    tables.iter().map(|t| t.display().to_string()).collect::<Vec<_>>().join(", ")
+                    tables
+                        .iter()
+                        .map(|t| t.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 );
             }
             outln!("plots in {}/: {}", out.display(), written.join(", "));

@@ -665,7 +665,12 @@ fn a_grid_of_subnormal_elements_is_named_as_grid_size_in_plain_numbers() {
 #[test]
 fn degenerate_law_parameters_are_refused_naming_the_key() {
     let dugdale = scenarios_dir().join("cohesive").join("maugis_lambda1.toml");
-    let output = adhesim(&["run", dugdale.to_str().unwrap(), "--set", "adhesion.cohesive_stress=5e-324"]);
+    let output = adhesim(&[
+        "run",
+        dugdale.to_str().unwrap(),
+        "--set",
+        "adhesion.cohesive_stress=5e-324",
+    ]);
     assert_fails_with(&output, &["adhesion.cohesive_stress = 5e-324", "1e-150..1e150"]);
 }
 
@@ -710,7 +715,13 @@ fn plot_master_rejects_rows_it_cannot_draw() {
     let out = dir.path().join("plots");
     let plot = |name: &str, rows: &str| {
         let table = write(dir.path(), name, &format!("{header}{good}{rows}"));
-        adhesim(&["plot", "master", table.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        adhesim(&[
+            "plot",
+            "master",
+            table.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
     };
     for (row, column, value) in [
         ("0002-c,nan,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"nan\""),
@@ -727,7 +738,17 @@ fn plot_master_rejects_rows_it_cannot_draw() {
     let output = plot("t.csv", "0002-c,nan,,,,error,s\n0003-d,2.0,,1.3,,ok,s\n");
     assert!(output.status.success(), "{}", stderr(&output));
     // Every α 0: nothing to draw is an error, not exit 0 without a figure.
-    let table = write(dir.path(), "zero.csv", &format!("{header}0000-a,0,0.9,1.2,1.1,error,s\n"));
-    let output = adhesim(&["plot", "master", table.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let table = write(
+        dir.path(),
+        "zero.csv",
+        &format!("{header}0000-a,0,0.9,1.2,1.1,error,s\n"),
+    );
+    let output = adhesim(&[
+        "plot",
+        "master",
+        table.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     assert_fails_with(&output, &["nothing to draw"]);
 }

@@ -118,7 +118,10 @@ pub fn count(name: &str, value: i64, minimum: usize) -> PyResult<usize> {
 /// interpreted as an integer", "int too big to convert") named no argument.
 fn argument_error(value: &Bound<'_, PyAny>, name: &str, expected: &str) -> PyErr {
     let repr = value.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
-    let type_name = value.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string());
+    let type_name = value
+        .get_type()
+        .name()
+        .map_or_else(|_| "?".to_string(), |n| n.to_string());
     if value.is_instance_of::<pyo3::types::PyInt>() {
         PyValueError::new_err(format!("{name} = {repr} is out of range: {name} must be {expected}"))
     } else {
@@ -142,7 +145,9 @@ pub fn float_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
     if value.is_instance_of::<pyo3::types::PyBool>() || value.is_instance_of::<pyo3::types::PyString>() {
         return Err(argument_error(value, name, "a number"));
     }
-    value.extract::<f64>().map_err(|_| argument_error(value, name, "a number"))
+    value
+        .extract::<f64>()
+        .map_err(|_| argument_error(value, name, "a number"))
 }
 
 /// `value` as a float64 numpy array: itself where it is one, else `numpy.asarray(value,

@@ -110,8 +110,7 @@ impl Grid {
         };
         // The named parameters of the two forms (n, size) and (nx, ny, size_x, size_y),
         // filled by position first, then by name.
-        let rectangular =
-            values.len() > 2 || nx.is_some() || ny.is_some() || size_x.is_some() || size_y.is_some();
+        let rectangular = values.len() > 2 || nx.is_some() || ny.is_some() || size_x.is_some() || size_y.is_some();
         let (names, named): (&[&str], Vec<Option<Bound<'py, PyAny>>>) = if rectangular {
             if n.is_some() || size.is_some() {
                 return Err(PyTypeError::new_err(
@@ -133,7 +132,9 @@ impl Grid {
         for ((slot, keyword), name) in slots.iter_mut().zip(named).zip(names) {
             match (slot.is_some(), keyword) {
                 (true, Some(_)) => {
-                    return Err(PyTypeError::new_err(format!("Grid got {name} twice (by position and by name)")))
+                    return Err(PyTypeError::new_err(format!(
+                        "Grid got {name} twice (by position and by name)"
+                    )))
                 }
                 (false, Some(keyword)) => *slot = Some(keyword),
                 _ => {}

@@ -144,7 +144,10 @@ mod tests {
         assert_eq!(read_input_text(&file, "scenario").unwrap(), "x = 1");
         assert_eq!(read_own_file(&file, "marker", 5).unwrap(), b"x = 1");
         let error = read_own_file(&file, "marker", 4).unwrap_err().to_string();
-        assert!(error.contains("marker: ") && error.contains("larger than the 4 bytes"), "{error}");
+        assert!(
+            error.contains("marker: ") && error.contains("larger than the 4 bytes"),
+            "{error}"
+        );
         let error = read_own_file(Path::new("/dev/zero"), "checkpoint", 1 << 20)
             .unwrap_err()
             .to_string();

@@ -553,7 +553,11 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
     let legend = crate::map_key::Legend::ColourBar {
         low: mean - span,
         high: mean + span,
-        label: if surface.unit == "m" { "height (m)" } else { "height (length units)" },
+        label: if surface.unit == "m" {
+            "height (m)"
+        } else {
+            "height (length units)"
+        },
         colour: &diverging,
     };
     // The scale bar: the same pixels per length along both axes.

@@ -105,10 +105,9 @@ pub fn run_into_folder(
             // One message, not an error chain: `ProtocolError::Solve` shows its source in its
             // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
             return Err(anyhow!(protocol_error_line(scenario, &error)).context(format!(
-                    "run failed; {} holds the steps done",
-                    out.join("curve.csv.partial").display()
-                )),
-            );
+                "run failed; {} holds the steps done",
+                out.join("curve.csv.partial").display()
+            )));
         }
     };
     let plot_files = match options.pictures {
@@ -142,10 +141,9 @@ pub fn run_into_folder(
 pub fn protocol_error_line(scenario: &ValidScenario, error: &ProtocolError) -> String {
     let line = crate::error_text::error_line(anyhow::Chain::new(error));
     match error {
-        ProtocolError::ContactNotLost { .. } if scenario.translation.is_none() => format!(
-            "{line} (protocol.max_retract_steps = {})",
-            scenario.max_retract_steps
-        ),
+        ProtocolError::ContactNotLost { .. } if scenario.translation.is_none() => {
+            format!("{line} (protocol.max_retract_steps = {})", scenario.max_retract_steps)
+        }
         _ => line,
     }
 }
