@@ -752,3 +752,43 @@ fn plot_master_rejects_rows_it_cannot_draw() {
     ]);
     assert_fails_with(&output, &["nothing to draw"]);
 }
+
+/// A topography indenter whose contact is below one element (a single low point of a
+/// measured map) ran without a word: a warning on stderr and in summary.json.
+#[test]
+fn a_contact_of_one_element_on_a_map_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 16;
+    let mut values = vec![1e-3; n * n];
+    // Four points at 0: the element whose centre lies among them is the one lowest.
+    for (row, column) in [
+        (n / 2, n / 2),
+        (n / 2, n / 2 - 1),
+        (n / 2 - 1, n / 2),
+        (n / 2 - 1, n / 2 - 1),
+    ] {
+        values[row * n + column] = 0.0;
+    }
+    std::fs::write(dir.path().join("spike.npy"), npy_bytes((n, n), &values)).unwrap();
+    let scenario = format!(
+        "[grid]\nn = {n}\nsize = 1.0\n[material]\ncontact_modulus = 1.0\n[adhesion]\nwork_of_adhesion = 0.0\n\
+         [indenter]\nshape = \"topography\"\nfile = \"spike.npy\"\nspacing = {}\n\
+         [protocol]\nkind = \"indent_pulloff\"\nmax_depth = 1e-5\ndepth_unit = \"length\"\nsteps = 4\n",
+        1.0 / n as f64
+    );
+    let path = write(dir.path(), "spike.toml", &scenario);
+    let out = dir.path().join("run");
+    let output = adhesim(&["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let expected = "the contact never spanned more than 1 element";
+    assert!(stderr(&output).contains(expected), "{}", stderr(&output));
+    let summary = read_json(&out.join("summary.json"));
+    assert!(
+        summary["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w.as_str().unwrap().contains(expected)),
+        "{summary}"
+    );
+}

@@ -464,6 +464,20 @@ pub(crate) fn single_step_warning(valid: &ValidScenario) -> Option<String> {
     ))
 }
 
+/// A warning when a run's contact never spanned more than one element: its forces are
+/// those of one element, not of the body (a topography indenter smaller than one element
+/// ran without a word; spheres are warned about before the run by
+/// [`contact_radius_warning`]).
+pub fn unresolved_contact_warning(records: &[adhesim::StepRecord]) -> Option<String> {
+    let largest = records.iter().map(|r| r.contact_elements).max()?;
+    (largest == 1).then(|| {
+        format!(
+            "the contact never spanned more than 1 element in {} steps: the grid does not resolve it and its forces are those of one element; raise grid.n or lower grid.size",
+            records.len()
+        )
+    })
+}
+
 /// Bytes a run on an `n`×`n` grid needs, an upper estimate: the FFT buffers of the elastic
 /// operator on the padded grid (2n per side for a free boundary, n for a periodic one: the
 /// kernel spectrum and two work spectra of complex f64, two real padded buffers) and about
