@@ -110,6 +110,13 @@ impl Grid {
         };
         // The named parameters of the two forms (n, size) and (nx, ny, size_x, size_y),
         // filled by position first, then by name.
+        let by_name = [&n, &size, &nx, &ny, &size_x, &size_y].iter().any(|v| v.is_some());
+        if !by_name && !matches!(values.len(), 2 | 4) {
+            return Err(PyValueError::new_err(format!(
+                "Grid takes (n, size) or (nx, ny, size_x, size_y), then the boundary; got {} arguments",
+                values.len()
+            )));
+        }
         let rectangular = values.len() > 2 || nx.is_some() || ny.is_some() || size_x.is_some() || size_y.is_some();
         let (names, named): (&[&str], Vec<Option<Bound<'py, PyAny>>>) = if rectangular {
             if n.is_some() || size.is_some() {

@@ -408,3 +408,30 @@ def test_sweep_progress_true_draws_a_bar_and_the_table_holds_numbers(tmp_path):
     assert list(column) == list(adhesim.sweep_table(list(cases), "results.max_adhesive_force")["results.max_adhesive_force"])
     with pytest.raises(TypeError, match=r"progress must be None, True or a callable"):
         adhesim.sweep(BASE, vary={"grid.n": [16]}, out=tmp_path / "t", progress="yes")
+
+
+def test_closed_forms_refuse_what_they_cannot_compute(operator):
+    """reference.jkr gave -inf or NaN for gamma = 1e300 and zeros for gamma = 0;
+    AdhesiveSolver(op, 1e300) was accepted; contact_radius(centre=(nan, 0)) returned 0."""
+    with pytest.raises(ValueError, match=r"leaves double precision.*work_of_adhesion = 1e300"):
+        adhesim.reference.jkr(1.0, 1.0, 1e300)
+    with pytest.raises(ValueError, match=r"work_of_adhesion = 0.0 gives no JKR contact radius"):
+        adhesim.reference.jkr(1.0, 1.0, 0.0)
+    # Given radii, gamma = 0 is Hertz's curve.
+    assert adhesim.reference.jkr(1.0, 1.0, 0.0, contact_radius=[0.1])["force"][0] > 0.0
+    with pytest.raises(ValueError, match=r"critical stress .* outside 1e-30..1e30"):
+        adhesim.AdhesiveSolver(operator, 1e300)
+    state = adhesim.ContactState(operator.grid)
+    with pytest.raises(ValueError, match=r"centre must be a finite point \(x, y\), got \(NaN, 0"):
+        state.contact_radius(centre=(float("nan"), 0.0))
+    assert state.contact_radius() == 0.0
+
+
+def test_fits_count_the_points_they_leave_out():
+    """The fits dropped points (a <= 0; t, y <= 0) silently."""
+    a = np.array([0.0, 0.1, 0.2, 0.3])
+    force = 4 * a**3 / 3 - np.sqrt(8 * np.pi * 1e-3 * a**3)
+    with pytest.warns(UserWarning, match=r"jkr_work_of_adhesion: 1 of 4 points left out \(contact_radius <= 0\)"):
+        adhesim.fit.jkr_work_of_adhesion(a, force, 1.0, 1.0)
+    with pytest.warns(UserWarning, match=r"power_law: 1 of 4 points left out"):
+        adhesim.fit.power_law(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, 1.0, 2.0, 3.0]))
