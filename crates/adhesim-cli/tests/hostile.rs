@@ -792,3 +792,20 @@ fn a_contact_of_one_element_on_a_map_is_warned_about() {
         "{summary}"
     );
 }
+
+/// Type errors spoke Rust (`expected i64`, `floating point`): now in words.
+#[test]
+fn type_errors_name_types_in_words() {
+    let output = adhesim(&["run", &hertz(), "--set", "protocol.steps=0.01"]);
+    assert_fails_with(
+        &output,
+        &["protocol.steps = 0.01: invalid type: number `0.01`, expected an integer"],
+    );
+    let message = stderr(&output);
+    assert!(
+        !message.contains("i64") && !message.contains("floating point"),
+        "{message}"
+    );
+    let output = adhesim(&["run", &hertz(), "--set", "indenter.radius=\"x\""]);
+    assert_fails_with(&output, &["indenter.radius = \"x\": invalid type", "expected a number"]);
+}
