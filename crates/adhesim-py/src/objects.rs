@@ -329,8 +329,9 @@ pub struct Material {
 #[pymethods]
 impl Material {
     #[new]
-    fn new(contact_modulus: f64) -> PyResult<Self> {
-        positive("contact_modulus", contact_modulus)?;
+    fn new(contact_modulus: &Bound<'_, PyAny>) -> PyResult<Self> {
+        // Converted here to name the argument (`Material("1")` said "must be real number").
+        let contact_modulus = positive("contact_modulus", float_argument(contact_modulus, "contact_modulus")?)?;
         Ok(Self {
             inner: adhesim::ElasticMaterial::new(contact_modulus).map_err(value_error)?,
         })
@@ -354,7 +355,9 @@ impl Material {
     /// ValueError
     ///     E or ν out of range.
     #[staticmethod]
-    fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> PyResult<Self> {
+    fn from_youngs_modulus(youngs_modulus: &Bound<'_, PyAny>, poisson_ratio: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let youngs_modulus = float_argument(youngs_modulus, "youngs_modulus")?;
+        let poisson_ratio = float_argument(poisson_ratio, "poisson_ratio")?;
         Ok(Self {
             inner: adhesim::ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(value_error)?,
         })

@@ -377,6 +377,9 @@ def test_fifos_and_folders_are_refused_by_name(tmp_path):
         (lambda: adhesim.Grid(8, 4, 1.0, "x"), TypeError, ["size_y must be a number, got str 'x'"]),
         (lambda: adhesim.Grid(n=8), TypeError, ["Grid needs size"]),
         (lambda: adhesim.Grid(8, 1.0, n=8), TypeError, ["Grid got n twice"]),
+        (lambda: adhesim.Material("1"), TypeError, ["contact_modulus must be a number, got str '1'"]),
+        (lambda: adhesim.Material(2**2000), ValueError, ["contact_modulus = ", "is out of range"]),
+        (lambda: adhesim.Material.from_youngs_modulus(1.0, "x"), TypeError, ["poisson_ratio must be a number"]),
     ],
 )
 def test_grid_arguments_are_named(call, error, words):
