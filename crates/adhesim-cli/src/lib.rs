@@ -74,6 +74,20 @@ enum Command {
     Topography(topography::TopographyArgs),
 }
 
+/// A write past the file-size limit (`ulimit -f`, RLIMIT_FSIZE, which batch schedulers
+/// set) raises SIGXFSZ, whose default action kills the process mid-write with no message.
+/// Ignored, the write fails with EFBIG and the command stops with the error naming the
+/// file, as on a full disk (`cannot write DIR/curve.csv.partial: File too large`), leaving
+/// no file cut under a final name. (Python ignores SIGXFSZ itself.)
+fn ignore_file_size_signal() {
+    #[cfg(unix)]
+    // SAFETY: SIG_IGN installs no handler code; it only changes the signal's disposition,
+    // which no other part of the program sets.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
 /// Runs the command line on `args` (the program name first, as `std::env::args_os`
 /// gives it) and returns the exit code: 0 success, 1 an error (printed on stderr as one
 /// line), 2 a usage error (clap's message).
@@ -82,6 +96,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
+    ignore_file_size_signal();
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(error) => {

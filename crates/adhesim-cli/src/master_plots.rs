@@ -76,7 +76,20 @@ pub fn command(args: &PlotArgs) -> Result<()> {
                 join: *join,
                 area: !*no_area,
             };
+            for table in tables {
+                check_rows(table)?;
+            }
             let written = write(tables, &out, style)?;
+            if written.is_empty() {
+                bail!(
+                    "no finished row of {} has a johnson_parameter > 0: nothing to draw",
+                    tables
+                        .iter()
+                        .map(|t| t.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                );
+            }
             outln!("plots in {}/: {}", out.display(), written.join(", "));
             Ok(())
         }
@@ -102,6 +115,60 @@ struct Row {
     force: Option<f64>,
     /// Case folder, when it exists next to the table.
     folder: Option<PathBuf>,
+}
+
+/// The columns `plot master` draws: each cell of a finished row must be a finite number
+/// (empty: no value), and `johnson_parameter` one > 0 (the log axis). `plot master` drew
+/// NaN, inf, text and α ≤ 0 rows without a word; now the first such cell is an error naming
+/// the table, the line, the case and the column.
+fn check_rows(path: &Path) -> Result<()> {
+    let mut reader = csv::Reader::from_path(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let header = reader.headers()?.clone();
+    let find = |name: &str| header.iter().position(|h| h == name);
+    let (case_col, status) = (find("case"), find("status"));
+    let columns = [
+        "johnson_parameter",
+        "gamma_approach_norm",
+        "gamma_pulloff_norm",
+        "adhesive_force_ratio",
+        "gamma_approach_area_norm",
+        "gamma_pulloff_area_norm",
+    ];
+    for (index, record) in reader.records().enumerate() {
+        let record = record.with_context(|| format!("{}: malformed row", path.display()))?;
+        if status.and_then(|c| record.get(c)).is_some_and(|s| s != "ok") {
+            continue;
+        }
+        for name in columns {
+            let Some(text) = find(name).and_then(|c| record.get(c)) else {
+                continue;
+            };
+            let value = text.trim().parse::<f64>().ok().filter(|v| v.is_finite());
+            let bad = match value {
+                _ if text.trim().is_empty() => name == "johnson_parameter",
+                None => true,
+                Some(alpha) if name == "johnson_parameter" => alpha <= 0.0,
+                Some(_) => false,
+            };
+            if bad {
+                let requirement = if name == "johnson_parameter" {
+                    "a number > 0 (the log axis of α)"
+                } else {
+                    "a finite number or empty"
+                };
+                bail!(
+                    "{} line {}{}: {name} = {text:?} cannot be drawn; it must be {requirement}",
+                    path.display(),
+                    index + 2,
+                    case_col
+                        .and_then(|c| record.get(c))
+                        .map(|case| format!(" (case {case})"))
+                        .unwrap_or_default()
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 fn read_table(path: &Path) -> Result<Vec<Row>> {

@@ -281,3 +281,21 @@ fn unused_keys_are_errors() {
         assert_error(dir.path(), &text, &[expected]);
     }
 }
+
+/// Arrays with extra values were accepted (`contact.roi` of five values, `centre_px` of
+/// three): an error naming the key and both counts; too few values stay an error.
+#[test]
+fn arrays_of_the_wrong_length_are_errors() {
+    let dir = synth(2);
+    let spec = spec_text(dir.path());
+    let centre = spec.lines().find(|l| l.starts_with("centre_px")).unwrap().to_string();
+    assert_error(
+        dir.path(),
+        &spec.replace(&centre, "centre_px = [140, 120, 7]"),
+        &["centre_px", "expected 2 values, got 3"],
+    );
+    let with_roi = spec.replace("[contact]", "[contact]\nroi = [0, 0, 10, 10, 99]");
+    assert_error(dir.path(), &with_roi, &["roi", "expected 4 values, got 5"]);
+    let with_roi = spec.replace("[contact]", "[contact]\nroi = [0, 0, 10]");
+    assert_error(dir.path(), &with_roi, &["roi", "expected 4 values, got 3"]);
+}

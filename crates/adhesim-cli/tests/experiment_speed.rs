@@ -14,7 +14,7 @@ use std::process::Command;
 /// Wall-clock rates depend on what else runs on the machine; see BENCHMARKS.md §How fast is
 /// a run of each kind › Experiment analysis.
 #[test]
-#[ignore]
+#[ignore = "a wall-clock benchmark of 1,000 frames (BENCHMARKS.md §5): cargo test --release -p adhesim-cli --test experiment_speed -- --ignored"]
 fn thousand_frames_1600x1200() {
     let temp = tempfile::tempdir().unwrap();
     let dir = std::env::var_os("ADHESIM_SPEED_DIR").map_or_else(|| temp.path().to_path_buf(), Into::into);

@@ -337,17 +337,19 @@ impl Nc {
     }
 }
 
+/// Needs a Python with numpy (`ADHESIM_PYTHON`, else `python3`): ignored in the default
+/// suite, and a failure, not a silent pass, where it is asked for and cannot run (it
+/// printed "skipped" and reported `ok`). `.ci/run` runs it with the CI's virtual
+/// environment.
 #[test]
+#[ignore = "needs a Python with numpy: ADHESIM_PYTHON=... cargo test --release -p adhesim-cli --test fields -- --ignored"]
 fn fields_npz_loads_with_numpy_when_python_has_it() {
-    let probe = Command::new("python3").args(["-c", "import numpy"]).output();
+    let python = std::env::var("ADHESIM_PYTHON").unwrap_or_else(|_| "python3".into());
+    let probe = Command::new(&python).args(["-c", "import numpy"]).output();
     match probe {
-        Err(_) => {
-            eprintln!("skipped: python3 is not installed");
-            return;
-        }
+        Err(error) => panic!("cannot run {python} ({error}): set ADHESIM_PYTHON to a Python with numpy"),
         Ok(output) if !output.status.success() => {
-            eprintln!("skipped: python3 has no numpy");
-            return;
+            panic!("{python} has no numpy: set ADHESIM_PYTHON to a Python with numpy")
         }
         Ok(_) => {}
     }
@@ -363,7 +365,7 @@ fn fields_npz_loads_with_numpy_when_python_has_it() {
         \x20       assert d['%s_%06d' % (kind, step)].shape == (32, 32)\n\
         \x20   assert d['contact_%06d' % step].dtype == numpy.bool_\n\
         print(len(s))\n";
-    let output = Command::new("python3")
+    let output = Command::new(&python)
         .args(["-c", script, out.join("fields.npz").to_str().unwrap()])
         .output()
         .unwrap();

@@ -409,3 +409,403 @@ fn lengths_scaled_by_1e_minus_20_give_the_same_normalised_results() {
         assert!((ratio - 1.0).abs() < 1e-6, "{key}: scaled/plain = {ratio}");
     }
 }
+
+// Reliability, third pass (a probe of 2,923 hostile inputs): one test per cause
+// (`docs/reliability.md`, "Third pass").
+
+/// A one-case sweep of `sweeps/tiny.toml`'s scenario (milliseconds).
+const ONE_CASE: &str = r#"
+series = "one"
+[scenario]
+grid = { n = 32, size = 0.8 }
+material = { contact_modulus = 1.0 }
+adhesion = { work_of_adhesion = 6.16850275068085e-4 }
+indenter = { shape = "wavy_sphere", radius = 1.0, amplitude = 0.0025, wavelength = 0.1 }
+protocol = { kind = "indent_pulloff", max_depth = 6.0, depth_unit = "jkr", steps = 12 }
+[vary]
+alpha = [1.0]
+"#;
+
+/// `--checkpoint-every 1e300` (any value from about 1.9e19 s) panicked in
+/// `Duration::from_secs_f64` ("cannot convert float seconds to Duration", exit 101), under
+/// `sweep` and `study`: now an error naming the flag and the bound.
+#[test]
+fn a_checkpoint_interval_beyond_any_duration_is_an_error_naming_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = write(dir.path(), "one.toml", ONE_CASE);
+    let out = dir.path().join("sweep");
+    for value in ["1e300", "2e19", "inf", "-1"] {
+        let output = adhesim(&[
+            "sweep",
+            sweep.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            &format!("--checkpoint-every={value}"),
+        ]);
+        assert_fails_with(&output, &["--checkpoint-every", "from 0 (off) to 1e9"]);
+    }
+    let study = write(
+        dir.path(),
+        "rolling.toml",
+        &format!(
+            "kind = \"rolling\"\nbase = \"{}\"\nalphas = [0.8]\ndepths = [5]\n[normal]\nmax_depth = 5.0\nsteps = 20\n",
+            scenarios_dir().join("fig6.toml").display()
+        ),
+    );
+    let output = adhesim(&[
+        "study",
+        "rolling",
+        study.to_str().unwrap(),
+        "--out",
+        dir.path().join("study").to_str().unwrap(),
+        "--quiet",
+        "--checkpoint-every",
+        "1e300",
+    ]);
+    assert_fails_with(&output, &["--checkpoint-every", "got 1e300"]);
+}
+
+/// `adhesim topography p.npy --bins 4000000000` asked for 96 GB and died by SIGABRT: the
+/// bins are capped (no map has more distinct wavevector magnitudes than the cap) and
+/// checked against the memory available, the error naming `--bins`.
+#[test]
+fn psd_bins_are_capped_and_checked_against_the_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let values: Vec<f64> = (0..64).map(|i| (i as f64 * 0.7).sin()).collect();
+    let map = dir.path().join("p.npy");
+    std::fs::write(&map, npy_bytes((8, 8), &values)).unwrap();
+    let topography = |bins: &str, memory: Option<&str>| {
+        let mut command = Command::new(BIN);
+        command.args([
+            "topography",
+            map.to_str().unwrap(),
+            "--spacing",
+            "1e-6",
+            "--height-unit",
+            "m",
+            "--bins",
+            bins,
+            "--out",
+            dir.path().join("t").to_str().unwrap(),
+        ]);
+        if let Some(bytes) = memory {
+            command.env("ADHESIM_MEMORY_AVAILABLE", bytes);
+        }
+        command.output().unwrap()
+    };
+    let output = topography("4000000000", None);
+    assert_fails_with(&output, &["--bins must be 2 … 1000000, got 4000000000"]);
+    let output = topography("1000000", Some("10000000"));
+    assert_fails_with(&output, &["--bins 1000000 would need about", "of memory available"]);
+    let output = topography("30", Some("10000000"));
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
+/// `ulimit -f 16` killed a run with SIGXFSZ (the signal's default action): the command now
+/// ignores the signal, so the write fails with EFBIG and the run stops with the error
+/// naming the file, as on a full disk, without a `curve.csv` under its final name. Unlike
+/// `safe_outputs`' test, the shell does not ignore the signal for it.
+#[cfg(unix)]
+#[test]
+fn a_file_size_limit_is_a_named_error_not_a_signal() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let command = format!(
+        "trap - XFSZ; ulimit -f 8; exec '{BIN}' run '{}' --set protocol.steps=300 --out '{}' --quiet",
+        hertz(),
+        out.display()
+    );
+    let output = Command::new("sh").args(["-c", &command]).output().unwrap();
+    assert_eq!(output.status.signal(), None, "killed by a signal: {}", stderr(&output));
+    assert_fails_with(&output, &["cannot write", "curve.csv.partial", "File too large"]);
+    assert!(!out.join("curve.csv").exists(), "a failed write left a curve.csv");
+}
+
+/// A FIFO named `checkpoint.json` in a killed case's tmp/ folder blocked the next sweep; a
+/// checkpoint that is a link to /dev/zero was read without bound. Each is refused with a
+/// warning naming the file, and the case runs from scratch.
+#[cfg(unix)]
+#[test]
+fn a_checkpoint_that_is_not_a_regular_file_is_warned_about_not_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let sweep = write(dir.path(), "one.toml", ONE_CASE);
+    let out = dir.path().join("sweep");
+    let args = [
+        "sweep",
+        sweep.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--jobs",
+        "1",
+        "--checkpoint-every",
+        "60",
+    ];
+    let output = adhesim_within(&args, Duration::from_secs(60));
+    assert!(output.status.success(), "{}", stderr(&output));
+    let case = std::fs::read_dir(out.join("cases"))
+        .unwrap()
+        .flatten()
+        .next()
+        .unwrap()
+        .file_name()
+        .to_string_lossy()
+        .into_owned();
+    for kind in ["fifo", "device"] {
+        std::fs::remove_dir_all(out.join("cases").join(&case)).unwrap();
+        // A pid above any pid_max: a killed run's folder.
+        let killed = out.join("tmp").join(format!("{case}.4000000000"));
+        std::fs::create_dir_all(&killed).unwrap();
+        let checkpoint = killed.join("checkpoint.json");
+        if kind == "fifo" {
+            assert!(Command::new("mkfifo").arg(&checkpoint).status().unwrap().success());
+        } else {
+            std::os::unix::fs::symlink("/dev/zero", &checkpoint).unwrap();
+        }
+        let output = adhesim_within(&args, Duration::from_secs(60));
+        assert!(output.status.success(), "{kind}: {}", stderr(&output));
+        let log = stderr(&output);
+        let expected = if kind == "fifo" { "is a FIFO" } else { "is a device" };
+        assert!(
+            log.contains("warning: checkpoint ")
+                && log.contains(&checkpoint.display().to_string())
+                && log.contains(expected)
+                && log.contains("restarts from scratch"),
+            "{kind}: {log}"
+        );
+        assert!(out.join("cases").join(&case).join("curve.csv").exists(), "{kind}");
+    }
+}
+
+/// `law = "exponential"` with `range = 1e3` started its approach 6.9ρ above first contact
+/// in steps the step cap did not count (about 3.5·10⁸ steps): refused before the run with
+/// the estimate and the key to change.
+#[test]
+fn an_approach_beyond_the_step_cap_is_refused_before_the_run() {
+    let scenario = scenarios_dir().join("cohesive").join("exponential_mu1.toml");
+    let output = adhesim_within(
+        &["run", scenario.to_str().unwrap(), "--set", "adhesion.range=1e3"],
+        Duration::from_secs(60),
+    );
+    assert_fails_with(
+        &output,
+        &[
+            "adhesion.range = 1000",
+            "approach steps, more than the cap of 1000000",
+            "choose a smaller adhesion.range or a larger depth step",
+        ],
+    );
+}
+
+/// A run that fails after writing (here at its retraction step limit) leaves its rows in
+/// `curve.csv.partial` and nothing under a final name: `law = "exponential"` with
+/// `range = 5e-324` failed on fields.npz and left a `curve.csv` of NaN rows. The error
+/// names the limit's key.
+#[test]
+fn a_failed_run_leaves_no_file_under_a_final_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let jkr = scenarios_dir().join("jkr.toml");
+    let output = adhesim(&[
+        "run",
+        jkr.to_str().unwrap(),
+        "--set",
+        "grid.n=32",
+        "--set",
+        "protocol.max_retract_steps=1",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_fails_with(
+        &output,
+        &[
+            "curve.csv.partial holds the steps done",
+            "contact not lost after 1 retraction steps",
+            "protocol.max_retract_steps = 1",
+        ],
+    );
+    assert!(out.join("curve.csv.partial").exists());
+    for name in ["curve.csv", "fields.npz", "summary.json"] {
+        assert!(!out.join(name).exists(), "a failed run left {name}");
+    }
+    // The range that gave NaN rows is refused before the run, naming the key.
+    let exponential = scenarios_dir().join("cohesive").join("exponential_mu1.toml");
+    let output = adhesim(&[
+        "run",
+        exponential.to_str().unwrap(),
+        "--set",
+        "adhesion.range=5e-324",
+        "--out",
+        dir.path().join("nan").to_str().unwrap(),
+    ]);
+    assert_fails_with(&output, &["adhesion.range = 5e-324", "1e-150..1e150"]);
+    assert!(!dir.path().join("nan").join("curve.csv").exists());
+}
+
+/// A grid size of 1e-310 was refused as "[grid]: grid element size size/n … Δ² = 0e0",
+/// where every other message names `grid.size` and prints numbers as a person writes them.
+#[test]
+fn a_grid_of_subnormal_elements_is_named_as_grid_size_in_plain_numbers() {
+    let output = adhesim(&["run", &hertz(), "--set", "grid.size=1e-310"]);
+    assert_fails_with(
+        &output,
+        &[
+            "grid.size = 1e-310 with grid.n = 64 makes elements of side 1.5625e-312 and area 0",
+            "choose a grid.size commensurate with grid.n",
+        ],
+    );
+    assert!(!stderr(&output).contains("0e0"), "{}", stderr(&output));
+}
+
+/// Degenerate law parameters: `cohesive_stress = 5e-324` gave F_ad = 0 (Dugdale) and
+/// `range = 5e-324` NaN rows (exponential); refused before the run, naming the key.
+#[test]
+fn degenerate_law_parameters_are_refused_naming_the_key() {
+    let dugdale = scenarios_dir().join("cohesive").join("maugis_lambda1.toml");
+    let output = adhesim(&[
+        "run",
+        dugdale.to_str().unwrap(),
+        "--set",
+        "adhesion.cohesive_stress=5e-324",
+    ]);
+    assert_fails_with(&output, &["adhesion.cohesive_stress = 5e-324", "1e-150..1e150"]);
+}
+
+/// A sphere with `protocol.step = 1e6` |d_JKR| "ran" one step each way and reported a
+/// dissipated energy of 57,198 without a word: warned on stderr and in summary.json.
+#[test]
+fn a_single_approach_step_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let jkr = scenarios_dir().join("jkr.toml");
+    let output = adhesim(&[
+        "run",
+        jkr.to_str().unwrap(),
+        "--set",
+        "grid.n=32",
+        "--set",
+        "protocol.steps=1",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let expected = "in 1 approach step of";
+    assert!(stderr(&output).contains(expected), "{}", stderr(&output));
+    if output.status.success() {
+        let summary = read_json(&out.join("summary.json"));
+        let warnings = summary["warnings"].as_array().unwrap();
+        assert!(
+            warnings.iter().any(|w| w.as_str().unwrap().contains(expected)),
+            "{warnings:?}"
+        );
+    }
+}
+
+/// `plot master` drew NaN, inf, text and α ≤ 0 rows, and exited 0 with no figure when
+/// every α was 0: each such row is an error naming the table, its line, the case and the
+/// column; a table of good rows is drawn.
+#[test]
+fn plot_master_rejects_rows_it_cannot_draw() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = "case,johnson_parameter,gamma_approach_norm,gamma_pulloff_norm,adhesive_force_ratio,status,series\n";
+    let good = "0000-a,0.5,0.9,1.2,1.1,ok,s\n0001-b,1.0,0.8,1.4,1.2,ok,s\n";
+    let out = dir.path().join("plots");
+    let plot = |name: &str, rows: &str| {
+        let table = write(dir.path(), name, &format!("{header}{good}{rows}"));
+        adhesim(&[
+            "plot",
+            "master",
+            table.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    for (row, column, value) in [
+        ("0002-c,nan,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"nan\""),
+        ("0002-c,0,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"0\""),
+        ("0002-c,-1,0.8,1.4,1.2,ok,s\n", "johnson_parameter", "\"-1\""),
+        ("0002-c,2.0,inf,1.4,1.2,ok,s\n", "gamma_approach_norm", "\"inf\""),
+        ("0002-c,2.0,0.8,abc,1.2,ok,s\n", "gamma_pulloff_norm", "\"abc\""),
+    ] {
+        let output = plot("t.csv", row);
+        let expected = format!("t.csv line 4 (case 0002-c): {column} = {value} cannot be drawn");
+        assert_fails_with(&output, &[&expected]);
+    }
+    // A failed case's row is not drawn and not checked; an empty value is no value.
+    let output = plot("t.csv", "0002-c,nan,,,,error,s\n0003-d,2.0,,1.3,,ok,s\n");
+    assert!(output.status.success(), "{}", stderr(&output));
+    // Every α 0: nothing to draw is an error, not exit 0 without a figure.
+    let table = write(
+        dir.path(),
+        "zero.csv",
+        &format!("{header}0000-a,0,0.9,1.2,1.1,error,s\n"),
+    );
+    let output = adhesim(&[
+        "plot",
+        "master",
+        table.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_fails_with(&output, &["nothing to draw"]);
+}
+
+/// A topography indenter whose contact is below one element (a single low point of a
+/// measured map) ran without a word: a warning on stderr and in summary.json.
+#[test]
+fn a_contact_of_one_element_on_a_map_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 16;
+    let mut values = vec![1e-3; n * n];
+    // Four points at 0: the element whose centre lies among them is the one lowest.
+    for (row, column) in [
+        (n / 2, n / 2),
+        (n / 2, n / 2 - 1),
+        (n / 2 - 1, n / 2),
+        (n / 2 - 1, n / 2 - 1),
+    ] {
+        values[row * n + column] = 0.0;
+    }
+    std::fs::write(dir.path().join("spike.npy"), npy_bytes((n, n), &values)).unwrap();
+    let scenario = format!(
+        "[grid]\nn = {n}\nsize = 1.0\n[material]\ncontact_modulus = 1.0\n[adhesion]\nwork_of_adhesion = 0.0\n\
+         [indenter]\nshape = \"topography\"\nfile = \"spike.npy\"\nspacing = {}\n\
+         [protocol]\nkind = \"indent_pulloff\"\nmax_depth = 1e-5\ndepth_unit = \"length\"\nsteps = 4\n",
+        1.0 / n as f64
+    );
+    let path = write(dir.path(), "spike.toml", &scenario);
+    let out = dir.path().join("run");
+    let output = adhesim(&["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let expected = "the contact never spanned more than 1 element";
+    assert!(stderr(&output).contains(expected), "{}", stderr(&output));
+    let summary = read_json(&out.join("summary.json"));
+    assert!(
+        summary["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w.as_str().unwrap().contains(expected)),
+        "{summary}"
+    );
+}
+
+/// Type errors spoke Rust (`expected i64`, `floating point`): now in words.
+#[test]
+fn type_errors_name_types_in_words() {
+    let output = adhesim(&["run", &hertz(), "--set", "protocol.steps=0.01"]);
+    assert_fails_with(
+        &output,
+        &["protocol.steps = 0.01: invalid type: number `0.01`, expected an integer"],
+    );
+    let message = stderr(&output);
+    assert!(
+        !message.contains("i64") && !message.contains("floating point"),
+        "{message}"
+    );
+    let output = adhesim(&["run", &hertz(), "--set", "indenter.radius=\"x\""]);
+    assert_fails_with(&output, &["indenter.radius = \"x\": invalid type", "expected a number"]);
+}

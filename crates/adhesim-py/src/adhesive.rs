@@ -147,8 +147,23 @@ impl AdhesiveSolver {
         };
         let per_element = gamma.on_grid(&grid).map_err(value_error)?;
         let modulus = material.contact_modulus();
+        let inner = adhesim::AdhesiveSolver::new(grid, modulus, per_element, params);
+        // The scenario crate's single-precision window (1e-30..1e30, docs/reliability.md):
+        // `AdhesiveSolver(op, 1e300)` was accepted and overflowed in the first step.
+        if let Some(k) = inner
+            .critical_stresses()
+            .iter()
+            .position(|&stress| stress != 0.0 && !(1e-30..=1e30).contains(&stress))
+        {
+            return Err(PyValueError::new_err(format!(
+                "work_of_adhesion = {gamma_repr} gives the critical stress σ_c = {:e} at element [{}, {}] (with contact_modulus = {modulus:e}), outside 1e-30..1e30, the range the solver's single-precision FFTs hold: bring work_of_adhesion and the material to commensurate units",
+                inner.critical_stresses()[k],
+                k / grid.nx(),
+                k % grid.nx()
+            )));
+        }
         Ok(Self {
-            inner: adhesim::AdhesiveSolver::new(grid, modulus, per_element, params),
+            inner,
             params,
             gamma_repr,
             operator,

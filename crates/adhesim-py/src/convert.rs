@@ -113,6 +113,43 @@ pub fn count(name: &str, value: i64, minimum: usize) -> PyResult<usize> {
     }
 }
 
+/// `TypeError` (or `ValueError` for an int beyond the type's range) naming the argument
+/// `name`, its value and the `expected` type: pyo3's own message ("'str' object cannot be
+/// interpreted as an integer", "int too big to convert") named no argument.
+fn argument_error(value: &Bound<'_, PyAny>, name: &str, expected: &str) -> PyErr {
+    let repr = value.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
+    let type_name = value
+        .get_type()
+        .name()
+        .map_or_else(|_| "?".to_string(), |n| n.to_string());
+    if value.is_instance_of::<pyo3::types::PyInt>() {
+        PyValueError::new_err(format!("{name} = {repr} is out of range: {name} must be {expected}"))
+    } else {
+        PyTypeError::new_err(format!("{name} must be {expected}, got {type_name} {repr}"))
+    }
+}
+
+/// An integer argument (a Python int or an integer numpy scalar), or an error naming `name`.
+pub fn int_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<i64> {
+    if value.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(argument_error(value, name, "an integer"));
+    }
+    value
+        .extract::<i64>()
+        .map_err(|_| argument_error(value, name, "an integer"))
+}
+
+/// A float argument (a Python float or int, or a numpy scalar), or a `TypeError` naming
+/// `name`.
+pub fn float_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    if value.is_instance_of::<pyo3::types::PyBool>() || value.is_instance_of::<pyo3::types::PyString>() {
+        return Err(argument_error(value, name, "a number"));
+    }
+    value
+        .extract::<f64>()
+        .map_err(|_| argument_error(value, name, "a number"))
+}
+
 /// `value` as a float64 numpy array: itself where it is one, else `numpy.asarray(value,
 /// dtype=numpy.float64)` (numpy's array_like convention: float32, integers, nested lists),
 /// a `TypeError` naming `name` where that fails or would drop an imaginary part.

@@ -57,6 +57,7 @@ fn _adhesim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenario::_curve_column_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_value, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::_toml_document, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::_read_input_text, m)?)?;
     m.add_class::<sweep::SweepFolder>()?;
     m.add_function(wrap_pyfunction!(sweep::_sweep_open, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::_sweep_run_case, m)?)?;

@@ -1,9 +1,11 @@
 //! Grid, material and the elastic half-space operator (the contact state: `state.rs`).
 
-use crate::convert::{count, field, fits_in_memory, half_space_bytes, positive, read_field, value_error};
+use crate::convert::{
+    count, field, fits_in_memory, float_argument, half_space_bytes, int_argument, positive, read_field, value_error,
+};
 use adhesim::{Boundary, ElasticOperator};
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 pub use crate::state::ContactState;
@@ -26,10 +28,16 @@ pub use crate::state::ContactState;
 ///     One contact on an infinite half-space, or the rectangle as one period of an
 ///     infinite surface; positional after the sizes, or a keyword.
 ///
+/// Each parameter is taken by position or by name (`Grid(n=64, size=1.0)`).
+///
 /// Raises
 /// ------
 /// ValueError
-///     A count < 2, a size not finite and > 0, an unknown boundary, or another number of
+///     A count < 2 or beyond the index range, a size not finite and > 0, an unknown
+///     boundary.
+/// TypeError
+///     A count that is not an integer or a size that is not a number (naming the
+///     parameter and the value), a parameter missing or given twice, or another number of
 ///     arguments.
 #[pyclass(module = "adhesim._adhesim", frozen, eq, from_py_object)]
 #[derive(Clone, Copy, PartialEq)]
@@ -66,9 +74,19 @@ fn axis<'py>(
 #[pymethods]
 impl Grid {
     #[new]
-    #[pyo3(signature = (*args, boundary = None))]
-    fn new(args: &Bound<'_, pyo3::types::PyTuple>, boundary: Option<String>) -> PyResult<Self> {
-        let mut values: Vec<Bound<'_, PyAny>> = args.iter().collect();
+    #[pyo3(signature = (*args, boundary = None, n = None, size = None, nx = None, ny = None, size_x = None, size_y = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new<'py>(
+        args: &Bound<'py, pyo3::types::PyTuple>,
+        boundary: Option<String>,
+        n: Option<Bound<'py, PyAny>>,
+        size: Option<Bound<'py, PyAny>>,
+        nx: Option<Bound<'py, PyAny>>,
+        ny: Option<Bound<'py, PyAny>>,
+        size_x: Option<Bound<'py, PyAny>>,
+        size_y: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Self> {
+        let mut values: Vec<Bound<'py, PyAny>> = args.iter().collect();
         // A string after the sizes is the boundary.
         let positional = match values.last() {
             Some(last) if matches!(values.len(), 3 | 5) && last.is_instance_of::<pyo3::types::PyString>() => {
@@ -90,25 +108,63 @@ impl Grid {
                 )))
             }
         };
-        let grid = match values.as_slice() {
-            [n, size] => adhesim::Grid::new(
-                count("n", n.extract()?, 2)?,
-                positive("size", size.extract()?)?,
-                boundary,
-            ),
-            [nx, ny, size_x, size_y] => adhesim::Grid::rectangular(
-                count("nx", nx.extract()?, 2)?,
-                count("ny", ny.extract()?, 2)?,
-                positive("size_x", size_x.extract()?)?,
-                positive("size_y", size_y.extract()?)?,
-                boundary,
-            ),
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "Grid takes (n, size) or (nx, ny, size_x, size_y), then the boundary; got {} arguments",
-                    other.len()
-                )))
+        // The named parameters of the two forms (n, size) and (nx, ny, size_x, size_y),
+        // filled by position first, then by name.
+        let by_name = [&n, &size, &nx, &ny, &size_x, &size_y].iter().any(|v| v.is_some());
+        if !by_name && !matches!(values.len(), 2 | 4) {
+            return Err(PyValueError::new_err(format!(
+                "Grid takes (n, size) or (nx, ny, size_x, size_y), then the boundary; got {} arguments",
+                values.len()
+            )));
+        }
+        let rectangular = values.len() > 2 || nx.is_some() || ny.is_some() || size_x.is_some() || size_y.is_some();
+        let (names, named): (&[&str], Vec<Option<Bound<'py, PyAny>>>) = if rectangular {
+            if n.is_some() || size.is_some() {
+                return Err(PyTypeError::new_err(
+                    "Grid takes (n, size) or (nx, ny, size_x, size_y), not a mix of both",
+                ));
             }
+            (&["nx", "ny", "size_x", "size_y"], vec![nx, ny, size_x, size_y])
+        } else {
+            (&["n", "size"], vec![n, size])
+        };
+        if values.len() > names.len() {
+            return Err(PyTypeError::new_err(format!(
+                "Grid takes (n, size) or (nx, ny, size_x, size_y), then the boundary; got {} arguments",
+                values.len()
+            )));
+        }
+        let mut slots: Vec<Option<Bound<'py, PyAny>>> = values.into_iter().map(Some).collect();
+        slots.resize(names.len(), None);
+        for ((slot, keyword), name) in slots.iter_mut().zip(named).zip(names) {
+            match (slot.is_some(), keyword) {
+                (true, Some(_)) => {
+                    return Err(PyTypeError::new_err(format!(
+                        "Grid got {name} twice (by position and by name)"
+                    )))
+                }
+                (false, Some(keyword)) => *slot = Some(keyword),
+                _ => {}
+            }
+        }
+        let mut slots = slots.into_iter().zip(names.iter()).map(|(slot, name)| {
+            slot.ok_or_else(|| {
+                PyTypeError::new_err(format!(
+                    "Grid needs {name}: Grid(n, size) or Grid(nx, ny, size_x, size_y), then the boundary"
+                ))
+            })
+            .map(|value| (value, *name))
+        });
+        let mut next = || slots.next().expect("one slot per name");
+        let int = |(value, name): (Bound<'py, PyAny>, &str)| count(name, int_argument(&value, name)?, 2);
+        let float = |(value, name): (Bound<'py, PyAny>, &str)| positive(name, float_argument(&value, name)?);
+        let grid = if rectangular {
+            let (nx, ny) = (int(next()?)?, int(next()?)?);
+            let (size_x, size_y) = (float(next()?)?, float(next()?)?);
+            adhesim::Grid::rectangular(nx, ny, size_x, size_y, boundary)
+        } else {
+            let n = int(next()?)?;
+            adhesim::Grid::new(n, float(next()?)?, boundary)
         };
         Ok(Self {
             inner: grid.map_err(value_error)?,
@@ -273,8 +329,9 @@ pub struct Material {
 #[pymethods]
 impl Material {
     #[new]
-    fn new(contact_modulus: f64) -> PyResult<Self> {
-        positive("contact_modulus", contact_modulus)?;
+    fn new(contact_modulus: &Bound<'_, PyAny>) -> PyResult<Self> {
+        // Converted here to name the argument (`Material("1")` said "must be real number").
+        let contact_modulus = positive("contact_modulus", float_argument(contact_modulus, "contact_modulus")?)?;
         Ok(Self {
             inner: adhesim::ElasticMaterial::new(contact_modulus).map_err(value_error)?,
         })
@@ -298,7 +355,9 @@ impl Material {
     /// ValueError
     ///     E or ν out of range.
     #[staticmethod]
-    fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> PyResult<Self> {
+    fn from_youngs_modulus(youngs_modulus: &Bound<'_, PyAny>, poisson_ratio: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let youngs_modulus = float_argument(youngs_modulus, "youngs_modulus")?;
+        let poisson_ratio = float_argument(poisson_ratio, "poisson_ratio")?;
         Ok(Self {
             inner: adhesim::ElasticMaterial::from_youngs_modulus(youngs_modulus, poisson_ratio).map_err(value_error)?,
         })

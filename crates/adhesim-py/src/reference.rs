@@ -37,6 +37,20 @@ fn finite_all(name: &str, values: &[f64]) -> PyResult<()> {
     }
 }
 
+/// `ValueError` where a closed form leaves double precision at some input: γ = 1e300 gave
+/// −inf and NaN without a word. `inputs` names the arguments with their values.
+fn finite_results(what: &str, inputs: &str, outputs: &[(&str, &[f64])]) -> PyResult<()> {
+    for (name, values) in outputs {
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "{what}: {name}[{k}] = {} leaves double precision; it comes from {inputs}: bring them to commensurate units",
+                values[k]
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Hertz: (force, contact_radius) at each depth.
 #[pyfunction]
 pub fn _hertz<'py>(
@@ -48,8 +62,13 @@ pub fn _hertz<'py>(
     let model = hertz(radius, contact_modulus)?;
     let depth = read_vector(depth, "depth")?;
     finite_all("depth", &depth)?;
-    let force = depth.iter().map(|&d| model.force(d)).collect();
-    let contact_radius = depth.iter().map(|&d| model.contact_radius(d)).collect();
+    let force: Vec<f64> = depth.iter().map(|&d| model.force(d)).collect();
+    let contact_radius: Vec<f64> = depth.iter().map(|&d| model.contact_radius(d)).collect();
+    finite_results(
+        "hertz",
+        &format!("radius = {radius:e}, contact_modulus = {contact_modulus:e} and the depths"),
+        &[("force", &force), ("contact_radius", &contact_radius)],
+    )?;
     Ok((PyArray1::from_vec(py, force), PyArray1::from_vec(py, contact_radius)))
 }
 
@@ -70,8 +89,13 @@ pub fn _jkr_curve<'py>(
             a[k]
         )));
     }
-    let force = a.iter().map(|&a| model.force(a)).collect();
-    let depth = a.iter().map(|&a| model.depth(a)).collect();
+    let force: Vec<f64> = a.iter().map(|&a| model.force(a)).collect();
+    let depth: Vec<f64> = a.iter().map(|&a| model.depth(a)).collect();
+    finite_results(
+        "jkr",
+        &format!("radius = {radius:e}, contact_modulus = {contact_modulus:e}, work_of_adhesion = {work_of_adhesion:e} and the contact radii"),
+        &[("force", &force), ("depth", &depth)],
+    )?;
     Ok((PyArray1::from_vec(py, force), PyArray1::from_vec(py, depth)))
 }
 
@@ -89,9 +113,14 @@ pub fn _jkr_at_depth<'py>(
     let depth = read_vector(depth, "depth")?;
     finite_all("depth", &depth)?;
     let radii: Vec<Option<f64>> = depth.iter().map(|&d| model.radius_at_depth(d)).collect();
-    let force = radii.iter().map(|a| a.map_or(0.0, |a| model.force(a))).collect();
+    let force: Vec<f64> = radii.iter().map(|a| a.map_or(0.0, |a| model.force(a))).collect();
     let contact = radii.iter().map(|a| a.is_some()).collect();
-    let radius_values = radii.iter().map(|a| a.unwrap_or(0.0)).collect();
+    let radius_values: Vec<f64> = radii.iter().map(|a| a.unwrap_or(0.0)).collect();
+    finite_results(
+        "jkr_at_depth",
+        &format!("radius = {radius:e}, contact_modulus = {contact_modulus:e}, work_of_adhesion = {work_of_adhesion:e} and the depths"),
+        &[("force", &force), ("contact_radius", &radius_values)],
+    )?;
     Ok((
         PyArray1::from_vec(py, force),
         PyArray1::from_vec(py, radius_values),
@@ -116,6 +145,18 @@ pub fn jkr_scales<'py>(
     work_of_adhesion: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = jkr(radius, contact_modulus, work_of_adhesion)?;
+    let jump_depth = -9f64.cbrt() * model.critical_depth().abs();
+    let scales = [
+        model.critical_force(),
+        model.critical_depth(),
+        model.critical_radius(),
+        jump_depth,
+    ];
+    finite_results(
+        "jkr_scales",
+        &format!("radius = {radius:e}, contact_modulus = {contact_modulus:e}, work_of_adhesion = {work_of_adhesion:e}"),
+        &[("[force, depth, contact_radius, jump_depth]", &scales)],
+    )?;
     let dict = PyDict::new(py);
     dict.set_item("force", model.critical_force())?;
     dict.set_item("depth", model.critical_depth())?;

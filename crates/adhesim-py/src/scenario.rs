@@ -173,7 +173,12 @@ fn run_in_memory(
     let outcome = match (outcome, observer.progress.error.take()) {
         (_, Some(error)) => return Err(error),
         (Ok(outcome), None) => outcome,
-        (Err(error), None) => return Err(crate::convert::SolveError::new_err(format!("run failed: {error}"))),
+        (Err(error), None) => {
+            return Err(crate::convert::SolveError::new_err(format!(
+                "run failed: {}",
+                adhesim_scenario::output::run::protocol_error_line(scenario, &error)
+            )))
+        }
     };
     let performance = performance(start.elapsed().as_secs_f64(), &outcome, &observer.timings);
     let summary = adhesim_scenario::Summary::new(scenario, &outcome, performance, &observer.warnings);
@@ -350,6 +355,22 @@ pub fn _curve_column_kinds(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 #[pyfunction]
 pub fn _toml_value(value: &Bound<'_, PyAny>) -> PyResult<String> {
     Ok(to_toml(value, "value")?.to_string())
+}
+
+/// The text of an input file named by a Python argument (`what`: `scenario`), read as the
+/// command line reads its inputs: a FIFO (it blocked forever), a device or a folder is
+/// refused by name (`ValueError`), as is a file larger than the memory available; a
+/// missing file is a `FileNotFoundError`.
+#[pyfunction]
+pub fn _read_input_text(path: PathBuf, what: &str) -> PyResult<String> {
+    if !path.exists() {
+        return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!(
+            "{what}: {} does not exist",
+            path.display()
+        )));
+    }
+    adhesim_scenario::read_input_text(&path, what)
+        .map_err(|e| PyValueError::new_err(adhesim_scenario::error_text::error_line(e.chain())))
 }
 
 /// A nested dict as the text of a TOML document.

@@ -187,9 +187,20 @@ impl ContactState {
     /// -------
     /// float
     ///     The radius; 0 without contact.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     A centre that is not finite (`(nan, 0)` returned 0).
     #[pyo3(signature = (centre = (0.0, 0.0)), text_signature = "($self, centre=(0.0, 0.0))")]
-    fn contact_radius(&self, centre: (f64, f64)) -> f64 {
-        self.inner.contact_radius(&self.grid, centre)
+    fn contact_radius(&self, centre: (f64, f64)) -> PyResult<f64> {
+        if !(centre.0.is_finite() && centre.1.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "centre must be a finite point (x, y), got ({}, {})",
+                centre.0, centre.1
+            )));
+        }
+        Ok(self.inner.contact_radius(&self.grid, centre))
     }
 
     /// The grid of the state.

@@ -125,6 +125,16 @@ pub fn _isotropic_psd<'py>(
     valid: Option<PyReadonlyArray2<'py, bool>>,
     periodic: bool,
 ) -> PyResult<Vec<Bound<'py, PyArray1<f64>>>> {
+    let max_bins = adhesim::surface::MAX_PSD_BINS;
+    if !(1..=max_bins).contains(&bins) {
+        return Err(PyValueError::new_err(format!(
+            "bins must be an integer 1 … {max_bins}, got {bins}"
+        )));
+    }
+    crate::convert::fits_in_memory(
+        &format!("psd(bins={bins})"),
+        bins as u128 * adhesim_scenario::memory::PSD_BYTES_PER_BIN,
+    )?;
     let MapData { ny, nx, values, mask } = read_map(&heights, valid.as_ref())?;
     let map = HeightMap::new((nx, ny), (dx, dy), &values, mask.as_deref(), periodic).map_err(value_error)?;
     let psd = map.isotropic_psd(bins).map_err(value_error)?;
@@ -169,6 +179,16 @@ pub fn _read_topography<'py>(
     height_unit: Option<String>,
     lateral_unit: Option<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // A FIFO blocked forever, a device read without end: refused by name as on the
+    // command line, as is a file larger than the memory available.
+    if !path.exists() {
+        return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!(
+            "path: {} does not exist",
+            path.display()
+        )));
+    }
+    adhesim_scenario::check_regular_file(&path, "path")
+        .map_err(|e| PyValueError::new_err(adhesim_scenario::error_text::error_line(e.chain())))?;
     if let Some((dx, dy)) = spacing {
         positive("spacing[0]", dx)?;
         positive("spacing[1]", dy)?;

@@ -204,7 +204,7 @@ pub fn _sweep_run_case(
 /// The `error.txt` of a failed case (its message), or a note that it is missing.
 fn error_text(out: &Path, id: &str) -> String {
     let path = out.join("cases").join(id).join("error.txt");
-    std::fs::read_to_string(&path)
+    adhesim_scenario::read_own_text(&path, "error.txt", u64::MAX)
         .map(|text| text.trim_end().to_string())
         .unwrap_or_else(|_| format!("failed (no {})", path.display()))
 }

@@ -328,3 +328,114 @@ def test_the_checks_of_a_sweeps_own_tables_give_the_sweep_files_key(tables, kind
     assert (error.kind, error.key, error.value) == (kind, key, value), str(error)
     assert error.requirement is not None and error.requirement.startswith(requirement), (error.requirement, str(error))
     assert not (tmp_path / "out").exists()
+
+
+# Reliability, third pass (a probe of 2,923 hostile inputs; docs/reliability.md, "Third
+# pass"): one test per cause of the Python entry points.
+
+
+def test_a_checkpoint_interval_beyond_any_duration_names_the_argument(tmp_path):
+    """checkpoint_every=1e300 panicked in Rust's Duration (any value from about 1.9e19 s)."""
+    with pytest.raises(ValueError, match=r"checkpoint_every.*from 0 \(off\) to 1e9, got 1e300"):
+        adhesim.sweep(BASE, vary={"grid.n": [16]}, out=tmp_path / "s", checkpoint_every=1e300)
+
+
+def test_psd_bins_are_capped():
+    """bins=4_000_000_000 asked for 96 GB and killed the interpreter."""
+    heights = np.sin(np.arange(64.0)).reshape(8, 8)
+    with pytest.raises(ValueError, match=r"bins must be an integer 1 … 1000000, got 4000000000"):
+        adhesim.surface.psd(heights, 1.0, bins=4_000_000_000)
+    assert len(adhesim.surface.psd(heights, 1.0, bins=10).q) > 0
+
+
+def test_fifos_and_folders_are_refused_by_name(tmp_path):
+    """read_topography and run on a FIFO blocked forever; the command line refused it. A
+    missing scenario file is a FileNotFoundError (it was a ValueError)."""
+    import os
+
+    fifo = tmp_path / "map.npy"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError, match=r"path: .*map.npy is a FIFO \(named pipe\), not a regular file"):
+        adhesim.read_topography(fifo, spacing=(1.0, 1.0), height_unit="m")
+    scenario = tmp_path / "scenario.toml"
+    os.mkfifo(scenario)
+    with pytest.raises(ValueError, match=r"scenario: .*scenario.toml is a FIFO"):
+        adhesim.run(scenario)
+    with pytest.raises(ValueError, match=r"scenario: .* is a folder, not a regular file"):
+        adhesim.run(tmp_path)
+    with pytest.raises(FileNotFoundError, match=r"missing.toml does not exist"):
+        adhesim.run(tmp_path / "missing.toml")
+    with pytest.raises(FileNotFoundError, match=r"missing.npy does not exist"):
+        adhesim.read_topography(tmp_path / "missing.npy", spacing=(1.0, 1.0), height_unit="m")
+
+
+@pytest.mark.parametrize(
+    "call, error, words",
+    [
+        (lambda: adhesim.Grid("32", 1.0), TypeError, ["n must be an integer, got str '32'"]),
+        (lambda: adhesim.Grid(32, "1"), TypeError, ["size must be a number, got str '1'"]),
+        (lambda: adhesim.Grid(2**64, 1.0), ValueError, ["n = 18446744073709551616 is out of range"]),
+        (lambda: adhesim.Grid(8, 4, 1.0, "x"), TypeError, ["size_y must be a number, got str 'x'"]),
+        (lambda: adhesim.Grid(n=8), TypeError, ["Grid needs size"]),
+        (lambda: adhesim.Grid(8, 1.0, n=8), TypeError, ["Grid got n twice"]),
+        (lambda: adhesim.Material("1"), TypeError, ["contact_modulus must be a number, got str '1'"]),
+        (lambda: adhesim.Material(2**2000), ValueError, ["contact_modulus = ", "is out of range"]),
+        (lambda: adhesim.Material.from_youngs_modulus(1.0, "x"), TypeError, ["poisson_ratio must be a number"]),
+    ],
+)
+def test_grid_arguments_are_named(call, error, words):
+    """Grid(*args) named no argument in its conversion errors ('str' object cannot be
+    interpreted as an integer)."""
+    with pytest.raises(error) as info:
+        call()
+    for word in words:
+        assert word in str(info.value), str(info.value)
+
+
+def test_grid_takes_its_parameters_by_name():
+    """Grid(n=, size=) and Grid(nx=, ny=, size_x=, size_y=), as the stubs say."""
+    assert adhesim.Grid(n=8, size=1.0) == adhesim.Grid(8, 1.0)
+    assert adhesim.Grid(nx=8, ny=4, size_x=1.0, size_y=0.5, boundary="periodic") == adhesim.Grid(
+        8, 4, 1.0, 0.5, "periodic"
+    )
+    assert adhesim.Grid(8, size=1.0).n == 8
+
+
+def test_sweep_progress_true_draws_a_bar_and_the_table_holds_numbers(tmp_path):
+    """progress=True crashed after the first case ('bool' object is not callable), and
+    .table held the cells' text where sweep_table gives floats."""
+    pytest.importorskip("tqdm", reason="progress=True draws a tqdm bar")
+    cases = adhesim.sweep(BASE, vary={"adhesion.work_of_adhesion": [1e-5, 2e-5]}, out=tmp_path / "s", progress=True)
+    assert len(cases) == 2
+    column = cases.table["max_adhesive_force"]
+    assert column.dtype == np.float64
+    assert list(column) == list(adhesim.sweep_table(list(cases), "results.max_adhesive_force")["results.max_adhesive_force"])
+    with pytest.raises(TypeError, match=r"progress must be None, True or a callable"):
+        adhesim.sweep(BASE, vary={"grid.n": [16]}, out=tmp_path / "t", progress="yes")
+
+
+def test_closed_forms_refuse_what_they_cannot_compute(operator):
+    """reference.jkr gave -inf or NaN for gamma = 1e300 and zeros for gamma = 0;
+    AdhesiveSolver(op, 1e300) was accepted; contact_radius(centre=(nan, 0)) returned 0."""
+    with pytest.raises(ValueError, match=r"leaves double precision.*work_of_adhesion = 1e300"):
+        adhesim.reference.jkr(1.0, 1.0, 1e300)
+    with pytest.raises(ValueError, match=r"work_of_adhesion = 0.0 gives no JKR contact radius"):
+        adhesim.reference.jkr(1.0, 1.0, 0.0)
+    # Given radii, gamma = 0 is Hertz's curve.
+    assert adhesim.reference.jkr(1.0, 1.0, 0.0, contact_radius=[0.1])["force"][0] > 0.0
+    with pytest.raises(ValueError, match=r"critical stress .* outside 1e-30..1e30"):
+        adhesim.AdhesiveSolver(operator, 1e300)
+    state = adhesim.ContactState(operator.grid)
+    with pytest.raises(ValueError, match=r"centre must be a finite point \(x, y\), got \(NaN, 0"):
+        state.contact_radius(centre=(float("nan"), 0.0))
+    assert state.contact_radius() == 0.0
+
+
+def test_fits_count_the_points_they_leave_out():
+    """The fits dropped points (a <= 0; t, y <= 0) silently."""
+    a = np.array([0.0, 0.1, 0.2, 0.3])
+    force = 4 * a**3 / 3 - np.sqrt(8 * np.pi * 1e-3 * a**3)
+    with pytest.warns(UserWarning, match=r"jkr_work_of_adhesion: 1 of 4 points left out \(contact_radius <= 0\)"):
+        adhesim.fit.jkr_work_of_adhesion(a, force, 1.0, 1.0)
+    with pytest.warns(UserWarning, match=r"power_law: 1 of 4 points left out"):
+        adhesim.fit.power_law(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, 1.0, 2.0, 3.0]))

@@ -131,7 +131,6 @@ def test_overrides_take_dotted_keys_like_set():
         ({**JKR_DICT, "indenter": {"shape": "sphere", "radius": -2.0}}, {}, ["indenter.radius", "-2"]),
         ({**JKR_DICT, "solver": {"tolerance": 1.0}}, {}, ["solver"]),
         ("[grid]\nn = 32\nsize = 0.25\n", {}, ["material"]),
-        ("no_such_file.toml", {}, ["no_such_file.toml"]),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_key(scenario, overrides, names):
@@ -140,6 +139,12 @@ def test_bad_input_raises_value_error_naming_the_key(scenario, overrides, names)
     message = str(error.value)
     for name in names:
         assert name in message, message
+
+
+def test_a_missing_scenario_file_is_file_not_found():
+    """A missing file is a FileNotFoundError naming it (it was a ValueError)."""
+    with pytest.raises(FileNotFoundError, match="no_such_file.toml"):
+        adhesim.run("no_such_file.toml")
 
 
 def test_bad_types_raise_type_error():

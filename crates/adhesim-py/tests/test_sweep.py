@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import adhesim
@@ -94,8 +95,10 @@ def test_a_process_pool_sweep_equals_the_command_line_and_resumes(command_line_s
     assert [c.case for c in cases] == [{"alpha": 0.8}, {"alpha": 1.2}]
     assert_same_sweep(out, cli_out)
     # The JKR-type pull-off force of each case is the command line's table value.
-    assert cases.table["case"] == [c.case_id for c in cases]
-    assert [float(v) for v in cases.table["max_adhesive_force"]] == [
+    assert list(cases.table["case"]) == [c.case_id for c in cases]
+    # Numbers, as sweep_table gives them (they were the cells' text).
+    assert cases.table["max_adhesive_force"].dtype == np.float64
+    assert list(cases.table["max_adhesive_force"]) == [
         c.results["max_adhesive_force"] for c in cases
     ]
     # A second call with the same folder computes no case again.

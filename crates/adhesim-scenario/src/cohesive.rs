@@ -44,7 +44,11 @@ impl ScenarioFile {
                     format!("adhesion.law = \"{name}\" needs adhesion.{key} ({what})")
                 ));
             };
-            positive(&format!("adhesion.{key}"), value)
+            // A law parameter beyond 1e-150..1e150 degenerates the law: cohesive_stress =
+            // 5e-324 gave F_ad = 0, range = 5e-324 NaN tractions (the usable magnitudes of
+            // the roughness keys).
+            positive(&format!("adhesion.{key}"), value)?;
+            crate::guards::usable_positive(&format!("adhesion.{key}"), value)
         };
         match law {
             LawName::Jkr => {
@@ -104,6 +108,57 @@ impl ScenarioFile {
             ),
             _ => (None, None),
         })
+    }
+}
+
+impl ScenarioFile {
+    /// An indentation with a law of unbounded support (exponential) starts the law's
+    /// negligible separation (ρ·ln 1000 = 6.9ρ) above first contact, in depth steps that
+    /// the step cap of `protocol.steps` / `protocol.step` did not count: `range = 1e3` made
+    /// about 3.5·10⁸ approach steps. Refused, with the estimate and the keys to change,
+    /// beyond [`crate::MAX_STEPS`]; `keys` names the inputs that set `depth_step`.
+    pub(crate) fn check_approach_margin(
+        &self,
+        start_depth: f64,
+        max_depth: f64,
+        depth_step: f64,
+        keys: &str,
+    ) -> Result<()> {
+        let margin = approach_margin(&self.adhesion);
+        if margin == 0.0 {
+            return Ok(());
+        }
+        let steps = ((max_depth - (start_depth - margin)) / depth_step).ceil();
+        if steps <= crate::MAX_STEPS as f64 {
+            return Ok(());
+        }
+        let show = crate::guards::show;
+        let range = self.adhesion.range.unwrap_or_default();
+        bail!(ScenarioError::derived(
+            show(steps),
+            format!("at most {} approach steps", crate::MAX_STEPS),
+            format!(
+                "adhesion.law = \"exponential\" with adhesion.range = {} starts the approach {} (ρ·ln 1000) above first contact; in depth steps of {} (from {keys}) that is about {} approach steps, more than the cap of {}: choose a smaller adhesion.range or a larger depth step",
+                show(range),
+                show(margin),
+                show(depth_step),
+                show(steps),
+                crate::MAX_STEPS
+            )
+        )
+        .with_key("adhesion.range"))
+    }
+}
+
+/// How far above first contact an indentation with the law of `section` starts: the
+/// negligible separation of a law of unbounded support (the protocol's
+/// `NormalSolver::approach_margin`), 0 for the others.
+fn approach_margin(section: &AdhesionSection) -> f64 {
+    match (law_name(section), section.range) {
+        (LawName::Exponential, Some(range)) if range.is_finite() && range > 0.0 => {
+            Exponential::new(range, Vec::new()).negligible_separation()
+        }
+        _ => 0.0,
     }
 }
 
@@ -212,7 +267,9 @@ pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, c
     let elements = length / delta;
     (elements < MIN_RANGE_ELEMENTS).then(|| {
         format!(
-            "the exponential law's cohesive length pi*E*rho^2/(4*gamma0) = {length:.4e} (adhesion.range = {range}, adhesion.work_of_adhesion = {gamma}) spans {elements:.2} elements (the larger element side {delta:.4e}), fewer than {MIN_RANGE_ELEMENTS}: the range is under-resolved and the pull-off force too large (measured +2 % at 1 element, +19 % at 0.5, docs/validation.md §11); raise grid.n, lower grid.size or widen adhesion.range"
+            "the exponential law's cohesive length pi*E*rho^2/(4*gamma0) = {length:.4e} (adhesion.range = {}, adhesion.work_of_adhesion = {}) spans {elements:.2} elements (the larger element side {delta:.4e}), fewer than {MIN_RANGE_ELEMENTS}: the range is under-resolved and the pull-off force too large (measured +2 % at 1 element, +19 % at 0.5, docs/validation.md §11); raise grid.n, lower grid.size or widen adhesion.range",
+            crate::guards::show(range),
+            crate::guards::show(gamma)
         )
     })
 }

@@ -37,7 +37,7 @@ fn material_keys(m: &MaterialSection) -> String {
 }
 
 /// A number as a user would write it: `1e300` rather than 301 digits.
-fn show(value: f64) -> String {
+pub(crate) fn show(value: f64) -> String {
     if value != 0.0 && !(1e-4..1e6).contains(&value.abs()) {
         format!("{value:e}")
     } else {
@@ -441,6 +441,39 @@ pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
     (elements < MIN_CONTACT_RADIUS_ELEMENTS).then(|| {
         format!(
             "the {model} contact radius at the largest depth (protocol.max_depth) is a = {a:.4e}, {elements:.2} elements (grid.size/grid.n = {delta:.4e}), fewer than {MIN_CONTACT_RADIUS_ELEMENTS}: the grid does not resolve the contact and its forces can be many times the closed form; raise grid.n, lower grid.size or press deeper"
+        )
+    })
+}
+
+/// A warning when an indentation approaches in a single depth step: its retraction then
+/// moves in steps as large, and the jumps and the dissipated energy of such a run are not
+/// results (a sphere with `protocol.step = 1e6` |d_JKR| "ran" one step each way and
+/// reported a dissipated energy of 57,198).
+pub(crate) fn single_step_warning(valid: &ValidScenario) -> Option<String> {
+    if valid.translation.is_some() || valid.approach_steps > 1 {
+        return None;
+    }
+    let keys = match &valid.file.protocol {
+        crate::model::ProtocolSection::IndentPulloff(p) if p.step.is_some() => "protocol.step",
+        _ => "protocol.steps",
+    };
+    Some(format!(
+        "the indentation reaches protocol.max_depth in {} approach step of {} (from {keys}): one step per branch cannot resolve the force curve, its jumps or the dissipated energy; choose a smaller protocol.step or more protocol.steps",
+        valid.approach_steps,
+        show(valid.depth_step)
+    ))
+}
+
+/// A warning when a run's contact never spanned more than one element: its forces are
+/// those of one element, not of the body (a topography indenter smaller than one element
+/// ran without a word; spheres are warned about before the run by
+/// [`contact_radius_warning`]).
+pub fn unresolved_contact_warning(records: &[adhesim::StepRecord]) -> Option<String> {
+    let largest = records.iter().map(|r| r.contact_elements).max()?;
+    (largest == 1).then(|| {
+        format!(
+            "the contact never spanned more than 1 element in {} steps: the grid does not resolve it and its forces are those of one element; raise grid.n or lower grid.size",
+            records.len()
         )
     })
 }

@@ -61,8 +61,11 @@ mod validate;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
 pub use error::{ErrorKind, ScenarioError};
-pub use files::{check_regular_file, read_input_text};
-pub use guards::{memory_estimate, memory_estimate_rectangle, MAX_GRID_N, MAX_STEPS, MIN_ELEMENTS_PER_FEATURE};
+pub use files::{check_regular_file, read_input_text, read_own_file, read_own_text};
+pub use guards::{
+    memory_estimate, memory_estimate_rectangle, unresolved_contact_warning, MAX_GRID_N, MAX_STEPS,
+    MIN_ELEMENTS_PER_FEATURE,
+};
 pub use memory::{memory_available, MemoryLimit};
 pub use model::*;
 pub use parse::{read_height_map, read_npy_2d};

@@ -32,7 +32,7 @@ pub fn gibibytes(bytes: u64) -> String {
 
 /// `1.5 GiB`, `12.0 MiB` below a GiB, `900 bytes` below a MiB (an object's arrays, a
 /// frame, a reference curve: often far below a GiB).
-fn bytes_text(bytes: u64) -> String {
+pub fn bytes_text(bytes: u64) -> String {
     if bytes >= 1 << 30 {
         format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
     } else if bytes >= 1 << 20 {
@@ -183,6 +183,11 @@ pub fn memory_available() -> Result<Option<MemoryLimit>> {
     }
     Ok(SystemMemoryFiles::read().limit())
 }
+
+/// Bytes per bin of an isotropic PSD, an upper estimate: its sums and bins (64 bytes) and
+/// what is written, drawn or returned to Python of them (`adhesim topography --bins`,
+/// `adhesim.surface.psd(bins=)`).
+pub const PSD_BYTES_PER_BIN: u128 = 128;
 
 /// Refuses, naming `what` and both sizes, an allocation of `bytes` beyond `limit`.
 pub fn check_allocation(what: &str, bytes: u128, limit: &MemoryLimit) -> Result<()> {

@@ -185,11 +185,12 @@ fn section_error<T: serde::de::DeserializeOwned>(
     // is found by trial: the first key without which the error changes.
     let mut leaves = Vec::new();
     collect_leaves(name, value, &mut leaves);
+    let plain = plain_types(&message);
     let at_fault = |key: &str, item: &toml::Value| -> anyhow::Error {
-        ScenarioError::new(ErrorKind::InvalidValue, format!("{key} = {item}: {message}"))
+        ScenarioError::new(ErrorKind::InvalidValue, format!("{key} = {item}: {plain}"))
             .with_key(key)
             .with_value(item.to_string())
-            .with_requirement(message.as_str())
+            .with_requirement(plain.as_str())
             .into()
     };
     if let Some((key, item)) = key_at_fault::<T>(name, value, &message, &leaves) {
@@ -326,6 +327,25 @@ fn collect_leaves(prefix: &str, value: &toml::Value, out: &mut Vec<(String, toml
         }
         None => out.push((prefix.to_string(), value.clone())),
     }
+}
+
+/// serde's Rust type names as a user reads them: ``invalid type: floating point `0.01`,
+/// expected i64`` becomes ``invalid type: number `0.01`, expected an integer``.
+fn plain_types(message: &str) -> String {
+    let mut text = message.to_string();
+    for (rust, plain) in [
+        ("expected i64", "expected an integer"),
+        ("expected i32", "expected an integer"),
+        ("expected u64", "expected an integer >= 0"),
+        ("expected u32", "expected an integer >= 0"),
+        ("expected usize", "expected an integer >= 0"),
+        ("expected f64", "expected a number"),
+        ("expected f32", "expected a number"),
+        ("floating point `", "number `"),
+    ] {
+        text = text.replace(rust, plain);
+    }
+    text
 }
 
 fn serde_kind(toml_type: &str) -> &'static str {

@@ -51,19 +51,29 @@ pub(crate) fn validate_grid(section: &GridSection) -> Result<Grid> {
     };
     grid.map_err(|e| {
         // The counts and sizes are checked above: what remains is their combination.
-        let (key, value, requirement) = match &e {
-            GridError::ElementOutOfRange { size, .. } => (
+        let show = crate::guards::show;
+        let (key, value, requirement, message) = match &e {
+            // Named as every other message names its key, numbers as a person writes them
+            // (it said "[grid]: grid element size size/n … Δ² = 0e0").
+            GridError::ElementOutOfRange { size, n, area } => (
                 "grid.size",
-                size.to_string(),
+                show(*size),
                 "an element size grid.size/grid.n in the floating-point range",
+                format!(
+                    "grid.size = {} with grid.n = {n} makes elements of side {} and area {}, outside the floating-point range (the area must be a normal number, 2.2e-308 to 1.8e308): choose a grid.size commensurate with grid.n",
+                    show(*size),
+                    show(size / *n as f64),
+                    show(*area)
+                ),
             ),
             _ => (
                 "grid.n",
                 section.n.to_string(),
                 "an element count the index range holds",
+                format!("grid.n = {}: {e}", section.n),
             ),
         };
-        ScenarioError::invalid_as(key, value, requirement, format!("[grid]: {e}")).into()
+        ScenarioError::invalid_as(key, value, requirement, message).into()
     })
 }
 

@@ -99,6 +99,7 @@ impl<'a> Summary<'a> {
             warnings.push("contact reached the domain border: the domain is too small, enlarge grid.size".into());
         }
         warnings.extend(lost_contact_warning(&outcome.records));
+        warnings.extend(crate::guards::unresolved_contact_warning(&outcome.records));
         warnings.extend(crate::cohesive::dugdale_pinning_estimate(scenario, &outcome.results));
         Self {
             adhesim_version: env!("CARGO_PKG_VERSION"),

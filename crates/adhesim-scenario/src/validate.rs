@@ -154,6 +154,7 @@ impl ScenarioFile {
             _ => self.validate_indentation(inputs, heights, start_depth)?,
         };
         warnings.extend(crate::guards::contact_radius_warning(&valid));
+        warnings.extend(crate::guards::single_step_warning(&valid));
         valid.warnings = warnings;
         valid.roughness = roughness.map(|map| map.heights);
         Ok(valid)
@@ -268,6 +269,7 @@ impl ScenarioFile {
             )),
         };
         let approach_steps = self.check_step(start_depth, max_depth, depth_step, keys)?;
+        self.check_approach_margin(start_depth, max_depth, depth_step, keys)?;
         let max_retract_steps = match p.max_retract_steps {
             Some(s) if s < 1 => bail!(ScenarioError::invalid("protocol.max_retract_steps", s, ">= 1")),
             Some(s) => s as usize,

@@ -133,7 +133,7 @@ fn laws(alpha: f64, ratio: f64) -> [(&'static str, LawOnGrid); 2] {
 /// sharp criterion, for σ0 = p*/2 and p*, on N = 64, 128, 256 (minutes). Subsets:
 /// `ADHESIM_RATIOS=0.5`, `ADHESIM_SIZES=128`, `ADHESIM_LAWS=exponential` (comma lists).
 #[test]
-#[ignore]
+#[ignore = "minutes, a printed study: cargo test --release -p adhesim --test validation_cohesive_periodic wavy_pull_off -- --ignored --nocapture"]
 fn wavy_pull_off_mesh_convergence() {
     let alpha = 0.3;
     let gamma = work_of_adhesion(alpha);
@@ -204,7 +204,7 @@ fn wavy_cycles_balance_energy_and_pull_off_near_johnson() {
 /// `cargo test --release -p adhesim --test validation_cohesive_periodic peer_side -- --ignored --nocapture`
 /// (N from `ADHESIM_N`, default 64).
 #[test]
-#[ignore]
+#[ignore = "the peer comparison's printout (bench/compare/README.md): cargo test --release -p adhesim --test validation_cohesive_periodic peer_side -- --ignored --nocapture"]
 fn peer_side_exponential_approach() {
     let n = std::env::var("ADHESIM_N").map_or(64, |v| v.parse().unwrap());
     let (_, law) = laws(0.3, 0.5).into_iter().nth(1).unwrap();

@@ -129,6 +129,9 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
     if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
         eprintln!("warning: {warning}");
     }
+    if let Some(warning) = adhesim_scenario::unresolved_contact_warning(&outcome.records) {
+        eprintln!("warning: {warning}");
+    }
     if !options.quiet {
         let wall_seconds = done.wall_seconds;
         match &outcome.report {

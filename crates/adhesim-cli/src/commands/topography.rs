@@ -69,6 +69,9 @@ struct Surface {
     source: Vec<String>,
     /// Wavevector band of the power law (q_r, q_s) where the generator keys give it.
     band: (Option<f64>, Option<f64>),
+    /// The unit of lengths and heights in the pictures: metres for a file (the readers
+    /// convert to SI), the scenario's length unit for a scenario.
+    unit: &'static str,
 }
 
 impl Surface {
@@ -118,8 +121,13 @@ struct Report {
 
 /// `adhesim topography`.
 pub fn command(args: &TopographyArgs) -> Result<()> {
-    if args.bins < 2 {
-        bail!("--bins must be >= 2, got {}", args.bins);
+    let max_bins = adhesim::surface::MAX_PSD_BINS;
+    if !(2..=max_bins).contains(&args.bins) {
+        bail!("--bins must be 2 … {max_bins}, got {}", args.bins);
+    }
+    if let Some(limit) = crate::resources::memory_limit(false)? {
+        let bytes = args.bins as u128 * adhesim_scenario::memory::PSD_BYTES_PER_BIN;
+        crate::resources::check_allocation(&format!("--bins {}", args.bins), bytes, &limit)?;
     }
     if let Some(spacing) = args.spacing {
         if !(spacing.is_finite() && spacing > 0.0) {
@@ -157,7 +165,7 @@ pub fn command(args: &TopographyArgs) -> Result<()> {
     let fit = hurst_estimate(&surface, &psd);
     let report = report(args, &surface, &map, fit);
     let mut written = vec![write_psd_csv(&out, &psd)?];
-    written.extend(psd_figure(&psd, fit)?.save(&out, "psd", (800, 600))?);
+    written.extend(psd_figure(&psd, fit, surface.unit)?.save(&out, "psd", (800, 600))?);
     written.push(write_height_map(&out.join("heights.png"), &surface)?);
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(out.join("statistics.json"), json + "\n")
@@ -312,6 +320,7 @@ fn from_file(args: &TopographyArgs) -> Result<Surface> {
         periodic: false,
         source,
         band: (None, None),
+        unit: "m",
     })
 }
 
@@ -367,6 +376,7 @@ fn from_scenario(args: &TopographyArgs) -> Result<Surface> {
         periodic: grid.boundary() == Boundary::Periodic,
         source,
         band,
+        unit: "length units",
     })
 }
 
@@ -442,14 +452,15 @@ fn write_psd_csv(out: &Path, psd: &[PsdBin]) -> Result<String> {
 
 /// The log–log PSD with the fitted power law over its range; an error for a flat map (no
 /// positive bin to draw on a log axis).
-fn psd_figure(bins: &[PsdBin], fit: Option<HurstFit>) -> Result<Figure> {
+fn psd_figure(bins: &[PsdBin], fit: Option<HurstFit>, unit: &str) -> Result<Figure> {
     let positive: Vec<(f64, f64)> = bins
         .iter()
         .filter(|b| b.psd > 0.0)
         .map(|b| (b.wavevector, b.psd))
         .collect();
     if positive.is_empty() {
-        bail!("the PSD has no positive bin (a flat map)");
+        // Heights of 1e-300 have squares that underflow to 0: not a flat map.
+        bail!("the PSD has no positive bin: the map is flat, or its heights are so small that their squares underflow to 0 (check the height unit)");
     }
     let (q_min, q_max) = positive
         .iter()
@@ -476,7 +487,12 @@ fn psd_figure(bins: &[PsdBin], fit: Option<HurstFit>) -> Result<Figure> {
             line.to_vec(),
         ));
     }
-    let panel = Panel::new(title, "wavevector q (1/length)", "C(q) (length⁴)")
+    let (q_label, c_label) = if unit == "m" {
+        ("wavevector q (1/m)".to_string(), "C(q) (m⁴)".to_string())
+    } else {
+        ("wavevector q (1/length)".to_string(), "C(q) (length⁴)".to_string())
+    };
+    let panel = Panel::new(title, &q_label, &c_label)
         .with(series)
         .log_x()
         .x_range(q_min / 1.2, q_max * 1.2)
@@ -497,8 +513,9 @@ fn diverging(t: f64) -> [u8; 3] {
 }
 
 /// The height map as a PNG, y upwards, blue (low) – white (mean) – red (high) scaled to the
-/// largest deviation of a valid point from the mean; invalid points grey. Pixels are square
-/// per map point (the picture is not stretched to the spacings).
+/// largest deviation of a valid point from the mean; invalid points grey. Drawn to scale:
+/// one pixel is the same length along x and y (a map of 83 × 204 µm was drawn as a square,
+/// with a scale bar right along x only), at least one pixel per point along the finer axis.
 fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
     let (nx, ny) = (surface.nx, surface.ny);
     let is_valid = |k: usize| surface.valid.as_ref().is_none_or(|v| v[k]);
@@ -508,11 +525,19 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
         .collect();
     let mean = valid.iter().sum::<f64>() / valid.len().max(1) as f64;
     let span = valid.iter().map(|h| (h - mean).abs()).fold(0.0, f64::max);
-    let scale = (512 / nx.max(ny)).clamp(1, 16);
-    let mut image = image::RgbImage::new((nx * scale) as u32, (ny * scale) as u32);
+    // Pixels per length: one per point of the finer spacing, times an integer scale that
+    // brings the longer side near 512 pixels (at most 16), the longer side capped at 4096.
+    let (size_x, size_y) = (nx as f64 * surface.dx, ny as f64 * surface.dy);
+    let finest = 1.0 / surface.dx.min(surface.dy);
+    let longest = size_x.max(size_y) * finest;
+    let scale = (512.0 / longest).floor().clamp(1.0, 16.0);
+    let pixels_per_length = finest * scale * (4096.0 / (longest * scale)).min(1.0);
+    let width = ((size_x * pixels_per_length).round() as u32).max(1);
+    let height = ((size_y * pixels_per_length).round() as u32).max(1);
+    let mut image = image::RgbImage::new(width, height);
     for (px, py, pixel) in image.enumerate_pixels_mut() {
-        let column = px as usize / scale;
-        let row = ny - 1 - py as usize / scale;
+        let column = (((px as f64 + 0.5) / pixels_per_length / surface.dx) as usize).min(nx - 1);
+        let row = ny - 1 - (((py as f64 + 0.5) / pixels_per_length / surface.dy) as usize).min(ny - 1);
         let k = row * nx + column;
         if !is_valid(k) {
             pixel.0 = [160, 160, 160];
@@ -528,11 +553,15 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
     let legend = crate::map_key::Legend::ColourBar {
         low: mean - span,
         high: mean + span,
-        label: "height (length units)",
+        label: if surface.unit == "m" {
+            "height (m)"
+        } else {
+            "height (length units)"
+        },
         colour: &diverging,
     };
-    // The scale bar along x: a pixel is `scale` per map point of width dx.
-    let keyed = crate::map_key::with_key(&image, scale as f64 / surface.dx, legend)?;
+    // The scale bar: the same pixels per length along both axes.
+    let keyed = crate::map_key::with_key(&image, pixels_per_length, legend)?;
     crate::figure::files::save_image(&keyed, path)?;
     Ok("heights.png".into())
 }

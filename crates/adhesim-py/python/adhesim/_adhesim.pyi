@@ -21,7 +21,7 @@ __all__ = [
     "wavy_sphere_heights", "elliptic_punch_heights", "_hertz", "_jkr_curve",
     "_jkr_at_depth", "jkr_scales", "_flat_punch", "johnson_parameter", "_fit_jkr_force",
     "_fit_jkr_depth", "_fit_power_law", "_RunFields", "_run_scenario", "_scenario_heights",
-    "_curve_column_kinds", "_toml_value", "_toml_document", "_SweepFolder",
+    "_curve_column_kinds", "_toml_value", "_toml_document", "_read_input_text", "_SweepFolder",
     "_sweep_open", "_sweep_run_case", "_self_affine", "_height_map_statistics",
     "_isotropic_psd", "_fill_invalid", "_read_topography",
 ]
@@ -273,6 +273,7 @@ def _sweep_run_case(
 ) -> Tuple[bool, Optional[str]]: ...
 def _toml_value(value: object) -> str: ...
 def _toml_document(value: Mapping[str, object]) -> str: ...
+def _read_input_text(path: str, what: str) -> str: ...
 def _self_affine(
     grid: Grid,
     hurst: float,

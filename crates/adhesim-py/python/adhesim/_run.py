@@ -238,10 +238,9 @@ def _scenario_text(scenario: ScenarioLike):
         and (os.path.isfile(scenario) or ("\n" not in scenario and "=" not in scenario))
     ):
         path = Path(scenario)
-        try:
-            text = path.read_text()
-        except OSError as error:
-            raise ValueError(f"cannot read scenario {path}: {error.strerror or error}") from None
+        # Read as the command line reads it: a FIFO, a device or a folder is refused by
+        # name (a FIFO blocked forever); a missing file is a FileNotFoundError.
+        text = _adhesim._read_input_text(str(path), "scenario")
         # Relative paths inside the file resolve against its folder, as the command line's.
         return text, str(path), path.parent if str(path.parent) else Path(".")
     if isinstance(scenario, str):
@@ -356,8 +355,11 @@ def run(
 
     Raises
     ------
+    FileNotFoundError
+        the scenario file does not exist.
     ValueError
-        an unreadable file or a bad value, naming the key and the value
+        an unreadable file (a FIFO, a device or a folder is refused by name) or a
+        bad value, naming the key and the value
         (the scenario crate's messages, as the command line prints them); for a
         bad scenario an ``adhesim.ScenarioError`` with ``.key``, ``.value``,
         ``.requirement`` and ``.kind``.

@@ -17,6 +17,8 @@ import tempfile
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Tuple, Union
 
+import numpy as np
+
 from . import _adhesim
 from ._run import RunResult, ScenarioLike, _check_overrides, _plain, _scenario_text, load
 
@@ -31,14 +33,15 @@ class SweepResult(list):
     ----------
     out : pathlib.Path or None
         The sweep folder (None for a sweep run in a temporary folder).
-    table : dict of str to list
-        The columns of ``table.csv`` (one row per case).
+    table : dict of str to numpy array
+        The columns of ``table.csv`` (one row per case): float64 where every cell is a
+        number (an empty cell NaN), as ``sweep_table`` gives them, else str.
     ran : int
         Cases computed by this call; the others were finished in ``out`` already.
     """
 
     out: Optional[Path]
-    table: Dict[str, List[str]]
+    table: Dict[str, np.ndarray]
     ran: int
 
     def __repr__(self) -> str:
@@ -95,13 +98,53 @@ def _table_of(mapping: Any, name: str) -> Dict[str, Any]:
     return table
 
 
-def _read_table(path: Path) -> Dict[str, List[str]]:
+def _column(cells: List[str]) -> np.ndarray:
+    """A table.csv column as ``sweep_table`` gives it: float64 where every cell is a number
+    (an empty cell NaN), else the text."""
+    try:
+        return np.array([float(cell) if cell != "" else np.nan for cell in cells], dtype=np.float64)
+    except ValueError:
+        return np.array(cells, dtype=str)
+
+
+def _read_table(path: Path) -> Dict[str, np.ndarray]:
     import csv
 
     with open(path, newline="") as handle:
         rows = list(csv.reader(handle))
     header, body = rows[0], rows[1:]
-    return {name: [row[k] for row in body] for k, name in enumerate(header)}
+    return {name: _column([row[k] for row in body]) for k, name in enumerate(header)}
+
+
+def _case_progress(progress: Any) -> Tuple[Optional[Callable[[int, int, Dict[str, Any]], Any]], Any]:
+    """(callback after each case, bar to close afterwards) of the ``progress`` argument:
+    None or False, True (a tqdm bar of the cases, as ``run``'s of the steps) or a callable.
+    True was called as a function after the first case and crashed the sweep."""
+    if progress is None or progress is False:
+        return None, None
+    if progress is True:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            import warnings
+
+            warnings.warn(
+                "progress=True draws a tqdm bar, but tqdm is not installed "
+                "(pip install tqdm, or the package's [extras]); running without a bar",
+                stacklevel=4,
+            )
+            return None, None
+        bar = tqdm(total=0, unit="case")
+
+        def update(done: int, total: int, case: Dict[str, Any]) -> None:
+            if bar.total != total:
+                bar.total = total
+            bar.update(done - bar.n)
+
+        return update, bar
+    if callable(progress):
+        return progress, None
+    raise TypeError(f"progress must be None, True or a callable(done, total, case), got {progress!r}")
 
 
 def sweep(
@@ -114,7 +157,7 @@ def sweep(
     random: Optional[Mapping[str, Any]] = None,
     derived: Optional[Mapping[str, str]] = None,
     series: Optional[str] = None,
-    progress: Optional[Callable[[int, int, Dict[str, Any]], Any]] = None,
+    progress: Union[bool, Callable[[int, int, Dict[str, Any]], Any], None] = None,
     overrides: Optional[Mapping[str, Any]] = None,
     allow_large: bool = False,
     retry_failed: bool = False,
@@ -147,8 +190,9 @@ def sweep(
         The sweep file's ``[zip]``, ``[random]`` and ``[derived]`` tables (docs/sweeps.md).
     series : str, optional
         The label of the table's rows; by default the name of ``out``.
-    progress : callable, optional
-        ``progress(done, total, case)`` in this process as each case ends.
+    progress : bool or callable, optional
+        True draws a tqdm bar of the cases (as ``run``'s of the steps); a callable
+        ``progress(done, total, case)`` is called in this process as each case ends.
     overrides, **keyword_overrides
         Keys set in every case, the sweep file's ``[set]``.
     allow_large : bool
@@ -188,15 +232,20 @@ def sweep(
     tables = {name: table for name, table in tables.items() if table}
     if not tables.get("vary") and not tables.get("zip") and not tables.get("random"):
         raise ValueError("vary (or zip, random) must name at least one key with a list of values")
-    if out is None:
-        with tempfile.TemporaryDirectory(prefix="adhesim-sweep-") as temporary:
-            result = _sweep_into(scenario, tables, Path(temporary) / "sweep", executor, series or "sweep",
-                                 progress, allow_large, retry_failed, checkpoint_every)
-            result.out = None
-            return result
-    out = Path(out)
-    return _sweep_into(scenario, tables, out, executor, series or out.resolve().name, progress,
-                       allow_large, retry_failed, checkpoint_every)
+    callback, bar = _case_progress(progress)
+    try:
+        if out is None:
+            with tempfile.TemporaryDirectory(prefix="adhesim-sweep-") as temporary:
+                result = _sweep_into(scenario, tables, Path(temporary) / "sweep", executor, series or "sweep",
+                                     callback, allow_large, retry_failed, checkpoint_every)
+                result.out = None
+                return result
+        out = Path(out)
+        return _sweep_into(scenario, tables, out, executor, series or out.resolve().name, callback,
+                           allow_large, retry_failed, checkpoint_every)
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_large, retry_failed,

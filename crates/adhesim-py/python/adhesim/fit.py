@@ -7,6 +7,7 @@ modulus that is not finite and > 0, or no usable point.
 
 from __future__ import annotations
 
+import warnings
 from typing import Dict, Tuple
 
 import numpy as np
@@ -20,6 +21,12 @@ __all__ = ["jkr_work_of_adhesion", "jkr_depth_work_of_adhesion", "power_law", "j
 
 def _vector(values: ArrayLike) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(values, dtype=np.float64).ravel())
+
+
+def _warn_left_out(function: str, left_out: int, total: int, why: str) -> None:
+    """A UserWarning counting the points a fit leaves out (it dropped them silently)."""
+    if left_out:
+        warnings.warn(f"{function}: {left_out} of {total} points left out ({why})", stacklevel=3)
 
 
 def jkr_work_of_adhesion(
@@ -43,9 +50,12 @@ def jkr_work_of_adhesion(
     -------
     dict
         ``work_of_adhesion`` gamma (>= 0, energy per area), ``residual_rms`` (force),
-        ``points`` used.
+        ``points`` used; a ``UserWarning`` counts the points left out.
     """
-    return _adhesim._fit_jkr_force(_vector(contact_radius), _vector(force), float(radius), float(contact_modulus))
+    result = _adhesim._fit_jkr_force(_vector(contact_radius), _vector(force), float(radius), float(contact_modulus))
+    total = _vector(contact_radius).size
+    _warn_left_out("jkr_work_of_adhesion", total - int(result["points"]), total, "contact_radius <= 0")
+    return result
 
 
 def jkr_depth_work_of_adhesion(
@@ -55,15 +65,23 @@ def jkr_depth_work_of_adhesion(
     (paper Eq. 13, used for gamma_3 of rolling contacts). Same arguments and result as
     :func:`jkr_work_of_adhesion` with depths (length, > 0 into the body) for forces.
     """
-    return _adhesim._fit_jkr_depth(_vector(contact_radius), _vector(depth), float(radius), float(contact_modulus))
+    result = _adhesim._fit_jkr_depth(_vector(contact_radius), _vector(depth), float(radius), float(contact_modulus))
+    total = _vector(contact_radius).size
+    _warn_left_out("jkr_depth_work_of_adhesion", total - int(result["points"]), total, "contact_radius <= 0")
+    return result
 
 
 def power_law(t: ArrayLike, y: ArrayLike) -> Tuple[float, float]:
-    """y = c t^n by least squares in log-log (paper Eq. 15), over points with t, y > 0.
+    """y = c t^n by least squares in log-log (paper Eq. 15), over points with t, y > 0
+    (a ``UserWarning`` counts the others, left out).
 
     Returns
     -------
     c, n : float
         The prefactor and the exponent.
     """
-    return _adhesim._fit_power_law(_vector(t), _vector(y))
+    t, y = _vector(t), _vector(y)
+    result = _adhesim._fit_power_law(t, y)
+    if t.size == y.size:
+        _warn_left_out("power_law", int(np.count_nonzero(~((t > 0) & (y > 0)))), t.size, "t <= 0 or y <= 0")
+    return result

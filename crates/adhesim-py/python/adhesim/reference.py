@@ -85,6 +85,12 @@ def jkr(
     """
     if contact_radius is None:
         scale = _adhesim.jkr_scales(float(radius), float(contact_modulus), float(work_of_adhesion))
+        if scale["contact_radius"] == 0.0:
+            # gamma = 0 has no JKR scale: the default radii were all 0 (a curve of zeros).
+            raise ValueError(
+                f"work_of_adhesion = {work_of_adhesion!r} gives no JKR contact radius a_JKR to "
+                "place the default contact radii: give contact_radius= (with gamma = 0 the curve is Hertz's)"
+            )
         contact_radius = np.linspace(0.0, 3.0 * scale["contact_radius"], int(points))
     flat, shape = _flat(contact_radius)
     force, depth = _adhesim._jkr_curve(float(radius), float(contact_modulus), float(work_of_adhesion), flat)

@@ -17,6 +17,10 @@ import numpy as np
 
 from ._adhesim import Grid, _fill_invalid, _height_map_statistics, _isotropic_psd, _self_affine
 
+# The most PSD bins (adhesim::surface::MAX_PSD_BINS): 4e9 bins asked for 96 GB and killed
+# the interpreter.
+_MAX_PSD_BINS = 1_000_000
+
 __all__ = ["self_affine", "statistics", "psd", "fill_invalid", "Psd"]
 
 Spacing = Union[float, Tuple[float, float]]
@@ -117,8 +121,8 @@ def psd(
     """
     heights, valid = _map(heights, valid)
     dx, dy = _spacings(spacing)
-    if int(bins) != bins or bins < 1:
-        raise ValueError(f"bins must be an integer >= 1, got {bins!r}")
+    if int(bins) != bins or not 1 <= bins <= _MAX_PSD_BINS:
+        raise ValueError(f"bins must be an integer 1 … {_MAX_PSD_BINS}, got {bins!r}")
     q_low, q_high, q, power, modes = _isotropic_psd(heights, dx, dy, int(bins), valid=valid, periodic=bool(periodic))
     return Psd(q_low, q_high, q, power, modes.astype(np.int64))
 

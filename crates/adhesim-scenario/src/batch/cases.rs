@@ -23,7 +23,7 @@ pub fn case_state(dir: &Path, id: &str, hash: &str) -> CaseState {
     if !folder.exists() {
         return CaseState::Missing;
     }
-    let Ok(text) = std::fs::read_to_string(folder.join("done")) else {
+    let Ok(text) = crate::files::read_own_text(&folder.join("done"), "case marker", 4096) else {
         return CaseState::Broken;
     };
     let field = |name: &str| {

@@ -275,13 +275,58 @@ fn a_corrupt_or_foreign_checkpoint_restarts_the_case() {
         let damaged = match damage {
             "cut" => text[..text.len() / 2].to_string(),
             "foreign" => text.replacen(&case.hash, "0123456789abcdef", 1),
-            _ => coarse_text.replacen(&coarse.hash, &case.hash, 1),
+            // Signed anew: the grid check behind the checksum.
+            _ => crate::output::checkpoint::resigned(&coarse_text, &case.hash),
         };
         std::fs::write(&path, damaged).unwrap();
         let (resumable, first) = run_batch(&case, dir.path());
         // A cut body or another grid passes the header check (the run then restarts);
         // another hash does not.
         assert_eq!(resumable.is_empty(), damage == "foreign", "{damage}");
+        assert_eq!(first, Some(0), "{damage}: restarted from scratch");
+        assert_same(&case_files(dir.path(), &case.id), &plain);
+    }
+}
+
+/// `text` with the number after the last `key` raised by one (still valid JSON).
+fn bump_last_number(text: &str, key: &str) -> String {
+    let at = text.rfind(key).unwrap_or_else(|| panic!("no {key}")) + key.len();
+    let end = at + text[at..].find(|c: char| !c.is_ascii_digit()).unwrap();
+    let number: u64 = text[at..end].parse().unwrap();
+    format!("{}{}{}", &text[..at], number + 1, &text[end..])
+}
+
+/// Checkpoints that lie: a number edited in the body (the last record's contact count),
+/// the header's step count edited, the file cut inside its body or after its header, and
+/// another scenario's checkpoint of the same grid put in with this case's hash. Each one is
+/// warned about and the case restarts from scratch, with the uninterrupted run's files.
+/// Before the checksum, the edited body and the other scenario's checkpoint were continued
+/// and changed the case's results without a word (an edited jump count reached summary.json
+/// and table.csv).
+#[test]
+fn a_tampered_checkpoint_never_changes_the_results() {
+    let case = real_case(SCENARIO);
+    let (_plain_dir, plain) = uninterrupted(&case);
+    let other = real_case(&SCENARIO.replace("work_of_adhesion = 6.16850275068085e-4", "work_of_adhesion = 7e-4"));
+    let other_dir = tempfile::tempdir().unwrap();
+    let other_folder = killed_run(&other, other_dir.path(), 20);
+    let other_text = std::fs::read_to_string(other_folder.join(CHECKPOINT_FILE)).unwrap();
+    for damage in ["body", "header", "cut", "header only", "another scenario"] {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = killed_run(&case, dir.path(), 20);
+        let path = folder.join(CHECKPOINT_FILE);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let (header, body) = text.split_once('\n').unwrap();
+        let damaged = match damage {
+            "body" => format!("{header}\n{}", bump_last_number(body, "\"contact_elements\":")),
+            "header" => format!("{}\n{body}", bump_last_number(header, "\"steps_done\":")),
+            "cut" => text[..text.len() - 40].to_string(),
+            "header only" => format!("{header}\n"),
+            _ => other_text.replacen(&other.hash, &case.hash, 1),
+        };
+        assert_ne!(damaged, text, "{damage}");
+        std::fs::write(&path, damaged).unwrap();
+        let (_, first) = run_batch(&case, dir.path());
         assert_eq!(first, Some(0), "{damage}: restarted from scratch");
         assert_same(&case_files(dir.path(), &case.id), &plain);
     }
@@ -297,6 +342,10 @@ fn no_checkpoints_means_no_resume() {
     let mut batch = Batch::open(dir.path(), Shard::ALL).unwrap();
     assert!(batch.set_checkpoint_seconds(-1.0).is_err());
     assert!(batch.set_checkpoint_seconds(f64::NAN).is_err());
+    // 1e300 s panicked in Duration::from_secs_f64 (any value from about 1.9e19).
+    let error = batch.set_checkpoint_seconds(1e300).unwrap_err().to_string();
+    assert!(error.contains("from 0 (off) to 1e9, got 1e300"), "{error}");
+    batch.set_checkpoint_seconds(1e9).unwrap();
     batch.set_checkpoint_seconds(0.0).unwrap();
     let cases = [real_case(SCENARIO)];
     let pending = batch.pending(&cases, false).unwrap();
@@ -366,9 +415,10 @@ fn a_checkpoint_of_another_protocol_restarts_the_case() {
     let text = std::fs::read_to_string(other.join(CHECKPOINT_FILE)).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let folder = killed_run(&case, dir.path(), 20);
+    // Signed anew: the protocol check behind the checksum.
     std::fs::write(
         folder.join(CHECKPOINT_FILE),
-        text.replacen(&indentation.hash, &case.hash, 1),
+        crate::output::checkpoint::resigned(&text, &case.hash),
     )
     .unwrap();
     let (resumable, first) = run_batch(&case, dir.path());

@@ -94,7 +94,7 @@ struct Owner {
 }
 
 fn read_owner(path: &Path) -> Option<Owner> {
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = crate::files::read_own_text(path, "lock", 4096).ok()?;
     let field = |name: &str| {
         text.lines()
             .find_map(|l| l.strip_prefix(name).and_then(|r| r.strip_prefix(" = ")))

@@ -318,16 +318,18 @@ impl<'a> RunObserver<'a> {
         self.progress.step(r)
     }
 
-    /// Writes the contact maps of the largest contact and of the last configuration before
-    /// contact was lost, and closes the CSV and the progress bar.
-    /// Then `fields.npz` of the snapshot steps of `scenario` (the one run).
-    /// After an I/O error (in `error`) the partial `curve.csv` is left as it is.
-    pub fn finish(&mut self, scenario: &ValidScenario) -> Result<()> {
+    /// Closes the progress bar; then, for a run that `succeeded`, writes the contact maps of
+    /// the largest contact and of the last configuration before contact was lost,
+    /// `fields.npz` of the snapshot steps of `scenario` (the one run), and last renames
+    /// `curve.csv.partial` to `curve.csv`: a curve under its final name only when every
+    /// output of the run was written. After a failed run or an I/O error (in `error`) the
+    /// rows done stay in `curve.csv.partial` (a run failing in its fields left a
+    /// `curve.csv` of NaN rows under its final name).
+    pub fn finish(&mut self, scenario: &ValidScenario, succeeded: bool) -> Result<()> {
         self.progress.finish();
-        if self.error.is_some() {
+        if self.error.is_some() || !succeeded {
             return Ok(());
         }
-        self.csv.commit()?;
         if self.largest.0 > 0 {
             let contact = std::mem::take(&mut self.largest.2);
             // Shown without change colours: the map of the contact itself.
@@ -339,7 +341,7 @@ impl<'a> RunObserver<'a> {
         if let (Some(fields), Some(out)) = (&mut self.fields, self.snapshots.parent()) {
             self.written_fields = Some(fields.write(scenario, out)?);
         }
-        Ok(())
+        self.csv.commit()
     }
 }
 

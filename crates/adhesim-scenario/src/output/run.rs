@@ -50,7 +50,7 @@ pub struct FolderRun {
 
 /// Runs a validated scenario into `out`: the marker, `curve.csv`, snapshots, field files,
 /// pictures, `summary.json`. A solver failure or an interruption is an error naming the
-/// step; `curve.csv.partial` then holds the steps done.
+/// step; `curve.csv.partial` then holds the steps done (no `curve.csv`, no `fields.npz`).
 pub fn run_into_folder(
     scenario: &ValidScenario,
     out: &Path,
@@ -94,7 +94,7 @@ pub fn run_into_folder(
         // A finished (or failed) run is not continued: its folder holds no checkpoint.
         checkpoint::remove(out);
     }
-    observer.finish(scenario)?;
+    observer.finish(scenario, outcome.is_ok())?;
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(ProtocolError::Interrupted(step)) => {
@@ -104,12 +104,10 @@ pub fn run_into_folder(
         Err(error) => {
             // One message, not an error chain: `ProtocolError::Solve` shows its source in its
             // own text, so `{:#}` (here, in sweep's error.txt) would print it twice.
-            return Err(
-                anyhow!(crate::error_text::error_line(anyhow::Chain::new(&error))).context(format!(
-                    "run failed; {} holds the steps done",
-                    out.join("curve.csv").display()
-                )),
-            );
+            return Err(anyhow!(protocol_error_line(scenario, &error)).context(format!(
+                "run failed; {} holds the steps done",
+                out.join("curve.csv.partial").display()
+            )));
         }
     };
     let plot_files = match options.pictures {
@@ -136,6 +134,18 @@ pub fn run_into_folder(
         plot_files,
         wall_seconds,
     })
+}
+
+/// A failed run's error on one line, naming the key of a limit the run reached: "contact
+/// not lost …; raise the step limit" named no key.
+pub fn protocol_error_line(scenario: &ValidScenario, error: &ProtocolError) -> String {
+    let line = crate::error_text::error_line(anyhow::Chain::new(error));
+    match error {
+        ProtocolError::ContactNotLost { .. } if scenario.translation.is_none() => {
+            format!("{line} (protocol.max_retract_steps = {})", scenario.max_retract_steps)
+        }
+        _ => line,
+    }
 }
 
 /// The checkpoint in `out` to continue from, if it is this case's and readable; otherwise

@@ -44,7 +44,11 @@ pub fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
     std::fs::create_dir_all(dir.join("cases")).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = dir.join("sweep.json");
     let text = serde_json::to_string_pretty(plan)? + "\n";
-    if let Ok(existing) = std::fs::read_to_string(&path) {
+    let existing = match path.exists() {
+        true => Some(crate::files::read_own_text(&path, "sweep.json", u64::MAX)?),
+        false => None,
+    };
+    if let Some(existing) = existing {
         let same = serde_json::from_str::<Plan>(&existing)
             .map(|old| {
                 // The same cases, whatever results revision hashed them: finished cases of
@@ -73,7 +77,7 @@ pub fn write_plan(dir: &Path, plan: &Plan) -> Result<()> {
 /// Reads `DIR/sweep.json`.
 pub fn read_plan(dir: &Path) -> Result<Plan> {
     let path = dir.join("sweep.json");
-    let text = std::fs::read_to_string(&path)
+    let text = crate::files::read_own_text(&path, "sweep.json", u64::MAX)
         .with_context(|| format!("cannot read {} (is {} a sweep folder?)", path.display(), dir.display()))?;
     serde_json::from_str(&text).with_context(|| format!("{} is not a sweep plan", path.display()))
 }

@@ -81,7 +81,7 @@ pub fn rebuild(dir: &Path, plan: &Plan) -> Result<TableSummary> {
         let folder = dir.join("cases").join(&case.id);
         let (johnson, resolution, results) = if ok {
             let path = folder.join("summary.json");
-            let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+            let text = crate::files::read_own_text(&path, "summary.json", u64::MAX)?;
             let summary: SummaryFile =
                 serde_json::from_str(&text).with_context(|| format!("{} is not a run summary", path.display()))?;
             let johnson = summary.derived.get("johnson_parameter").map(cell).unwrap_or_default();

@@ -217,6 +217,9 @@ impl<'a> HeightMap<'a> {
         if bins == 0 {
             return Err(SurfaceError::NoBins);
         }
+        if bins > super::MAX_PSD_BINS {
+            return Err(SurfaceError::TooManyBins(bins));
+        }
         let (nx, ny) = (self.nx, self.ny);
         let hann = |n: usize| -> Vec<f64> {
             (0..n)

@@ -52,6 +52,11 @@ pub use statistics::{
 
 use thiserror::Error;
 
+/// The most bins of an isotropic PSD. Its sums hold 24 bytes per bin, allocated before any
+/// bin is filled (4·10⁹ bins asked for 96 GB and aborted); a map of 16384² points has
+/// fewer than 12,000 distinct wavevector magnitudes, so bins beyond that stay empty.
+pub const MAX_PSD_BINS: usize = 1_000_000;
+
 /// Invalid generator parameters or height maps.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum SurfaceError {
@@ -132,6 +137,9 @@ pub enum SurfaceError {
     /// An isotropic PSD needs at least one bin.
     #[error("psd bins must be >= 1, got 0")]
     NoBins,
+    /// More bins than [`MAX_PSD_BINS`].
+    #[error("psd bins must be at most {MAX_PSD_BINS}, got {0}")]
+    TooManyBins(usize),
     /// A measured map without a single valid point.
     #[error("the height map has no valid point")]
     NoValidPoint,

@@ -179,6 +179,9 @@ pub fn isotropic_psd(grid: &Grid, heights: &[f64], bins: usize) -> Result<Vec<Ps
     if bins == 0 {
         return Err(SurfaceError::NoBins);
     }
+    if bins > super::MAX_PSD_BINS {
+        return Err(SurfaceError::TooManyBins(bins));
+    }
     if let Some(map) = rectangle(grid, heights) {
         return map?.isotropic_psd(bins);
     }

@@ -5,6 +5,32 @@ use anyhow::{bail, Context, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+/// Arrays of exactly N values: serde's `[T; N]` reads N values and the TOML reader let the
+/// rest go, so `contact.roi = [0, 0, 10, 10, 99]` was accepted; now an error with both
+/// counts (serde names the key).
+mod exact {
+    use serde::de::Error;
+    use serde::{Deserialize, Deserializer};
+
+    pub fn array<'de, D, T, const N: usize>(deserializer: D) -> Result<[T; N], D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        let values = Vec::<T>::deserialize(deserializer)?;
+        let count = values.len();
+        <[T; N]>::try_from(values).map_err(|_| D::Error::custom(format!("expected {N} values, got {count}")))
+    }
+
+    pub fn optional<'de, D, T, const N: usize>(deserializer: D) -> Result<Option<[T; N]>, D::Error>
+    where
+        D: Deserializer<'de>,
+        T: Deserialize<'de>,
+    {
+        array(deserializer).map(Some)
+    }
+}
+
 /// Whole spec file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -68,6 +94,7 @@ pub struct ContactSpec {
     #[serde(default = "one")]
     pub close_radius: usize,
     /// [x0, y0, width, height] in pixels.
+    #[serde(default, deserialize_with = "exact::optional")]
     pub roi: Option<[usize; 4]>,
 }
 
@@ -89,6 +116,7 @@ impl Default for ContactSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IndenterSpec {
+    #[serde(deserialize_with = "exact::array")]
     pub centre_px: [f64; 2],
     /// Stage position at which the centre is at `centre_px` (default 0); only with
     /// `forces.stage_x`.
@@ -166,6 +194,7 @@ pub struct FitsSpec {
     /// Relative radius tolerance of the pinned phase after reversal.
     pub pinned_tolerance: Option<f64>,
     /// [t0, t1]: frames used for the friction-law fit (default: all with a tangential force).
+    #[serde(default, deserialize_with = "exact::optional")]
     pub friction_window: Option<[f64; 2]>,
     /// Adhesive force vs waiting time table for Eq. 15.
     pub power_law: Option<PowerLawSpec>,

@@ -44,7 +44,7 @@ pub struct StudyArgs {
     /// Output folder [default: out/<study file stem>/].
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Cases run at the same time [default: 1].
+    /// Cases run at the same time.
     #[arg(long, default_value_t = 1)]
     pub jobs: usize,
     /// No progress lines.

@@ -184,7 +184,8 @@ pub fn adopt_old_cache(out: &Path, runs: &[StudyRun], batch: &Batch) -> Result<u
     let cached: Vec<CachedRun> = runs
         .iter()
         .filter_map(|run| {
-            let record = std::fs::read_to_string(cache.join(format!("{}.json", run.id))).ok()?;
+            let path = cache.join(format!("{}.json", run.id));
+            let record = adhesim_scenario::read_own_text(&path, "study record", u64::MAX).ok()?;
             let readable = match run.kind {
                 RunKind::Normal => serde_json::from_str::<NormalRecord>(&record).is_ok(),
                 RunKind::Translation => serde_json::from_str::<CaseRecord>(&record).is_ok(),
@@ -201,7 +202,7 @@ pub fn adopt_old_cache(out: &Path, runs: &[StudyRun], batch: &Batch) -> Result<u
 /// The record of a finished run in its case folder.
 pub fn load<T: for<'de> Deserialize<'de>>(folder: &Path) -> Result<T> {
     let path = folder.join(RECORD);
-    let text = std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = adhesim_scenario::read_own_text(&path, "study record", u64::MAX)?;
     serde_json::from_str(&text).with_context(|| {
         format!(
             "{} is not a study run's record (delete its folder to redo the run)",
