@@ -284,6 +284,7 @@ fn check_finite(valid: &ValidScenario) -> Result<bool, String> {
     let results = match &outcome.results {
         RunResults::Indentation(results) => toml::Value::try_from(results),
         RunResults::Translation(results) => toml::Value::try_from(results),
+        RunResults::Shear(results) => toml::Value::try_from(results),
     }
     .map_err(|e| format!("results do not serialise: {e}"))?;
     non_finite_in(&results, "results").map(|()| true)
