@@ -121,7 +121,7 @@ def test_gap_needs_a_solve(grid):
 # Second robustness audit (docs/reliability.md): sizes the library cannot index or hold
 # raised a Rust panic, aborted the interpreter, or were accepted; each is now a Python
 # exception naming what and why.
-def test_issue29_grids_beyond_the_index_range_or_floating_point_are_refused():
+def test_audit_grids_beyond_the_index_range_or_floating_point_are_refused():
     with pytest.raises(ValueError, match=r"too large"):
         adhesim.Grid(2**32, 1.0)
     with pytest.raises(ValueError, match=r"too large"):
@@ -130,7 +130,7 @@ def test_issue29_grids_beyond_the_index_range_or_floating_point_are_refused():
         adhesim.Grid(32, 1e-310)
 
 
-def test_issue29_allocations_beyond_the_memory_available_raise_memory_error(monkeypatch):
+def test_audit_allocations_beyond_the_memory_available_raise_memory_error(monkeypatch):
     monkeypatch.setenv("ADHESIM_MEMORY_AVAILABLE", str(1 << 30))
     big = adhesim.Grid(2**31 - 1, 1.0)
     with pytest.raises(MemoryError, match=r"ContactState\(Grid\(n=2147483647.*of memory"):
@@ -144,7 +144,7 @@ def test_issue29_allocations_beyond_the_memory_available_raise_memory_error(monk
     assert len(adhesim.Grid(64, 1.0).coordinates()) == 64
 
 
-def test_issue29_arguments_are_checked_by_name(operator):
+def test_audit_arguments_are_checked_by_name(operator):
     scenario = {
         "grid": {"n": 16, "size": 0.5},
         "material": {"contact_modulus": 1.0},
@@ -168,7 +168,7 @@ def test_issue29_arguments_are_checked_by_name(operator):
         adhesim.fit.power_law(np.array([1.0, 2.0]), np.array([1.0, np.inf]))
 
 
-def test_issue29_hostile_object_sizes_raise_python_exceptions(monkeypatch):
+def test_audit_hostile_object_sizes_raise_python_exceptions(monkeypatch):
     """A fixed-seed fuzz of the objects' sizes: every combination of hostile n and size
     either builds (and its arrays fit) or raises a Python exception; a panic or an abort
     would end the interpreter, not raise."""

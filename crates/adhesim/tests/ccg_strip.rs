@@ -12,7 +12,7 @@
 use adhesim::{Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, Grid, HalfSpace, SolveReport};
 
 /// The mean-gap control of the failing cohesive step (tests/data/strip_profile.txt).
-const ISSUE_DEPTH: f64 = -2.431217913521752e-4;
+const STRIP_DEPTH: f64 = -2.431217913521752e-4;
 
 /// The 128 heights of one row (every row is the same).
 fn profile() -> Vec<f64> {
@@ -104,12 +104,12 @@ fn load_controlled_ccg_converges_on_a_strip_one_row_wide() {
 /// 128 × 128 cell (its secant iteration on the load passes through one-row contacts) reaches
 /// the depth within the solver's depth tolerance, 1e-10 of max(height range, |d|).
 #[test]
-fn mean_gap_solve_of_issue_27_converges() {
+fn mean_gap_solve_of_the_strip_profile_converges() {
     let (grid, heights) = strip(128);
     let mut operator = HalfSpace::new(grid, ElasticMaterial::new(1.0).unwrap());
     let mut state = ContactState::new(&grid);
     let report = ccg()
-        .solve(&mut operator, &heights, Control::Displacement(ISSUE_DEPTH), &mut state)
+        .solve(&mut operator, &heights, Control::Displacement(STRIP_DEPTH), &mut state)
         .unwrap();
     let load = report.force;
     assert!(load > 0.0 && report.contact_elements == grid.ny(), "{report:?}");
@@ -121,6 +121,6 @@ fn mean_gap_solve_of_issue_27_converges() {
         .map(|k| state.displacement[k] + heights[k])
         .sum::<f64>()
         / report.contact_elements as f64;
-    let scale = (highest - lowest).max(ISSUE_DEPTH.abs());
-    assert!((reached - ISSUE_DEPTH).abs() <= 1e-10 * scale, "depth {reached:e}");
+    let scale = (highest - lowest).max(STRIP_DEPTH.abs());
+    assert!((reached - STRIP_DEPTH).abs() <= 1e-10 * scale, "depth {reached:e}");
 }
