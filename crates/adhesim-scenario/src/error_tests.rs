@@ -1,5 +1,5 @@
 //! The checks of scenario keys give their key, the value at fault and the requirement as
-//! fields of [`ScenarioError`], beside the message (issue #28: programs read the fields,
+//! fields of [`ScenarioError`], beside the message (docs/python.md: programs read the fields,
 //! never the text).
 
 use crate::tests::MINIMAL;

@@ -24,7 +24,7 @@ mod tests {
     use super::error_line;
     use adhesim::{ProtocolError, SolveError};
 
-    /// Issue #16: "solver produced a non-finite value" was printed twice.
+    /// First robustness audit (docs/reliability.md): "solver produced a non-finite value" was printed twice.
     #[test]
     fn a_solver_error_is_printed_once() {
         let error = anyhow::Error::new(ProtocolError::Solve {

@@ -414,7 +414,7 @@ pub(crate) fn resolution_warnings(grid: &Grid, indenter: &Indenter, derived: &De
 
 /// Elements across the contact radius at the largest depth below which a sphere's
 /// indentation gets a warning: with fewer, the contact is one or a few elements and the
-/// force was measured 63× to 1981× the Hertz force (issue #29), without a word.
+/// force was measured 63× to 1981× the Hertz force (second robustness audit, docs/reliability.md), without a word.
 pub const MIN_CONTACT_RADIUS_ELEMENTS: f64 = 2.0;
 
 /// The warning for a sphere (smooth, wavy or rough) whose contact radius at the largest

@@ -111,7 +111,7 @@ fn coarse_grids_give_resolution_warnings() {
         "{:?}",
         valid.warnings
     );
-    // Features smaller than one element (issue #16: these ran without a warning): a punch
+    // Features smaller than one element (the first robustness audit, docs/reliability.md: these ran without a warning): a punch
     // of diameter 0.01 = 0.16 Δ (the grid makes it one element) and a wavelength of 0.16 Δ.
     let tiny_punch = punch.replace("radius = 0.05", "radius = 0.005");
     let valid = load(&tiny_punch, "test", Path::new("."), &[]).unwrap();
@@ -164,7 +164,7 @@ fn a_grid_beyond_the_available_memory_is_refused_before_allocation() {
     assert!(load_within(MINIMAL, "test", Path::new("."), &[], Some(&limit)).is_ok());
 }
 
-/// Issue #16: E*, γ0 beyond about 1e±30 passed validation and failed mid-run with "solver
+/// First robustness audit (docs/reliability.md): E*, γ0 beyond about 1e±30 passed validation and failed mid-run with "solver
 /// produced a non-finite value" (the single-precision FFTs overflow); now refused first.
 #[test]
 fn units_beyond_single_precision_are_refused_before_the_run() {
@@ -238,7 +238,7 @@ distance_unit = "wavelength"
 steps = 20
 "#;
 
-/// Issue #16: rolling far beyond the domain exited 0 with zero force and no warning.
+/// First robustness audit (docs/reliability.md): rolling far beyond the domain exited 0 with zero force and no warning.
 /// At 5|d_JKR| the JKR contact radius is a = 0.0772 (R = E* = 1, γ = 2e-5), the domain's
 /// half-width 0.2: the travel may reach X = 0.2 − 0.0772 = 0.1228 (2.46 λ).
 #[test]
@@ -277,7 +277,7 @@ fn a_travel_beyond_the_domain_is_refused() {
 
 #[test]
 fn per_element_critical_stresses_beyond_single_precision_are_refused() {
-    // Issue #29: a quadratic field of edge/centre ratio 1e296 keeps every γ finite (so the
+    // Second robustness audit (docs/reliability.md): a quadratic field of edge/centre ratio 1e296 keeps every γ finite (so the
     // field check passes), but σ_c of the outer elements leaves the single-precision range
     // (it overflowed mid-run). `check_field_stresses` must name the element, its γ and the
     // field's keys. (Maps with such values: the CLI test `guards.rs`

@@ -26,7 +26,7 @@ pub(crate) fn validate_grid(section: &GridSection) -> Result<Grid> {
         BoundaryName::Periodic => Boundary::Periodic,
     };
     let grid = match (section.n, section.size) {
-        // The square of every scenario before issue #26, built as it always was.
+        // The square of every scenario before rectangular grids, built as it always was.
         (PerAxis::Both(n), PerAxis::Both(size)) => {
             Grid::new(count("grid.n", n)?, positive("grid.size", size)?, boundary)
         }

@@ -243,8 +243,8 @@ pub struct ShearResults {
     pub normal_force: f64,
     /// Contact area during the shift.
     pub contact_area: f64,
-    /// A at the peak over A at rest: 1 with Goodman's approximation, where the normal
-    /// problem does not see the shear.
+    /// A at the peak of the forward stroke over A at rest (the end of the approach): 1
+    /// with Goodman's approximation, where the normal problem does not see the shear.
     pub contact_area_reduction: f64,
     /// Energy dissipated by friction over the run.
     pub frictional_dissipation: f64,
@@ -263,6 +263,21 @@ impl ShearResults {
             .filter(|r| r.phase == Some(adhesim::Phase::Shear))
             .nth(protocol.steps - 1);
         let gross_slip = forward_end.is_some_and(|r| r.stick_elements == 0 && r.slip_elements > 0);
+        // A at the peak of the forward stroke over A at rest (the last approach step).
+        let at_rest = records
+            .iter()
+            .rfind(|r| r.phase == Some(adhesim::Phase::Approach))
+            .map(|r| r.area);
+        let at_peak = records
+            .iter()
+            .filter(|r| r.phase == Some(adhesim::Phase::Shear))
+            .take(protocol.steps)
+            .max_by(|a, b| a.force_tangential.total_cmp(&b.force_tangential))
+            .map(|r| r.area);
+        let area_reduction = match (at_peak, at_rest) {
+            (Some(peak), Some(rest)) if rest > 0.0 => peak / rest,
+            _ => 1.0,
+        };
         let sliding = gross_slip.then_some(summary.final_tangential_force);
         Self {
             static_friction_force: gross_slip.then_some(summary.peak_tangential_force),
@@ -271,7 +286,7 @@ impl ShearResults {
             peak_tangential_force: summary.peak_tangential_force,
             normal_force: summary.normal_force,
             contact_area: summary.area,
-            contact_area_reduction: 1.0,
+            contact_area_reduction: area_reduction,
             frictional_dissipation: summary.frictional_dissipation,
             dissipated_energy: summary.dissipated_energy,
             complementarity: summary.complementarity,

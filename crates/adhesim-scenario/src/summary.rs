@@ -159,7 +159,7 @@ mod tests {
         }
     }
 
-    /// Issue #16: a roll whose contact left the grid exited 0 with zero force, no warning.
+    /// First robustness audit (docs/reliability.md): a roll whose contact left the grid exited 0 with zero force, no warning.
     #[test]
     fn a_travel_that_loses_the_contact_is_reported() {
         let approach = StepRecord {

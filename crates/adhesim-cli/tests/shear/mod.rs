@@ -96,6 +96,8 @@ fn shear_run_follows_cattaneo_mindlin() {
     let sliding = results["sliding_friction_force"].as_f64().unwrap();
     assert!((sliding / tangential[last] - 1.0).abs() < 1e-12);
     assert!(results["complementarity"]["stick_residual"].as_f64().unwrap() < 1e-8);
+    // Goodman's approximation: the shear leaves the normal contact as it is.
+    assert_eq!(results["contact_area_reduction"].as_f64(), Some(1.0));
 }
 
 #[test]

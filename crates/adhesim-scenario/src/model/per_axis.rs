@@ -3,7 +3,7 @@
 use serde::de::{DeserializeOwned, Error as _};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// One value for both axes, or one per axis `[x, y]` (issue #26 item 2: `n = [nx, ny]`,
+/// One value for both axes, or one per axis `[x, y]` (rectangular grids, docs/validation.md §12: `n = [nx, ny]`,
 /// `size = [sx, sy]`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PerAxis<T> {

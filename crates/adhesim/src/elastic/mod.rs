@@ -48,7 +48,7 @@ pub trait ElasticOperator: Send {
     /// rows `input_rows` (its values there are not read), writing the displacement on the
     /// rows `output_rows` only. On those rows the result is bit for bit what `apply_single`
     /// gives: the transforms of rows that are zero are exactly zero and are skipped (issue
-    /// #14 item 5: a fixed-set CG's search direction lives on the set's bounding box).
+    /// a fixed-set CG's search direction lives on the set's bounding box, docs/fast-step.md).
     /// Values outside `output_rows` are unspecified (the spectral operators leave them
     /// untouched, this default writes them): callers must not read them. Counts as one
     /// application.
