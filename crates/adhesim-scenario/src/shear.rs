@@ -4,7 +4,7 @@
 use crate::error::ScenarioError;
 use crate::guards::step_count;
 use crate::model::*;
-use crate::translation::{ValidatedSections, DEFAULT_APPROACH_STEPS};
+use crate::translation::{held_depth, ValidatedSections, DEFAULT_APPROACH_STEPS};
 use crate::validate::{finite, positive};
 use adhesim::{Boundary, Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
@@ -85,19 +85,7 @@ impl ScenarioFile {
                 "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only, got \"shear\" (its friction is [friction])"
             ));
         }
-        let raw_depth = p.depth;
-        let depth = finite("protocol.depth", raw_depth)? * unit;
-        if depth <= start_depth {
-            bail!(ScenarioError::invalid_as(
-                "protocol.depth",
-                raw_depth,
-                format!("> {:.6e} (the depth of first contact)", start_depth / unit),
-                format!(
-                    "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
-                    start_depth / unit
-                )
-            ));
-        }
+        let depth = held_depth(p.depth, unit, start_depth)?;
         let distance = positive("protocol.distance", p.distance)?;
         let steps = step_count("protocol.steps", p.steps)?;
         let approach_steps = step_count(

@@ -26,6 +26,25 @@ pub(crate) struct ValidatedSections {
     pub(crate) substrate_roughness: Option<Vec<f64>>,
 }
 
+/// `protocol.depth` (in depth units of `unit` length) as a length, refused unless it goes
+/// deeper than the first contact at `start_depth`: the indentation held by a roll, slide,
+/// translate or shear.
+pub(crate) fn held_depth(raw_depth: f64, unit: f64, start_depth: f64) -> Result<f64> {
+    let depth = finite("protocol.depth", raw_depth)? * unit;
+    if depth <= start_depth {
+        bail!(ScenarioError::invalid_as(
+            "protocol.depth",
+            raw_depth,
+            format!("> {:.6e} (the depth of first contact)", start_depth / unit),
+            format!(
+                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
+                start_depth / unit
+            )
+        ));
+    }
+    Ok(depth)
+}
+
 /// Default approach steps of roll / slide / translate.
 pub const DEFAULT_APPROACH_STEPS: i64 = 50;
 /// Default stationary fraction.
@@ -57,18 +76,7 @@ impl ScenarioFile {
         contact.fill_heights(&grid, 0.0, &mut heights);
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let raw_depth = p.depth;
-        let depth = finite("protocol.depth", raw_depth)? * unit;
-        if depth <= start_depth {
-            bail!(ScenarioError::invalid_as(
-                "protocol.depth",
-                raw_depth,
-                format!("> {:.6e} (the depth of first contact)", start_depth / unit),
-                format!(
-                    "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
-                    start_depth / unit
-                )
-            ));
-        }
+        let depth = held_depth(raw_depth, unit, start_depth)?;
         crate::validate::check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
         let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
