@@ -101,6 +101,7 @@ impl ScenarioFile {
         )?;
         let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
+        let mode_mixity = mode_mixity(friction, gamma0)?;
         let protocol = Shear {
             start_depth,
             depth,
@@ -110,6 +111,7 @@ impl ScenarioFile {
             direction,
             return_stroke: p.return_stroke.unwrap_or(false),
             jump_force_threshold,
+            mode_mixity,
         };
         Ok(ValidScenario {
             file: self,
@@ -207,12 +209,37 @@ fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
                 needed("shear_strength", shear_strength)?,
             )?)
         }
+        FrictionLawName::NoSlip => {
+            unused("coefficient", coefficient)?;
+            unused("shear_strength", shear_strength)?;
+            Ok(FrictionLaw::NoSlip)
+        }
         FrictionLawName::CoulombShear => FrictionLaw::coulomb_shear(
             non_negative("coefficient", needed("coefficient", coefficient)?)?,
             non_negative("shear_strength", needed("shear_strength", shear_strength)?)?,
         ),
     };
     Ok(built?)
+}
+
+/// `friction.mode_mixity` (default 0): in [0, 1], and above 0 only where there is an
+/// adhesive edge to weaken.
+fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> {
+    let Some(value) = section.mode_mixity else {
+        return Ok(0.0);
+    };
+    if !(0.0..=1.0).contains(&value) {
+        bail!(ScenarioError::invalid("friction.mode_mixity", value, "in [0, 1]"));
+    }
+    if value > 0.0 && work_of_adhesion <= 0.0 {
+        bail!(ScenarioError::invalid_as(
+            "friction.mode_mixity",
+            value,
+            "0 without adhesion",
+            format!("friction.mode_mixity = {value} weakens an adhesive edge, but adhesion.work_of_adhesion is 0: give a work of adhesion or drop friction.mode_mixity")
+        ));
+    }
+    Ok(value)
 }
 
 /// The `results` of a shear run in `summary.json`.
@@ -227,12 +254,13 @@ pub struct ShearResults {
     pub mean_shear_stress: Option<f64>,
     /// Largest tangential force of the forward stroke.
     pub peak_tangential_force: f64,
-    /// Normal force during the shift.
+    /// Normal force at the end of the forward stroke.
     pub normal_force: f64,
-    /// Contact area during the shift.
+    /// Contact area at the end of the forward stroke.
     pub contact_area: f64,
     /// A at the peak of the forward stroke over A at rest (the end of the approach): 1
-    /// with Goodman's approximation, where the normal problem does not see the shear.
+    /// unless the shear weakens the adhesive edge (`friction.mode_mixity` > 0); with
+    /// Goodman's approximation the normal problem does not see the shear otherwise.
     pub contact_area_reduction: f64,
     /// Energy dissipated by friction over the run.
     pub frictional_dissipation: f64,

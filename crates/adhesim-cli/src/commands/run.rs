@@ -183,7 +183,13 @@ fn print_shear(summary: &ShearSummary, outcome: &RunOutcome, wall_seconds: f64) 
             "  gross slip: sliding F_T = {:.4e}, τ = F_T/A = {tau:.4e}",
             summary.final_tangential_force
         ),
-        None => outln!("  partial slip at the end of the stroke (no gross slip)"),
+        None => outln!("  no gross slip at the end of the stroke"),
+    }
+    if results.contact_area_reduction != 1.0 {
+        outln!(
+            "  contact area at the peak / at rest = {:.4} (the shear weakened the edge)",
+            results.contact_area_reduction
+        );
     }
     outln!(
         "  frictional dissipation {:.4e}; {} tangential rounds, {} FFT pairs",

@@ -19,6 +19,9 @@ pub struct FrictionSection {
     /// Normal–tangential coupling; only `"none"` (Goodman's approximation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coupling: Option<CouplingName>,
+    /// Share m ∈ [0, 1] of the shear energy that weakens the adhesive edge (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_mixity: Option<f64>,
 }
 
 /// `friction.law`.
@@ -28,6 +31,7 @@ pub enum FrictionLawName {
     Coulomb,
     ShearStrength,
     CoulombShear,
+    NoSlip,
 }
 
 impl FrictionLawName {
@@ -36,6 +40,7 @@ impl FrictionLawName {
             Self::Coulomb => "coulomb",
             Self::ShearStrength => "shear_strength",
             Self::CoulombShear => "coulomb_shear",
+            Self::NoSlip => "no_slip",
         }
     }
 }

@@ -11,7 +11,7 @@ mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{IndentPulloff, ProtocolSummary};
-pub use shear::{contact_split, Shear, ShearSummary};
+pub use shear::{contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearSummary};
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
@@ -213,6 +213,25 @@ pub enum ProtocolError {
         /// The tangential solver's error.
         source: TangentialError,
     },
+    /// The rounds of tangential solve and shear-weakened normal step did not settle.
+    #[error("step {step} (shift {shift:e}): the contact set still changed after {rounds} rounds of shear-weakened detachment")]
+    DetachmentNotSettled {
+        /// Step at which it failed.
+        step: usize,
+        /// The indenter's shift at that step.
+        shift: f64,
+        /// Rounds done.
+        rounds: usize,
+    },
+    /// Under a shear-weakened edge the contact grew out of the window the tangential
+    /// problem is solved on.
+    #[error("step {step} (shift {shift:e}): the contact grew beyond the window of the tangential problem (the contact at rest and a margin); the shear protocol assumes a contact that does not grow while it is sheared")]
+    ContactOutsideShearWindow {
+        /// Step at which it happened.
+        step: usize,
+        /// The indenter's shift at that step.
+        shift: f64,
+    },
     /// The observer asked to stop.
     #[error("stopped by the observer at step {0}")]
     Interrupted(usize),
@@ -260,6 +279,14 @@ impl NormalSolver {
             Self::Adhesive(solver) => solver.reset(),
             Self::Cohesive(solver) => solver.reset(),
             Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) => {}
+        }
+    }
+
+    /// The JKR-type solver, whose detachment rule a shear may weaken (None for the others).
+    pub fn as_adhesive_mut(&mut self) -> Option<&mut AdhesiveSolver> {
+        match self {
+            Self::Adhesive(solver) => Some(solver),
+            _ => None,
         }
     }
 

@@ -259,6 +259,19 @@ impl AdhesiveSolver {
         &self.critical_stress
     }
 
+    /// Replaces σ_c per element (row-major), for a detachment rule that weakens elements
+    /// during a run (shear at the edge, docs/physics.md §8.5). The failed-ring records of
+    /// earlier steps were judged against the old values and are forgotten.
+    ///
+    /// # Panics
+    /// If `critical_stresses` does not have one value per element.
+    pub fn set_critical_stresses(&mut self, critical_stresses: &[f64]) {
+        self.critical_stress.copy_from_slice(critical_stresses);
+        self.minimum_critical_stress = front_critical_stress(&self.critical_stress);
+        self.clear_ring_history();
+        self.drop_current_ring();
+    }
+
     /// γ per element.
     pub fn work_of_adhesion(&self) -> &[f64] {
         &self.work_of_adhesion

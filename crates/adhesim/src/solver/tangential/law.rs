@@ -25,6 +25,10 @@ pub enum FrictionLaw {
         /// τ0.
         shear_strength: f64,
     },
+    /// No slip: the body is glued to the indenter, every contact element moving with its
+    /// shift whatever its traction, an element that touches again included (Mindlin's fully
+    /// stuck contact; the reversible contact of Savkoor & Briggs' energy balance under shear).
+    NoSlip,
 }
 
 /// A friction law's parameter is out of range.
@@ -78,6 +82,7 @@ impl FrictionLaw {
                 coefficient,
                 shear_strength,
             } => (shear_strength + coefficient * pressure).max(0.0),
+            Self::NoSlip => f64::INFINITY,
         }
     }
 
@@ -87,6 +92,7 @@ impl FrictionLaw {
             Self::Coulomb { .. } => "coulomb",
             Self::ShearStrength { .. } => "shear_strength",
             Self::CoulombShear { .. } => "coulomb_shear",
+            Self::NoSlip => "no_slip",
         }
     }
 }
@@ -107,5 +113,6 @@ mod tests {
         assert_eq!(both.bound(-2.0), 0.0);
         assert_eq!(FrictionLaw::coulomb(-1.0), Err(FrictionLawError::Coefficient(-1.0)));
         assert!(FrictionLaw::shear_strength(f64::NAN).is_err());
+        assert_eq!(FrictionLaw::NoSlip.bound(-2.0), f64::INFINITY);
     }
 }

@@ -305,7 +305,8 @@ impl TangentialSolver {
         Ok(report)
     }
 
-    /// Targets, bounds and the starting sets: open off contact; an element with no bound
+    /// Targets, bounds and the starting sets (with [`FrictionLaw::NoSlip`] the target is the
+    /// shift itself: the body is glued to the indenter): open off contact; an element with no bound
     /// slips freely; a slipping element keeps its direction at its new bound; the others
     /// (new ones with no traction) start stuck.
     fn prepare(&mut self, normal: &ContactState, shift: [f64; 2], state: &mut TangentialState, n: usize) {
@@ -327,9 +328,16 @@ impl TangentialSolver {
         self.spring.clear();
         self.spring.resize(n, 0.0);
         let increment = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
+        // Glued (no slip): every contact element moves with the indenter, one that
+        // touches again included; otherwise an element sticks where it is.
+        let glued = self.law == FrictionLaw::NoSlip;
         for i in 0..n {
             for c in 0..2 {
-                self.target[c][i] = state.displacement[c][i] + increment[c];
+                self.target[c][i] = if glued {
+                    shift[c]
+                } else {
+                    state.displacement[c][i] + increment[c]
+                };
             }
             if !normal.contact[i] {
                 state.status[i] = SlipStatus::Open;

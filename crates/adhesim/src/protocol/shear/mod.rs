@@ -1,12 +1,19 @@
 //! Shear at fixed indentation: indent, then shift the indenter tangentially with friction
 //! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §8).
 
+mod edge;
+mod window;
+
+pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
+
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::{ElasticOperator, TangentialOperator};
 use crate::grid::{Boundary, Grid};
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver, TangentialState};
+use edge::{EdgeWeakening, NormalSide, TangentialSide};
 use std::ops::ControlFlow;
+use window::ContactWindow;
 
 /// Indent to `depth` in `approach_steps` displacement steps, then shift the indenter by
 /// `distance` along the in-plane angle `direction` in `steps` quasi-static steps at fixed
@@ -15,7 +22,9 @@ use std::ops::ControlFlow;
 /// The shift is a small rigid-body displacement, as in Cattaneo–Mindlin: the profile stays
 /// where it is, and with Goodman's approximation the normal problem does not change during
 /// the shift, so the contact set and pressure are those at the end of the approach and
-/// only the tangential problem is solved per shift step.
+/// only the tangential problem is solved per shift step. With a `mode_mixity` m > 0 the
+/// shear weakens the adhesive edge (docs/physics.md §8.5): each shift step then alternates
+/// tangential solves and normal steps at the held depth until the contact set settles.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shear {
     /// Depth of first contact (the approach starts there).
@@ -34,7 +43,16 @@ pub struct Shear {
     pub return_stroke: bool,
     /// A step is a jump when the normal force changes by more than this at fixed depth.
     pub jump_force_threshold: f64,
+    /// Share m ∈ [0, 1] of an element's shear energy that counts toward its detachment
+    /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion). Above 0
+    /// it needs the JKR-type adhesive solver.
+    pub mode_mixity: f64,
 }
+
+/// Elements of margin around the contact at rest in the window of a weakened shear, where
+/// the contact may move a little (it shrinks under shear; growth beyond the margin is an
+/// error, [`ProtocolError::ContactOutsideShearWindow`]).
+const WEAKENED_WINDOW_MARGIN: usize = 4;
 
 /// Totals of a shear run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -57,9 +75,10 @@ pub struct ShearSummary {
     pub peak_tangential_force: f64,
     /// Tangential force at the end of the forward stroke.
     pub final_tangential_force: f64,
-    /// Normal force during the shift.
+    /// Normal force at the end of the forward stroke (the whole shift's, unless the shear
+    /// weakens the edge).
     pub normal_force: f64,
-    /// Contact area during the shift.
+    /// Contact area at the end of the forward stroke.
     pub area: f64,
     /// Energy dissipated by friction (Δ²Σ q·Δs over slipping elements, all steps).
     pub frictional_dissipation: f64,
@@ -122,14 +141,25 @@ impl Shear {
             (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
             self.report(&mut summary, &record, &state, &previous, observer)?;
         }
-        let window = ContactWindow::around(&grid, &state.contact)?;
+        let weakened = self.mode_mixity > 0.0;
+        let margin = if weakened { WEAKENED_WINDOW_MARGIN } else { 0 };
+        let window = ContactWindow::around(&grid, &state.contact, margin)?;
         let normal = window.gather(&state);
         let mut shear_operator = TangentialOperator::new(window.grid, material)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         let mut tangential = TangentialState::new(window.grid.len());
+        let mut edge = match (weakened, solver.as_adhesive_mut()) {
+            (false, _) => None,
+            (true, Some(adhesive)) => Some(EdgeWeakening::new(adhesive, material, self.mode_mixity, &window)),
+            (true, None) => {
+                return Err(ProtocolError::InvalidParameter(format!(
+                    "mode_mixity ({}) weakens an adhesive edge: it needs the JKR-type adhesive solver",
+                    self.mode_mixity
+                )))
+            }
+        };
         let unit = [self.direction.cos(), self.direction.sin()];
         let legs = if self.return_stroke { 2 } else { 1 };
-        previous.copy_from_slice(&state.contact);
         summary.normal_force = state.force(grid.element_area());
         summary.area = state.contact_elements() as f64 * grid.element_area();
         for k in 1..=legs * self.steps {
@@ -137,28 +167,57 @@ impl Shear {
             let forward = k <= self.steps;
             let travelled = if forward { k } else { 2 * self.steps - k };
             let shift = self.distance * travelled as f64 / self.steps as f64;
-            let report = friction
-                .step(
-                    &mut shear_operator,
-                    &normal,
-                    [shift * unit[0], shift * unit[1]],
-                    &mut tangential,
-                )
-                .map_err(|source| ProtocolError::Tangential { step, shift, source })?;
+            let displacement = [shift * unit[0], shift * unit[1]];
+            previous.copy_from_slice(&state.contact);
+            let (report, normal) = if let Some(edge) = edge.as_mut() {
+                let Some(adhesive) = solver.as_adhesive_mut() else {
+                    unreachable!("checked before the shift")
+                };
+                let weakened = edge.step(
+                    NormalSide {
+                        operator: &mut *operator,
+                        heights,
+                        depth: self.depth,
+                        solver: adhesive,
+                        state: &mut state,
+                    },
+                    TangentialSide {
+                        window: &window,
+                        operator: &mut shear_operator,
+                        solver: &mut *friction,
+                        state: &mut tangential,
+                    },
+                    displacement,
+                    step,
+                )?;
+                summary.solves += weakened.normal.solves;
+                summary.cg_iterations += weakened.normal.cg_iterations;
+                summary.operator_applications += weakened.normal.operator_applications;
+                summary.dissipated_energy += weakened.normal.dissipated_energy;
+                let mut normal = weakened.normal;
+                normal.cg_iterations += weakened.tangential.cg_iterations;
+                normal.operator_applications += weakened.tangential.transform_pairs;
+                (weakened.tangential, normal)
+            } else {
+                let report = friction
+                    .step(&mut shear_operator, &normal, displacement, &mut tangential)
+                    .map_err(|source| ProtocolError::Tangential { step, shift, source })?;
+                // The normal problem is unchanged; the step's counters are the tangential solve's.
+                let normal = StepReport {
+                    force: summary.normal_force,
+                    force_before_change: summary.normal_force,
+                    cg_iterations: report.cg_iterations,
+                    operator_applications: report.transform_pairs,
+                    ..StepReport::default()
+                };
+                (report, normal)
+            };
             summary.tangential_transform_pairs += report.transform_pairs;
             summary.operator_applications += report.transform_pairs;
             summary.cg_iterations += report.cg_iterations;
             summary.tangential_rounds += report.rounds;
             summary.frictional_dissipation += report.dissipated_energy;
             worst(&mut summary.complementarity, report.complementarity);
-            // The normal problem is unchanged; the step's counters are the tangential solve's.
-            let normal = StepReport {
-                force: summary.normal_force,
-                force_before_change: summary.normal_force,
-                cg_iterations: report.cg_iterations,
-                operator_applications: report.transform_pairs,
-                ..StepReport::default()
-            };
             let mut record = self.record(
                 step,
                 Phase::Shear,
@@ -179,8 +238,13 @@ impl Shear {
             if forward {
                 summary.peak_tangential_force = summary.peak_tangential_force.max(along);
                 summary.final_tangential_force = along;
+                summary.normal_force = record.force_normal;
+                summary.area = record.area;
             }
             self.report(&mut summary, &record, &state, &previous, observer)?;
+        }
+        if let (Some(edge), Some(adhesive)) = (edge, solver.as_adhesive_mut()) {
+            edge.restore(adhesive);
         }
         Ok(summary)
     }
@@ -199,6 +263,9 @@ impl Shear {
                 "depth ({}) must exceed the depth of first contact ({})",
                 self.depth, self.start_depth
             ));
+        }
+        if !(0.0..=1.0).contains(&self.mode_mixity) {
+            return invalid(format!("mode_mixity ({}) must lie in [0, 1]", self.mode_mixity));
         }
         if !(self.distance.is_finite() && self.direction.is_finite()) {
             return invalid(format!(
@@ -253,66 +320,6 @@ impl Shear {
             ControlFlow::Continue(()) => Ok(()),
             ControlFlow::Break(()) => Err(ProtocolError::Interrupted(record.step)),
         }
-    }
-}
-
-/// The contact's bounding box as a free grid of its own. The shear tractions vanish
-/// outside the contact and only the displacements on it enter the tangential problem, so
-/// the DC-FFT convolution on this window is the full grid's, restricted (the same
-/// coefficients; only the transforms' sizes, and so their rounding, differ), at a fraction
-/// of its cost.
-struct ContactWindow {
-    grid: Grid,
-    rows: std::ops::Range<usize>,
-    columns: std::ops::Range<usize>,
-    nx: usize,
-}
-
-impl ContactWindow {
-    /// The window of `contact` on `grid` (at least 2×2 elements, as a grid needs).
-    fn around(grid: &Grid, contact: &[bool]) -> Result<Self, ProtocolError> {
-        let nx = grid.nx();
-        let (mut rows, mut columns) = ((usize::MAX, 0), (usize::MAX, 0));
-        for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
-            let (i, j) = (k / nx, k % nx);
-            rows = (rows.0.min(i), rows.1.max(i + 1));
-            columns = (columns.0.min(j), columns.1.max(j + 1));
-        }
-        let span = |(start, end): (usize, usize), n: usize| {
-            let (start, end) = if start >= end { (0, 2) } else { (start, end) };
-            let end = end.max(start + 2).min(n);
-            end.saturating_sub(2).min(start)..end
-        };
-        let rows = span(rows, grid.ny());
-        let columns = span(columns, nx);
-        let window = Grid::rectangular(
-            columns.len(),
-            rows.len(),
-            columns.len() as f64 * grid.dx(),
-            rows.len() as f64 * grid.dy(),
-            Boundary::Free,
-        )
-        .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
-        Ok(Self {
-            grid: window,
-            rows,
-            columns,
-            nx,
-        })
-    }
-
-    /// The normal state on the window (pressure and contact; the normal displacement is
-    /// not used by the tangential solve).
-    fn gather(&self, state: &ContactState) -> ContactState {
-        let mut window = ContactState::new(&self.grid);
-        let width = self.columns.len();
-        for (r, i) in self.rows.clone().enumerate() {
-            for (c, j) in self.columns.clone().enumerate() {
-                window.pressure[r * width + c] = state.pressure[i * self.nx + j];
-                window.contact[r * width + c] = state.contact[i * self.nx + j];
-            }
-        }
-        window
     }
 }
 

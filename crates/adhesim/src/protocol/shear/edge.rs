@@ -1,0 +1,250 @@
+//! Adhesion under shear: the local detachment rule of the contact's edge weakened by the
+//! shear traction each element carries (docs/physics.md §8.5).
+//!
+//! Pohrt & Popov's rule releases an element when the elastic energy it would give back
+//! alone under its tension, c_U·p²Δ³/E*, pays for its surface, γΔ² (σ_c of §2.2). Under a
+//! shear traction q the element alone also stores the tangential energy c_U·q²Δ³/E*·r with
+//! r = (2 − ν)/(2(1 − ν)) = E*/(4G*), the ratio of a square element's Cerruti and Love self
+//! compliances. Counting a fraction m (the mode mixity) of it, the element detaches when
+//! (p⁻)² + m·r·q² ≥ σ_c², i.e. when its tension exceeds σ_c,eff = √(σ_c² − m·r·q²)
+//! (an element whose σ_c,eff reaches 0 detaches at any tension). Averaged over the edge of
+//! a circular contact the tangential term is Savkoor & Briggs' mean mode II + III energy
+//! release rate (1977, Proc. R. Soc. A 356, 103), so m = 1 is their brittle criterion and
+//! m = 0 leaves the edge as it is (Johnson 1997, Proc. R. Soc. A 453, 163).
+
+use super::window::ContactWindow;
+use crate::elastic::cerruti::ShearMaterial;
+use crate::elastic::{ElasticOperator, TangentialOperator};
+use crate::protocol::ProtocolError;
+use crate::solver::{AdhesiveSolver, ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
+
+/// Rounds of tangential solve and weakened normal step per shift step before giving up.
+const MAX_ROUNDS: usize = 200;
+
+/// σ_c,eff = √(max(σ_c² − m·r·q², 0)): the tension at which an element carrying the shear
+/// traction of magnitude `shear_traction` detaches (see the module).
+pub fn shear_weakened_critical_stress(
+    critical_stress: f64,
+    shear_traction: f64,
+    mode_mixity: f64,
+    energy_ratio: f64,
+) -> f64 {
+    let squared = critical_stress * critical_stress - mode_mixity * energy_ratio * shear_traction * shear_traction;
+    squared.max(0.0).sqrt()
+}
+
+/// r = (2 − ν)/(2(1 − ν)) = E*/(4G*): a square element's tangential self compliance over
+/// its normal one (Cerruti's kernel averages ν x²/r³ to ν/(2r) over a square, Love's is
+/// (1 − ν)/r in the same units).
+pub fn element_energy_ratio(material: ShearMaterial) -> f64 {
+    let nu = material.poisson_ratio;
+    (2.0 - nu) / (2.0 * (1.0 - nu))
+}
+
+/// The normal side of a weakened shift step: the half-space, the indenter held at `depth`
+/// and the JKR-type solver whose σ_c the shear lowers.
+pub(super) struct NormalSide<'a, O: ElasticOperator + ?Sized> {
+    pub operator: &'a mut O,
+    pub heights: &'a [f64],
+    pub depth: f64,
+    pub solver: &'a mut AdhesiveSolver,
+    pub state: &'a mut ContactState,
+}
+
+/// The tangential side: the contact's window, its operator, solver and state.
+pub(super) struct TangentialSide<'a> {
+    pub window: &'a ContactWindow,
+    pub operator: &'a mut TangentialOperator,
+    pub solver: &'a mut TangentialSolver,
+    pub state: &'a mut TangentialState,
+}
+
+/// What a weakened shift step did: the final tangential solve (with the counters of all
+/// rounds) and the normal steps summed.
+pub(super) struct WeakenedStep {
+    pub tangential: TangentialReport,
+    pub normal: StepReport,
+    /// Rounds of tangential solve and normal step.
+    pub rounds: usize,
+}
+
+/// The shear-weakened detachment rule across the shift steps of a run.
+pub(super) struct EdgeWeakening {
+    mode_mixity: f64,
+    energy_ratio: f64,
+    /// σ_c per element without shear.
+    base: Vec<f64>,
+    /// σ_c,eff per element in the current step.
+    weakened: Vec<f64>,
+    /// The tangential state at the end of the last step: each round restarts from it.
+    saved: TangentialState,
+    /// The normal state on the window.
+    window_state: ContactState,
+}
+
+impl EdgeWeakening {
+    pub(super) fn new(
+        solver: &AdhesiveSolver,
+        material: ShearMaterial,
+        mode_mixity: f64,
+        window: &ContactWindow,
+    ) -> Self {
+        let base = solver.critical_stresses().to_vec();
+        Self {
+            mode_mixity,
+            energy_ratio: element_energy_ratio(material),
+            weakened: base.clone(),
+            base,
+            saved: TangentialState::new(window.grid.len()),
+            window_state: ContactState::new(&window.grid),
+        }
+    }
+
+    /// One shift step to `shift` with the edge weakened by its shear: solve the tangential
+    /// problem on the contact, lower σ_c of each contact element by its traction (never
+    /// raising it within the step), redo the normal step at the held depth, and repeat
+    /// until the contact set no longer changes. Each step starts from the unweakened σ_c,
+    /// so an element released in an earlier step may attach again if it holds without the
+    /// shear it would carry.
+    pub(super) fn step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        normal: NormalSide<'_, O>,
+        tangential: TangentialSide<'_>,
+        shift: [f64; 2],
+        step: usize,
+    ) -> Result<WeakenedStep, ProtocolError> {
+        let along = shift[0].hypot(shift[1]);
+        self.saved.clone_from(tangential.state);
+        self.weakened.copy_from_slice(&self.base);
+        let mut total = WeakenedStep {
+            tangential: TangentialReport::default(),
+            normal: StepReport::default(),
+            rounds: 0,
+        };
+        let mut before = normal.state.contact.clone();
+        loop {
+            total.rounds += 1;
+            if total.rounds > MAX_ROUNDS {
+                return Err(ProtocolError::DetachmentNotSettled {
+                    step,
+                    shift: along,
+                    rounds: MAX_ROUNDS,
+                });
+            }
+            if !tangential.window.gather_into(normal.state, &mut self.window_state) {
+                return Err(ProtocolError::ContactOutsideShearWindow { step, shift: along });
+            }
+            tangential.state.clone_from(&self.saved);
+            let report = tangential
+                .solver
+                .step(tangential.operator, &self.window_state, shift, tangential.state)
+                .map_err(|source| ProtocolError::Tangential {
+                    step,
+                    shift: along,
+                    source,
+                })?;
+            add_tangential(&mut total.tangential, report);
+            self.weaken(tangential.window, tangential.state);
+            normal.solver.set_critical_stresses(&self.weakened);
+            before.copy_from_slice(&normal.state.contact);
+            let report = normal
+                .solver
+                .step(normal.operator, normal.heights, normal.depth, normal.state)
+                .map_err(|source| ProtocolError::Solve {
+                    step,
+                    depth: normal.depth,
+                    source,
+                })?;
+            add_normal(&mut total.normal, report);
+            if normal.state.contact == before {
+                return Ok(total);
+            }
+        }
+    }
+
+    /// σ_c,eff of each contact element from its current shear traction.
+    fn weaken(&mut self, window: &ContactWindow, state: &TangentialState) {
+        for (w, k) in window.elements() {
+            if !self.window_state.contact[w] {
+                continue;
+            }
+            let traction = state.traction[0][w].hypot(state.traction[1][w]);
+            let sigma = shear_weakened_critical_stress(self.base[k], traction, self.mode_mixity, self.energy_ratio);
+            self.weakened[k] = self.weakened[k].min(sigma);
+        }
+    }
+
+    /// Gives the solver its unweakened σ_c back.
+    pub(super) fn restore(&self, solver: &mut AdhesiveSolver) {
+        solver.set_critical_stresses(&self.base);
+    }
+}
+
+/// The last round's fields with the counters of all rounds.
+fn add_tangential(total: &mut TangentialReport, round: TangentialReport) {
+    let (rounds, iterations, pairs) = (total.rounds, total.cg_iterations, total.transform_pairs);
+    *total = round;
+    total.rounds += rounds;
+    total.cg_iterations += iterations;
+    total.transform_pairs += pairs;
+}
+
+/// The last normal step's forces and energies with the counters and releases of all.
+fn add_normal(total: &mut StepReport, round: StepReport) {
+    let first = total.solves == 0;
+    let mut sum = round;
+    sum.solves += total.solves;
+    sum.cg_iterations += total.cg_iterations;
+    sum.operator_applications += total.operator_applications;
+    sum.attachment_rounds += total.attachment_rounds;
+    sum.attached += total.attached;
+    sum.detached += total.detached;
+    sum.dissipated_energy += total.dissipated_energy;
+    if !first {
+        sum.force_before_change = total.force_before_change;
+        sum.energy_before_change = total.energy_before_change;
+    }
+    *total = sum;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weakening_follows_the_element_energy_balance() {
+        // ν = 1/2: r = 1.5 (Cerruti's self compliance is 3/2 of Love's).
+        let material = ShearMaterial::from_contact_modulus(4.0, 0.5);
+        assert_eq!(element_energy_ratio(material), 1.5);
+        // ν = 0: r = 1.
+        assert_eq!(element_energy_ratio(ShearMaterial::from_contact_modulus(2.0, 0.0)), 1.0);
+        // σ_c = 5, m = 1, r = 1.5, q² = 6 ⇒ σ_eff² = 25 − 9 = 16.
+        assert_eq!(shear_weakened_critical_stress(5.0, 6f64.sqrt(), 1.0, 1.5), 4.0);
+        // m = 0 leaves σ_c; a shear beyond the element's whole budget leaves 0.
+        assert_eq!(shear_weakened_critical_stress(5.0, 100.0, 0.0, 1.5), 5.0);
+        assert_eq!(shear_weakened_critical_stress(5.0, 100.0, 1.0, 1.5), 0.0);
+    }
+
+    #[test]
+    fn energy_ratio_is_the_ratio_of_the_operators_self_compliances() {
+        // The closed form r = (2 − ν)/(2(1 − ν)) against the discrete operators' own
+        // diagonals on square elements (Cerruti's and Love's coefficients, independent code),
+        // to rounding.
+        use crate::elastic::FreeOperator;
+        use crate::grid::{Boundary, Grid};
+        use crate::material::ElasticMaterial;
+        let grid = Grid::rectangular(8, 8, 0.8, 0.8, Boundary::Free).unwrap();
+        for poisson_ratio in [0.0, 0.3, 0.5] {
+            let normal = FreeOperator::new(grid, ElasticMaterial::from_youngs_modulus(3.0, poisson_ratio).unwrap());
+            let contact_modulus = normal.contact_modulus();
+            let material = ShearMaterial::from_contact_modulus(contact_modulus, poisson_ratio);
+            let tangential = TangentialOperator::new(grid, material).unwrap();
+            let ratio = tangential.self_compliance() / normal.self_compliance();
+            assert!(
+                (ratio / element_energy_ratio(material) - 1.0).abs() < 1e-12,
+                "ν = {poisson_ratio}: {ratio} vs {}",
+                element_energy_ratio(material)
+            );
+        }
+    }
+}

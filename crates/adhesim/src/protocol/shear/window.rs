@@ -1,0 +1,87 @@
+//! The window of the tangential problem: the contact's bounding box as a free grid.
+
+use crate::grid::{Boundary, Grid};
+use crate::protocol::ProtocolError;
+use crate::solver::ContactState;
+
+/// The contact's bounding box as a free grid of its own. The shear tractions vanish
+/// outside the contact and only the displacements on it enter the tangential problem, so
+/// the DC-FFT convolution on this window is the full grid's, restricted (the same
+/// coefficients; only the transforms' sizes, and so their rounding, differ), at a fraction
+/// of its cost.
+pub(super) struct ContactWindow {
+    pub(super) grid: Grid,
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+    nx: usize,
+}
+
+impl ContactWindow {
+    /// The window of `contact` on `grid`, widened by `margin` elements on each side where
+    /// the grid allows (at least 2×2 elements, as a grid needs).
+    pub(super) fn around(grid: &Grid, contact: &[bool], margin: usize) -> Result<Self, ProtocolError> {
+        let nx = grid.nx();
+        let (mut rows, mut columns) = ((usize::MAX, 0), (usize::MAX, 0));
+        for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
+            let (i, j) = (k / nx, k % nx);
+            rows = (rows.0.min(i), rows.1.max(i + 1));
+            columns = (columns.0.min(j), columns.1.max(j + 1));
+        }
+        let span = |(start, end): (usize, usize), n: usize| {
+            let (start, end) = if start >= end {
+                (0, 2)
+            } else {
+                (start.saturating_sub(margin), end + margin)
+            };
+            let end = end.max(start + 2).min(n);
+            end.saturating_sub(2).min(start)..end
+        };
+        let rows = span(rows, grid.ny());
+        let columns = span(columns, nx);
+        let window = Grid::rectangular(
+            columns.len(),
+            rows.len(),
+            columns.len() as f64 * grid.dx(),
+            rows.len() as f64 * grid.dy(),
+            Boundary::Free,
+        )
+        .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+        Ok(Self {
+            grid: window,
+            rows,
+            columns,
+            nx,
+        })
+    }
+
+    /// The normal state on the window (pressure and contact; the normal displacement is
+    /// not used by the tangential solve).
+    pub(super) fn gather(&self, state: &ContactState) -> ContactState {
+        let mut window = ContactState::new(&self.grid);
+        self.gather_into(state, &mut window);
+        window
+    }
+
+    /// As [`gather`](Self::gather), into `window`; false when some element in contact lies
+    /// outside the window (its state is then not all there).
+    pub(super) fn gather_into(&self, state: &ContactState, window: &mut ContactState) -> bool {
+        let mut inside = 0;
+        for (w, k) in self.elements() {
+            window.pressure[w] = state.pressure[k];
+            window.contact[w] = state.contact[k];
+            inside += usize::from(state.contact[k]);
+        }
+        inside == state.contact_elements()
+    }
+
+    /// (window index, grid index) of every window element, row-major.
+    pub(super) fn elements(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let width = self.columns.len();
+        self.rows.clone().enumerate().flat_map(move |(r, i)| {
+            self.columns
+                .clone()
+                .enumerate()
+                .map(move |(c, j)| (r * width + c, i * self.nx + j))
+        })
+    }
+}
