@@ -69,10 +69,7 @@ impl ValidScenario {
                 let p = &setup.protocol;
                 p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
             }
-            ProtocolSetup::Shear(setup) => {
-                let p = &setup.protocol;
-                p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
-            }
+            ProtocolSetup::Shear(setup) => setup.protocol.approach_steps + setup.protocol.shift_steps(),
         }
     }
 }

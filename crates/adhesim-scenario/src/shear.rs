@@ -2,7 +2,7 @@
 //! a [`ShearSetup`], and the `results` of a shear run.
 
 use crate::error::ScenarioError;
-use crate::guards::step_count;
+use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
 use crate::translation::{held_depth, ValidatedSections, DEFAULT_APPROACH_STEPS};
 use crate::validate::{finite, positive};
@@ -110,9 +110,25 @@ impl ScenarioFile {
             steps,
             direction,
             return_stroke: p.return_stroke.unwrap_or(false),
+            cycles: match p.cycles {
+                None => 0,
+                Some(cycles) => step_count("protocol.cycles", cycles)?,
+            },
             jump_force_threshold,
             mode_mixity,
         };
+        if protocol.shift_steps() > MAX_STEPS {
+            bail!(ScenarioError::invalid_as(
+                "protocol.cycles",
+                protocol.cycles,
+                format!("at most {MAX_STEPS} shift steps in all"),
+                format!(
+                    "protocol.steps = {steps} with protocol.cycles = {} makes {} shift steps, more than {MAX_STEPS}",
+                    protocol.cycles,
+                    protocol.shift_steps()
+                )
+            ));
+        }
         Ok(ValidScenario {
             file: self,
             grid,
@@ -264,6 +280,9 @@ pub struct ShearResults {
     pub contact_area_reduction: f64,
     /// Energy dissipated by friction over the run.
     pub frictional_dissipation: f64,
+    /// Energy dissipated by friction in the last fretting cycle (null without
+    /// `protocol.cycles`): Mindlin–Deresiewicz's loop energy.
+    pub fretting_dissipation_per_cycle: Option<f64>,
     /// Energy released by normal jumps on the approach.
     pub dissipated_energy: f64,
     /// The worst optimality conditions of any tangential step.
@@ -304,6 +323,7 @@ impl ShearResults {
             contact_area: summary.area,
             contact_area_reduction: area_reduction,
             frictional_dissipation: summary.frictional_dissipation,
+            fretting_dissipation_per_cycle: (protocol.cycles > 0).then_some(summary.last_cycle_dissipation),
             dissipated_energy: summary.dissipated_energy,
             complementarity: summary.complementarity,
             border_contact: summary.touches_border,

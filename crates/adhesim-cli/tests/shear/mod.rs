@@ -101,6 +101,67 @@ fn shear_run_follows_cattaneo_mindlin() {
 }
 
 #[test]
+fn fretting_loop_dissipates_the_mindlin_deresiewicz_energy() {
+    // scenarios/friction/fretting.toml: the sphere of scenarios/shear.toml (a = 40Δ,
+    // ν = 1/2, G = 1, μ = 0.3) cycled twice between ±0.6δ*.
+    // Mindlin & Deresiewicz (Johnson 1985 §7.4, rigid indenter): a cycle of amplitude Q*
+    // dissipates W = 9μ²P²(2 − ν)/(10Ga)·[1 − (1 − x)^{5/3} − (5x/6)(1 + (1 − x)^{2/3})],
+    // x = Q*/μP, with the run's P, a and Q*. Tolerance 3 % (the goal at a/Δ ≥ 32; the
+    // staircase edge of the slip annulus; measured −1.25 %). The loop closes: the force at
+    // −amplitude is −Q* to 1e-4, and the dissipation equals the loop's area ∮Q dδ within
+    // 0.5 % (the trapezoid rule over 48 steps).
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/friction/fretting.toml");
+    let out = dir.path().join("fretting");
+    let output = adhesim(&[
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let x = column_values(&header, &rows, "x");
+    let force = column_values(&header, &rows, "force_tangential");
+    let normal = column_values(&header, &rows, "force_normal");
+    let area = column_values(&header, &rows, "area");
+    let (approach, steps) = (20, 12);
+    assert_eq!(
+        rows.len(),
+        approach + steps * 9,
+        "forward stroke and two cycles of 4·steps"
+    );
+    let (start, end) = (approach + 5 * steps - 1, approach + 9 * steps - 1);
+    let amplitude = force[end];
+    assert!((x[end] - 0.0066).abs() < 1e-15 && (x[end - 2 * steps] + 0.0066).abs() < 1e-15);
+    assert!(
+        (force[end - 2 * steps] / amplitude + 1.0).abs() < 1e-4,
+        "the loop is symmetric"
+    );
+    let (mu, g, nu) = (0.3, 1.0, 0.5);
+    let (p, radius) = (normal[end], (area[end] / std::f64::consts::PI).sqrt());
+    let ratio = amplitude / (mu * p);
+    let expected = 9.0 * mu * mu * p * p * (2.0 - nu) / (10.0 * g * radius)
+        * (1.0 - (1.0 - ratio).powf(5.0 / 3.0) - 5.0 * ratio / 6.0 * (1.0 + (1.0 - ratio).powf(2.0 / 3.0)));
+    let results = read_json(&out.join("summary.json"))["results"].clone();
+    let dissipated = results["fretting_dissipation_per_cycle"]
+        .as_f64()
+        .expect("cycles give a loop energy");
+    assert!(
+        (dissipated / expected - 1.0).abs() < 0.03,
+        "loop energy {dissipated} vs Mindlin–Deresiewicz {expected}"
+    );
+    let loop_area: f64 = (start + 1..=end)
+        .map(|k| 0.5 * (force[k] + force[k - 1]) * (x[k] - x[k - 1]))
+        .sum();
+    assert!(
+        (loop_area / dissipated - 1.0).abs() < 0.005,
+        "∮Q dδ {loop_area} vs {dissipated}"
+    );
+}
+
+#[test]
 fn shear_strength_slides_at_tau0_times_area_with_tensile_elements() {
     // A JKR contact (γ0 > 0) has a tensile ring at its edge; the constant shear strength
     // bounds the traction there too, so in gross slip F_T = τ0·A exactly (to the solver's
@@ -214,7 +275,12 @@ fn adhesive_sphere_sheared_without_slip_shrinks_as_savkoor_briggs() {
 #[test]
 fn friction_errors_name_their_keys() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, String, &[&str]); 8] = [
+    let cases: [(&str, String, &[&str]); 9] = [
+        (
+            "cycles.toml",
+            shear_text("law = \"coulomb\"\ncoefficient = 0.3", 0.0).replace("steps = 24", "steps = 24\ncycles = 0"),
+            &["protocol.cycles", "0"],
+        ),
         (
             "mixity.toml",
             shear_text("law = \"no_slip\"\nmode_mixity = 1.5", 1e-3),

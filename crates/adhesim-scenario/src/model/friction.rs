@@ -76,9 +76,12 @@ pub struct ShearProtocol {
     /// Direction of the shift, degrees from +x (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<f64>,
-    /// Shift back to the start after the forward stroke.
+    /// Shift back to the start after the forward stroke (and the cycles).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub return_stroke: Option<bool>,
+    /// Fretting cycles between +distance and −distance after the forward stroke.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycles: Option<i64>,
 }
 
 /// A validated shear run: the library's protocol, the interface law and the half-space's

@@ -39,14 +39,26 @@ pub struct Shear {
     pub steps: usize,
     /// Direction of the shift in the plane, radians from +x.
     pub direction: f64,
-    /// Shift back to the start after the forward stroke.
+    /// Shift back to the start after the forward stroke (and the cycles).
     pub return_stroke: bool,
+    /// Fretting cycles after the forward stroke: each goes from +`distance` to −`distance`
+    /// and back in 4·`steps` steps (Mindlin & Deresiewicz 1953).
+    pub cycles: usize,
     /// A step is a jump when the normal force changes by more than this at fixed depth.
     pub jump_force_threshold: f64,
     /// Share m ∈ [0, 1] of an element's shear energy that counts toward its detachment
     /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion). Above 0
     /// it needs the JKR-type adhesive solver.
     pub mode_mixity: f64,
+}
+
+/// The part of the shift path a step belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stroke {
+    Forward,
+    /// The fretting cycle of this number (from 1).
+    Cycle(usize),
+    Return,
 }
 
 /// Elements of margin around the contact at rest in the window of a weakened shear, where
@@ -82,6 +94,8 @@ pub struct ShearSummary {
     pub area: f64,
     /// Energy dissipated by friction (Δ²Σ q·Δs over slipping elements, all steps).
     pub frictional_dissipation: f64,
+    /// Energy dissipated by friction in the last fretting cycle (0 without cycles).
+    pub last_cycle_dissipation: f64,
     /// Energy released by normal configuration changes (adhesive jumps) on the approach.
     pub dissipated_energy: f64,
     /// The worst optimality conditions met by any step.
@@ -159,14 +173,11 @@ impl Shear {
             }
         };
         let unit = [self.direction.cos(), self.direction.sin()];
-        let legs = if self.return_stroke { 2 } else { 1 };
         summary.normal_force = state.force(grid.element_area());
         summary.area = state.contact_elements() as f64 * grid.element_area();
-        for k in 1..=legs * self.steps {
-            let step = self.approach_steps + k - 1;
-            let forward = k <= self.steps;
-            let travelled = if forward { k } else { 2 * self.steps - k };
-            let shift = self.distance * travelled as f64 / self.steps as f64;
+        for (k, (shift, stroke)) in self.path().enumerate() {
+            let step = self.approach_steps + k;
+            let forward = stroke == Stroke::Forward;
             let displacement = [shift * unit[0], shift * unit[1]];
             previous.copy_from_slice(&state.contact);
             let (report, normal) = if let Some(edge) = edge.as_mut() {
@@ -217,6 +228,9 @@ impl Shear {
             summary.cg_iterations += report.cg_iterations;
             summary.tangential_rounds += report.rounds;
             summary.frictional_dissipation += report.dissipated_energy;
+            if stroke == Stroke::Cycle(self.cycles) {
+                summary.last_cycle_dissipation += report.dissipated_energy;
+            }
             worst(&mut summary.complementarity, report.complementarity);
             let mut record = self.record(
                 step,
@@ -247,6 +261,29 @@ impl Shear {
             edge.restore(adhesive);
         }
         Ok(summary)
+    }
+
+    /// Steps of the shift: the forward stroke, the cycles and the return.
+    pub fn shift_steps(&self) -> usize {
+        self.steps * (1 + 4 * self.cycles + usize::from(self.return_stroke))
+    }
+
+    /// The shift of every step after the approach, and the stroke it belongs to.
+    fn path(&self) -> impl Iterator<Item = (f64, Stroke)> + '_ {
+        let steps = self.steps as i64;
+        let shift = move |travelled: i64| self.distance * travelled as f64 / steps as f64;
+        let forward = (1..=steps).map(move |k| (shift(k), Stroke::Forward));
+        // A cycle: from +distance down to −distance and back up, 2·steps steps each way.
+        let cycles = (1..=self.cycles).flat_map(move |cycle| {
+            (1..=4 * steps).map(move |k| {
+                let travelled = if k <= 2 * steps { steps - k } else { k - 3 * steps };
+                (shift(travelled), Stroke::Cycle(cycle))
+            })
+        });
+        let back = (1..=steps)
+            .filter(move |_| self.return_stroke)
+            .map(move |k| (shift(steps - k), Stroke::Return));
+        forward.chain(cycles).chain(back)
     }
 
     /// The parameters are usable.
