@@ -39,8 +39,8 @@ def test_a_glued_adhesive_contact_shrinks_under_shear_with_mode_mixity():
     # scenarios/friction/adhesive_shear.toml (a0 = 36 elements): glued, mode mixity 1.
     # The stuck contact's stiffness is Mindlin's 8G*a within 1 % (the command-line test's
     # bound), and the contact loses area at the end of the stroke as Savkoor & Briggs'
-    # balance says, 1 − (a/a0)² = 0.0970, within 20 % (the mesh error at 36 elements is
-    # +13 %, docs/validation.md §17.1).
+    # balance says, 1 − (a/a0)² = 0.0970, within 20 % (the local rule loses 1.13× the
+    # balance's area at 36 elements, 1.055× at 144, docs/validation.md §17.1).
     result = adhesim.run(REPO / "scenarios" / "friction" / "adhesive_shear.toml")
     curve = result.curve
     shear = curve[curve["phase"] == "shear"]
