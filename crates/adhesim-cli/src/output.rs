@@ -5,7 +5,7 @@
 
 use crate::{plots, tangential_plots};
 use adhesim::analysis::reference::{Hertz, Jkr};
-use adhesim::{Grid, Profile, StepRecord, TranslationSummary};
+use adhesim::{Grid, Profile, SlipStatus, StepRecord, TranslationSummary};
 use adhesim_scenario::output::observer::{CapturedStep, RunPictures, RunProgress};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
 use anyhow::Result;
@@ -18,6 +18,7 @@ const STAYING: [u8; 3] = [70, 70, 70];
 const ATTACHED: [u8; 3] = [215, 25, 28];
 const DETACHED: [u8; 3] = [30, 90, 220];
 const FREE: [u8; 3] = [255, 255, 255];
+const SLIPPING: [u8; 3] = [240, 140, 20];
 
 /// The progress bar (hidden when quiet or when stderr is not a terminal) with the
 /// current depth and force, normalised by the JKR scales where they exist.
@@ -85,6 +86,10 @@ impl RunPictures for CliPictures {
         write_contact_map(path, grid, contact, previous)
     }
 
+    fn slip_map(&self, path: &Path, grid: &Grid, status: &[SlipStatus]) -> Result<()> {
+        write_slip_map(path, grid, status)
+    }
+
     fn figures(
         &self,
         scenario: &ValidScenario,
@@ -126,6 +131,27 @@ fn write_contact_map(path: &Path, grid: &Grid, contact: &[bool], previous: &[boo
         };
     }
     let legend = [(STAYING, "in contact"), (ATTACHED, "attached"), (DETACHED, "detached")];
+    let pixels_per_length = scale as f64 / grid.dx();
+    let keyed = crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?;
+    crate::figure::files::save_image(&keyed, path)
+}
+
+/// A PNG map of a shear step: sticking elements dark grey, slipping ones orange, open white,
+/// with a key; blocks as in [`write_contact_map`].
+fn write_slip_map(path: &Path, grid: &Grid, status: &[SlipStatus]) -> Result<()> {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let scale = pixel_scale(nx.max(ny));
+    let scale_y = ((scale as f64 * grid.dy() / grid.dx()).round() as usize).max(1);
+    let mut image = image::RgbImage::new((nx * scale) as u32, (ny * scale_y) as u32);
+    for (px, py, pixel) in image.enumerate_pixels_mut() {
+        let row = ny - 1 - py as usize / scale_y;
+        pixel.0 = match status[row * nx + px as usize / scale] {
+            SlipStatus::Stick => STAYING,
+            SlipStatus::Slip => SLIPPING,
+            SlipStatus::Open => FREE,
+        };
+    }
+    let legend = [(STAYING, "stick"), (SLIPPING, "slip")];
     let pixels_per_length = scale as f64 / grid.dx();
     let keyed = crate::map_key::with_key(&image, pixels_per_length, crate::map_key::Legend::Categories(&legend))?;
     crate::figure::files::save_image(&keyed, path)

@@ -420,3 +420,65 @@ fn a_translation_reports_the_gap_of_the_moved_profile() {
         assert!(target > 0.0 && residual.sqrt() <= 2e-6 * target.sqrt(), "step {step}");
     }
 }
+
+#[test]
+fn a_shear_writes_its_tangential_fields_and_slip_map() {
+    // scenarios/shear.toml with a snapshot in partial slip (step 32, Q/μP = 0.80): the
+    // stacked shear fields agree with curve.csv exactly where they are the same numbers
+    // (stick/slip counts) and to rounding where the curve sums them (Δ²Σq_x = F_T, 1e-12),
+    // an approach step has no shear and sticks, and the snapshot has its stick/slip map.
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/shear.toml");
+    let out = dir.path().join("out");
+    let output = Command::new(BIN)
+        .args([
+            "run",
+            scenario.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .args(["--set", "output.snapshot_steps=[10, 32]"])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(out.join("snapshots/step_000032_slip.png").exists());
+    assert!(
+        !out.join("snapshots/step_000010_slip.png").exists(),
+        "an approach step has no slip map"
+    );
+    let arrays = read_npz(&out.join("fields.npz"));
+    let (header, rows) = curve(&out.join("curve.csv"));
+    let column = |name: &str, step: usize| -> f64 {
+        let index = header.iter().position(|h| h == name).unwrap();
+        rows[step][index].parse().unwrap()
+    };
+    let cells = 128 * 128;
+    let element_area = (0.5f64 / 128.0).powi(2);
+    for step in [10usize, 32] {
+        let index = arrays["step"].values.iter().position(|&s| s as usize == step).unwrap();
+        let at = |name: &str| &arrays[name].values[index * cells..(index + 1) * cells];
+        assert_eq!(arrays["slip_state"].descr, "<i8");
+        let count = |code: f64| at("slip_state").iter().filter(|&&s| s == code).count() as f64;
+        let contact = at("contact").iter().filter(|&&c| c == 1.0).count() as f64;
+        assert_eq!(count(1.0) + count(2.0), contact, "step {step}: stick + slip = contact");
+        let force: f64 = element_area * at("shear_traction_x").iter().sum::<f64>();
+        if step == 10 {
+            assert_eq!((count(1.0), count(2.0), force), (contact, 0.0, 0.0));
+        } else {
+            assert_eq!(count(1.0), column("n_stick", step));
+            assert_eq!(count(2.0), column("n_slip", step));
+            assert!(count(1.0) > 0.0 && count(2.0) > 0.0, "partial slip");
+            let expected = column("force_tangential", step);
+            assert!(
+                (force / expected - 1.0).abs() < 1e-12,
+                "Δ²Σq_x {force} vs F_T {expected}"
+            );
+            let slip_outside = at("slip_x")
+                .iter()
+                .zip(at("slip_state"))
+                .any(|(&s, &state)| state == 0.0 && s != 0.0);
+            assert!(!slip_outside, "no slip off contact");
+        }
+    }
+}

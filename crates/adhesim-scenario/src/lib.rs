@@ -53,6 +53,7 @@ mod results;
 mod roughness;
 mod sections;
 mod shear;
+mod snapshot_shear;
 mod snapshots;
 mod summary;
 pub mod sweep;

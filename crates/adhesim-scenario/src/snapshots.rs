@@ -6,6 +6,7 @@
 //! `docs/output.md`, "fields.npz"). Files are the callers' business: they write the arrays
 //! with `adhesim_topography::write_npz`.
 
+use crate::snapshot_shear::ShearStacked;
 use crate::{ProtocolSetup, ValidScenario};
 use adhesim::{StepView, TranslatingContact};
 use adhesim_topography::NamedArray;
@@ -84,6 +85,9 @@ pub struct FieldSnapshot {
     /// The contact set.
     #[serde(with = "adhesim::protocol::bit_string")]
     pub contact: Vec<bool>,
+    /// The tangential fields of a shear's shift step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear: Option<adhesim::ShearFields>,
 }
 
 impl FieldSnapshot {
@@ -95,6 +99,7 @@ impl FieldSnapshot {
             pressure: view.state.pressure.clone(),
             displacement: view.state.displacement.clone(),
             contact: view.state.contact.clone(),
+            shear: view.shear.cloned(),
         }
     }
 
@@ -105,6 +110,10 @@ impl FieldSnapshot {
         self.pressure.copy_from_slice(&view.state.pressure);
         self.displacement.copy_from_slice(&view.state.displacement);
         self.contact.copy_from_slice(&view.state.contact);
+        match (&mut self.shear, view.shear) {
+            (Some(kept), Some(fields)) => kept.clone_from(fields),
+            (kept, fields) => *kept = fields.cloned(),
+        }
     }
 }
 
@@ -201,6 +210,8 @@ pub struct SnapshotFields {
     /// The step numbers and the fields stacked along the step axis, (K, Ny, Nx).
     step: Vec<i64>,
     stacked: Stacked,
+    /// The tangential fields of a shear, stacked the same way.
+    shear: Option<ShearStacked>,
 }
 
 /// The snapshot fields stacked along the step axis, (K, Ny, Nx), row-major.
@@ -272,6 +283,7 @@ impl SnapshotFields {
                 .collect(),
             step: snapshots.iter().map(|s| s.step as i64).collect(),
             stacked: Stacked::of(&snapshots, &gaps),
+            shear: matches!(scenario.protocol_setup(), ProtocolSetup::Shear(_)).then(|| ShearStacked::of(&snapshots)),
             snapshots,
             gaps,
         }
@@ -366,7 +378,15 @@ impl SnapshotFields {
             NamedArray::f64("gap", by_step, &stacked.gap).with_unit("length"),
             NamedArray::bool("contact", by_step, &stacked.contact),
         ]);
+        if let Some(shear) = &self.shear {
+            arrays.extend(shear.arrays(by_step));
+        }
         arrays
+    }
+
+    /// The tangential fields of a shear, stacked (None for other runs).
+    pub fn shear(&self) -> Option<&ShearStacked> {
+        self.shear.as_ref()
     }
 
     /// The shapes of the arrays: (Nx,), (Ny,), (Ny, Nx) (rows along y) and (K,).

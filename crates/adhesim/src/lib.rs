@@ -101,7 +101,7 @@ pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
     IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
-    Shear, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint,
+    Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint,
     TranslationSummary,
 };
 pub use solver::{

@@ -72,7 +72,7 @@ fn write_fields_nc(path: &Path, fields: &SnapshotFields) -> Result<(), adhesim_t
         pairs.iter().map(|(k, v)| (*k, v.to_string())).collect()
     };
     let field_attrs = |long_name: &str| text(&[("long_name", long_name), ("coordinates", "depth offset")]);
-    let variables = vec![
+    let mut variables = vec![
         var(
             NamedArray::i64("step", &k_shape, fields.steps()),
             &["step"],
@@ -135,6 +135,18 @@ fn write_fields_nc(path: &Path, fields: &SnapshotFields) -> Result<(), adhesim_t
             field_attrs("contact set (1 in contact, 0 outside)"),
         ),
     ];
+    if let Some(shear) = fields.shear() {
+        let meanings = [
+            "shear traction q_x on the body",
+            "shear traction q_y on the body",
+            "accumulated slip s_x (the sum of slip increments)",
+            "accumulated slip s_y",
+            "0 open, 1 stick, 2 slip",
+        ];
+        for (array, meaning) in shear.arrays(&stack).into_iter().zip(meanings) {
+            variables.push(var(array, &["step", "y", "x"], field_attrs(meaning)));
+        }
+    }
     let revision = adhesim::RESULTS_REVISION.to_string();
     let globals = [
         ("Conventions", "CF-1.8"),

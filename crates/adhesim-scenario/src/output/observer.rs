@@ -28,6 +28,8 @@ pub type CapturedStep = (usize, Vec<bool>, Vec<bool>);
 pub trait RunPictures: Sync {
     /// Writes the contact map of one step (`contact` against `previous`) as a PNG at `path`.
     fn contact_map(&self, path: &Path, grid: &Grid, contact: &[bool], previous: &[bool]) -> Result<()>;
+    /// Writes the stick/slip/open map of a shift step of a shear as a PNG at `path`.
+    fn slip_map(&self, path: &Path, grid: &Grid, status: &[adhesim::SlipStatus]) -> Result<()>;
     /// Writes the figures of a finished run into `dir` (`plots/`); returns their names
     /// relative to the run folder.
     fn figures(
@@ -269,6 +271,14 @@ impl<'a> RunObserver<'a> {
         if self.plan.is_chosen(step) {
             let name = SnapshotPlan::step_name(step);
             self.snapshot(&name, &view.state.contact, view.previous_contact)?;
+            if let (Some(pictures), Some(shear)) = (self.pictures, view.shear) {
+                pictures.slip_map(
+                    &self.snapshots.join(format!("{name}_slip.png")),
+                    &self.grid,
+                    &shear.status,
+                )?;
+                self.snapshot_files.push(format!("snapshots/{name}_slip.png"));
+            }
             write_field(
                 &self.snapshots.join(format!("{name}_pressure.npy")),
                 n,

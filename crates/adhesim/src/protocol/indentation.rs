@@ -186,6 +186,7 @@ impl IndentPulloff {
             record: &record,
             state,
             previous_contact: previous,
+            shear: None,
         }) {
             return Err(ProtocolError::Interrupted(step));
         }

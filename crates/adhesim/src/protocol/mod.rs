@@ -11,7 +11,9 @@ mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{IndentPulloff, ProtocolSummary};
-pub use shear::{contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearSummary};
+pub use shear::{
+    contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearFields, ShearSummary,
+};
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
@@ -154,6 +156,8 @@ pub struct StepView<'a> {
     pub state: &'a ContactState,
     /// The contact set at the start of the step (to mark attached/detached elements).
     pub previous_contact: &'a [bool],
+    /// The tangential fields of a shift step of a shear (None otherwise).
+    pub shear: Option<&'a ShearFields>,
 }
 
 /// Receives every step of a protocol; returning `ControlFlow::Break` stops the protocol.

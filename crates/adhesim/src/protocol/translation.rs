@@ -145,6 +145,7 @@ impl Translation {
                 record: &record,
                 state: &run.state,
                 previous_contact: &previous,
+                shear: None,
             }) {
                 return Err(ProtocolError::Interrupted(step));
             }

@@ -5,6 +5,7 @@ mod edge;
 mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
+pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
@@ -153,7 +154,7 @@ impl Shear {
             );
             let (stick, front, rear) = contact_split(&grid, &state.contact, self.direction);
             (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
-            self.report(&mut summary, &record, &state, &previous, observer)?;
+            self.report(&mut summary, &record, (&state, &previous, None), observer)?;
         }
         let weakened = self.mode_mixity > 0.0;
         let margin = if weakened { WEAKENED_WINDOW_MARGIN } else { 0 };
@@ -162,6 +163,7 @@ impl Shear {
         let mut shear_operator = TangentialOperator::new(window.grid, material)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         let mut tangential = TangentialState::new(window.grid.len());
+        let mut fields = ShearFields::new(grid.len());
         let mut edge = match (weakened, solver.as_adhesive_mut()) {
             (false, _) => None,
             (true, Some(adhesive)) => Some(EdgeWeakening::new(adhesive, material, self.mode_mixity, &window)),
@@ -255,7 +257,8 @@ impl Shear {
                 summary.normal_force = record.force_normal;
                 summary.area = record.area;
             }
-            self.report(&mut summary, &record, &state, &previous, observer)?;
+            window.scatter(&tangential, &mut fields);
+            self.report(&mut summary, &record, (&state, &previous, Some(&fields)), observer)?;
         }
         if let (Some(edge), Some(adhesive)) = (edge, solver.as_adhesive_mut()) {
             edge.restore(adhesive);
@@ -338,21 +341,23 @@ impl Shear {
         )
     }
 
-    /// Totals, then the observer.
+    /// Totals, then the observer; `view` is the normal state, the contact at the step's
+    /// start and the tangential fields of a shift step.
     fn report(
         &self,
         summary: &mut ShearSummary,
         record: &StepRecord,
-        state: &ContactState,
-        previous: &[bool],
+        view: (&ContactState, &[bool], Option<&ShearFields>),
         observer: &mut dyn Observer,
     ) -> Result<(), ProtocolError> {
+        let (state, previous, shear) = view;
         summary.steps += 1;
         summary.touches_border |= record.touches_border;
         match observer.on_step(StepView {
             record,
             state,
             previous_contact: previous,
+            shear,
         }) {
             ControlFlow::Continue(()) => Ok(()),
             ControlFlow::Break(()) => Err(ProtocolError::Interrupted(record.step)),

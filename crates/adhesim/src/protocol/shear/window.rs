@@ -2,7 +2,32 @@
 
 use crate::grid::{Boundary, Grid};
 use crate::protocol::ProtocolError;
-use crate::solver::ContactState;
+use crate::solver::{ContactState, SlipStatus, TangentialState};
+
+/// The tangential fields of a shift step on the whole grid, row-major (no traction, no
+/// slip and open outside the window of the tangential problem).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ShearFields {
+    /// Shear traction (q_x, q_y) on the body.
+    pub traction: [Vec<f64>; 2],
+    /// Accumulated slip (s_x, s_y): the sum of each element's slip increments.
+    pub slip: [Vec<f64>; 2],
+    /// Open, stick or slip.
+    pub status: Vec<SlipStatus>,
+}
+
+impl ShearFields {
+    /// No traction, no slip, all open, on `elements` elements.
+    pub fn new(elements: usize) -> Self {
+        let zeros = || [vec![0.0; elements], vec![0.0; elements]];
+        Self {
+            traction: zeros(),
+            slip: zeros(),
+            status: vec![SlipStatus::Open; elements],
+        }
+    }
+}
 
 /// The contact's bounding box as a free grid of its own. The shear tractions vanish
 /// outside the contact and only the displacements on it enter the tangential problem, so
@@ -72,6 +97,18 @@ impl ContactWindow {
             inside += usize::from(state.contact[k]);
         }
         inside == state.contact_elements()
+    }
+
+    /// Copies the window's tangential state into `fields` on the whole grid (which is
+    /// zero and open outside the window from [`ShearFields::new`]).
+    pub(super) fn scatter(&self, state: &TangentialState, fields: &mut ShearFields) {
+        for (w, k) in self.elements() {
+            for c in 0..2 {
+                fields.traction[c][k] = state.traction[c][w];
+                fields.slip[c][k] = state.slip[c][w];
+            }
+            fields.status[k] = state.status[w];
+        }
     }
 
     /// (window index, grid index) of every window element, row-major.
