@@ -115,6 +115,7 @@ impl ScenarioFile {
                 Some(cycles) => step_count("protocol.cycles", cycles)?,
             },
             jump_force_threshold,
+            incline: incline(p.incline)?,
             mode_mixity,
         };
         if protocol.shift_steps() > MAX_STEPS {
@@ -238,6 +239,19 @@ fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
     Ok(built?)
 }
 
+/// `protocol.incline` in radians (default 0): strictly between −90 and 90 degrees.
+fn incline(degrees: Option<f64>) -> Result<f64> {
+    let degrees = degrees.unwrap_or(0.0);
+    if !(degrees.is_finite() && degrees.abs() < 90.0) {
+        bail!(ScenarioError::invalid(
+            "protocol.incline",
+            degrees,
+            "strictly between -90 and 90 (degrees from the surface; > 0 into the body)"
+        ));
+    }
+    Ok(degrees.to_radians())
+}
+
 /// `friction.mode_mixity` (default 0): in [0, 1], and above 0 only where there is an
 /// adhesive edge to weaken.
 fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> {
@@ -283,6 +297,11 @@ pub struct ShearResults {
     /// Energy dissipated by friction in the last fretting cycle (null without
     /// `protocol.cycles`): Mindlin–Deresiewicz's loop energy.
     pub fretting_dissipation_per_cycle: Option<f64>,
+    /// The most tensile normal force during the shift (the pull-off force of an inclined
+    /// path out of the body).
+    pub min_normal_force: f64,
+    /// The shift at which an inclined path lost the contact (null while in contact).
+    pub contact_lost_at_shift: Option<f64>,
     /// Energy released by normal jumps on the approach.
     pub dissipated_energy: f64,
     /// The worst optimality conditions of any tangential step.
@@ -324,6 +343,8 @@ impl ShearResults {
             contact_area_reduction: area_reduction,
             frictional_dissipation: summary.frictional_dissipation,
             fretting_dissipation_per_cycle: (protocol.cycles > 0).then_some(summary.last_cycle_dissipation),
+            min_normal_force: summary.min_normal_force,
+            contact_lost_at_shift: summary.contact_lost_at,
             dissipated_energy: summary.dissipated_energy,
             complementarity: summary.complementarity,
             border_contact: summary.touches_border,

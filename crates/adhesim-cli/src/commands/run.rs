@@ -187,8 +187,14 @@ fn print_shear(summary: &ShearSummary, outcome: &RunOutcome, wall_seconds: f64) 
     }
     if results.contact_area_reduction != 1.0 {
         outln!(
-            "  contact area at the peak / at rest = {:.4} (the shear weakened the edge)",
+            "  contact area at the peak / at rest = {:.4}",
             results.contact_area_reduction
+        );
+    }
+    if let Some(shift) = results.contact_lost_at_shift {
+        outln!(
+            "  contact lost at shift {shift:.4e}; most tensile normal force {:.4e}",
+            results.min_normal_force
         );
     }
     outln!(

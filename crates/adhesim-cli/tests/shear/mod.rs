@@ -162,6 +162,65 @@ fn fretting_loop_dissipates_the_mindlin_deresiewicz_energy() {
 }
 
 #[test]
+fn oblique_loading_follows_mindlin_deresiewicz_without_gross_slip() {
+    // scenarios/friction/oblique.toml: pressed in and shifted at once at tan θ = 1/0.3,
+    // the contact growing from a = 10Δ to 40Δ (the tangential window widens with it).
+    // Mindlin & Deresiewicz's oblique loading (Johnson 1985 §7.2): new contact sticks with
+    // no traction, each stuck circle adds 8G*a dδ, so Q = (16/3)G*√R·cot θ·(d^{3/2} −
+    // d0^{3/2}) and Q/P → 4G* cot θ/E* = 0.2 < μ = 0.3. From a = 20Δ on (the first steps
+    // attach two or three rings at once): Q within 2 % (measured +1.9 % at 20Δ, +1.0 % at
+    // 30Δ, +0.6 % at 40Δ: an excess fixed in the first steps, shrinking as Q grows), and
+    // slip only at the edge, where the pressure and so the Coulomb bound vanish: at most
+    // one ring's worth of elements, 2πa/Δ (measured 80–124 against 126–251). At the end the
+    // normal force is Hertz's within 0.5 % and Q/P is 0.2 within 2 %.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("oblique");
+    let scenario = repo().join("scenarios/friction/oblique.toml");
+    let output = adhesim(&[
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let depth = column_values(&header, &rows, "d");
+    let tangential = column_values(&header, &rows, "force_tangential");
+    let normal = column_values(&header, &rows, "force_normal");
+    let contact = column_values(&header, &rows, "n_contact");
+    let slip = column_values(&header, &rows, "n_slip");
+    let (mindlin_modulus, contact_modulus, cot, element) = (2.0 / 3.0, 4.0, 0.3, 0.5 / 128.0);
+    let start = depth[19];
+    let last = rows.len() - 1;
+    assert!((depth[last] - 0.0244140625).abs() < 1e-12, "the path ends at a = 40Δ");
+    for k in 20..rows.len() {
+        if depth[k].sqrt() < 20.0 * element {
+            // The first steps attach two or three rings at once: their inner parts take
+            // a share of the step's shift before their pressure has grown, and slip.
+            continue;
+        }
+        let expected = 16.0 / 3.0 * mindlin_modulus * cot * (depth[k].powf(1.5) - start.powf(1.5));
+        assert!(
+            (tangential[k] / expected - 1.0).abs() < 0.02,
+            "row {k}: Q {} vs {expected}",
+            tangential[k]
+        );
+        let ring = 2.0 * std::f64::consts::PI * depth[k].sqrt() / element;
+        assert!(
+            slip[k] <= ring,
+            "row {k}: {} of {} slip, more than a ring ({ring:.0})",
+            slip[k],
+            contact[k]
+        );
+    }
+    let hertz = 4.0 / 3.0 * contact_modulus * depth[last].powf(1.5);
+    assert!((normal[last] / hertz - 1.0).abs() < 0.005);
+    let ratio = tangential[last] / normal[last];
+    assert!((ratio / 0.2 - 1.0).abs() < 0.02, "Q/P {ratio}");
+}
+
+#[test]
 fn shear_strength_slides_at_tau0_times_area_with_tensile_elements() {
     // A JKR contact (γ0 > 0) has a tensile ring at its edge; the constant shear strength
     // bounds the traction there too, so in gross slip F_T = τ0·A exactly (to the solver's
@@ -276,7 +335,12 @@ fn adhesive_sphere_sheared_without_slip_shrinks_as_savkoor_briggs() {
 #[test]
 fn friction_errors_name_their_keys() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, String, &[&str]); 9] = [
+    let cases: [(&str, String, &[&str]); 10] = [
+        (
+            "incline.toml",
+            shear_text("law = \"coulomb\"\ncoefficient = 0.3", 0.0).replace("steps = 24", "steps = 24\nincline = 90.0"),
+            &["protocol.incline", "90"],
+        ),
         (
             "cycles.toml",
             shear_text("law = \"coulomb\"\ncoefficient = 0.3", 0.0).replace("steps = 24", "steps = 24\ncycles = 0"),

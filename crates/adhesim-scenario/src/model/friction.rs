@@ -79,6 +79,9 @@ pub struct ShearProtocol {
     /// Shift back to the start after the forward stroke (and the cycles).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub return_stroke: Option<bool>,
+    /// Angle of the indenter's path to the surface, degrees (> 0 into the body; default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub incline: Option<f64>,
     /// Fretting cycles between +distance and −distance after the forward stroke.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cycles: Option<i64>,

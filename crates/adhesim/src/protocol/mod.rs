@@ -227,15 +227,6 @@ pub enum ProtocolError {
         /// Rounds done.
         rounds: usize,
     },
-    /// Under a shear-weakened edge the contact grew out of the window the tangential
-    /// problem is solved on.
-    #[error("step {step} (shift {shift:e}): the contact grew beyond the window of the tangential problem (the contact at rest and a margin); the shear protocol assumes a contact that does not grow while it is sheared")]
-    ContactOutsideShearWindow {
-        /// Step at which it happened.
-        step: usize,
-        /// The indenter's shift at that step.
-        shift: f64,
-    },
     /// The observer asked to stop.
     #[error("stopped by the observer at step {0}")]
     Interrupted(usize),

@@ -12,10 +12,10 @@
 //! release rate (1977, Proc. R. Soc. A 356, 103), so m = 1 is their brittle criterion and
 //! m = 0 leaves the edge as it is (Johnson 1997, Proc. R. Soc. A 453, 163).
 
-use super::window::ContactWindow;
+use super::window::{ContactWindow, TangentialRoom};
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::{ElasticOperator, TangentialOperator};
-use crate::protocol::ProtocolError;
+use crate::elastic::ElasticOperator;
+use crate::protocol::{NormalSolver, ProtocolError};
 use crate::solver::{AdhesiveSolver, ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
 
 /// Rounds of tangential solve and weakened normal step per shift step before giving up.
@@ -41,22 +41,14 @@ pub fn element_energy_ratio(material: ShearMaterial) -> f64 {
     (2.0 - nu) / (2.0 * (1.0 - nu))
 }
 
-/// The normal side of a weakened shift step: the half-space, the indenter held at `depth`
-/// and the JKR-type solver whose σ_c the shear lowers.
+/// The normal side of a shift step: the half-space, the indenter at `depth` and the
+/// normal solver (the JKR-type one when the shear weakens the edge).
 pub(super) struct NormalSide<'a, O: ElasticOperator + ?Sized> {
     pub operator: &'a mut O,
     pub heights: &'a [f64],
     pub depth: f64,
-    pub solver: &'a mut AdhesiveSolver,
+    pub solver: &'a mut NormalSolver,
     pub state: &'a mut ContactState,
-}
-
-/// The tangential side: the contact's window, its operator, solver and state.
-pub(super) struct TangentialSide<'a> {
-    pub window: &'a ContactWindow,
-    pub operator: &'a mut TangentialOperator,
-    pub solver: &'a mut TangentialSolver,
-    pub state: &'a mut TangentialState,
 }
 
 /// What a weakened shift step did: the final tangential solve (with the counters of all
@@ -102,19 +94,22 @@ impl EdgeWeakening {
 
     /// One shift step to `shift` with the edge weakened by its shear: solve the tangential
     /// problem on the contact, lower σ_c of each contact element by its traction (never
-    /// raising it within the step), redo the normal step at the held depth, and repeat
+    /// raising it within the step), redo the normal step at the step's depth, and repeat
     /// until the contact set no longer changes. Each step starts from the unweakened σ_c,
     /// so an element released in an earlier step may attach again if it holds without the
     /// shear it would carry.
     pub(super) fn step<O: ElasticOperator + ?Sized>(
         &mut self,
         normal: NormalSide<'_, O>,
-        tangential: TangentialSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
         shift: [f64; 2],
         step: usize,
     ) -> Result<WeakenedStep, ProtocolError> {
         let along = shift[0].hypot(shift[1]);
-        self.saved.clone_from(tangential.state);
+        let Some(solver) = normal.solver.as_adhesive_mut() else {
+            unreachable!("the shear checks for the adhesive solver before its shift")
+        };
         self.weakened.copy_from_slice(&self.base);
         let mut total = WeakenedStep {
             tangential: TangentialReport::default(),
@@ -131,24 +126,31 @@ impl EdgeWeakening {
                     rounds: MAX_ROUNDS,
                 });
             }
-            if !tangential.window.gather_into(normal.state, &mut self.window_state) {
-                return Err(ProtocolError::ContactOutsideShearWindow { step, shift: along });
+            if total.rounds > 1 {
+                // Every round restarts from the step's starting fields.
+                room.state.clone_from(&self.saved);
             }
-            tangential.state.clone_from(&self.saved);
-            let report = tangential
-                .solver
-                .step(tangential.operator, &self.window_state, shift, tangential.state)
+            let widened = room.cover(&normal.state.contact)?;
+            total.tangential.transform_pairs += widened;
+            if total.rounds == 1 || widened > 0 {
+                self.saved.clone_from(&room.state);
+            }
+            if self.window_state.contact.len() != room.window.grid.len() {
+                self.window_state = ContactState::new(&room.window.grid);
+            }
+            room.window.gather_into(normal.state, &mut self.window_state);
+            let report = friction
+                .step(&mut room.operator, &self.window_state, shift, &mut room.state)
                 .map_err(|source| ProtocolError::Tangential {
                     step,
                     shift: along,
                     source,
                 })?;
             add_tangential(&mut total.tangential, report);
-            self.weaken(tangential.window, tangential.state);
-            normal.solver.set_critical_stresses(&self.weakened);
+            self.weaken(&room.window, &room.state);
+            solver.set_critical_stresses(&self.weakened);
             before.copy_from_slice(&normal.state.contact);
-            let report = normal
-                .solver
+            let report = solver
                 .step(normal.operator, normal.heights, normal.depth, normal.state)
                 .map_err(|source| ProtocolError::Solve {
                     step,
@@ -230,7 +232,7 @@ mod tests {
         // The closed form r = (2 − ν)/(2(1 − ν)) against the discrete operators' own
         // diagonals on square elements (Cerruti's and Love's coefficients, independent code),
         // to rounding.
-        use crate::elastic::FreeOperator;
+        use crate::elastic::{FreeOperator, TangentialOperator};
         use crate::grid::{Boundary, Grid};
         use crate::material::ElasticMaterial;
         let grid = Grid::rectangular(8, 8, 0.8, 0.8, Boundary::Free).unwrap();

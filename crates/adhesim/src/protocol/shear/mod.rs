@@ -2,6 +2,7 @@
 //! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §8).
 
 mod edge;
+mod shift;
 mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
@@ -9,12 +10,12 @@ pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::{ElasticOperator, TangentialOperator};
+use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
-use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver, TangentialState};
-use edge::{EdgeWeakening, NormalSide, TangentialSide};
+use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
+use edge::NormalSide;
+use shift::ShiftStepper;
 use std::ops::ControlFlow;
-use window::ContactWindow;
 
 /// Indent to `depth` in `approach_steps` displacement steps, then shift the indenter by
 /// `distance` along the in-plane angle `direction` in `steps` quasi-static steps at fixed
@@ -47,6 +48,9 @@ pub struct Shear {
     pub cycles: usize,
     /// A step is a jump when the normal force changes by more than this at fixed depth.
     pub jump_force_threshold: f64,
+    /// Angle of the indenter's path to the surface, radians: each step moves it
+    /// `tan(incline)` into the body per unit of shift (out of it below 0; 0 keeps the depth).
+    pub incline: f64,
     /// Share m ∈ [0, 1] of an element's shear energy that counts toward its detachment
     /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion). Above 0
     /// it needs the JKR-type adhesive solver.
@@ -61,11 +65,6 @@ enum Stroke {
     Cycle(usize),
     Return,
 }
-
-/// Elements of margin around the contact at rest in the window of a weakened shear, where
-/// the contact may move a little (it shrinks under shear; growth beyond the margin is an
-/// error, [`ProtocolError::ContactOutsideShearWindow`]).
-const WEAKENED_WINDOW_MARGIN: usize = 4;
 
 /// Totals of a shear run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -97,6 +96,11 @@ pub struct ShearSummary {
     pub frictional_dissipation: f64,
     /// Energy dissipated by friction in the last fretting cycle (0 without cycles).
     pub last_cycle_dissipation: f64,
+    /// The most tensile (smallest) normal force during the shift: the pull-off force of an
+    /// inclined path out of the body.
+    pub min_normal_force: f64,
+    /// The shift at which an inclined path lost the contact (the run stops there).
+    pub contact_lost_at: Option<f64>,
     /// Energy released by normal configuration changes (adhesive jumps) on the approach.
     pub dissipated_energy: f64,
     /// The worst optimality conditions met by any step.
@@ -156,75 +160,44 @@ impl Shear {
             (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
             self.report(&mut summary, &record, (&state, &previous, None), observer)?;
         }
-        let weakened = self.mode_mixity > 0.0;
-        let margin = if weakened { WEAKENED_WINDOW_MARGIN } else { 0 };
-        let window = ContactWindow::around(&grid, &state.contact, margin)?;
-        let normal = window.gather(&state);
-        let mut shear_operator = TangentialOperator::new(window.grid, material)
-            .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
-        let mut tangential = TangentialState::new(window.grid.len());
+        let inclined = self.incline != 0.0;
+        let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, solver)?;
         let mut fields = ShearFields::new(grid.len());
-        let mut edge = match (weakened, solver.as_adhesive_mut()) {
-            (false, _) => None,
-            (true, Some(adhesive)) => Some(EdgeWeakening::new(adhesive, material, self.mode_mixity, &window)),
-            (true, None) => {
-                return Err(ProtocolError::InvalidParameter(format!(
-                    "mode_mixity ({}) weakens an adhesive edge: it needs the JKR-type adhesive solver",
-                    self.mode_mixity
-                )))
-            }
-        };
         let unit = [self.direction.cos(), self.direction.sin()];
+        let slope = self.incline.tan();
         summary.normal_force = state.force(grid.element_area());
         summary.area = state.contact_elements() as f64 * grid.element_area();
+        summary.min_normal_force = summary.normal_force;
         for (k, (shift, stroke)) in self.path().enumerate() {
             let step = self.approach_steps + k;
             let forward = stroke == Stroke::Forward;
             let displacement = [shift * unit[0], shift * unit[1]];
-            previous.copy_from_slice(&state.contact);
-            let (report, normal) = if let Some(edge) = edge.as_mut() {
-                let Some(adhesive) = solver.as_adhesive_mut() else {
-                    unreachable!("checked before the shift")
-                };
-                let weakened = edge.step(
-                    NormalSide {
-                        operator: &mut *operator,
-                        heights,
-                        depth: self.depth,
-                        solver: adhesive,
-                        state: &mut state,
-                    },
-                    TangentialSide {
-                        window: &window,
-                        operator: &mut shear_operator,
-                        solver: &mut *friction,
-                        state: &mut tangential,
-                    },
-                    displacement,
-                    step,
-                )?;
-                summary.solves += weakened.normal.solves;
-                summary.cg_iterations += weakened.normal.cg_iterations;
-                summary.operator_applications += weakened.normal.operator_applications;
-                summary.dissipated_energy += weakened.normal.dissipated_energy;
-                let mut normal = weakened.normal;
-                normal.cg_iterations += weakened.tangential.cg_iterations;
-                normal.operator_applications += weakened.tangential.transform_pairs;
-                (weakened.tangential, normal)
+            let depth = if inclined {
+                self.depth + shift * slope
             } else {
-                let report = friction
-                    .step(&mut shear_operator, &normal, displacement, &mut tangential)
-                    .map_err(|source| ProtocolError::Tangential { step, shift, source })?;
-                // The normal problem is unchanged; the step's counters are the tangential solve's.
-                let normal = StepReport {
-                    force: summary.normal_force,
-                    force_before_change: summary.normal_force,
-                    cg_iterations: report.cg_iterations,
-                    operator_applications: report.transform_pairs,
-                    ..StepReport::default()
-                };
-                (report, normal)
+                self.depth
             };
+            previous.copy_from_slice(&state.contact);
+            let outcome = stepper.step(
+                NormalSide {
+                    operator: &mut *operator,
+                    heights,
+                    depth,
+                    solver: &mut *solver,
+                    state: &mut state,
+                },
+                friction,
+                displacement,
+                step,
+                summary.normal_force,
+            )?;
+            let (report, mut normal) = (outcome.tangential, outcome.normal);
+            summary.solves += normal.solves;
+            summary.cg_iterations += normal.cg_iterations;
+            summary.operator_applications += normal.operator_applications;
+            summary.dissipated_energy += normal.dissipated_energy;
+            normal.cg_iterations += report.cg_iterations;
+            normal.operator_applications += report.transform_pairs;
             summary.tangential_transform_pairs += report.transform_pairs;
             summary.operator_applications += report.transform_pairs;
             summary.cg_iterations += report.cg_iterations;
@@ -237,7 +210,7 @@ impl Shear {
             let mut record = self.record(
                 step,
                 Phase::Shear,
-                self.depth,
+                depth,
                 normal,
                 &state,
                 &grid,
@@ -257,12 +230,16 @@ impl Shear {
                 summary.normal_force = record.force_normal;
                 summary.area = record.area;
             }
-            window.scatter(&tangential, &mut fields);
+            summary.min_normal_force = summary.min_normal_force.min(record.force_normal);
+            stepper.room.window.scatter(&stepper.room.state, &mut fields);
             self.report(&mut summary, &record, (&state, &previous, Some(&fields)), observer)?;
+            if record.contact_elements == 0 {
+                // An inclined path out of the body has pulled the indenter off.
+                summary.contact_lost_at = Some(shift);
+                break;
+            }
         }
-        if let (Some(edge), Some(adhesive)) = (edge, solver.as_adhesive_mut()) {
-            edge.restore(adhesive);
-        }
+        stepper.finish(solver);
         Ok(summary)
     }
 
@@ -302,6 +279,12 @@ impl Shear {
             return invalid(format!(
                 "depth ({}) must exceed the depth of first contact ({})",
                 self.depth, self.start_depth
+            ));
+        }
+        if !(self.incline.is_finite() && self.incline.abs() < std::f64::consts::FRAC_PI_2) {
+            return invalid(format!(
+                "incline ({} rad) must lie strictly between −π/2 and π/2",
+                self.incline
             ));
         }
         if !(0.0..=1.0).contains(&self.mode_mixity) {

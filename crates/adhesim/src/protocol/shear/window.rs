@@ -1,5 +1,7 @@
 //! The window of the tangential problem: the contact's bounding box as a free grid.
 
+use crate::elastic::cerruti::ShearMaterial;
+use crate::elastic::TangentialOperator;
 use crate::grid::{Boundary, Grid};
 use crate::protocol::ProtocolError;
 use crate::solver::{ContactState, SlipStatus, TangentialState};
@@ -120,5 +122,84 @@ impl ContactWindow {
                 .enumerate()
                 .map(move |(c, j)| (r * width + c, i * self.nx + j))
         })
+    }
+}
+
+/// The tangential problem's room: the contact's window, its operator and the tangential
+/// fields on it. It widens when the contact grows out of the window (an inclined motion
+/// into the body), carrying the fields over.
+pub(super) struct TangentialRoom {
+    pub(super) window: ContactWindow,
+    pub(super) operator: TangentialOperator,
+    pub(super) state: TangentialState,
+    grid: Grid,
+    material: ShearMaterial,
+    margin: usize,
+}
+
+impl TangentialRoom {
+    /// The room of `contact` on `grid`, `margin` elements wider on each side.
+    pub(super) fn new(
+        grid: &Grid,
+        contact: &[bool],
+        margin: usize,
+        material: ShearMaterial,
+    ) -> Result<Self, ProtocolError> {
+        let window = ContactWindow::around(grid, contact, margin)?;
+        let operator = TangentialOperator::new(window.grid, material)
+            .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+        Ok(Self {
+            state: TangentialState::new(window.grid.len()),
+            window,
+            operator,
+            grid: *grid,
+            material,
+            margin,
+        })
+    }
+
+    /// Widens the window to hold `contact` as well as the old window: tractions, slips and
+    /// states carry over (they vanish outside the old window), the displacements are
+    /// recomputed on the new one (u = K q is the same field, now seen on more elements).
+    /// Returns the FFT pairs this spent (0 when the window already held the contact).
+    pub(super) fn cover(&mut self, contact: &[bool]) -> Result<u64, ProtocolError> {
+        let nx = self.grid.nx();
+        let outside = contact
+            .iter()
+            .enumerate()
+            .any(|(k, &c)| c && !(self.window.rows.contains(&(k / nx)) && self.window.columns.contains(&(k % nx))));
+        if !outside {
+            return Ok(0);
+        }
+        let mut union = contact.to_vec();
+        for (_, k) in self.window.elements() {
+            union[k] = true;
+        }
+        let mut wider = Self::new(&self.grid, &union, self.margin, self.material)?;
+        let old = &self.state;
+        let mut at = vec![usize::MAX; self.grid.len()];
+        for (w, k) in self.window.elements() {
+            at[k] = w;
+        }
+        for (w, k) in wider.window.elements() {
+            let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
+                continue;
+            };
+            for c in 0..2 {
+                wider.state.traction[c][w] = old.traction[c][from];
+                wider.state.slip[c][w] = old.slip[c][from];
+            }
+            wider.state.status[w] = old.status[from];
+        }
+        wider.state.shift = old.shift;
+        {
+            let [ux, uy] = &mut wider.state.displacement;
+            wider
+                .operator
+                .apply([&wider.state.traction[0], &wider.state.traction[1]], [ux, uy]);
+        }
+        let pairs = wider.operator.transform_pairs();
+        *self = wider;
+        Ok(pairs)
     }
 }

@@ -1,0 +1,147 @@
+//! One shift step of the shear protocol: the normal problem held (Cattaneo–Mindlin),
+//! moved along an inclined path, or weakened at its edge by the shear, and the tangential
+//! problem solved on the contact's room.
+
+use super::edge::{EdgeWeakening, NormalSide};
+use super::window::TangentialRoom;
+use crate::elastic::cerruti::ShearMaterial;
+use crate::elastic::ElasticOperator;
+use crate::grid::Grid;
+use crate::protocol::{NormalSolver, ProtocolError};
+use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver};
+
+/// Elements of margin around the contact at rest in the window of a shear whose contact
+/// changes (weakened or inclined): room to move before the window must widen.
+const MOVING_WINDOW_MARGIN: usize = 4;
+
+/// How the normal problem behaves during the shift.
+enum NormalMode {
+    /// Held: the contact and pressure of the end of the approach (Goodman).
+    Held,
+    /// Solved again at each step's depth (an inclined path).
+    Moving,
+    /// Solved again with the shear-weakened detachment rule, in rounds.
+    Weakened(Box<EdgeWeakening>),
+}
+
+/// What a shift step did.
+pub(super) struct ShiftOutcome {
+    /// The final tangential solve, with the counters of all its rounds.
+    pub tangential: TangentialReport,
+    /// The normal steps of the shift step (the held force alone when held).
+    pub normal: StepReport,
+}
+
+/// The state of the shift steps of a run.
+pub(super) struct ShiftStepper {
+    pub(super) room: TangentialRoom,
+    mode: NormalMode,
+    /// The normal state on the room's window.
+    window_state: ContactState,
+}
+
+impl ShiftStepper {
+    /// The stepper for the contact of `state` at the end of the approach; `inclined` when
+    /// the depth changes along the shift.
+    pub(super) fn new(
+        grid: &Grid,
+        state: &ContactState,
+        material: ShearMaterial,
+        mode_mixity: f64,
+        inclined: bool,
+        solver: &mut NormalSolver,
+    ) -> Result<Self, ProtocolError> {
+        let changes = mode_mixity > 0.0 || inclined;
+        let margin = if changes { MOVING_WINDOW_MARGIN } else { 0 };
+        let room = TangentialRoom::new(grid, &state.contact, margin, material)?;
+        let mode = match (mode_mixity > 0.0, solver.as_adhesive_mut()) {
+            (true, Some(adhesive)) => NormalMode::Weakened(Box::new(EdgeWeakening::new(
+                adhesive,
+                material,
+                mode_mixity,
+                &room.window,
+            ))),
+            (true, None) => {
+                return Err(ProtocolError::InvalidParameter(format!(
+                    "mode_mixity ({mode_mixity}) weakens an adhesive edge: it needs the JKR-type adhesive solver"
+                )))
+            }
+            (false, _) if inclined => NormalMode::Moving,
+            (false, _) => NormalMode::Held,
+        };
+        Ok(Self {
+            window_state: room.window.gather(state),
+            room,
+            mode,
+        })
+    }
+
+    /// One step to the tangential `shift` at `normal.depth`; `held_force` is the normal
+    /// force of a held normal problem.
+    pub(super) fn step<O: ElasticOperator + ?Sized>(
+        &mut self,
+        normal: NormalSide<'_, O>,
+        friction: &mut TangentialSolver,
+        shift: [f64; 2],
+        step: usize,
+        held_force: f64,
+    ) -> Result<ShiftOutcome, ProtocolError> {
+        let along = shift[0].hypot(shift[1]);
+        let tangential_error = |source| ProtocolError::Tangential {
+            step,
+            shift: along,
+            source,
+        };
+        match &mut self.mode {
+            NormalMode::Weakened(edge) => {
+                let weakened = edge.step(normal, &mut self.room, friction, shift, step)?;
+                Ok(ShiftOutcome {
+                    tangential: weakened.tangential,
+                    normal: weakened.normal,
+                })
+            }
+            NormalMode::Moving => {
+                let report = normal
+                    .solver
+                    .step(normal.operator, normal.heights, normal.depth, normal.state)
+                    .map_err(|source| ProtocolError::Solve {
+                        step,
+                        depth: normal.depth,
+                        source,
+                    })?;
+                let widened = self.room.cover(&normal.state.contact)?;
+                if self.window_state.contact.len() != self.room.window.grid.len() {
+                    self.window_state = ContactState::new(&self.room.window.grid);
+                }
+                self.room.window.gather_into(normal.state, &mut self.window_state);
+                let mut tangential = friction
+                    .step(&mut self.room.operator, &self.window_state, shift, &mut self.room.state)
+                    .map_err(tangential_error)?;
+                tangential.transform_pairs += widened;
+                Ok(ShiftOutcome {
+                    tangential,
+                    normal: report,
+                })
+            }
+            NormalMode::Held => {
+                let tangential = friction
+                    .step(&mut self.room.operator, &self.window_state, shift, &mut self.room.state)
+                    .map_err(tangential_error)?;
+                // The normal problem is unchanged: no normal solve in this step.
+                let normal = StepReport {
+                    force: held_force,
+                    force_before_change: held_force,
+                    ..StepReport::default()
+                };
+                Ok(ShiftOutcome { tangential, normal })
+            }
+        }
+    }
+
+    /// Gives the normal solver back its unweakened detachment rule.
+    pub(super) fn finish(self, solver: &mut NormalSolver) {
+        if let (NormalMode::Weakened(edge), Some(adhesive)) = (self.mode, solver.as_adhesive_mut()) {
+            edge.restore(adhesive);
+        }
+    }
+}
