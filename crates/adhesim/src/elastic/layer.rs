@@ -38,7 +38,9 @@ pub enum LayerError {
     #[error("Poisson's ratio of the layer must lie in (-1, 0.5], got {0}")]
     InvalidPoissonRatio(f64),
     /// A free grid's element quadrature resolves layers down to a sixteenth of an element.
-    #[error("layer thickness {thickness} is below 1/16 of the element size {element}: the free grid cannot resolve it")]
+    #[error(
+        "layer thickness {thickness} is below 1/16 of the element size {element}: the free grid cannot resolve it"
+    )]
     ThinnerThanElements {
         /// The layer thickness.
         thickness: f64,
@@ -286,7 +288,11 @@ fn layer_coefficients(grid: &Grid, modulus: f64, layer: &ElasticLayer) -> Vec<f6
             if nearest > TABLE_RANGE * t {
                 continue;
             }
-            let divisions = if xi.hypot(eta) < 8.0 * element { near_divisions } else { 1 };
+            let divisions = if xi.hypot(eta) < 8.0 * element {
+                near_divisions
+            } else {
+                1
+            };
             let (hx, hy) = (dx / divisions as f64, dy / divisions as f64);
             let mut sum = 0.0;
             for a in 0..divisions {

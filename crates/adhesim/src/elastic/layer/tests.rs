@@ -20,7 +20,8 @@ fn shooting_factor(kt: f64, poisson_ratio: f64, base: LayerBase, steps: usize) -
     };
     let integrate = |mut y: [f64; 4]| -> [f64; 4] {
         let h = -kt / steps as f64;
-        let add = |a: [f64; 4], b: [f64; 4], s: f64| [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2], a[3] + s * b[3]];
+        let add =
+            |a: [f64; 4], b: [f64; 4], s: f64| [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2], a[3] + s * b[3]];
         for _ in 0..steps {
             let k1 = derivative(y);
             let k2 = derivative(add(y, k1, 0.5 * h));
@@ -107,7 +108,10 @@ fn thin_incompressible_bonded_layer_is_the_lubrication_limit() {
     for kt in [1e-3, 0.1, 1.0, 5.0] {
         let at = layer_compliance_factor(kt, 0.5, LayerBase::Bonded);
         let below = layer_compliance_factor(kt, 0.5 - 1e-9, LayerBase::Bonded);
-        assert!(at.is_finite() && (at - below).abs() < 1e-8, "kt = {kt}: {at} vs {below}");
+        assert!(
+            at.is_finite() && (at - below).abs() < 1e-8,
+            "kt = {kt}: {at} vs {below}"
+        );
     }
 }
 
@@ -145,7 +149,11 @@ fn bessel_j0_matches_reference_values() {
         (300.0, -0.033_298_554_876_305_668),
     ];
     for (x, expected) in reference {
-        assert!((bessel_j0(x) - expected).abs() < 2e-11, "J0({x}) = {} vs {expected}", bessel_j0(x));
+        assert!(
+            (bessel_j0(x) - expected).abs() < 2e-11,
+            "J0({x}) = {} vs {expected}",
+            bessel_j0(x)
+        );
     }
 }
 
@@ -160,7 +168,10 @@ fn point_correction_cancels_boussinesq_far_away() {
             let table = PointCorrection::new(&layer);
             for rho in [45.0, 55.0, TABLE_RANGE - 1e-9] {
                 let d = table.value(rho);
-                assert!((d * rho + 1.0).abs() < 1e-9, "{base:?}, ν = {poisson_ratio}, ρ = {rho}: {d}");
+                assert!(
+                    (d * rho + 1.0).abs() < 1e-9,
+                    "{base:?}, ν = {poisson_ratio}, ρ = {rho}: {d}"
+                );
             }
         }
     }
@@ -219,7 +230,10 @@ fn free_coefficients_match_a_large_periodic_cell() {
             }
         }
         println!("t = {thickness}Δ, ν = {poisson_ratio}, {base:?}: free against periodic cell {worst:.1e} of K(0,0)");
-        assert!(worst < 2e-5, "t = {thickness}Δ, ν = {poisson_ratio}, {base:?}: {worst:e}");
+        assert!(
+            worst < 2e-5,
+            "t = {thickness}Δ, ν = {poisson_ratio}, {base:?}: {worst:e}"
+        );
     }
 }
 
@@ -246,7 +260,10 @@ fn thick_layer_is_the_half_space() {
         .apply(&pressure, &mut got);
     let largest = expected.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
     let worst = expected.iter().zip(&got).fold(0.0f64, |a, (e, g)| a.max((e - g).abs()));
-    println!("t = 1e6 L against the free half-space: {:.1e} of max|u|", worst / largest);
+    println!(
+        "t = 1e6 L against the free half-space: {:.1e} of max|u|",
+        worst / largest
+    );
     assert!(worst < 1e-3 * largest, "{worst:e} of {largest:e}");
     // Periodic: every wavenumber of the grid and its aliases has kt ≥ 25, so the factor
     // is exactly 1 and the operator is the half-space's bit for bit.
@@ -276,7 +293,9 @@ fn free_operator_is_the_direct_sum_symmetric_and_positive() {
         let mut field = || -> Vec<f64> {
             (0..nx * ny)
                 .map(|_| {
-                    random = random.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    random = random
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
                     (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
                 })
                 .collect()
@@ -299,7 +318,9 @@ fn free_operator_is_the_direct_sum_symmetric_and_positive() {
         let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
         let (ab, ba) = (dot(&a, &kb), dot(&b, &ka));
         assert!((ab - ba).abs() < 1e-12 * dot(&a, &ka).abs(), "{ab} vs {ba}");
-        let checkerboard: Vec<f64> = (0..nx * ny).map(|k| if (k % nx + k / nx) % 2 == 0 { 1.0 } else { -1.0 }).collect();
+        let checkerboard: Vec<f64> = (0..nx * ny)
+            .map(|k| if (k % nx + k / nx) % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
         for p in [a, b, checkerboard] {
             let mut kp = vec![0.0; nx * ny];
             operator.apply(&p, &mut kp);
