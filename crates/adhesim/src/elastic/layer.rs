@@ -173,16 +173,16 @@ fn bessel_j0(x: f64) -> f64 {
     // + − + …, Q the odd k with signs + − + …
     let (mut p, mut q) = (1.0, 0.0);
     let mut term = 1.0f64;
-    let mut k = 0.0f64;
-    loop {
-        let next = -term * (2.0 * k + 1.0).powi(2) / (8.0 * (k + 1.0) * x);
+    for k in 0..64u32 {
+        let next = -term * f64::from(2 * k + 1).powi(2) / (8.0 * f64::from(k + 1) * x);
         if next.abs() >= term.abs() || next.abs() < 1e-18 {
             break;
         }
         term = next;
-        k += 1.0;
-        let sign = if (k as u64 / 2) % 2 == 0 { 1.0 } else { -1.0 };
-        if k as u64 % 2 == 0 {
+        // Index k + 1: the sign alternates every second term, within P and within Q.
+        let index = k + 1;
+        let sign = if (index / 2).is_multiple_of(2) { 1.0 } else { -1.0 };
+        if index.is_multiple_of(2) {
             p += sign * term;
         } else {
             q += sign * term;
