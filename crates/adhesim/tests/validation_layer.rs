@@ -117,3 +117,47 @@ fn thick_layer_is_hertz() {
         "radius {area_radius}"
     );
 }
+
+/// The thin frictionless-base layer at a/t, t = 2Δ: errors of the force against the Winkler
+/// foundation's P = πE*Rd²/t and of √(A/π) against a = √(2Rd), at the depth d = a²/(2R).
+fn winkler_errors(n: usize, a_over_t: f64) -> (f64, f64) {
+    let radius = 1.0f64;
+    let thickness = 2.0 / 128.0;
+    let contact_radius = a_over_t * thickness;
+    let depth = contact_radius * contact_radius / (2.0 * radius);
+    let layer = ElasticLayer::new(thickness, 0.3, LayerBase::Frictionless).unwrap();
+    let (force, area_radius) = indent(n, layer, depth);
+    let expected = std::f64::consts::PI * radius * depth * depth / thickness;
+    let errors = (force / expected - 1.0, area_radius / contact_radius - 1.0);
+    println!(
+        "frictionless base, a/t = {a_over_t:2.0}: F/F_Winkler − 1 = {:+.4e}, a/a_Winkler − 1 = {:+.4e}",
+        errors.0, errors.1
+    );
+    errors
+}
+
+/// Thin layer on a frictionless base: at kt ≪ 1 its compliance is t/E* for every ν
+/// (f = s/2 + O(s⁵), docs/physics.md §9.1), a Winkler foundation: p = (E*/t)(d − r²/(2R)),
+/// a = √(2Rd), P = πE*Rd²/t. The foundation's pressure ends with a finite slope, which the
+/// layer rounds off over ~t: at a/t = 10, 20, 40 (t = 2Δ) the deviations must fall with t/a
+/// and extrapolate (quadratically, as above) to the closed form within 1 %.
+#[test]
+fn thin_frictionless_base_is_a_winkler_foundation() {
+    let runs = [(64, 10.0), (128, 20.0), (256, 40.0)].map(|(n, a_over_t)| (a_over_t, winkler_errors(n, a_over_t)));
+    let force = extrapolate(runs.map(|(a_over_t, (force, _))| (1.0 / a_over_t, force)));
+    let radius = extrapolate(runs.map(|(a_over_t, (_, radius))| (1.0 / a_over_t, radius)));
+    println!(
+        "extrapolated to t/a → 0: F/F_Winkler − 1 = {:+.2e}, a/a_Winkler − 1 = {:+.2e}",
+        force.0, radius.0
+    );
+    assert!(force.0.abs() < 0.01 && radius.0.abs() < 0.01, "{force:?} {radius:?}");
+    let [(_, (f10, r10)), (_, (f20, r20)), (_, (f40, r40))] = runs;
+    assert!(
+        f10.abs() > f20.abs() && f20.abs() > f40.abs(),
+        "force errors {f10} {f20} {f40}"
+    );
+    assert!(
+        r10.abs() > r20.abs() && r20.abs() > r40.abs(),
+        "radius errors {r10} {r20} {r40}"
+    );
+}
