@@ -355,3 +355,37 @@ fn bad_layers_are_refused() {
         Err(LayerError::ThinnerThanElements { .. })
     ));
 }
+
+#[test]
+fn periodic_operator_applies_the_factor_to_a_pressure_wave() {
+    // A sampled wave p = cos(qx) on a periodic 128² grid (L = 1, t = 0.1 = 12.8Δ): the
+    // layer's response over the half-space's is f(qt), up to the aliases of the element
+    // form factor. Those add terms of alternating sign to both, of relative size below
+    // Σ_{m≠0} (qΔ)²/(4π²m²) = (qΔ)²/12, on the part where the two differ (1 − f; the
+    // aliases' own factors are 1 at |G|t ≥ 80). Tolerance (1 − f)(qΔ)²/6.
+    let n = 128;
+    let periodic = grid(n, Boundary::Periodic);
+    let material = ElasticMaterial::new(1.0).unwrap();
+    for base in [LayerBase::Bonded, LayerBase::Frictionless] {
+        let layer = ElasticLayer::new(0.1, 0.5, base).unwrap();
+        let mut layered = LayerOperator::new(periodic, material, layer).unwrap();
+        let mut half_space = PeriodicOperator::new(periodic, material, PeriodicKernel::ElementConsistent);
+        for mode in [1, 2, 4, 8] {
+            let q = std::f64::consts::TAU * mode as f64;
+            let pressure: Vec<f64> = (0..n * n).map(|k| (q * periodic.centre(k).0).cos()).collect();
+            let (mut u_layer, mut u_half) = (vec![0.0; n * n], vec![0.0; n * n]);
+            layered.apply(&pressure, &mut u_layer);
+            half_space.apply(&pressure, &mut u_half);
+            let at = n / 2; // x = 0, where cos = 1
+            let ratio = u_layer[at] / u_half[at];
+            let f = layer.compliance_factor(q);
+            let delta = 1.0 / n as f64;
+            let tolerance = (1.0 - f) * (q * delta).powi(2) / 6.0;
+            assert!(
+                (ratio - f).abs() < tolerance,
+                "{base:?}, qt = {}: {ratio} vs {f} (tolerance {tolerance:e})",
+                q * 0.1
+            );
+        }
+    }
+}
