@@ -190,4 +190,6 @@ mod error_tests;
 #[cfg(test)]
 mod guards_tests;
 #[cfg(test)]
+mod layer_tests;
+#[cfg(test)]
 mod tests;

@@ -89,6 +89,21 @@ pub struct MaterialSection {
     pub youngs_modulus: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub poisson_ratio: Option<f64>,
+    /// Thickness of an elastic layer on a rigid base (length units); absent: a half-space.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+    /// How the layer rests on its base; absent means `bonded` (and is echoed absent).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<LayerBaseName>,
+}
+
+/// `material.base`: the layer bonded to its rigid base, or sliding on it without friction.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LayerBaseName {
+    #[default]
+    Bonded,
+    Frictionless,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

@@ -7,9 +7,9 @@ use crate::results::{fit_results, Results, RunResults};
 use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, HalfSpace, IndentPulloff, NormalSolver, Observer, Profile, ProtocolCheckpoint,
-    ProtocolError, ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver,
-    TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticLayer, ElasticOperator, HalfSpace, IndentPulloff, LayerBase,
+    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearSummary,
+    StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -25,6 +25,17 @@ pub enum ProtocolSetup<'a> {
 }
 
 impl ValidScenario {
+    /// The elastic layer of `material.thickness` (checked when the scenario was
+    /// validated), or `None` for the half-space.
+    pub fn layer(&self) -> Option<ElasticLayer> {
+        let material = &self.file.material;
+        let base = match material.base.unwrap_or_default() {
+            crate::model::LayerBaseName::Bonded => LayerBase::Bonded,
+            crate::model::LayerBaseName::Frictionless => LayerBase::Frictionless,
+        };
+        ElasticLayer::new(material.thickness?, material.poisson_ratio?, base).ok()
+    }
+
     /// The scenario's protocol.
     pub fn protocol_setup(&self) -> ProtocolSetup<'_> {
         if let Some(setup) = &self.shear {
@@ -55,6 +66,10 @@ impl ValidScenario {
                 self.gamma.clone(),
                 AdhesiveParams::default(),
             )))
+        } else if self.layer().is_some() {
+            // The nested active set's coarse levels and windows are half-space operators:
+            // on a layer, CCG on the layer's own operator.
+            NormalSolver::NonAdhesive(Ccg::new(CcgParams::default()))
         } else {
             adhesim::protocol::non_adhesive_solver(self.grid, self.material)
         }
@@ -179,7 +194,14 @@ pub fn run_from(
     observer: &mut dyn Observer,
     resume: Option<Resume>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut operator = HalfSpace::new(scenario.grid, scenario.material);
+    let mut operator: Box<dyn ElasticOperator> = match scenario.layer() {
+        Some(layer) => Box::new(
+            LayerOperator::new(scenario.grid, scenario.material, layer)
+                .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?,
+        ),
+        None => Box::new(HalfSpace::new(scenario.grid, scenario.material)),
+    };
+    let operator = operator.as_mut();
     let mut solver = scenario.normal_solver();
     let (start, records) = match resume {
         Some(Resume { protocol, records }) => (Some(protocol), records),
@@ -208,7 +230,7 @@ pub fn run_from(
     match scenario.protocol_setup() {
         ProtocolSetup::Indentation(protocol) => {
             let summary = protocol.run_from(
-                &mut operator,
+                &mut *operator,
                 &scenario.heights,
                 &mut solver,
                 &mut recording,
@@ -225,10 +247,10 @@ pub fn run_from(
                 records,
             })
         }
-        ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut operator, &mut solver, recording),
+        ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut *operator, &mut solver, recording),
         ProtocolSetup::Translation(setup) => {
             let summary = setup.protocol.run_from(
-                &mut operator,
+                &mut *operator,
                 &setup.contact,
                 &mut solver,
                 &mut recording,
@@ -249,7 +271,7 @@ pub fn run_from(
 fn run_shear(
     scenario: &ValidScenario,
     setup: &ShearSetup,
-    operator: &mut HalfSpace,
+    operator: &mut dyn ElasticOperator,
     solver: &mut NormalSolver,
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {

@@ -6,7 +6,7 @@ use crate::guards::{check_field, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::read_npy_2d;
 use crate::validate::{grid_keys, non_negative, positive};
-use adhesim::{Axis, Boundary, ElasticMaterial, Grid, GridError, Indenter, WorkOfAdhesion};
+use adhesim::{Axis, Boundary, ElasticLayer, ElasticMaterial, Grid, GridError, Indenter, LayerBase, WorkOfAdhesion};
 use anyhow::{bail, Result};
 use std::path::Path;
 
@@ -119,6 +119,58 @@ pub(crate) fn validate_material(section: &MaterialSection) -> Result<ElasticMate
         )),
     };
     Ok(material)
+}
+
+/// `material.thickness` and `material.base`: an elastic layer on a rigid base, or `None`
+/// for the half-space. The layer's compliance depends on ν on its own, so it needs the
+/// youngs_modulus/poisson_ratio form; t ≥ Δ/16 (what a free grid resolves; a thinner
+/// incompressible layer is nearly rigid and its pressures unbounded on any grid).
+pub(crate) fn validate_layer(section: &MaterialSection, grid: &Grid) -> Result<Option<ElasticLayer>> {
+    let Some(thickness) = section.thickness else {
+        if let Some(base) = section.base {
+            bail!(ScenarioError::missing(
+                "material.thickness",
+                "with material.base",
+                format!(
+                    "material.base = \"{}\" needs material.thickness (the layer's thickness); without it the body is a half-space",
+                    base_name(base)
+                )
+            ));
+        }
+        return Ok(None);
+    };
+    positive("material.thickness", thickness)?;
+    let Some(poisson_ratio) = section.poisson_ratio else {
+        bail!(ScenarioError::missing(
+            "material.poisson_ratio",
+            "with material.thickness",
+            "material.thickness needs material.youngs_modulus and material.poisson_ratio: a layer's compliance depends on ν, not on E* alone"
+        ));
+    };
+    let element = grid.dx().max(grid.dy());
+    if thickness < element / 16.0 {
+        bail!(ScenarioError::invalid_as(
+            "material.thickness",
+            thickness,
+            format!(">= {:e} (1/16 of an element)", element / 16.0),
+            format!(
+                "material.thickness = {thickness} is below 1/16 of the element size {element}: the grid cannot resolve the layer; refine the grid"
+            )
+        ));
+    }
+    let base = match section.base.unwrap_or_default() {
+        LayerBaseName::Bonded => LayerBase::Bonded,
+        LayerBaseName::Frictionless => LayerBase::Frictionless,
+    };
+    Ok(Some(ElasticLayer::new(thickness, poisson_ratio, base)?))
+}
+
+/// The scenario-file spelling of a base.
+pub(crate) fn base_name(base: LayerBaseName) -> &'static str {
+    match base {
+        LayerBaseName::Bonded => "bonded",
+        LayerBaseName::Frictionless => "frictionless",
+    }
 }
 
 /// `[adhesion]`: the reference γ0 and γ per element.

@@ -8,7 +8,7 @@ use crate::guards::{resolution_warnings, step_count};
 use crate::model::*;
 use crate::parse::read_height_map;
 use crate::roughness::{roughness_on_grid, RoughnessMap};
-use crate::sections::{validate_adhesion, validate_grid, validate_material};
+use crate::sections::{validate_adhesion, validate_grid, validate_layer, validate_material};
 use crate::translation::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
@@ -93,11 +93,47 @@ pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw:
 }
 
 impl ScenarioFile {
+    /// A layer (`material.thickness`) runs the non-adhesive indentation only: the JKR-type
+    /// and cohesive solvers' detachment stress and error bounds are the half-space
+    /// element's, and the tangential operator is Cerruti's half-space (docs/physics.md §9).
+    fn check_layer_pairing(&self) -> Result<()> {
+        let kind = self.protocol.kind();
+        if !matches!(kind, ProtocolKind::IndentPulloff) {
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                format!("\"{}\"", kind.name()),
+                "\"indent_pulloff\" with material.thickness",
+                format!(
+                    "protocol.kind = \"{}\" is not implemented on a layer (material.thickness): only \"indent_pulloff\" is",
+                    kind.name()
+                )
+            ));
+        }
+        let adhesion = &self.adhesion;
+        let law = adhesion.law.unwrap_or_default();
+        if adhesion.work_of_adhesion != 0.0 || adhesion.field.is_some() || law != LawName::Jkr {
+            bail!(ScenarioError::invalid_as(
+                "adhesion.work_of_adhesion",
+                adhesion.work_of_adhesion,
+                "0 with material.thickness (no field, no cohesive law)",
+                format!(
+                    "adhesion on a layer (material.thickness) is not implemented yet: set adhesion.work_of_adhesion = 0 without a field or law (got {}, law \"{}\")",
+                    adhesion.work_of_adhesion,
+                    law.name()
+                )
+            ));
+        }
+        Ok(())
+    }
+
     /// Checks every value and builds the library objects, one section after the other.
     /// `base` resolves relative file paths.
     pub(crate) fn validate_sections(self, base: &Path) -> Result<ValidScenario> {
         let grid = validate_grid(&self.grid)?;
         let material = validate_material(&self.material)?;
+        if validate_layer(&self.material, &grid)?.is_some() {
+            self.check_layer_pairing()?;
+        }
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
         let (indenter, heights, start_depth) = validate_indenter(&self.indenter, &grid, base, roughness.as_ref())?;
         self.check_height_span(&heights, start_depth)?;

@@ -31,7 +31,7 @@ const RUN_MAX_STEPS: usize = 60;
 /// Memory allowed to a scenario, so that a mutated `grid.n` is refused before it allocates.
 const AVAILABLE_MEMORY: u64 = 1 << 30;
 
-const SCENARIOS: [(&str, &str); 15] = [
+const SCENARIOS: [(&str, &str); 16] = [
     ("fig1.toml", include_str!("../../../scenarios/fig1.toml")),
     (
         "fig12_homogeneous.toml",
@@ -62,16 +62,22 @@ const SCENARIOS: [(&str, &str); 15] = [
         "rough_sphere.toml",
         include_str!("../../../scenarios/rough_sphere.toml"),
     ),
+    (
+        "layer/thin_sphere.toml",
+        include_str!("../../../scenarios/layer/thin_sphere.toml"),
+    ),
 ];
 
 /// Every key of the scenario format (`docs/cli.md`), plus two that do not exist.
-const KEYS: [&str; 67] = [
+const KEYS: [&str; 69] = [
     "grid.n",
     "grid.size",
     "grid.boundary",
     "material.contact_modulus",
     "material.youngs_modulus",
     "material.poisson_ratio",
+    "material.thickness",
+    "material.base",
     "adhesion.work_of_adhesion",
     "adhesion.field",
     "adhesion.field.kind",

@@ -90,8 +90,8 @@ pub mod surface;
 
 pub use elastic::cerruti::ShearMaterial;
 pub use elastic::{
-    ElasticOperator, FreeOperator, HalfSpace, PeriodicKernel, PeriodicOperator, TangentialOperator,
-    TangentialOperatorError,
+    ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError, LayerOperator, PeriodicKernel,
+    PeriodicOperator, TangentialOperator, TangentialOperatorError,
 };
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,

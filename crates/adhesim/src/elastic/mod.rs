@@ -8,12 +8,14 @@
 pub mod cerruti;
 mod free;
 pub mod influence;
+mod layer;
 mod periodic;
 mod preconditioner;
 mod spectral;
 mod tangential;
 
 pub use free::FreeOperator;
+pub use layer::{layer_compliance_factor, ElasticLayer, LayerBase, LayerError, LayerOperator};
 pub use periodic::{PeriodicKernel, PeriodicOperator};
 pub use preconditioner::SpectralPreconditioner;
 pub use tangential::{TangentialOperator, TangentialOperatorError};

@@ -47,6 +47,19 @@ fn sinc(t: f64) -> f64 {
 impl PeriodicOperator {
     /// Plans the transforms and computes the kernel spectrum.
     pub fn new(grid: Grid, material: ElasticMaterial, kernel: PeriodicKernel) -> Self {
+        Self::with_compliance_factor(grid, material, kernel, |_| 1.0)
+    }
+
+    /// The same operator for a body whose Fourier compliance is the half-space's 2/(E*|Q|)
+    /// times `factor(|Q|)`: each alias term is multiplied by the factor at its own
+    /// wavenumber |q + G| (an elastic layer, `super::layer`). A factor of exactly 1 gives
+    /// the bits of [`new`](Self::new) (a product with 1.0 is exact).
+    pub(crate) fn with_compliance_factor(
+        grid: Grid,
+        material: ElasticMaterial,
+        kernel: PeriodicKernel,
+        factor: impl Fn(f64) -> f64 + Sync,
+    ) -> Self {
         let (nx, ny) = (grid.nx(), grid.ny());
         let modulus = material.contact_modulus();
         let mut engine = SpectralConvolution::<f64>::planned((nx, ny), (nx, ny));
@@ -96,7 +109,8 @@ impl PeriodicOperator {
                     let mut sum = 0.0;
                     for &(qx2, sx) in &x_tables[column] {
                         for &(qy2, sy) in &y_tables[row] {
-                            sum += sx * sy / (qx2 + qy2).sqrt();
+                            let wavenumber = (qx2 + qy2).sqrt();
+                            sum += sx * sy * factor(wavenumber) / wavenumber;
                         }
                     }
                     *value = 2.0 * sum / modulus * normalisation;
