@@ -106,6 +106,41 @@ impl Scenario {
 
     /// Checks every value and builds the library objects; relative file paths (height
     /// maps, adhesion maps) are resolved against `base`. Errors name the key and value.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim_scenario::Scenario;
+    ///
+    /// let text = r#"
+    /// [grid]
+    /// n = 32
+    /// size = 0.5
+    /// [material]
+    /// youngs_modulus = 3.0
+    /// poisson_ratio = 0.5
+    /// [adhesion]
+    /// work_of_adhesion = 0.0
+    /// [indenter]
+    /// shape = "sphere"
+    /// radius = 1.0
+    /// [friction]
+    /// law = "coulomb"
+    /// [protocol]
+    /// kind = "shear"
+    /// depth = 0.01
+    /// depth_unit = "length"
+    /// distance = 0.004
+    /// steps = 4
+    /// "#;
+    /// let mut scenario = Scenario::from_toml_str(text, "shear.toml")?;
+    /// let error = scenario.validate(std::path::Path::new(".")).err().unwrap();
+    /// assert!(error.to_string().contains("friction.coefficient"), "{error}");
+    /// scenario.apply_override("friction.coefficient", "0.3")?;
+    /// scenario.apply_override("friction.mode_mixity", "2.0")?;
+    /// let error = scenario.validate(std::path::Path::new(".")).err().unwrap();
+    /// assert!(error.to_string().contains("friction.mode_mixity"), "{error}");
+    /// # Ok::<(), adhesim_scenario::ScenarioError>(())
+    /// ```
     pub fn validate(&self, base: &Path) -> Result<ValidScenario, ScenarioError> {
         deserialize(&self.table)?.validate(base)
     }

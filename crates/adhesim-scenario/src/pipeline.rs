@@ -183,6 +183,77 @@ pub struct Resume {
 /// Runs a validated scenario: builds the elastic operator and the normal solver, runs the
 /// protocol with `observer` seeing every step (pass `&mut ()` for none), and analyses the
 /// records into the results `summary.json` reports. Writes nothing itself.
+///
+/// # Examples
+/// A sphere pressed into rubber and shifted with Coulomb friction at the interface
+/// (Cattaneo–Mindlin): every contact element sticks or slips, and the slip zone grows from
+/// the edge.
+/// ```
+/// use adhesim_scenario::{run, RunResults, Scenario};
+///
+/// let text = r#"
+/// [grid]
+/// n = 48
+/// size = 0.5
+/// [material]
+/// youngs_modulus = 3.0
+/// poisson_ratio = 0.5
+/// [adhesion]
+/// work_of_adhesion = 0.0
+/// [indenter]
+/// shape = "sphere"
+/// radius = 1.0
+/// [friction]
+/// law = "coulomb"
+/// coefficient = 0.3
+/// [protocol]
+/// kind = "shear"
+/// depth = 0.01
+/// depth_unit = "length"
+/// approach_steps = 5
+/// distance = 0.004
+/// steps = 4
+/// "#;
+/// let valid = Scenario::from_toml_str(text, "shear.toml")?.validate(std::path::Path::new("."))?;
+/// let outcome = run(&valid, &mut ())?;
+/// let RunResults::Shear(results) = &outcome.results else { unreachable!() };
+/// let last = outcome.records.last().unwrap();
+/// assert_eq!(last.stick_elements + last.slip_elements, last.contact_elements);
+/// assert!(last.slip_elements > 0 && last.stick_elements > 0, "partial slip");
+/// assert!(results.peak_tangential_force < 0.3 * results.normal_force);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+/// A layer much thicker than the contact is a half-space:
+/// ```
+/// use adhesim_scenario::{run, Scenario};
+///
+/// let text = |layer: &str| format!(r#"
+/// [grid]
+/// n = 32
+/// size = 0.4
+/// [material]
+/// youngs_modulus = 3.0
+/// poisson_ratio = 0.5
+/// {layer}
+/// [adhesion]
+/// work_of_adhesion = 0.0
+/// [indenter]
+/// shape = "sphere"
+/// radius = 1.0
+/// [protocol]
+/// kind = "indent_pulloff"
+/// max_depth = 0.005
+/// steps = 4
+/// "#);
+/// let force = |layer: &str| -> Result<f64, Box<dyn std::error::Error>> {
+///     let valid = Scenario::from_toml_str(&text(layer), "layer.toml")?.validate(std::path::Path::new("."))?;
+///     let outcome = run(&valid, &mut ())?;
+///     Ok(outcome.records.iter().map(|r| r.force_normal).fold(0.0, f64::max))
+/// };
+/// let (half_space, thick) = (force("")?, force("thickness = 1000.0")?);
+/// assert!((thick / half_space - 1.0).abs() < 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn run(scenario: &ValidScenario, observer: &mut dyn Observer) -> Result<RunOutcome, ProtocolError> {
     run_from(scenario, observer, None)
 }

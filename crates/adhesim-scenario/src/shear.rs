@@ -273,6 +273,43 @@ fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> 
 }
 
 /// The `results` of a shear run in `summary.json`.
+///
+/// # Example
+/// An adhesive contact whose interface is bounded by a shear strength τ0 slides at
+/// F_T = τ0·A, its tensile edge included (the paper's area friction, Eq. 16).
+/// ```
+/// use adhesim_scenario::{run, RunResults, Scenario};
+///
+/// let text = r#"
+/// [grid]
+/// n = 48
+/// size = 0.5
+/// [material]
+/// youngs_modulus = 3.0
+/// poisson_ratio = 0.5
+/// [adhesion]
+/// work_of_adhesion = 2e-3
+/// [indenter]
+/// shape = "sphere"
+/// radius = 1.0
+/// [friction]
+/// law = "shear_strength"
+/// shear_strength = 0.002
+/// [protocol]
+/// kind = "shear"
+/// depth = 0.01
+/// depth_unit = "length"
+/// approach_steps = 5
+/// distance = 0.02
+/// steps = 5
+/// "#;
+/// let valid = Scenario::from_toml_str(text, "tresca.toml")?.validate(std::path::Path::new("."))?;
+/// let RunResults::Shear(results) = run(&valid, &mut ())?.results else { unreachable!() };
+/// let sliding = results.sliding_friction_force.expect("gross slip");
+/// assert!((sliding / (0.002 * results.contact_area) - 1.0).abs() < 1e-9);
+/// assert!((results.mean_shear_stress.unwrap() / 0.002 - 1.0).abs() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Serialize)]
 pub struct ShearResults {
     /// Peak tangential force before gross slip (null when the stroke ends in partial slip).

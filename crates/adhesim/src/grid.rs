@@ -56,6 +56,19 @@ pub struct Grid {
 
 impl Grid {
     /// A grid of `n`×`n` elements covering a square of side `size`.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim::{Boundary, Grid};
+    ///
+    /// // 64 × 64 elements over a side of 1: Δ = 1/64, centres symmetric about the axis.
+    /// let grid = Grid::new(64, 1.0, Boundary::Free)?;
+    /// assert_eq!((grid.len(), grid.dx()), (4096, 1.0 / 64.0));
+    /// let (x, y) = grid.centre(0);
+    /// assert_eq!((x, y), (-0.5, -0.5));
+    /// assert!(Grid::new(64, -1.0, Boundary::Free).is_err());
+    /// # Ok::<(), adhesim::GridError>(())
+    /// ```
     pub fn new(n: usize, size: f64, boundary: Boundary) -> Result<Self, GridError> {
         Self::rectangular(n, n, size, size, boundary)
     }

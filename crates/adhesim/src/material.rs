@@ -47,6 +47,17 @@ impl ElasticMaterial {
     }
 
     /// E* = E/(1 − ν²) from Young's modulus and Poisson's ratio.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim::ElasticMaterial;
+    ///
+    /// // Rubber: E = 3, ν = 1/2 gives E* = E/(1 − ν²) = 4.
+    /// let rubber = ElasticMaterial::from_youngs_modulus(3.0, 0.5)?;
+    /// assert!((rubber.contact_modulus() - 4.0).abs() < 1e-15);
+    /// assert!(ElasticMaterial::from_youngs_modulus(3.0, 0.6).is_err());
+    /// # Ok::<(), adhesim::MaterialError>(())
+    /// ```
     pub fn from_youngs_modulus(youngs_modulus: f64, poisson_ratio: f64) -> Result<Self, MaterialError> {
         if !(youngs_modulus.is_finite() && youngs_modulus > 0.0) {
             return Err(MaterialError::InvalidYoungsModulus(youngs_modulus));

@@ -47,6 +47,16 @@ impl Hertz {
 /// Johnson, Kendall & Roberts (1971) adhesive contact of a paraboloid, parametric in the
 /// contact radius a; with the paper's normalisation (Popov et al. 2021, Eqs. 2–4, with
 /// E*² in Eq. 3 where the paper misprints E*).
+///
+/// # Example
+/// ```
+/// use adhesim::analysis::reference::Jkr;
+///
+/// // Pull-off under load control: F = −(3/2)πγR at a = (9πγR²/(8E*))^{1/3}.
+/// let jkr = Jkr { radius: 1.0, contact_modulus: 4.0, work_of_adhesion: 1e-3 };
+/// assert!((jkr.critical_force() + 1.5 * std::f64::consts::PI * 1e-3).abs() < 1e-15);
+/// assert!((jkr.force(jkr.critical_radius()) / jkr.critical_force() - 1.0).abs() < 1e-12);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Jkr {
     /// Radius of curvature R.

@@ -33,6 +33,17 @@ impl ShearMaterial {
 
     /// Mindlin's no-slip stiffness factor G* = G/(2 − ν): a stuck circle of radius a has
     /// the tangential stiffness 8G*a.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim::ShearMaterial;
+    ///
+    /// // Rubber: E* = 4, ν = 1/2 gives G = 1 and G* = 2/3; a stuck circle of radius a = 0.1
+    /// // has the tangential stiffness 8G*a.
+    /// let rubber = ShearMaterial::from_contact_modulus(4.0, 0.5);
+    /// assert_eq!(rubber.shear_modulus, 1.0);
+    /// assert!((8.0 * rubber.mindlin_modulus() * 0.1 - 0.5333333333333333).abs() < 1e-15);
+    /// ```
     pub fn mindlin_modulus(&self) -> f64 {
         self.shear_modulus / (2.0 - self.poisson_ratio)
     }

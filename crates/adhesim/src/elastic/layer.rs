@@ -114,6 +114,22 @@ const SCREENED_KT: f64 = 25.0;
 /// cancellation at small s is removed by writing it (κ − 1) sinh 2s + (sinh 2s − 2s).
 /// Limits: f → 1 for s → ∞; bonded f → 4s(κ − 1)/(1 + κ)² (uniaxial strain) and at
 /// κ = 1 f → 2s³/3 (C = t³k²/(3G)); frictionless f → s/2 (C = t/E*). `kt` ≥ 0; f(0) = 0.
+///
+/// # Example
+/// ```
+/// use adhesim::elastic::layer_compliance_factor;
+/// use adhesim::LayerBase;
+///
+/// // Short waves do not feel the base; long ones on a thin bonded incompressible layer see
+/// // the lubrication compliance t³k²/(3G): the half-space's 2/(E*k) times (2/3)(kt)³ at
+/// // ν = 1/2 (E* = 4G).
+/// assert_eq!(layer_compliance_factor(30.0, 0.5, LayerBase::Bonded), 1.0);
+/// let kt = 1e-3;
+/// let factor = layer_compliance_factor(kt, 0.5, LayerBase::Bonded);
+/// assert!((factor / (2.0 / 3.0 * kt * kt * kt) - 1.0).abs() < 1e-3);
+/// // A frictionless base is softer than a bonded one.
+/// assert!(layer_compliance_factor(1.0, 0.3, LayerBase::Frictionless) > layer_compliance_factor(1.0, 0.3, LayerBase::Bonded));
+/// ```
 pub fn layer_compliance_factor(kt: f64, poisson_ratio: f64, base: LayerBase) -> f64 {
     if kt >= SCREENED_KT {
         return 1.0;

@@ -101,6 +101,29 @@ impl TangentialOperator {
 
     /// K_xx(0,0): the tangential displacement of an element under its own unit traction
     /// along x.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim::{Boundary, Grid, ShearMaterial, TangentialOperator};
+    ///
+    /// // On a square element K_xx(0,0) = (2 − ν)Δ·asinh(1)/(πG) (docs/physics.md §8.1); a unit
+    /// // traction on one element moves it by that much, and nothing across the shear there.
+    /// let grid = Grid::new(16, 1.0, Boundary::Free)?;
+    /// let material = ShearMaterial::from_contact_modulus(4.0, 0.5); // G = 1
+    /// let mut operator = TangentialOperator::new(grid, material)?;
+    /// let closed_form = 1.5 * grid.dx() * 1f64.asinh() / std::f64::consts::PI;
+    /// assert!((operator.self_compliance() / closed_form - 1.0).abs() < 1e-12);
+    /// let centre = 8 * 16 + 8;
+    /// let mut qx = vec![0.0; grid.len()];
+    /// qx[centre] = 1.0;
+    /// let qy = vec![0.0; grid.len()];
+    /// let (mut ux, mut uy) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+    /// operator.apply([&qx, &qy], [&mut ux, &mut uy]);
+    /// assert!((ux[centre] / closed_form - 1.0).abs() < 1e-9);
+    /// assert!(uy[centre].abs() < 1e-12 * closed_form);
+    /// assert_eq!(operator.transform_pairs(), 2);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn self_compliance(&self) -> f64 {
         self.self_compliance
     }

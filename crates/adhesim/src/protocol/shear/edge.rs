@@ -23,6 +23,20 @@ const MAX_ROUNDS: usize = 200;
 
 /// σ_c,eff = √(max(σ_c² − m·r·q², 0)): the tension at which an element carrying the shear
 /// traction of magnitude `shear_traction` detaches (see the module).
+///
+/// # Example
+/// ```
+/// use adhesim::protocol::{element_energy_ratio, shear_weakened_critical_stress};
+/// use adhesim::ShearMaterial;
+///
+/// // At ν = 1/2 an element's shear energy is 3/2 of its tension energy at the same stress.
+/// let ratio = element_energy_ratio(ShearMaterial::from_contact_modulus(4.0, 0.5));
+/// assert_eq!(ratio, 1.5);
+/// // σ_c = 5 and |q|² = 6 with mode mixity 1: σ_eff² = 25 − 1.5·6 = 16.
+/// assert_eq!(shear_weakened_critical_stress(5.0, 6f64.sqrt(), 1.0, ratio), 4.0);
+/// // Mode mixity 0: the shear does not weaken the edge.
+/// assert_eq!(shear_weakened_critical_stress(5.0, 6f64.sqrt(), 0.0, ratio), 5.0);
+/// ```
 pub fn shear_weakened_critical_stress(
     critical_stress: f64,
     shear_traction: f64,

@@ -360,6 +360,23 @@ fn worst(into: &mut Complementarity, from: Complementarity) {
 /// the indenter's axis perpendicular to the shift; front = strictly ahead of it, rear = the
 /// rest, as the analysis of filmed experiments splits it (docs/physics.md §7; the paper's
 /// Figs. 17 and 19).
+///
+/// # Example
+/// ```
+/// use adhesim::protocol::contact_split;
+/// use adhesim::{Boundary, Grid};
+///
+/// // Four elements in contact on an 8 × 8 grid of unit elements, at x = ±1, shifted
+/// // along +x: the two at x = 1 are ahead (front), the two at x = −1 behind (rear).
+/// let grid = Grid::new(8, 8.0, Boundary::Free)?;
+/// let mut contact = vec![false; grid.len()];
+/// for k in [3 * 8 + 3, 3 * 8 + 5, 4 * 8 + 3, 4 * 8 + 5] {
+///     contact[k] = true;
+/// }
+/// let (count, front, rear) = contact_split(&grid, &contact, 0.0);
+/// assert_eq!((count, front, rear), (4, 2.0, 2.0));
+/// # Ok::<(), adhesim::GridError>(())
+/// ```
 pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f64, f64) {
     let (ux, uy) = (direction.cos(), direction.sin());
     let (mut count, mut front, mut rear) = (0, 0.0, 0.0);

@@ -10,6 +10,15 @@ pub const ELEMENT_ENERGY_FACTOR: f64 = 0.473_201_004_409_338_54;
 /// Critical tensile stress of the local mesh-dependent detachment criterion,
 /// σ_c = √(E*γ/(c_U Δ)) (Pohrt & Popov 2015, *FU Mech. Eng.* 13(1), 3–10): an element is
 /// released once the elastic energy it stores pays for its new free surface γΔ².
+///
+/// # Example
+/// ```
+/// use adhesim::solver::critical_stress;
+///
+/// // σ_c = √(E*γ/(c_U Δ)) ≈ 1.4537·√(E*γ/Δ) (docs/physics.md §2.2).
+/// let sigma = critical_stress(4.0, 1e-3, 0.01);
+/// assert!((sigma / (4.0f64 * 1e-3 / 0.01).sqrt() - 1.453708).abs() < 1e-6);
+/// ```
 pub fn critical_stress(contact_modulus: f64, work_of_adhesion: f64, element_size: f64) -> f64 {
     (contact_modulus * work_of_adhesion / (ELEMENT_ENERGY_FACTOR * element_size)).sqrt()
 }

@@ -3,6 +3,22 @@
 use thiserror::Error;
 
 /// A friction law's bound on |q| per contact element.
+///
+/// # Example
+/// ```
+/// use adhesim::FrictionLaw;
+///
+/// // Coulomb's bound is μ times the compressive pressure; a tensile element carries none.
+/// let coulomb = FrictionLaw::coulomb(0.3)?;
+/// assert_eq!(coulomb.bound(2.0), 0.6);
+/// assert_eq!(coulomb.bound(-1.0), 0.0);
+/// // A shear strength bounds every contact element, tensile ones included.
+/// let tresca = FrictionLaw::shear_strength(0.05)?;
+/// assert_eq!(tresca.bound(-1.0), 0.05);
+/// assert_eq!(FrictionLaw::NoSlip.bound(0.0), f64::INFINITY);
+/// assert!(FrictionLaw::coulomb(-0.1).is_err());
+/// # Ok::<(), adhesim::FrictionLawError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum FrictionLaw {
     /// Coulomb: |q| ≤ μ·max(p, 0). With adhesion, only compressive pressure bounds the

@@ -29,6 +29,16 @@ use crate::elastic::TangentialOperator;
 use thiserror::Error;
 
 /// The tangential state of an element.
+///
+/// # Example
+/// ```
+/// use adhesim::{SlipStatus, TangentialState};
+///
+/// let mut state = TangentialState::new(3);
+/// state.status = vec![SlipStatus::Stick, SlipStatus::Slip, SlipStatus::Open];
+/// assert_eq!(state.counts(), (1, 1));
+/// assert_eq!(state.status.iter().map(|s| s.code()).collect::<Vec<_>>(), [1, 2, 0]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SlipStatus {
@@ -200,6 +210,33 @@ const LOOSE_TURN: f64 = 1e-3;
 const LOOSE_ROUNDS: usize = 4;
 
 /// The semismooth Newton active-set solver of the tangential problem (see the module).
+///
+/// # Example
+/// A rigid flat punch glued over a 4 × 4 patch of a free grid and shifted by δ: every
+/// element sticks, and the force is the stiffness of the patch times δ (positive along the
+/// shift, nothing across it).
+/// ```
+/// use adhesim::{Boundary, ContactState, FrictionLaw, Grid, ShearMaterial};
+/// use adhesim::{TangentialOperator, TangentialParams, TangentialSolver, TangentialState};
+///
+/// let grid = Grid::new(8, 1.0, Boundary::Free)?;
+/// let material = ShearMaterial::from_contact_modulus(4.0, 0.5);
+/// let mut operator = TangentialOperator::new(grid, material)?;
+/// let mut normal = ContactState::new(&grid);
+/// for k in 0..grid.len() {
+///     let (x, y) = grid.centre(k);
+///     if x.abs() < 0.25 && y.abs() < 0.25 {
+///         normal.contact[k] = true;
+///         normal.pressure[k] = 1.0;
+///     }
+/// }
+/// let mut solver = TangentialSolver::new(FrictionLaw::NoSlip, TangentialParams::default());
+/// let mut state = TangentialState::new(grid.len());
+/// let report = solver.step(&mut operator, &normal, [1e-3, 0.0], &mut state)?;
+/// assert_eq!((report.stick_elements, report.slip_elements), (16, 0));
+/// assert!(report.force[0] > 0.0 && report.force[1].abs() < 1e-8 * report.force[0]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct TangentialSolver {
     law: FrictionLaw,
     params: TangentialParams,
