@@ -100,6 +100,19 @@ impl Scenario {
 
     /// Sets a dotted key (`grid.n`) to a value given as TOML text (`64`, `"free"`,
     /// `[1, 2]`; a bare word is a string), as `adhesim run --set KEY=VALUE` does.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim_scenario::Scenario;
+    ///
+    /// let text = "[grid]\nn = 32\nsize = 0.5\n[material]\ncontact_modulus = 1.0\n[adhesion]\nwork_of_adhesion = 0.0\n[indenter]\nshape = \"sphere\"\nradius = 1.0\n[protocol]\nkind = \"indent_pulloff\"\nmax_depth = 0.01\nsteps = 10\n";
+    /// let mut scenario = Scenario::from_toml_str(text, "hertz.toml")?;
+    /// scenario.apply_override("grid.n", "64")?;
+    /// scenario.apply_override("grid.boundary", "periodic")?; // a bare word is a string
+    /// let valid = scenario.validate(std::path::Path::new("."))?;
+    /// assert_eq!((valid.grid.nx(), valid.grid.boundary()), (64, adhesim::Boundary::Periodic));
+    /// # Ok::<(), adhesim_scenario::ScenarioError>(())
+    /// ```
     pub fn apply_override(&mut self, key: &str, value: &str) -> Result<(), ScenarioError> {
         apply_override(&mut self.table, key, value)
     }

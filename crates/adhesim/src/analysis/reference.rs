@@ -12,6 +12,15 @@ pub use maugis::{
 use std::f64::consts::PI;
 
 /// Hertz (1882) contact of a paraboloid of radius R pressed to depth d.
+///
+/// # Example
+/// ```
+/// use adhesim::analysis::reference::Hertz;
+///
+/// // F = (4/3)E*R^{1/2}d^{3/2}: R = 1, E* = 4, d = 0.01 gives 16/3000.
+/// let hertz = Hertz { radius: 1.0, contact_modulus: 4.0 };
+/// assert!((hertz.force(0.01) - 16.0 / 3000.0).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hertz {
     /// Radius of curvature R.

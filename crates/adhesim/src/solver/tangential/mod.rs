@@ -212,7 +212,7 @@ const LOOSE_ROUNDS: usize = 4;
 /// The semismooth Newton active-set solver of the tangential problem (see the module).
 ///
 /// # Example
-/// A rigid flat punch glued over a 4 × 4 patch of a free grid and shifted by δ: every
+/// A rigid flat punch glued over a 3 × 3 patch of a free grid and shifted by δ: every
 /// element sticks, and the force is the stiffness of the patch times δ (positive along the
 /// shift, nothing across it).
 /// ```
@@ -233,7 +233,7 @@ const LOOSE_ROUNDS: usize = 4;
 /// let mut solver = TangentialSolver::new(FrictionLaw::NoSlip, TangentialParams::default());
 /// let mut state = TangentialState::new(grid.len());
 /// let report = solver.step(&mut operator, &normal, [1e-3, 0.0], &mut state)?;
-/// assert_eq!((report.stick_elements, report.slip_elements), (16, 0));
+/// assert_eq!((report.stick_elements, report.slip_elements), (9, 0));
 /// assert!(report.force[0] > 0.0 && report.force[1].abs() < 1e-8 * report.force[0]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
