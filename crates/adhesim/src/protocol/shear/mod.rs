@@ -87,8 +87,8 @@ pub struct ShearSummary {
     pub peak_tangential_force: f64,
     /// Tangential force at the end of the forward stroke.
     pub final_tangential_force: f64,
-    /// Normal force at the end of the forward stroke (the whole shift's, unless the shear
-    /// weakens the edge).
+    /// Normal force at the end of the forward stroke (the whole shift's when the normal
+    /// problem is held: no weakened edge, no incline).
     pub normal_force: f64,
     /// Contact area at the end of the forward stroke.
     pub area: f64,
