@@ -7,9 +7,11 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 mod friction;
+mod layer;
 mod per_axis;
 mod roughness;
 pub use friction::{CouplingName, FrictionLawName, FrictionSection, ShearProtocol, ShearSetup};
+pub use layer::LayerBaseName;
 pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, RoughnessMode, RoughnessSection};
 
@@ -95,15 +97,6 @@ pub struct MaterialSection {
     /// How the layer rests on its base; absent means `bonded` (and is echoed absent).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub base: Option<LayerBaseName>,
-}
-
-/// `material.base`: the layer bonded to its rigid base, or sliding on it without friction.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LayerBaseName {
-    #[default]
-    Bonded,
-    Frictionless,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
