@@ -6,7 +6,7 @@ use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
 use crate::translation::{held_depth, ValidatedSections, DEFAULT_APPROACH_STEPS};
 use crate::validate::{finite, positive};
-use adhesim::{Boundary, Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
+use adhesim::{Boundary, Complementarity, FrictionLaw, Grid, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;
 
@@ -60,31 +60,7 @@ impl ScenarioFile {
         };
         let law = friction_law(friction)?;
         let shear_material = self.shear_material(material.contact_modulus())?;
-        if grid.boundary() == Boundary::Periodic {
-            bail!(ScenarioError::invalid_as(
-                "grid.boundary",
-                "\"periodic\"",
-                "\"free\" with [friction]",
-                "[friction] needs grid.boundary = \"free\": a periodic grid leaves the mean tangential displacement undefined (it would need a force-controlled shear)"
-            ));
-        }
-        let law_name = self.adhesion.law.unwrap_or_default();
-        if law_name != LawName::Jkr {
-            bail!(ScenarioError::invalid_as(
-                "adhesion.law",
-                format!("{law_name:?}").to_lowercase(),
-                "\"jkr\" with [friction]",
-                "[friction] works with the JKR-type adhesion (adhesion.law = \"jkr\", or work_of_adhesion = 0); a cohesive law's tractions across gaps have no friction law yet"
-            ));
-        }
-        if !self.analysis.is_empty() {
-            bail!(ScenarioError::invalid_as(
-                "protocol.kind",
-                "\"shear\"",
-                "\"roll\" or \"slide\" with [analysis]",
-                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only, got \"shear\" (its friction is [friction])"
-            ));
-        }
+        self.check_shear_combinations(&grid)?;
         let depth = held_depth(p.depth, unit, start_depth)?;
         let distance = positive("protocol.distance", p.distance)?;
         let steps = step_count("protocol.steps", p.steps)?;
@@ -155,6 +131,37 @@ impl ScenarioFile {
             roughness: None,
             warnings: Vec::new(),
         })
+    }
+
+    /// What `[friction]` does not combine with yet: a periodic grid, a cohesive law,
+    /// `[analysis]`; each refused naming its key.
+    fn check_shear_combinations(&self, grid: &Grid) -> Result<()> {
+        if grid.boundary() == Boundary::Periodic {
+            bail!(ScenarioError::invalid_as(
+                "grid.boundary",
+                "\"periodic\"",
+                "\"free\" with [friction]",
+                "[friction] needs grid.boundary = \"free\": a periodic grid leaves the mean tangential displacement undefined (it would need a force-controlled shear)"
+            ));
+        }
+        let law_name = self.adhesion.law.unwrap_or_default();
+        if law_name != LawName::Jkr {
+            bail!(ScenarioError::invalid_as(
+                "adhesion.law",
+                format!("{law_name:?}").to_lowercase(),
+                "\"jkr\" with [friction]",
+                "[friction] works with the JKR-type adhesion (adhesion.law = \"jkr\", or work_of_adhesion = 0); a cohesive law's tractions across gaps have no friction law yet"
+            ));
+        }
+        if !self.analysis.is_empty() {
+            bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                "\"shear\"",
+                "\"roll\" or \"slide\" with [analysis]",
+                "[analysis] (gamma_approach, gamma_pulloff, tau0) is used by protocol.kind = \"roll\" / \"slide\" only, got \"shear\" (its friction is [friction])"
+            ));
+        }
+        Ok(())
     }
 
     /// G and ν: tangential contact needs Poisson's ratio, so `[material]` must give

@@ -132,34 +132,14 @@ impl Shear {
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
         let mut summary = ShearSummary::default();
-        let depth_step = (self.depth - self.start_depth) / self.approach_steps as f64;
-        for step in 0..self.approach_steps {
-            let depth = if step + 1 == self.approach_steps {
-                self.depth
-            } else {
-                self.start_depth + (step + 1) as f64 * depth_step
-            };
-            previous.copy_from_slice(&state.contact);
-            let report = solver
-                .step(operator, heights, depth, &mut state)
-                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
-            summary.dissipated_energy += report.dissipated_energy;
-            summary.solves += report.solves;
-            summary.cg_iterations += report.cg_iterations;
-            summary.operator_applications += report.operator_applications;
-            let mut record = self.record(
-                step,
-                Phase::Approach,
-                depth,
-                report,
-                &state,
-                &grid,
-                summary.dissipated_energy,
-            );
-            let (stick, front, rear) = contact_split(&grid, &state.contact, self.direction);
-            (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
-            self.report(&mut summary, &record, (&state, &previous, None), observer)?;
-        }
+        self.approach(
+            operator,
+            heights,
+            solver,
+            (&mut state, &mut previous),
+            &mut summary,
+            observer,
+        )?;
         let inclined = self.incline != 0.0;
         let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, solver)?;
         let mut fields = ShearFields::new(grid.len());
@@ -192,10 +172,7 @@ impl Shear {
                 summary.normal_force,
             )?;
             let (report, mut normal) = (outcome.tangential, outcome.normal);
-            summary.solves += normal.solves;
-            summary.cg_iterations += normal.cg_iterations;
-            summary.operator_applications += normal.operator_applications;
-            summary.dissipated_energy += normal.dissipated_energy;
+            add_normal_counters(&mut summary, &normal);
             normal.cg_iterations += report.cg_iterations;
             normal.operator_applications += report.transform_pairs;
             summary.tangential_transform_pairs += report.transform_pairs;
@@ -241,6 +218,47 @@ impl Shear {
         }
         stepper.finish(solver);
         Ok(summary)
+    }
+
+    /// The approach to `depth` in `approach_steps` displacement steps; `contact` is the
+    /// normal state and the contact set at each step's start.
+    fn approach<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        contact: (&mut ContactState, &mut Vec<bool>),
+        summary: &mut ShearSummary,
+        observer: &mut dyn Observer,
+    ) -> Result<(), ProtocolError> {
+        let (state, previous) = contact;
+        let grid = *operator.grid();
+        let depth_step = (self.depth - self.start_depth) / self.approach_steps as f64;
+        for step in 0..self.approach_steps {
+            let depth = if step + 1 == self.approach_steps {
+                self.depth
+            } else {
+                self.start_depth + (step + 1) as f64 * depth_step
+            };
+            previous.copy_from_slice(&state.contact);
+            let report = solver
+                .step(operator, heights, depth, state)
+                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
+            add_normal_counters(summary, &report);
+            let mut record = self.record(
+                step,
+                Phase::Approach,
+                depth,
+                report,
+                state,
+                &grid,
+                summary.dissipated_energy,
+            );
+            let (stick, front, rear) = contact_split(&grid, &state.contact, self.direction);
+            (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
+            self.report(summary, &record, (state, previous, None), observer)?;
+        }
+        Ok(())
     }
 
     /// Steps of the shift: the forward stroke, the cycles and the return.
@@ -346,6 +364,14 @@ impl Shear {
             ControlFlow::Break(()) => Err(ProtocolError::Interrupted(record.step)),
         }
     }
+}
+
+/// A normal step's solves, iterations, transforms and released energy into the totals.
+fn add_normal_counters(summary: &mut ShearSummary, report: &StepReport) {
+    summary.dissipated_energy += report.dissipated_energy;
+    summary.solves += report.solves;
+    summary.cg_iterations += report.cg_iterations;
+    summary.operator_applications += report.operator_applications;
 }
 
 /// The worse of each optimality measure.
