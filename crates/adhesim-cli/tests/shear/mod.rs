@@ -27,14 +27,7 @@ fn shear_run_follows_cattaneo_mindlin() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("shear");
     let scenario = repo().join("scenarios/shear.toml");
-    let output = adhesim(&[
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    run_quietly(&scenario, &out, &[]);
     let (header, rows) = read_csv(&out.join("curve.csv"));
     for name in [
         "x",
@@ -113,14 +106,7 @@ fn fretting_loop_dissipates_the_mindlin_deresiewicz_energy() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = repo().join("scenarios/friction/fretting.toml");
     let out = dir.path().join("fretting");
-    let output = adhesim(&[
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    run_quietly(&scenario, &out, &[]);
     let (header, rows) = read_csv(&out.join("curve.csv"));
     let x = column_values(&header, &rows, "x");
     let force = column_values(&header, &rows, "force_tangential");
@@ -176,14 +162,7 @@ fn oblique_loading_follows_mindlin_deresiewicz_without_gross_slip() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("oblique");
     let scenario = repo().join("scenarios/friction/oblique.toml");
-    let output = adhesim(&[
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    run_quietly(&scenario, &out, &[]);
     let (header, rows) = read_csv(&out.join("curve.csv"));
     let depth = column_values(&header, &rows, "d");
     let tangential = column_values(&header, &rows, "force_tangential");
@@ -229,16 +208,7 @@ fn shear_strength_slides_at_tau0_times_area_with_tensile_elements() {
     let text = shear_text("law = \"shear_strength\"\nshear_strength = 0.002", 2e-3);
     let scenario = write(dir.path(), "tresca.toml", &text);
     let out = dir.path().join("tresca");
-    let output = adhesim(&[
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-        "--set",
-        "grid.n=64",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    run_quietly(&scenario, &out, &["--set", "grid.n=64"]);
     let results = read_json(&out.join("summary.json"))["results"].clone();
     let area = results["contact_area"].as_f64().unwrap();
     let sliding = results["sliding_friction_force"].as_f64().expect("gross slip reached");
@@ -248,6 +218,20 @@ fn shear_strength_slides_at_tau0_times_area_with_tensile_elements() {
         0.002 * area
     );
     assert!((results["mean_shear_stress"].as_f64().unwrap() / 0.002 - 1.0).abs() < 1e-9);
+}
+
+/// `adhesim run SCENARIO --out OUT --quiet EXTRA…`, which must succeed.
+fn run_quietly(scenario: &std::path::Path, out: &std::path::Path, extra: &[&str]) {
+    let mut args = vec![
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let output = adhesim(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
 }
 
 /// a solving Savkoor & Briggs' balance at fixed depth, d = a²/R − √((2πaw − 4G*δ²)/E*)
@@ -284,14 +268,7 @@ fn adhesive_sphere_sheared_without_slip_shrinks_as_savkoor_briggs() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("adhesive_shear");
     let scenario = repo().join("scenarios/friction/adhesive_shear.toml");
-    let output = adhesim(&[
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    run_quietly(&scenario, &out, &[]);
     let (header, rows) = read_csv(&out.join("curve.csv"));
     let x = column_values(&header, &rows, "x");
     let area = column_values(&header, &rows, "area");
