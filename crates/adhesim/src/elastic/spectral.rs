@@ -76,8 +76,8 @@ struct BlockScratch<T> {
     real_row: Vec<T>,
     real_scratch: Vec<Complex<T>>,
     complex_scratch: Vec<Complex<T>>,
-    /// TILE full-length columns, `[column * padded_y + row]`: small enough to stay in cache
-    /// from the gather through both column transforms to the scatter.
+    /// TILE full-length columns, `[column * column_stride(padded_y) + row]`: small enough to
+    /// stay in cache from the gather through both column transforms to the scatter.
     tile: Vec<Complex<T>>,
     /// One spectrum row gathered from the tiles for the inverse row transform.
     spectrum: Vec<Complex<T>>,
@@ -85,6 +85,15 @@ struct BlockScratch<T> {
 
 /// Columns transformed together (16 complex values = 4 cache lines per row of a tile).
 const TILE: usize = 16;
+
+/// Distance between the starts of a tile's columns: the column length and 8 values more.
+/// A power-of-two column length alone puts row i of all TILE columns in one cache set (a
+/// 4 KiB stride at 512 complex f32), so the transposing gather and scatter, which touch
+/// row i of every column in turn, evict each other's lines; the gap spreads them over sets.
+/// The transforms see the same values, so the bits do not change.
+fn column_stride(padded_y: usize) -> usize {
+    padded_y + 8
+}
 
 fn block_len(total: usize, blocks: usize) -> usize {
     total.div_ceil(blocks).max(1)
@@ -113,7 +122,7 @@ impl<T: Precision> SpectralConvolution<T> {
                 real_row: vec![T::zero(); padded_x],
                 real_scratch: vec![Complex::default(); scratch_len],
                 complex_scratch: vec![Complex::default(); complex_scratch_len],
-                tile: vec![Complex::default(); TILE * padded_y],
+                tile: vec![Complex::default(); TILE * column_stride(padded_y)],
                 spectrum: vec![Complex::default(); spectrum_columns],
             })
             .collect();
@@ -222,10 +231,11 @@ impl<T: Precision> SpectralConvolution<T> {
         let tile_len = output_rows.len() * TILE;
         let tiles_per_block = block_len(tiles, blocks);
         let row_spectra = &self.row_spectra;
+        let input_rows = &input_rows;
         let kernel = &self.kernel;
         let (forward_columns, inverse_columns) = (&self.forward_columns, &self.inverse_columns);
-        let (first_row, end_row) = (input_rows.start, input_rows.end);
         let first_output = output_rows.start;
+        let stride = column_stride(padded);
         self.kept[..tiles * tile_len]
             .par_chunks_mut(tiles_per_block * tile_len)
             .zip(self.blocks.par_iter_mut())
@@ -234,30 +244,21 @@ impl<T: Precision> SpectralConvolution<T> {
                 for (local, kept) in kept.chunks_mut(tile_len).enumerate() {
                     let first = (block * tiles_per_block + local) * TILE;
                     let width = TILE.min(columns - first);
-                    let tile = &mut scratch.tile[..width * padded];
-                    for column in tile.chunks_mut(padded) {
-                        column[..first_row].fill(Complex::default());
-                        column[end_row..].fill(Complex::default());
-                    }
-                    for i in first_row..end_row {
-                        let row = &row_spectra[i * columns + first..][..width];
-                        for (offset, &value) in row.iter().enumerate() {
-                            tile[offset * padded + i] = value;
-                        }
-                    }
-                    for (offset, column) in tile.chunks_mut(padded).enumerate() {
+                    let tile = &mut scratch.tile[..width * stride];
+                    gather_columns(tile, row_spectra, &input_rows, (first, width, columns, padded));
+                    for (offset, column) in tile.chunks_mut(stride).enumerate() {
+                        let column = &mut column[..padded];
                         forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
-                        for (value, &k) in column.iter_mut().zip(&kernel[(first + offset) * padded..]) {
-                            *value = value.scale(k);
+                        let kernel_column = &kernel[(first + offset) * padded..][..padded];
+                        // re and im scaled apart (the bits of `Complex::scale`): equal-length
+                        // slices and plain products let the loop vectorise.
+                        for (value, &k) in column.iter_mut().zip(kernel_column) {
+                            value.re = value.re * k;
+                            value.im = value.im * k;
                         }
                         inverse_columns.process_with_scratch(column, &mut scratch.complex_scratch);
                     }
-                    for (row, kept_row) in kept.chunks_mut(TILE).enumerate() {
-                        let i = first_output + row;
-                        for (offset, target) in kept_row[..width].iter_mut().enumerate() {
-                            *target = tile[offset * padded + i];
-                        }
-                    }
+                    keep_rows(kept, tile, first_output, (width, padded));
                 }
             });
 
@@ -322,6 +323,45 @@ impl<T: Precision> SpectralConvolution<T> {
                     }
                 }
             });
+    }
+}
+
+/// Fills `width` columns of a tile (`[column * column_stride(padded) + row]`) with the
+/// column values `first..first + width` of the row spectra (`columns` per row), zero
+/// outside the data rows `rows`.
+fn gather_columns<T: Precision>(
+    tile: &mut [Complex<T>],
+    spectra: &[Complex<T>],
+    rows: &Range<usize>,
+    (first, width, columns, padded): (usize, usize, usize, usize),
+) {
+    let stride = column_stride(padded);
+    for column in tile.chunks_mut(stride) {
+        column[..rows.start].fill(Complex::default());
+        column[rows.end..padded].fill(Complex::default());
+    }
+    for i in rows.clone() {
+        let row = &spectra[i * columns + first..][..width];
+        for (offset, &value) in row.iter().enumerate() {
+            tile[offset * stride + i] = value;
+        }
+    }
+}
+
+/// Copies the tile's rows `first_row..` (as many as `kept` holds, TILE values a row) into
+/// `kept`, the first `width` values of each.
+fn keep_rows<T: Precision>(
+    kept: &mut [Complex<T>],
+    tile: &[Complex<T>],
+    first_row: usize,
+    (width, padded): (usize, usize),
+) {
+    let stride = column_stride(padded);
+    for (row, kept_row) in kept.chunks_mut(TILE).enumerate() {
+        let i = first_row + row;
+        for (offset, target) in kept_row[..width].iter_mut().enumerate() {
+            *target = tile[offset * stride + i];
+        }
     }
 }
 

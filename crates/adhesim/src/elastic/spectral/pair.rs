@@ -2,8 +2,7 @@
 //! operator's u_x = K_xx∗q_x + K_xy∗q_y, u_y = K_xy∗q_x + K_yy∗q_y at the cost of two
 //! convolutions (each field transformed forward and back once), not four.
 
-use super::{block_len, Precision, SpectralConvolution, TILE};
-use num_complex::Complex;
+use super::{block_len, column_stride, gather_columns, keep_rows, Precision, SpectralConvolution, TILE};
 use rayon::prelude::*;
 
 impl<T: Precision> SpectralConvolution<T> {
@@ -31,6 +30,7 @@ impl<T: Precision> SpectralConvolution<T> {
         other.forward_rows_of(b, &rows_b);
         let all = 0..self.ny;
         let (columns, padded) = (self.spectrum_columns, self.padded_y);
+        let stride = column_stride(padded);
         let tiles = columns.div_ceil(TILE);
         let tile_len = all.len() * TILE;
         let blocks = self.blocks.len().min(other.blocks.len());
@@ -49,13 +49,14 @@ impl<T: Precision> SpectralConvolution<T> {
                 {
                     let first = (block * tiles_per_block + local) * TILE;
                     let width = TILE.min(columns - first);
-                    let tile_a = &mut scratch_a.tile[..width * padded];
-                    let tile_b = &mut scratch_b.tile[..width * padded];
-                    gather(tile_a, spectra_a, &rows_a, (first, width, columns, padded));
-                    gather(tile_b, spectra_b, &rows_b, (first, width, columns, padded));
+                    let tile_a = &mut scratch_a.tile[..width * stride];
+                    let tile_b = &mut scratch_b.tile[..width * stride];
+                    gather_columns(tile_a, spectra_a, &rows_a, (first, width, columns, padded));
+                    gather_columns(tile_b, spectra_b, &rows_b, (first, width, columns, padded));
                     for (offset, (column_a, column_b)) in
-                        tile_a.chunks_mut(padded).zip(tile_b.chunks_mut(padded)).enumerate()
+                        tile_a.chunks_mut(stride).zip(tile_b.chunks_mut(stride)).enumerate()
                     {
+                        let (column_a, column_b) = (&mut column_a[..padded], &mut column_b[..padded]);
                         forward_columns.process_with_scratch(column_a, &mut scratch_a.complex_scratch);
                         forward_columns.process_with_scratch(column_b, &mut scratch_a.complex_scratch);
                         let at = (first + offset) * padded;
@@ -70,37 +71,12 @@ impl<T: Precision> SpectralConvolution<T> {
                         inverse_columns.process_with_scratch(column_a, &mut scratch_a.complex_scratch);
                         inverse_columns.process_with_scratch(column_b, &mut scratch_a.complex_scratch);
                     }
-                    for (kept, tile) in [(&mut *kept_a, &*tile_a), (&mut *kept_b, &*tile_b)] {
-                        for (row, kept_row) in kept.chunks_mut(TILE).enumerate() {
-                            for (offset, target) in kept_row[..width].iter_mut().enumerate() {
-                                *target = tile[offset * padded + row];
-                            }
-                        }
-                    }
+                    keep_rows(kept_a, tile_a, 0, (width, padded));
+                    keep_rows(kept_b, tile_b, 0, (width, padded));
                 }
             });
         let [out_a, out_b] = output;
         self.inverse_rows_into(out_a, &all);
         other.inverse_rows_into(out_b, &all);
-    }
-}
-
-/// Fills `width` columns of a tile (`[column * padded + row]`) from the row spectra,
-/// zero outside the data rows `rows`.
-fn gather<T: Precision>(
-    tile: &mut [Complex<T>],
-    spectra: &[Complex<T>],
-    rows: &std::ops::Range<usize>,
-    (first, width, columns, padded): (usize, usize, usize, usize),
-) {
-    for column in tile.chunks_mut(padded) {
-        column[..rows.start].fill(Complex::default());
-        column[rows.end..].fill(Complex::default());
-    }
-    for i in rows.clone() {
-        let row = &spectra[i * columns + first..][..width];
-        for (offset, &value) in row.iter().enumerate() {
-            tile[offset * padded + i] = value;
-        }
     }
 }
