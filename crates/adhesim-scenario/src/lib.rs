@@ -240,4 +240,6 @@ mod guards_tests;
 #[cfg(test)]
 mod layer_tests;
 #[cfg(test)]
+mod solver_tests;
+#[cfg(test)]
 mod tests;

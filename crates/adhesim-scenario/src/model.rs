@@ -10,10 +10,12 @@ mod friction;
 mod layer;
 mod per_axis;
 mod roughness;
+mod solver;
 pub use friction::{CouplingName, FrictionLawName, FrictionSection, ShearProtocol, ShearSetup};
 pub use layer::LayerBaseName;
 pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, RoughnessMode, RoughnessSection};
+pub use solver::{PredictedGrowthName, SolverSection};
 
 /// The whole scenario file.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -39,6 +41,9 @@ pub struct ScenarioFile {
     /// Friction at the interface (`kind = "shear"`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionSection>,
+    /// Rules of the adhesive solver that leave the physics unchanged.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solver: Option<SolverSection>,
 }
 
 /// `[analysis]`: numbers the analysis of a run needs but the run does not produce.

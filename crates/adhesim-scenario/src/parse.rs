@@ -61,7 +61,7 @@ pub(crate) fn apply_override(table: &mut toml::Table, key: &str, raw: &str) -> R
     Ok(())
 }
 
-const SECTIONS: [&str; 10] = [
+const SECTIONS: [&str; 11] = [
     "grid",
     "material",
     "adhesion",
@@ -72,6 +72,7 @@ const SECTIONS: [&str; 10] = [
     "roughness",
     "substrate_roughness",
     "friction",
+    "solver",
 ];
 
 /// Deserialises the table section by section so that every message names the dotted key.
@@ -115,6 +116,7 @@ pub(crate) fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
     let roughness = section(table, "roughness", false)?;
     let substrate_roughness = section(table, "substrate_roughness", false)?;
     let friction = section(table, "friction", false)?;
+    let solver = section(table, "solver", false)?;
     Ok(ScenarioFile {
         grid,
         material,
@@ -126,6 +128,7 @@ pub(crate) fn deserialize(table: &toml::Table) -> Result<ScenarioFile> {
         roughness,
         substrate_roughness,
         friction,
+        solver,
     })
 }
 

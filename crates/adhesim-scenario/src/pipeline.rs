@@ -64,7 +64,10 @@ impl ValidScenario {
                 self.grid,
                 self.material.contact_modulus(),
                 self.gamma.clone(),
-                AdhesiveParams::default(),
+                AdhesiveParams {
+                    predicted_growth: self.predicted_growth(),
+                    ..AdhesiveParams::default()
+                },
             )))
         } else if self.layer().is_some() {
             // The nested active set's coarse levels and windows are half-space operators:
@@ -73,6 +76,12 @@ impl ValidScenario {
         } else {
             adhesim::protocol::non_adhesive_solver(self.grid, self.material)
         }
+    }
+
+    /// `solver.predicted_growth`, the library's default where absent.
+    fn predicted_growth(&self) -> adhesim::solver::PredictedGrowth {
+        let name = self.file.solver.as_ref().and_then(|solver| solver.predicted_growth);
+        name.map_or(AdhesiveParams::default().predicted_growth, |name| name.rule())
     }
 
     /// Steps the protocol will report (for progress bars): approach + retraction of an

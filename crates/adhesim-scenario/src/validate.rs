@@ -184,6 +184,10 @@ impl ScenarioFile {
             substrate_roughness: substrate_roughness.map(|map| map.heights),
         };
         self.check_friction_pairing()?;
+        if let Some(solver) = &self.solver {
+            let law = crate::cohesive::law_name(&self.adhesion);
+            solver.check(inputs.gamma0 > 0.0, law, self.grid.boundary)?;
+        }
         let mut valid = match self.protocol.kind() {
             ProtocolKind::Shear => self.validate_shear(inputs, heights, start_depth)?,
             kind if kind.is_translation() => self.validate_translation(inputs)?,
