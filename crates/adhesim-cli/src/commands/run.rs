@@ -6,6 +6,7 @@ use crate::{output, resources};
 use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
+use adhesim_scenario::output::observer::RunProgress;
 use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
 use anyhow::{Context, Result};
@@ -108,6 +109,17 @@ pub fn command(args: &RunArgs) -> Result<()> {
 /// snapshots, plots, summary.json. `out` is new, or made ready by
 /// [`folder::prepare_run_folder`]; it gets the run marker.
 pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
+    let mut progress = output::TerminalProgress::new(scenario.expected_steps(), options.quiet, scenario.jkr);
+    run_with_progress(scenario, out, options, &mut progress)
+}
+
+/// [`run`] with the progress shown by `progress` (a sweep case's share of the sweep's bar).
+pub fn run_with_progress(
+    scenario: &ValidScenario,
+    out: &Path,
+    options: &RunOptions,
+    progress: &mut dyn RunProgress,
+) -> Result<()> {
     if let Some(threads) = options.threads {
         let threads = resources::clamp_threads(threads)?;
         rayon::ThreadPoolBuilder::new()
@@ -118,13 +130,12 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
     for warning in &scenario.warnings {
         eprintln!("warning: {warning}");
     }
-    let mut progress = output::TerminalProgress::new(scenario.expected_steps(), options.quiet, scenario.jkr);
     let folder_options = FolderRunOptions {
         pictures: Some(&output::CliPictures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
         checkpoint: options.checkpoint.as_ref(),
     };
-    let done = run_into_folder(scenario, out, folder_options, &mut progress)?;
+    let done = run_into_folder(scenario, out, folder_options, progress)?;
     let outcome = &done.outcome;
     if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
         eprintln!("warning: {warning}");
