@@ -8,7 +8,8 @@ use std::time::{Duration, Instant};
 
 mod common;
 use common::{
-    adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, stderr, sweeps_dir, write, BIN,
+    adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, stderr, sweeps_dir, write,
+    BIN,
 };
 
 /// Eight cases of a few tenths of a second each (64×64 grid).
@@ -478,7 +479,10 @@ fn sweep_progress_counts_the_steps_of_running_cases() {
         .expect("util-linux `script` runs (a pseudo-terminal for the bar)");
     assert!(status.success());
     let drawn = String::from_utf8_lossy(&std::fs::read(&typescript).unwrap()).into_owned();
-    assert!(drawn.contains("cases (eta") && drawn.contains("steps of 1 running case"), "{drawn}");
+    assert!(
+        drawn.contains("cases (eta") && drawn.contains("steps of 1 running case"),
+        "{drawn}"
+    );
     // Steps done out of planned: a case's approach and as many back (80) known from its start.
     let counts: Vec<(u64, u64)> = drawn
         .split(" steps of")
@@ -487,8 +491,14 @@ fn sweep_progress_counts_the_steps_of_running_cases() {
             Some((done.parse().ok()?, planned.parse().ok()?))
         })
         .collect();
-    assert!(counts.iter().any(|&(done, planned)| done < planned && planned >= 80), "{counts:?}");
-    assert_eq!(std::fs::read(quiet.join("table.csv")).unwrap(), std::fs::read(shown.join("table.csv")).unwrap());
+    assert!(
+        counts.iter().any(|&(done, planned)| done < planned && planned >= 80),
+        "{counts:?}"
+    );
+    assert_eq!(
+        std::fs::read(quiet.join("table.csv")).unwrap(),
+        std::fs::read(shown.join("table.csv")).unwrap()
+    );
     for case in std::fs::read_dir(quiet.join("cases")).unwrap() {
         let id = case.unwrap().file_name();
         let curve = |dir: &Path| std::fs::read(dir.join("cases").join(&id).join("curve.csv")).unwrap();

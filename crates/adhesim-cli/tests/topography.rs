@@ -300,7 +300,9 @@ fn an_empty_unit_gwy_reads_with_the_units_the_error_names() {
 fn worked_example_of_the_topography_page_runs_as_written() {
     let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let page = std::fs::read_to_string(repo.join("docs/topography-files.md")).unwrap();
-    let start = page.find("## Worked example: a measured map pressed by a sphere").expect("the section");
+    let start = page
+        .find("## Worked example: a measured map pressed by a sphere")
+        .expect("the section");
     let section = &page[start..];
     let section = &section[..section[3..].find("\n## ").map_or(section.len(), |end| end + 3)];
     let block = |lang: &str| {
@@ -309,7 +311,11 @@ fn worked_example_of_the_topography_page_runs_as_written() {
         section[from..from + section[from..].find("```").unwrap()].to_string()
     };
     let scenario = std::fs::read_to_string(repo.join("scenarios/measured_map_sphere.toml")).unwrap();
-    assert_eq!(block("toml"), scenario, "the page shows scenarios/measured_map_sphere.toml");
+    assert_eq!(
+        block("toml"),
+        scenario,
+        "the page shows scenarios/measured_map_sphere.toml"
+    );
     let root = tempfile::tempdir().unwrap();
     for entry in ["scenarios", "crates"] {
         std::os::unix::fs::symlink(repo.join(entry).canonicalize().unwrap(), root.path().join(entry)).unwrap();
@@ -331,6 +337,9 @@ fn worked_example_of_the_topography_page_runs_as_written() {
     let closed_form = -1.5 * std::f64::consts::PI * 0.05 * 100e-6;
     assert!((f_jkr / closed_form - 1.0).abs() < 1e-12, "F_JKR = {f_jkr} N");
     let pull_off = summary["results"]["max_adhesive_force"].as_f64().unwrap() / f_jkr.abs();
-    assert!(pull_off > 0.1 && pull_off < 1.0, "max adhesive force {pull_off} |F_JKR|");
+    assert!(
+        pull_off > 0.1 && pull_off < 1.0,
+        "max adhesive force {pull_off} |F_JKR|"
+    );
     assert!(root.path().join("out/topography/x3p-2/statistics.json").exists());
 }

@@ -323,7 +323,11 @@ fn trapezoid_near_the_dugdale_limit_matches_maugis_or_is_refused() {
     }
     .max_adhesive_force();
     let pull_off_error = smallest.max_adhesive_force / maugis - 1.0;
-    assert!(pull_off_error.abs() < 0.03, "pull-off {:+.2} % off Maugis", 100.0 * pull_off_error);
+    assert!(
+        pull_off_error.abs() < 0.03,
+        "pull-off {:+.2} % off Maugis",
+        100.0 * pull_off_error
+    );
     assert!(dugdale.dissipated_energy > 0.0);
     let mismatch = smallest.dissipated_energy / dugdale.dissipated_energy - 1.0;
     assert!(
@@ -333,8 +337,14 @@ fn trapezoid_near_the_dugdale_limit_matches_maugis_or_is_refused() {
         dugdale.dissipated_energy
     );
     for s in ["9.9e-7", "1e-7", "1e-9"] {
-        let overrides = ["adhesion.law=\"trapezoid\"".to_string(), format!("adhesion.softening_fraction={s}")];
-        let error = load(text, "test", Path::new("."), &overrides).err().expect("refused").to_string();
+        let overrides = [
+            "adhesion.law=\"trapezoid\"".to_string(),
+            format!("adhesion.softening_fraction={s}"),
+        ];
+        let error = load(text, "test", Path::new("."), &overrides)
+            .err()
+            .expect("refused")
+            .to_string();
         assert!(
             error.contains(&format!("adhesion.softening_fraction = {s} is below 1e-6"))
                 && error.contains("adhesion.law = \"dugdale\""),

@@ -9,6 +9,7 @@
 
 use crate::commands::run::{run, run_with_progress, RunOptions};
 use crate::resources;
+use adhesim::StepRecord;
 use adhesim_scenario::batch::{self, Batch};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder::{self, FolderLock, Shard};
@@ -17,7 +18,6 @@ use adhesim_scenario::sweep::{check_memory, plan, read_plan, table, write_plan, 
 use adhesim_scenario::ValidScenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
-use adhesim::StepRecord;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use plan::Plan;
 use std::io::IsTerminal;
@@ -164,7 +164,9 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
     progress.start(todo);
     let finished = |case: &SweepCase, failure: Option<&str>| {
         if let Some(message) = failure {
-            progress.cases.suspend(|| eprintln!("case {} failed: {message}", case.case.id));
+            progress
+                .cases
+                .suspend(|| eprintln!("case {} failed: {message}", case.case.id));
         }
         progress.cases.inc(1);
         progress.cases.set_message(format!("last: {}", case.case.id));
@@ -233,7 +235,9 @@ impl SweepProgress {
     fn new(hidden: bool) -> Self {
         let style = |template: &str| ProgressStyle::with_template(template).expect("valid template");
         let cases = ProgressBar::hidden();
-        cases.set_style(style("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} cases (eta {eta}) {msg}"));
+        cases.set_style(style(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} cases (eta {eta}) {msg}",
+        ));
         // A length of 0 to add to (a hidden bar's is unknown, and inc_length keeps it so).
         let steps = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::hidden());
         steps.set_style(style("  {bar:40} {pos}/{len} steps {msg}"));

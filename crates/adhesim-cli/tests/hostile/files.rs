@@ -200,10 +200,21 @@ fn a_failed_run_leaves_no_file_under_a_final_name() {
 #[test]
 fn a_misspelt_subcommand_read_as_a_spec_file_is_suggested() {
     let dir = tempfile::tempdir().unwrap();
-    let output = Command::new(BIN).args(["experiment", "snyth"]).current_dir(dir.path()).output().unwrap();
-    assert_fails_with(&output, &["experiment spec snyth: no such file", "did you mean `synth`?"]);
+    let output = Command::new(BIN)
+        .args(["experiment", "snyth"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_fails_with(
+        &output,
+        &["experiment spec snyth: no such file", "did you mean `synth`?"],
+    );
     // An unrelated name: the file is not there, and nothing is suggested.
-    let output = Command::new(BIN).args(["experiment", "spec.toml"]).current_dir(dir.path()).output().unwrap();
+    let output = Command::new(BIN)
+        .args(["experiment", "spec.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
     assert_fails_with(&output, &["cannot read experiment spec spec.toml"]);
     assert!(!stderr(&output).contains("did you mean"), "{}", stderr(&output));
 }

@@ -64,12 +64,14 @@ pub fn main(args: ExperimentArgs) -> Result<()> {
 /// name is close to a subcommand's, the error says so and suggests the subcommand.
 fn check_not_a_misspelt_subcommand(spec: &Path) -> Result<()> {
     use clap::Subcommand;
-    let (Some(given), false) = (spec.to_str(), spec.exists()) else { return Ok(()) };
+    let (Some(given), false) = (spec.to_str(), spec.exists()) else {
+        return Ok(());
+    };
     let command = ExperimentCommand::augment_subcommands(clap::Command::new("experiment"));
     match super::similar_name(given, command.get_subcommands().map(|c| c.get_name())) {
-        Some(name) => bail!(
-            "experiment spec {given}: no such file; did you mean `{name}`? (adhesim experiment {name} --help)"
-        ),
+        Some(name) => {
+            bail!("experiment spec {given}: no such file; did you mean `{name}`? (adhesim experiment {name} --help)")
+        }
         None => Ok(()),
     }
 }
