@@ -40,7 +40,8 @@ pub struct RunOptions {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Run even when the memory estimate of the grid exceeds the memory available
-    /// (`MemAvailable` of /proc/meminfo), e.g. where swap or a lazy allocator makes it fit.
+    /// (`MemAvailable` of /proc/meminfo), e.g. where swap or a lazy allocator makes it fit
+    /// (not beyond the address-space limit of `ulimit -v`, which nothing gets past).
     #[arg(long)]
     pub allow_large: bool,
     /// Override a scenario key before validation, e.g. `--set grid.n=64` (repeatable;
@@ -93,7 +94,9 @@ pub fn command(args: &RunArgs) -> Result<()> {
     .map_err(|e| {
         let resources = e.kind == adhesim_scenario::ErrorKind::Resources;
         let error = anyhow::Error::new(e);
-        if resources {
+        if resources && args.options.allow_large {
+            error.context("refused before allocating, even with --allow-large")
+        } else if resources {
             error.context("refused before allocating (pass --allow-large to run anyway)")
         } else {
             error

@@ -63,7 +63,8 @@ pub struct SweepArgs {
     #[arg(long)]
     list: bool,
     /// Run even when `--jobs` concurrent cases of the largest grid are estimated to need
-    /// more memory than is available (`MemAvailable` of /proc/meminfo).
+    /// more memory than is available (`MemAvailable` of /proc/meminfo; not beyond the
+    /// address-space limit of `ulimit -v`).
     #[arg(long)]
     allow_large: bool,
 }
