@@ -8,7 +8,8 @@ use std::time::{Duration, Instant};
 
 mod common;
 use common::{
-    adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, sweeps_dir, write, BIN,
+    adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, stderr, sweeps_dir, write,
+    BIN,
 };
 
 /// Eight cases of a few tenths of a second each (64×64 grid).
@@ -451,4 +452,56 @@ fn a_case_killed_mid_run_resumes_from_its_checkpoint() {
         assert!(a == b, "{name} differs from the uninterrupted run's");
     }
     assert_eq!(std::fs::read_dir(killed.join("tmp")).unwrap().count(), 0);
+}
+
+/// The sweep's bar counted whole cases only (`0/3 cases` until the first case ended): on a
+/// terminal (the pseudo-terminal of util-linux `script`) a second line counts the steps of
+/// the running cases; the progress goes to stderr only, so the outputs equal those of a
+/// sweep without a terminal byte for byte.
+#[cfg(target_os = "linux")]
+#[test]
+fn sweep_progress_counts_the_steps_of_running_cases() {
+    let temp = tempfile::tempdir().unwrap();
+    let text = SLOW_SWEEP.replace("[0.4, 0.6, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0]", "[0.4, 1.0, 3.0]");
+    let sweep = write(temp.path(), "three.toml", &text);
+    let (quiet, shown) = (temp.path().join("quiet"), temp.path().join("shown"));
+    let args = |out: &Path| format!("sweep {} --out {} --jobs 1 --threads 1", sweep.display(), out.display());
+    let piped = Command::new(BIN).args(args(&quiet).split(' ')).output().unwrap();
+    assert_ok(&piped);
+    assert!(!stderr(&piped).contains("steps of"), "no bar without a terminal");
+    let typescript = temp.path().join("typescript");
+    let status = Command::new("script")
+        .args(["-q", "-e", "-c", &format!("{BIN} {}", args(&shown))])
+        .arg(&typescript)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .status()
+        .expect("util-linux `script` runs (a pseudo-terminal for the bar)");
+    assert!(status.success());
+    let drawn = String::from_utf8_lossy(&std::fs::read(&typescript).unwrap()).into_owned();
+    assert!(
+        drawn.contains("cases (eta") && drawn.contains("steps of 1 running case"),
+        "{drawn}"
+    );
+    // Steps done out of planned: a case's approach and as many back (80) known from its start.
+    let counts: Vec<(u64, u64)> = drawn
+        .split(" steps of")
+        .filter_map(|before| {
+            let (done, planned) = before.rsplit(' ').next()?.split_once('/')?;
+            Some((done.parse().ok()?, planned.parse().ok()?))
+        })
+        .collect();
+    assert!(
+        counts.iter().any(|&(done, planned)| done < planned && planned >= 80),
+        "{counts:?}"
+    );
+    assert_eq!(
+        std::fs::read(quiet.join("table.csv")).unwrap(),
+        std::fs::read(shown.join("table.csv")).unwrap()
+    );
+    for case in std::fs::read_dir(quiet.join("cases")).unwrap() {
+        let id = case.unwrap().file_name();
+        let curve = |dir: &Path| std::fs::read(dir.join("cases").join(&id).join("curve.csv")).unwrap();
+        assert_eq!(curve(&quiet), curve(&shown), "{id:?}");
+    }
 }

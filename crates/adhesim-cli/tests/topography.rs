@@ -290,3 +290,56 @@ fn an_empty_unit_gwy_reads_with_the_units_the_error_names() {
     let stats = statistics(&out);
     assert_eq!((stats["dx"].as_f64(), stats["dy"].as_f64()), (Some(2e-6), Some(1e-6)));
 }
+
+/// The worked example of docs/topography-files.md runs as written: its `toml` block is
+/// `scenarios/measured_map_sphere.toml` (so the page and the file cannot drift apart), and
+/// its `sh` block runs in bash from a stand-in repository root with this build's `adhesim`
+/// first on PATH; the run's scales are SI (F_JKR = −1.5πγR in N) and its pull-off lies
+/// between no adhesion and the smooth sphere's (roughness lowers it).
+#[test]
+fn worked_example_of_the_topography_page_runs_as_written() {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let page = std::fs::read_to_string(repo.join("docs/topography-files.md")).unwrap();
+    let start = page
+        .find("## Worked example: a measured map pressed by a sphere")
+        .expect("the section");
+    let section = &page[start..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |end| end + 3)];
+    let block = |lang: &str| {
+        let fence = format!("```{lang}\n");
+        let from = section.find(&fence).unwrap_or_else(|| panic!("a {lang} block")) + fence.len();
+        section[from..from + section[from..].find("```").unwrap()].to_string()
+    };
+    let scenario = std::fs::read_to_string(repo.join("scenarios/measured_map_sphere.toml")).unwrap();
+    assert_eq!(
+        block("toml"),
+        scenario,
+        "the page shows scenarios/measured_map_sphere.toml"
+    );
+    let root = tempfile::tempdir().unwrap();
+    for entry in ["scenarios", "crates"] {
+        std::os::unix::fs::symlink(repo.join(entry).canonicalize().unwrap(), root.path().join(entry)).unwrap();
+    }
+    let bin_dir = Path::new(BIN).parent().unwrap();
+    let path = format!("{}:{}", bin_dir.display(), std::env::var("PATH").unwrap_or_default());
+    let output = Command::new("bash")
+        .args(["-e", "-o", "pipefail", "-c", &block("sh")])
+        .current_dir(root.path())
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root.path().join("out/measured_map_sphere/summary.json")).unwrap(),
+    )
+    .unwrap();
+    let f_jkr = summary["derived"]["f_jkr"].as_f64().unwrap();
+    let closed_form = -1.5 * std::f64::consts::PI * 0.05 * 100e-6;
+    assert!((f_jkr / closed_form - 1.0).abs() < 1e-12, "F_JKR = {f_jkr} N");
+    let pull_off = summary["results"]["max_adhesive_force"].as_f64().unwrap() / f_jkr.abs();
+    assert!(
+        pull_off > 0.1 && pull_off < 1.0,
+        "max adhesive force {pull_off} |F_JKR|"
+    );
+    assert!(root.path().join("out/topography/x3p-2/statistics.json").exists());
+}

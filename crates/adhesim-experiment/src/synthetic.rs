@@ -262,9 +262,10 @@ impl SyntheticSpec {
     pub fn render(&self, k: usize) -> Result<SyntheticFrame, ExperimentError> {
         let truth = self.truth(k)?;
         let (w, h) = (self.width, self.height);
-        let mut field: Vec<f32> = truth.cells().iter().map(|&c| f32::from(c)).collect();
+        let mut field = frame_buffer(w, h)?;
+        field.extend(truth.cells().iter().map(|&c| f32::from(c)));
         if self.blur_sigma_px > 0.0 {
-            gaussian_blur(&mut field, w, h, self.blur_sigma_px);
+            gaussian_blur(&mut field, w, h, self.blur_sigma_px)?;
         }
         let contrast = self.contact_level - self.background_level;
         let sigma = if self.snr.is_finite() {
@@ -315,8 +316,22 @@ impl SyntheticSpec {
     }
 }
 
+/// An empty buffer with room for a frame of w × h values: an error naming the size where
+/// the memory is not there, not an abort (sizes up to 2^28 pixels pass `validate`).
+fn frame_buffer(w: usize, h: usize) -> Result<Vec<f32>, ExperimentError> {
+    let mut buffer = Vec::new();
+    buffer.try_reserve_exact(w * h).map_err(|_| {
+        invalid(
+            "synth.width×height",
+            "must fit in the memory available",
+            format!("{w}×{h}"),
+        )
+    })?;
+    Ok(buffer)
+}
+
 /// Separable Gaussian blur, kernel truncated at 3σ, edges clamped.
-fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) {
+fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) -> Result<(), ExperimentError> {
     let radius = (3.0 * sigma).ceil() as usize;
     let kernel: Vec<f32> = {
         let raw: Vec<f64> = (0..=2 * radius)
@@ -325,7 +340,8 @@ fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) {
         let sum: f64 = raw.iter().sum();
         raw.iter().map(|v| (v / sum) as f32).collect()
     };
-    let mut tmp = vec![0.0f32; w * h];
+    let mut tmp = frame_buffer(w, h)?;
+    tmp.resize(w * h, 0.0);
     for y in 0..h {
         let row = &field[y * w..(y + 1) * w];
         for x in 0..w {
@@ -347,6 +363,7 @@ fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) {
             field[y * w + x] = s;
         }
     }
+    Ok(())
 }
 
 #[cfg(test)]

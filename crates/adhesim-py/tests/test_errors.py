@@ -392,6 +392,33 @@ def test_grid_arguments_are_named(call, error, words):
         assert word in str(info.value), str(info.value)
 
 
+@pytest.mark.parametrize(
+    "call, words",
+    [
+        (lambda: adhesim.geometry.sphere(adhesim.Grid(8, 1.0), "1"), ["radius must be a number, got str '1'"]),
+        (lambda: adhesim.geometry.wavy_sphere(adhesim.Grid(8, 1.0), 1.0, "a", 0.1), ["amplitude must be a number"]),
+        (lambda: adhesim.geometry.elliptic_punch(adhesim.Grid(8, 1.0), 0.5), ["semi_axes must be a pair of numbers"]),
+        (lambda: adhesim.reference.jkr(1.0, 1.0, "x"), ["work_of_adhesion must be a number, got str 'x'"]),
+        (lambda: adhesim.reference.jkr(1.0, 1.0, 1e-3, points="10"), ["points must be an integer, got str '10'"]),
+        (lambda: adhesim.reference.hertz(1.0, 1.0, "x"), ["depth must be array_like of floats, got str 'x'"]),
+        (lambda: adhesim.reference.flat_punch(True, 1.0), ["radius must be a number, got bool True"]),
+        (lambda: adhesim.surface.self_affine(adhesim.Grid(8, 1.0), 0.8, seed="1", rms_height=1e-3), ["seed must be an integer"]),
+        (lambda: adhesim.surface.psd(np.zeros((8, 8)), 1.0, "4"), ["bins must be an integer, got str '4'"]),
+        (lambda: adhesim.surface.statistics(np.zeros((8, 8)), (1.0, "y")), ["spacing[1] must be a number, got str 'y'"]),
+        (lambda: adhesim.surface.fill_invalid("x", np.ones((8, 8), bool)), ["heights must be array_like of floats"]),
+        (lambda: adhesim.read_topography("missing.npy", spacing="x", height_unit="m"), ["spacing must be a number or a pair"]),
+        (lambda: adhesim.sweep(BASE, vary={"grid.n": [16]}, out=None, checkpoint_every="x"), ["checkpoint_every must be a number"]),
+    ],
+)
+def test_python_functions_name_the_argument_they_cannot_convert(call, words):
+    """The pure-Python functions converted with float()/int(): 'could not convert string to
+    float: 'x'' named no argument, and "1" was taken as 1.0."""
+    with pytest.raises(TypeError) as info:
+        call()
+    for word in words:
+        assert word in str(info.value), str(info.value)
+
+
 def test_grid_takes_its_parameters_by_name():
     """Grid(n=, size=) and Grid(nx=, ny=, size_x=, size_y=), as the stubs say."""
     assert adhesim.Grid(n=8, size=1.0) == adhesim.Grid(8, 1.0)

@@ -13,6 +13,31 @@ use adhesim::{
 };
 use anyhow::{bail, Result};
 
+/// The smallest trapezoid softening fraction s a run takes. The cohesive rounds stop
+/// once no traction changes by more than the law's resolution σ0·GAP_RESOLUTION/s
+/// (`GAP_RESOLUTION` = 1e-7 of the range, the gap error of the compressive solve, in
+/// adhesim's solver/cohesive/trapezoid.rs): at s ≤ 1e-7 that reaches σ0, the largest change
+/// there is, so every step stopped after its first round and no element let go within it
+/// (s = 1e-9: a dissipated energy of 0 where Dugdale's is 3.23e-6). 1e-6 keeps the stop
+/// at σ0/10 at most; below it the law is Dugdale's to one part in a million of its range.
+pub(crate) const MIN_SOFTENING_FRACTION: f64 = 1e-6;
+
+/// Refuses a softening fraction the cohesive rounds cannot resolve ([`MIN_SOFTENING_FRACTION`]).
+fn check_softening_resolved(fraction: f64) -> Result<()> {
+    if fraction >= MIN_SOFTENING_FRACTION {
+        return Ok(());
+    }
+    bail!(ScenarioError::invalid_as(
+        "adhesion.softening_fraction",
+        fraction,
+        format!("≥ {MIN_SOFTENING_FRACTION:e}"),
+        format!(
+            "adhesion.softening_fraction = {fraction:e} is below {MIN_SOFTENING_FRACTION:e}: the cohesive rounds resolve the gap to 1e-7 of the range, a traction of σ0·1e-7/s = {:.3e}·σ0 on the softening part, too coarse to let elements go (at s ≤ 1e-7 nothing is released: no dissipation); s → 0 is Maugis–Dugdale: use adhesion.law = \"dugdale\" (or s ≥ {MIN_SOFTENING_FRACTION:e})",
+            1e-7 / fraction
+        )
+    ));
+}
+
 /// The law a scenario asks for.
 pub(crate) fn law_name(section: &AdhesionSection) -> LawName {
     section.law.unwrap_or_default()
@@ -78,6 +103,7 @@ impl ScenarioFile {
                         "in (0, 1] (the fraction of the range over which the traction falls)"
                     ));
                 }
+                check_softening_resolved(fraction)?;
             }
         }
         if section.work_of_adhesion <= 0.0 {

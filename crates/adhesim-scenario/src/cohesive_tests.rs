@@ -288,6 +288,71 @@ fn trapezoid_pulls_off_between_the_limits_and_near_dugdale() {
     }
 }
 
+/// The trapezoid at its smallest accepted softening fraction (1e-6) is Maugis–Dugdale: on
+/// `maugis_lambda0p3.toml` its pull-off lies within 3 % of Maugis' closed form (the first-
+/// order mesh error of the zone's edge, as for Dugdale's law on this grid: measured
+/// +0.71 %), and its dissipated energy within 0.1 % of the Dugdale run's (the laws differ
+/// in the last 1e-6 of the range; measured 5e-12; the bound leaves room for the rounds'
+/// coarser stop at small s). Below 1e-6 the run is refused naming the key: at s ≤ 1e-7 the
+/// rounds' traction resolution σ0·1e-7/s reached σ0 and the run dissipated exactly 0.
+/// About 4 s.
+#[test]
+fn trapezoid_near_the_dugdale_limit_matches_maugis_or_is_refused() {
+    let text = include_str!("../../../scenarios/cohesive/maugis_lambda0p3.toml");
+    let results = |overrides: &[String]| {
+        let outcome = run(&loaded(text, overrides), &mut ()).unwrap();
+        let RunResults::Indentation(results) = outcome.results else {
+            panic!("an indentation")
+        };
+        results
+    };
+    let trapezoid = |s: f64| {
+        vec![
+            "adhesion.law=\"trapezoid\"".to_string(),
+            format!("adhesion.softening_fraction={s:e}"),
+        ]
+    };
+    let dugdale = results(&[]);
+    let smallest = results(&trapezoid(crate::cohesive::MIN_SOFTENING_FRACTION));
+    let scenario = loaded(text, &[]);
+    let maugis = MaugisDugdale {
+        radius: 1.0,
+        contact_modulus: scenario.material.contact_modulus(),
+        work_of_adhesion: scenario.file.adhesion.work_of_adhesion,
+        cohesive_stress: scenario.file.adhesion.cohesive_stress.unwrap(),
+    }
+    .max_adhesive_force();
+    let pull_off_error = smallest.max_adhesive_force / maugis - 1.0;
+    assert!(
+        pull_off_error.abs() < 0.03,
+        "pull-off {:+.2} % off Maugis",
+        100.0 * pull_off_error
+    );
+    assert!(dugdale.dissipated_energy > 0.0);
+    let mismatch = smallest.dissipated_energy / dugdale.dissipated_energy - 1.0;
+    assert!(
+        mismatch.abs() < 1e-3,
+        "dissipated {:e}, Dugdale's {:e}",
+        smallest.dissipated_energy,
+        dugdale.dissipated_energy
+    );
+    for s in ["9.9e-7", "1e-7", "1e-9"] {
+        let overrides = [
+            "adhesion.law=\"trapezoid\"".to_string(),
+            format!("adhesion.softening_fraction={s}"),
+        ];
+        let error = load(text, "test", Path::new("."), &overrides)
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(
+            error.contains(&format!("adhesion.softening_fraction = {s} is below 1e-6"))
+                && error.contains("adhesion.law = \"dugdale\""),
+            "{error}"
+        );
+    }
+}
+
 /// Every cohesive law is accepted for every translation; Dugdale with a warning that
 /// names its lattice pinning and the trapezoid that removes it (docs/validation.md §15),
 /// the trapezoid and the exponential law (resolved here) without one.

@@ -523,8 +523,14 @@ impl ScenarioFile {
             } else {
                 String::new()
             };
+            // The address-space limit under --allow-large cannot be overridden.
+            let hint = if limit.source.contains("--allow-large") {
+                "lower grid.n or raise the limit"
+            } else {
+                "lower grid.n (or override this check where the estimate is known to be too high)"
+            };
             let message = format!(
-                "grid.n = {} needs about {}{each}, more than the {limit}: lower grid.n (or override this check where the estimate is known to be too high)",
+                "grid.n = {} needs about {}{each}, more than the {limit}: {hint}",
                 self.grid.n,
                 gibibytes(need),
             );

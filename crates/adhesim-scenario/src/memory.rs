@@ -71,6 +71,26 @@ impl SystemMemoryFiles {
         }
     }
 
+    /// RLIMIT_AS less the address space in use (`None`: unlimited). Unlike the other limits,
+    /// no swap or lazy allocator gets past it: an allocation beyond it fails at once, and
+    /// Rust's allocations abort the process (`--allow-large` still checks it).
+    pub fn address_space(&self) -> Option<MemoryLimit> {
+        let limit = self.limits.as_deref().and_then(address_space_limit)?;
+        let in_use = self
+            .status
+            .as_deref()
+            .and_then(|t| kilobyte_line(t, "VmSize:"))
+            .unwrap_or(0);
+        Some(MemoryLimit {
+            bytes: limit.saturating_sub(in_use),
+            source: format!(
+                "the address-space limit RLIMIT_AS of {}, less {} in use",
+                gibibytes(limit),
+                gibibytes(in_use)
+            ),
+        })
+    }
+
     /// The smallest of the limits the texts state; `None` where none is stated.
     pub fn limit(&self) -> Option<MemoryLimit> {
         let mut candidates = Vec::new();
@@ -80,21 +100,7 @@ impl SystemMemoryFiles {
                 source: "MemAvailable of /proc/meminfo".to_string(),
             });
         }
-        if let Some(limit) = self.limits.as_deref().and_then(address_space_limit) {
-            let in_use = self
-                .status
-                .as_deref()
-                .and_then(|t| kilobyte_line(t, "VmSize:"))
-                .unwrap_or(0);
-            candidates.push(MemoryLimit {
-                bytes: limit.saturating_sub(in_use),
-                source: format!(
-                    "the address-space limit RLIMIT_AS of {}, less {} in use",
-                    gibibytes(limit),
-                    gibibytes(in_use)
-                ),
-            });
-        }
+        candidates.extend(self.address_space());
         if let Some(limit) = self.cgroup_max.as_deref().and_then(cgroup_bytes) {
             let in_use = self.cgroup_current.as_deref().and_then(cgroup_bytes).unwrap_or(0);
             candidates.push(MemoryLimit {

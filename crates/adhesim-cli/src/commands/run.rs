@@ -6,6 +6,7 @@ use crate::{output, resources};
 use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
+use adhesim_scenario::output::observer::RunProgress;
 use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
 use anyhow::{Context, Result};
@@ -39,7 +40,8 @@ pub struct RunOptions {
     #[arg(long)]
     pub threads: Option<usize>,
     /// Run even when the memory estimate of the grid exceeds the memory available
-    /// (`MemAvailable` of /proc/meminfo), e.g. where swap or a lazy allocator makes it fit.
+    /// (`MemAvailable` of /proc/meminfo), e.g. where swap or a lazy allocator makes it fit
+    /// (not beyond the address-space limit of `ulimit -v`, which nothing gets past).
     #[arg(long)]
     pub allow_large: bool,
     /// Override a scenario key before validation, e.g. `--set grid.n=64` (repeatable;
@@ -92,7 +94,9 @@ pub fn command(args: &RunArgs) -> Result<()> {
     .map_err(|e| {
         let resources = e.kind == adhesim_scenario::ErrorKind::Resources;
         let error = anyhow::Error::new(e);
-        if resources {
+        if resources && args.options.allow_large {
+            error.context("refused before allocating, even with --allow-large")
+        } else if resources {
             error.context("refused before allocating (pass --allow-large to run anyway)")
         } else {
             error
@@ -108,6 +112,17 @@ pub fn command(args: &RunArgs) -> Result<()> {
 /// snapshots, plots, summary.json. `out` is new, or made ready by
 /// [`folder::prepare_run_folder`]; it gets the run marker.
 pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
+    let mut progress = output::TerminalProgress::new(scenario.expected_steps(), options.quiet, scenario.jkr);
+    run_with_progress(scenario, out, options, &mut progress)
+}
+
+/// [`run`] with the progress shown by `progress` (a sweep case's share of the sweep's bar).
+pub fn run_with_progress(
+    scenario: &ValidScenario,
+    out: &Path,
+    options: &RunOptions,
+    progress: &mut dyn RunProgress,
+) -> Result<()> {
     if let Some(threads) = options.threads {
         let threads = resources::clamp_threads(threads)?;
         rayon::ThreadPoolBuilder::new()
@@ -118,13 +133,12 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
     for warning in &scenario.warnings {
         eprintln!("warning: {warning}");
     }
-    let mut progress = output::TerminalProgress::new(scenario.expected_steps(), options.quiet, scenario.jkr);
     let folder_options = FolderRunOptions {
         pictures: Some(&output::CliPictures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
         checkpoint: options.checkpoint.as_ref(),
     };
-    let done = run_into_folder(scenario, out, folder_options, &mut progress)?;
+    let done = run_into_folder(scenario, out, folder_options, progress)?;
     let outcome = &done.outcome;
     if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
         eprintln!("warning: {warning}");

@@ -7,19 +7,22 @@
 //! and redoes broken ones; `--shard I/N` runs the cases whose index modulo N is I. Every run (and `sweep merge DIR`) rebuilds
 //! `DIR/table.csv` and the master-curve plots from all finished case folders.
 
-use crate::commands::run::{run, RunOptions};
+use crate::commands::run::{run, run_with_progress, RunOptions};
 use crate::resources;
+use adhesim::StepRecord;
 use adhesim_scenario::batch::{self, Batch};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder::{self, FolderLock, Shard};
+use adhesim_scenario::output::observer::RunProgress;
 use adhesim_scenario::sweep::{check_memory, plan, read_plan, table, write_plan, SweepCase};
 use adhesim_scenario::ValidScenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use plan::Plan;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// `adhesim sweep SWEEP.toml [--out DIR] [--jobs N] [--shard I/N]`, or `adhesim sweep merge DIR`.
 #[derive(Args)]
@@ -60,7 +63,8 @@ pub struct SweepArgs {
     #[arg(long)]
     list: bool,
     /// Run even when `--jobs` concurrent cases of the largest grid are estimated to need
-    /// more memory than is available (`MemAvailable` of /proc/meminfo).
+    /// more memory than is available (`MemAvailable` of /proc/meminfo; not beyond the
+    /// address-space limit of `ulimit -v`).
     #[arg(long)]
     allow_large: bool,
 }
@@ -139,37 +143,37 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
         .set_checkpoint_seconds(checkpoint_seconds)
         .context("--checkpoint-every")?;
     write_plan(dir, plan)?;
+    // Shared with the runner, which a sweep case holds for good ('static).
+    let progress = std::sync::Arc::new(SweepProgress::new(quiet || !std::io::stderr().is_terminal()));
+    let runner = {
+        let progress = progress.clone();
+        move |scenario: &ValidScenario, folder: &Path, checkpoint: Option<&CheckpointPolicy>| {
+            run_case_with(scenario, folder, checkpoint, &mut progress.case(scenario))
+        }
+    };
     let cases: Vec<SweepCase> = plan
         .cases
         .iter()
         .map(|case| SweepCase {
             plan,
             case,
-            runner: &run_case,
+            runner: &runner,
         })
         .collect();
     let pending = batch.pending(&cases, retry_failed)?;
     let todo = pending.todo.len();
-    let progress = if quiet || !std::io::stderr().is_terminal() || todo == 0 {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(Some(todo as u64), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} cases (eta {eta}) {msg}")
-                .expect("valid template"),
-        );
-        bar.enable_steady_tick(std::time::Duration::from_millis(500));
-        bar
-    };
+    progress.start(todo);
     let finished = |case: &SweepCase, failure: Option<&str>| {
         if let Some(message) = failure {
-            progress.suspend(|| eprintln!("case {} failed: {message}", case.case.id));
+            progress
+                .cases
+                .suspend(|| eprintln!("case {} failed: {message}", case.case.id));
         }
-        progress.inc(1);
-        progress.set_message(format!("last: {}", case.case.id));
+        progress.cases.inc(1);
+        progress.cases.set_message(format!("last: {}", case.case.id));
     };
     let outcome = batch.execute(pending, jobs, threads, &finished);
-    progress.finish_and_clear();
+    progress.finish();
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(error) => {
@@ -197,12 +201,125 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
 /// Runs one sweep case's scenario into its folder: `adhesim run --quiet`, figures
 /// included (the runner of the command line's sweeps and of Python's `adhesim.sweep`).
 pub fn run_case(scenario: &ValidScenario, folder: &Path, checkpoint: Option<&CheckpointPolicy>) -> Result<()> {
-    let options = RunOptions {
+    run(scenario, folder, &case_options(checkpoint))
+}
+
+/// [`run_case`] with its steps shown by `progress`.
+fn run_case_with(
+    scenario: &ValidScenario,
+    folder: &Path,
+    checkpoint: Option<&CheckpointPolicy>,
+    progress: &mut dyn RunProgress,
+) -> Result<()> {
+    run_with_progress(scenario, folder, &case_options(checkpoint), progress)
+}
+
+fn case_options(checkpoint: Option<&CheckpointPolicy>) -> RunOptions {
+    RunOptions {
         quiet: true,
         checkpoint: checkpoint.cloned(),
         ..RunOptions::default()
-    };
-    run(scenario, folder, &options)
+    }
+}
+
+/// The sweep's progress on stderr: a bar of whole cases and under it one of the steps of
+/// the running cases (done out of planned, summed over them), so that a sweep of long
+/// cases moves before its first case ends. Hidden when quiet or not on a terminal.
+struct SweepProgress {
+    multi: Option<MultiProgress>,
+    cases: ProgressBar,
+    steps: ProgressBar,
+    running: AtomicUsize,
+}
+
+impl SweepProgress {
+    fn new(hidden: bool) -> Self {
+        let style = |template: &str| ProgressStyle::with_template(template).expect("valid template");
+        let cases = ProgressBar::hidden();
+        cases.set_style(style(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} cases (eta {eta}) {msg}",
+        ));
+        // A length of 0 to add to (a hidden bar's is unknown, and inc_length keeps it so).
+        let steps = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::hidden());
+        steps.set_style(style("  {bar:40} {pos}/{len} steps {msg}"));
+        Self {
+            multi: (!hidden).then(|| MultiProgress::with_draw_target(ProgressDrawTarget::stderr())),
+            cases,
+            steps,
+            running: AtomicUsize::new(0),
+        }
+    }
+
+    /// Shows the bars for `todo` cases (none when there are none to run).
+    fn start(&self, todo: usize) {
+        self.cases.set_length(todo as u64);
+        if let (Some(multi), true) = (&self.multi, todo > 0) {
+            multi.add(self.cases.clone());
+            multi.add(self.steps.clone());
+            self.cases.enable_steady_tick(std::time::Duration::from_millis(500));
+        }
+    }
+
+    /// The progress of one case starting now.
+    fn case(&self, scenario: &ValidScenario) -> CaseSteps<'_> {
+        let planned = scenario.expected_steps() as u64;
+        self.steps.inc_length(planned);
+        let running = self.running.fetch_add(1, Ordering::Relaxed) + 1;
+        self.steps.set_message(running_cases(running));
+        CaseSteps {
+            sweep: self,
+            planned,
+            done: 0,
+        }
+    }
+
+    fn finish(&self) {
+        self.steps.finish_and_clear();
+        self.cases.finish_and_clear();
+    }
+}
+
+fn running_cases(running: usize) -> String {
+    format!("of {running} running case{}", if running == 1 { "" } else { "s" })
+}
+
+/// One running case's share of the steps' bar: its planned steps (the estimate of `adhesim
+/// run`'s bar, raised when a case runs longer), its steps as they are solved (from its
+/// step number: a case resumed from a checkpoint starts where it stopped), both taken
+/// back when it ends.
+struct CaseSteps<'a> {
+    sweep: &'a SweepProgress,
+    planned: u64,
+    done: u64,
+}
+
+impl RunProgress for CaseSteps<'_> {
+    fn step(&mut self, record: &StepRecord) -> Result<()> {
+        let done = record.step as u64 + 1;
+        if done > self.planned {
+            self.sweep.steps.inc_length(done - self.planned);
+            self.planned = done;
+        }
+        if done > self.done {
+            self.sweep.steps.inc(done - self.done);
+            self.done = done;
+        }
+        Ok(())
+    }
+
+    fn warning(&mut self, message: &str) {
+        self.sweep.steps.suspend(|| eprintln!("warning: {message}"));
+    }
+}
+
+impl Drop for CaseSteps<'_> {
+    fn drop(&mut self) {
+        let steps = &self.sweep.steps;
+        steps.dec(self.done);
+        steps.dec_length(self.planned);
+        let running = self.sweep.running.fetch_sub(1, Ordering::Relaxed).saturating_sub(1);
+        steps.set_message(running_cases(running));
+    }
 }
 
 /// Rebuilds `DIR/table.csv` of a sweep and its master-curve plots (after

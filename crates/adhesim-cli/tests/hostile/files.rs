@@ -194,3 +194,27 @@ fn a_failed_run_leaves_no_file_under_a_final_name() {
     assert_fails_with(&output, &["adhesion.range = 5e-324", "1e-150..1e150"]);
     assert!(!dir.path().join("nan").join("curve.csv").exists());
 }
+
+/// `adhesim experiment snyth` said only that the spec file `snyth` could not be read: a
+/// missing spec named like a subcommand now gets clap's suggestion too.
+#[test]
+fn a_misspelt_subcommand_read_as_a_spec_file_is_suggested() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::new(BIN)
+        .args(["experiment", "snyth"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_fails_with(
+        &output,
+        &["experiment spec snyth: no such file", "did you mean `synth`?"],
+    );
+    // An unrelated name: the file is not there, and nothing is suggested.
+    let output = Command::new(BIN)
+        .args(["experiment", "spec.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_fails_with(&output, &["cannot read experiment spec spec.toml"]);
+    assert!(!stderr(&output).contains("did you mean"), "{}", stderr(&output));
+}

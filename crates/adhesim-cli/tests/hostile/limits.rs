@@ -179,3 +179,42 @@ fn an_approach_beyond_the_step_cap_is_refused_before_the_run() {
         ],
     );
 }
+
+/// `--allow-large` skipped every memory check, so under `ulimit -v` the run aborted in an
+/// allocation ("memory allocation of N bytes failed", SIGABRT), and `experiment synth` of
+/// 16000 × 16000 frames the same. RLIMIT_AS, which neither swap nor a lazy allocator gets
+/// past, is now checked with the flag too, and synth checks its frames' memory first: each
+/// an error naming the flag or size and the limit, exit status 1.
+#[test]
+fn an_address_space_limit_is_a_named_error_under_allow_large_and_synth() {
+    let out = tempfile::tempdir().unwrap();
+    let limited = |args: String| {
+        Command::new("sh")
+            .args(["-c", &format!("ulimit -v 1953125 && exec '{BIN}' {args}")])
+            .env_remove("ADHESIM_MEMORY_AVAILABLE")
+            .output()
+            .unwrap()
+    };
+    let run = out.path().join("run");
+    let output = limited(format!(
+        "run '{}' --set grid.n=2500 --out '{}' --quiet --allow-large",
+        hertz(),
+        run.display()
+    ));
+    assert_fails_with(
+        &output,
+        &[
+            "even with --allow-large",
+            "grid.n = 2500 needs about",
+            "RLIMIT_AS",
+            "which --allow-large does not lift): lower grid.n or raise the limit",
+        ],
+    );
+    assert!(!run.join("curve.csv").exists());
+    let synth = out.path().join("synth");
+    let output = limited(format!(
+        "experiment synth --out '{}' --frames 2 --width 16000 --height 16000 --quiet",
+        synth.display()
+    ));
+    assert_fails_with(&output, &["--width 16000 --height 16000", "of memory", "RLIMIT_AS"]);
+}

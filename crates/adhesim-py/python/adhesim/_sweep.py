@@ -19,6 +19,7 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Tuple
 
 import numpy as np
 
+from ._args import number
 from . import _adhesim
 from ._run import RunResult, ScenarioLike, _check_overrides, _plain, _scenario_text, load
 
@@ -253,11 +254,11 @@ def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_l
     text, origin, base = _scenario_text(scenario)
     sweep_text = _adhesim._toml_document(tables)
     folder = _adhesim._sweep_open(str(out), sweep_text, text, origin, str(base), series, not allow_large, 1,
-                                  float(checkpoint_every))
+                                  number("checkpoint_every", checkpoint_every))
     try:
         cases = folder.cases()
         todo = folder.pending(retry_failed)
-        _run_cases(out, cases, todo, executor, progress, float(checkpoint_every))
+        _run_cases(out, cases, todo, executor, progress, number("checkpoint_every", checkpoint_every))
         table_path, failed = folder.finish()
     finally:
         folder.close()

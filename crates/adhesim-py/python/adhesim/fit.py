@@ -13,6 +13,7 @@ from typing import Dict, Tuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._args import number
 from . import _adhesim
 from ._adhesim import johnson_parameter
 
@@ -52,7 +53,9 @@ def jkr_work_of_adhesion(
         ``work_of_adhesion`` gamma (>= 0, energy per area), ``residual_rms`` (force),
         ``points`` used; a ``UserWarning`` counts the points left out.
     """
-    result = _adhesim._fit_jkr_force(_vector(contact_radius), _vector(force), float(radius), float(contact_modulus))
+    result = _adhesim._fit_jkr_force(
+        _vector(contact_radius), _vector(force), number("radius", radius), number("contact_modulus", contact_modulus)
+    )
     total = _vector(contact_radius).size
     _warn_left_out("jkr_work_of_adhesion", total - int(result["points"]), total, "contact_radius <= 0")
     return result
@@ -65,7 +68,9 @@ def jkr_depth_work_of_adhesion(
     (paper Eq. 13, used for gamma_3 of rolling contacts). Same arguments and result as
     :func:`jkr_work_of_adhesion` with depths (length, > 0 into the body) for forces.
     """
-    result = _adhesim._fit_jkr_depth(_vector(contact_radius), _vector(depth), float(radius), float(contact_modulus))
+    result = _adhesim._fit_jkr_depth(
+        _vector(contact_radius), _vector(depth), number("radius", radius), number("contact_modulus", contact_modulus)
+    )
     total = _vector(contact_radius).size
     _warn_left_out("jkr_depth_work_of_adhesion", total - int(result["points"]), total, "contact_radius <= 0")
     return result

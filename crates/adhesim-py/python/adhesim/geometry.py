@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._args import number, pair
 from ._adhesim import Grid, elliptic_punch_heights, flat_punch_heights, sphere_heights, wavy_sphere_heights
 
 __all__ = ["sphere", "flat_punch", "wavy_sphere", "elliptic_punch", "from_scenario"]
@@ -20,7 +21,7 @@ def sphere(grid: Grid, radius: float) -> np.ndarray:
 
     Raises ValueError for a radius that is not finite and > 0.
     """
-    return sphere_heights(grid, float(radius))
+    return sphere_heights(grid, number("radius", radius))
 
 
 def flat_punch(grid: Grid, radius: float) -> np.ndarray:
@@ -28,7 +29,7 @@ def flat_punch(grid: Grid, radius: float) -> np.ndarray:
 
     Raises ValueError for a radius that is not finite and > 0.
     """
-    return flat_punch_heights(grid, float(radius))
+    return flat_punch_heights(grid, number("radius", radius))
 
 
 def wavy_sphere(grid: Grid, radius: float, amplitude: float, wavelength: float, angle: float = 0.0) -> np.ndarray:
@@ -41,7 +42,13 @@ def wavy_sphere(grid: Grid, radius: float, amplitude: float, wavelength: float, 
     Raises ValueError for a radius or wavelength that is not finite and > 0, a negative
     amplitude or a non-finite angle.
     """
-    return wavy_sphere_heights(grid, float(radius), float(amplitude), float(wavelength), float(angle))
+    return wavy_sphere_heights(
+        grid,
+        number("radius", radius),
+        number("amplitude", amplitude),
+        number("wavelength", wavelength),
+        number("angle", angle),
+    )
 
 
 def elliptic_punch(grid: Grid, semi_axes, angle: float = 0.0) -> np.ndarray:
@@ -50,8 +57,8 @@ def elliptic_punch(grid: Grid, semi_axes, angle: float = 0.0) -> np.ndarray:
 
     Raises ValueError for semi-axes that are not finite and > 0 or a non-finite angle.
     """
-    a, b = semi_axes
-    return elliptic_punch_heights(grid, (float(a), float(b)), float(angle))
+    a, b = pair("semi_axes", semi_axes)
+    return elliptic_punch_heights(grid, (a, b), number("angle", angle))
 
 
 

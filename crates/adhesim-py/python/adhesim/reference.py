@@ -9,20 +9,30 @@ is not finite and > 0, a negative work of adhesion, or a non-finite depth.
 
 from __future__ import annotations
 
-from typing import Dict, Optional
+from typing import Dict, Optional, Tuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._args import floats, integer, number
 from . import _adhesim
 from ._adhesim import johnson_parameter
 
 __all__ = ["hertz", "jkr", "jkr_at_depth", "jkr_scales", "flat_punch", "johnson_parameter"]
 
 
-def _flat(values: ArrayLike):
-    array = np.asarray(values, dtype=np.float64)
+def _flat(name: str, values: ArrayLike):
+    array = floats(name, values)
     return np.ascontiguousarray(array.ravel()), array.shape
+
+
+def _scalars(radius: float, contact_modulus: float, work_of_adhesion: float) -> Tuple[float, float, float]:
+    """R, E* and gamma as floats, or a TypeError naming the one that is not a number."""
+    return (
+        number("radius", radius),
+        number("contact_modulus", contact_modulus),
+        number("work_of_adhesion", work_of_adhesion),
+    )
 
 
 def hertz(radius: float, contact_modulus: float, depth: ArrayLike) -> Dict[str, np.ndarray]:
@@ -43,8 +53,8 @@ def hertz(radius: float, contact_modulus: float, depth: ArrayLike) -> Dict[str, 
         ``depth``, ``force`` F = (4/3) E* R^(1/2) d^(3/2)
         (> 0 compressive), ``contact_radius`` a = (R d)^(1/2).
     """
-    flat, shape = _flat(depth)
-    force, contact_radius = _adhesim._hertz(float(radius), float(contact_modulus), flat)
+    flat, shape = _flat("depth", depth)
+    force, contact_radius = _adhesim._hertz(number("radius", radius), number("contact_modulus", contact_modulus), flat)
     return {
         "depth": flat.reshape(shape),
         "force": force.reshape(shape),
@@ -84,16 +94,16 @@ def jkr(
         (< 0 tensile), ``depth`` d = a^2/R - (2 pi gamma a / E*)^(1/2).
     """
     if contact_radius is None:
-        scale = _adhesim.jkr_scales(float(radius), float(contact_modulus), float(work_of_adhesion))
+        scale = _adhesim.jkr_scales(*_scalars(radius, contact_modulus, work_of_adhesion))
         if scale["contact_radius"] == 0.0:
             # gamma = 0 has no JKR scale: the default radii were all 0 (a curve of zeros).
             raise ValueError(
                 f"work_of_adhesion = {work_of_adhesion!r} gives no JKR contact radius a_JKR to "
                 "place the default contact radii: give contact_radius= (with gamma = 0 the curve is Hertz's)"
             )
-        contact_radius = np.linspace(0.0, 3.0 * scale["contact_radius"], int(points))
-    flat, shape = _flat(contact_radius)
-    force, depth = _adhesim._jkr_curve(float(radius), float(contact_modulus), float(work_of_adhesion), flat)
+        contact_radius = np.linspace(0.0, 3.0 * scale["contact_radius"], integer("points", points))
+    flat, shape = _flat("contact_radius", contact_radius)
+    force, depth = _adhesim._jkr_curve(*_scalars(radius, contact_modulus, work_of_adhesion), flat)
     return {"contact_radius": flat.reshape(shape), "force": force.reshape(shape), "depth": depth.reshape(shape)}
 
 
@@ -110,9 +120,9 @@ def jkr_at_depth(
         ``in_contact`` (bool). Below the jump depth -9^(1/3)|d_JKR| the contact is lost:
         in_contact False, force 0, contact_radius 0.
     """
-    flat, shape = _flat(depth)
+    flat, shape = _flat("depth", depth)
     force, contact_radius, contact = _adhesim._jkr_at_depth(
-        float(radius), float(contact_modulus), float(work_of_adhesion), flat
+        *_scalars(radius, contact_modulus, work_of_adhesion), flat
     )
     return {
         "depth": flat.reshape(shape),
@@ -128,7 +138,7 @@ def jkr_scales(radius: float, contact_modulus: float, work_of_adhesion: float) -
     ``contact_radius`` a_JKR = (9 pi gamma R^2 / (8 E*))^(1/3) at that point, and
     ``jump_depth`` -9^(1/3)|d_JKR|, where contact is lost under displacement control.
     """
-    return _adhesim.jkr_scales(float(radius), float(contact_modulus), float(work_of_adhesion))
+    return _adhesim.jkr_scales(*_scalars(radius, contact_modulus, work_of_adhesion))
 
 
 def flat_punch(
@@ -159,7 +169,7 @@ def flat_punch(
         `depth` also ``depth`` and ``force`` arrays.
     """
     stiffness, pull_off_force, pull_off_depth = _adhesim._flat_punch(
-        float(radius), float(contact_modulus), float(work_of_adhesion)
+        *_scalars(radius, contact_modulus, work_of_adhesion)
     )
     result: Dict[str, object] = {
         "stiffness": stiffness,
@@ -167,7 +177,7 @@ def flat_punch(
         "pull_off_depth": pull_off_depth,
     }
     if depth is not None:
-        flat, shape = _flat(depth)
+        flat, shape = _flat("depth", depth)
         if not np.all(np.isfinite(flat)):
             raise ValueError(f"depth must be finite, got {flat[~np.isfinite(flat)][0]}")
         result["depth"] = flat.reshape(shape)

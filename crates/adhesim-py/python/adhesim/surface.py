@@ -15,6 +15,7 @@ from typing import Dict, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 
+from ._args import floats, integer, number, optional_number, pair
 from ._adhesim import Grid, _fill_invalid, _height_map_statistics, _isotropic_psd, _self_affine
 
 # The most PSD bins (adhesim::surface::MAX_PSD_BINS): 4e9 bins asked for 96 GB and killed
@@ -46,29 +47,26 @@ def self_affine(
     rms to rounding) or "filtered" (Gaussian amplitudes). The same as a scenario's
     [roughness] with these keys. Raises ValueError naming a bad argument.
     """
-    if int(seed) != seed or seed < 0:
+    if integer("seed", seed) < 0:
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     return _self_affine(
         grid,
-        float(hurst),
+        number("hurst", hurst),
         int(seed),
-        rms_height=None if rms_height is None else float(rms_height),
-        rms_slope=None if rms_slope is None else float(rms_slope),
-        rolloff_wavelength=None if rolloff_wavelength is None else float(rolloff_wavelength),
-        cutoff_wavelength=None if cutoff_wavelength is None else float(cutoff_wavelength),
+        rms_height=optional_number("rms_height", rms_height),
+        rms_slope=optional_number("rms_slope", rms_slope),
+        rolloff_wavelength=optional_number("rolloff_wavelength", rolloff_wavelength),
+        cutoff_wavelength=optional_number("cutoff_wavelength", cutoff_wavelength),
         mode=mode,
     )
 
 
 def _spacings(spacing: Spacing) -> Tuple[float, float]:
-    if np.ndim(spacing) == 0:
-        return float(spacing), float(spacing)  # type: ignore[arg-type]
-    dx, dy = spacing  # type: ignore[misc]
-    return float(dx), float(dy)
+    return pair("spacing", spacing, one_for_both=True)
 
 
 def _map(heights: np.ndarray, valid: Optional[np.ndarray]) -> Tuple[np.ndarray, Optional[np.ndarray]]:
-    heights = np.ascontiguousarray(heights, dtype=np.float64)
+    heights = floats("heights", heights)
     if heights.ndim != 2:
         raise ValueError(f"heights must be a 2-D array (ny, nx), got shape {heights.shape}")
     if valid is not None:
@@ -121,7 +119,7 @@ def psd(
     """
     heights, valid = _map(heights, valid)
     dx, dy = _spacings(spacing)
-    if int(bins) != bins or not 1 <= bins <= _MAX_PSD_BINS:
+    if not 1 <= integer("bins", bins) <= _MAX_PSD_BINS:
         raise ValueError(f"bins must be an integer 1 … {_MAX_PSD_BINS}, got {bins!r}")
     q_low, q_high, q, power, modes = _isotropic_psd(heights, dx, dy, int(bins), valid=valid, periodic=bool(periodic))
     return Psd(q_low, q_high, q, power, modes.astype(np.int64))

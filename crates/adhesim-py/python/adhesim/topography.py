@@ -7,6 +7,7 @@ from typing import Dict, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 
+from ._args import pair
 from ._adhesim import _read_topography
 
 __all__ = ["Topography", "read_topography"]
@@ -49,11 +50,8 @@ def read_topography(
     channel picks a Gwyddion channel by title, an npz member or the ASCII "Channel". Raises
     OSError when the file cannot be read, ValueError for a malformed or unsupported file.
     """
-    if spacing is not None and np.ndim(spacing) == 0:
-        spacing = (float(spacing), float(spacing))  # type: ignore[arg-type]
-    elif spacing is not None:
-        dx, dy = spacing  # type: ignore[misc]
-        spacing = (float(dx), float(dy))
+    if spacing is not None:
+        spacing = pair("spacing", spacing, one_for_both=True)
     fields = _read_topography(
         os.fspath(path), channel=channel, spacing=spacing, height_unit=height_unit, lateral_unit=lateral_unit
     )

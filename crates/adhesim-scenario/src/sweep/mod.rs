@@ -35,8 +35,14 @@ pub fn check_memory(plan: &Plan, jobs: usize, limit: &MemoryLimit) -> Result<()>
     }
     let Some((_, case, file)) = largest else { return Ok(()) };
     let runs = jobs.min(plan.cases.len()) as u64;
+    // Under --allow-large the limit is RLIMIT_AS, which the flag does not lift.
+    let hint = if limit.source.contains("--allow-large") {
+        "lower --jobs"
+    } else {
+        "pass --allow-large to run anyway, or lower --jobs"
+    };
     file.check_memory(limit, runs)
-        .with_context(|| format!("case {} (pass --allow-large to run anyway, or lower --jobs)", case.id))
+        .with_context(|| format!("case {} ({hint})", case.id))
 }
 
 /// Writes `DIR/sweep.json` (the plan), refusing a folder that holds another sweep.

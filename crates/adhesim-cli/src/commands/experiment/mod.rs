@@ -50,10 +50,29 @@ pub enum ExperimentCommand {
 pub fn main(args: ExperimentArgs) -> Result<()> {
     match (args.command, args.spec) {
         (Some(ExperimentCommand::Synth(synth)), _) => run_synth(&synth),
-        (None, Some(spec)) => run_experiment(&spec, args.out.as_deref(), args.quiet),
+        (None, Some(spec)) => {
+            check_not_a_misspelt_subcommand(&spec)?;
+            run_experiment(&spec, args.out.as_deref(), args.quiet)
+        }
         (None, None) => {
             bail!("give a spec file (adhesim experiment SPEC.toml) or a subcommand (adhesim experiment synth)")
         }
+    }
+}
+
+/// `adhesim experiment snyth` is read as a spec file: where no such file exists and the
+/// name is close to a subcommand's, the error says so and suggests the subcommand.
+fn check_not_a_misspelt_subcommand(spec: &Path) -> Result<()> {
+    use clap::Subcommand;
+    let (Some(given), false) = (spec.to_str(), spec.exists()) else {
+        return Ok(());
+    };
+    let command = ExperimentCommand::augment_subcommands(clap::Command::new("experiment"));
+    match super::similar_name(given, command.get_subcommands().map(|c| c.get_name())) {
+        Some(name) => {
+            bail!("experiment spec {given}: no such file; did you mean `{name}`? (adhesim experiment {name} --help)")
+        }
+        None => Ok(()),
     }
 }
 

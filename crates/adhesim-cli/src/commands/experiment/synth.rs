@@ -90,6 +90,7 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
         ..defaults
     };
     spec.validate()?;
+    check_synth_memory(args)?;
     let frames_dir = out_dir.join("frames");
     std::fs::create_dir_all(&frames_dir).with_context(|| format!("cannot create {}", frames_dir.display()))?;
     let bar = progress(args.frames, args.quiet, "synth");
@@ -144,4 +145,21 @@ pub fn run_synth(args: &SynthArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Refuses frames larger than the memory available (RLIMIT_AS among it): a frame of
+/// 16000 × 16000 under `prlimit --as` aborted in its allocation. Each frame rendered at
+/// once holds its true mask (1 byte per pixel), the blurred field and the blur's copy
+/// (4 + 4), the 8- or 16-bit image (2) and the encoder's buffers: about 16 bytes per pixel.
+fn check_synth_memory(args: &SynthArgs) -> Result<()> {
+    let Some(limit) = crate::resources::memory_limit(false)? else {
+        return Ok(());
+    };
+    let at_once = args.frames.min(rayon::current_num_threads()).max(1);
+    let bytes = args.width as u128 * args.height as u128 * 16 * at_once as u128;
+    let what = format!(
+        "--width {} --height {} ({at_once} frame(s) rendered at once, about 16 bytes per pixel each)",
+        args.width, args.height
+    );
+    crate::resources::check_allocation(&what, bytes, &limit)
 }
