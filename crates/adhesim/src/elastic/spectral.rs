@@ -245,7 +245,7 @@ impl<T: Precision> SpectralConvolution<T> {
                     let first = (block * tiles_per_block + local) * TILE;
                     let width = TILE.min(columns - first);
                     let tile = &mut scratch.tile[..width * stride];
-                    gather_columns(tile, row_spectra, &input_rows, (first, width, columns, padded));
+                    gather_columns(tile, row_spectra, input_rows, (first, width, columns, padded));
                     for (offset, column) in tile.chunks_mut(stride).enumerate() {
                         let column = &mut column[..padded];
                         forward_columns.process_with_scratch(column, &mut scratch.complex_scratch);
