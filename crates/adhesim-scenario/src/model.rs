@@ -1,5 +1,4 @@
-//! The serde mirror of a scenario file (one struct per `[section]`) and the validated
-//! scenario built from it.
+//! The serde mirror of a scenario file (one struct per `[section]`) and the validated scenario built from it.
 
 use adhesim::analysis::reference::Jkr;
 use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
