@@ -62,8 +62,10 @@ fn zero_grid_names_key_and_value() {
 fn unknown_keys_are_named() {
     let (_dir, output) = run_text(&HERTZ.replace("radius = 1.0", "radiuss = 1.0"), &[]);
     assert_fails_with(&output, &["unknown key `indenter.radiuss`"]);
+    let (_dir, output) = run_text(&format!("{HERTZ}\n[numerics]\nfoo = 1\n"), &[]);
+    assert_fails_with(&output, &["unknown key `numerics`"]);
     let (_dir, output) = run_text(&format!("{HERTZ}\n[solver]\nfoo = 1\n"), &[]);
-    assert_fails_with(&output, &["unknown key `solver`"]);
+    assert_fails_with(&output, &["unknown key `solver.foo` (expected `predicted_growth`)"]);
     let (_dir, output) = run_text(
         HERTZ,
         &[
