@@ -57,7 +57,10 @@ def floats(name: str, values: Any) -> np.ndarray:
     """``values`` as a contiguous float64 array (numpy's array_like), or a ``TypeError``
     naming ``name`` where numpy cannot convert it."""
     try:
-        return np.ascontiguousarray(values, dtype=np.float64)
+        # np.asarray keeps a scalar 0-d (np.ascontiguousarray would make it 1-d, and the
+        # results of a scalar input would come back as arrays of one value).
+        array = np.asarray(values, dtype=np.float64)
+        return array if array.flags.c_contiguous else np.ascontiguousarray(array)
     except (TypeError, ValueError) as error:
         got = f"{type(values).__name__} {values!r}"
         raise TypeError(f"{name} must be array_like of floats, got {got}: {error}") from None
