@@ -8,7 +8,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{adhesim, assert_fails_with, npy_bytes, read_json, scenarios_dir, stderr, write, BIN};
+use common::{adhesim, assert_fails_with, npy_bytes, read_json, run_quiet, scenarios_dir, stderr, write, BIN};
 
 fn hertz() -> String {
     scenarios_dir().join("hertz.toml").to_str().unwrap().to_string()

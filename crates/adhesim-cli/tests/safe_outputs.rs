@@ -4,11 +4,13 @@
 //! second command, and a sweep with failed cases exits non-zero with their count.
 
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{adhesim, assert_fails_with, assert_ok, npy_bytes, read_json, scenarios_dir, stderr, write, BIN};
+use common::{
+    adhesim, assert_fails_with, assert_ok, npy_bytes, read_json, run_quiet, scenarios_dir, stderr, write, BIN,
+};
 
 /// A Hertz indentation of a few milliseconds (16×16 grid).
 const SMALL: &str = r#"
@@ -18,18 +20,6 @@ adhesion = { work_of_adhesion = 0.0 }
 indenter = { shape = "sphere", radius = 1.0 }
 protocol = { kind = "indent_pulloff", max_depth = 0.01, steps = 6 }
 "#;
-
-fn run(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
-    let mut args = vec![
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ];
-    args.extend_from_slice(extra);
-    adhesim(&args)
-}
 
 /// A child process killed and reaped when dropped, also when an assertion fails.
 struct Reaped(std::process::Child);
@@ -76,7 +66,7 @@ fn out_refuses_an_unrelated_folder_unless_forced() {
     std::fs::create_dir(&mine).unwrap();
     write(&mine, "curve.csv", "my own measurements\n");
     write(&mine, "notes.txt", "keep me\n");
-    let output = run(&scenario, &mine, &[]);
+    let output = run_quiet(&scenario, &mine, &[]);
     assert_fails_with(
         &output,
         &[mine.to_str().unwrap(), "not an adhesim run folder", "--force"],
@@ -88,7 +78,7 @@ fn out_refuses_an_unrelated_folder_unless_forced() {
     assert_eq!(names(&mine), ["curve.csv", "notes.txt"]);
 
     // Forced: the run's outputs replace the user's curve.csv, other files stay.
-    assert_ok(&run(&scenario, &mine, &["--force"]));
+    assert_ok(&run_quiet(&scenario, &mine, &["--force"]));
     assert!(std::fs::read_to_string(mine.join("curve.csv"))
         .unwrap()
         .starts_with("step,"));
@@ -98,8 +88,8 @@ fn out_refuses_an_unrelated_folder_unless_forced() {
     // An empty folder, or a missing one, is fine without --force.
     let empty = dir.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
-    assert_ok(&run(&scenario, &empty, &[]));
-    assert_ok(&run(&scenario, &dir.path().join("new/nested"), &[]));
+    assert_ok(&run_quiet(&scenario, &empty, &[]));
+    assert_ok(&run_quiet(&scenario, &dir.path().join("new/nested"), &[]));
 }
 
 #[test]
@@ -107,7 +97,7 @@ fn rerun_clears_the_previous_outputs_and_leaves_no_temporary_file() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = write(dir.path(), "s.toml", SMALL);
     let out = dir.path().join("out");
-    assert_ok(&run(&scenario, &out, &["--set", "output.snapshot_every=1"]));
+    assert_ok(&run_quiet(&scenario, &out, &["--set", "output.snapshot_every=1"]));
     let marker = std::fs::read_to_string(out.join(".adhesim-run")).unwrap();
     assert!(
         marker.contains(&format!("results_revision = {}", adhesim::RESULTS_REVISION)),
@@ -121,7 +111,7 @@ fn rerun_clears_the_previous_outputs_and_leaves_no_temporary_file() {
     write(&out.join("plots"), "stale.png", "old");
 
     // Fewer steps, no periodic snapshots: nothing of the first run may remain.
-    assert_ok(&run(&scenario, &out, &["--set", "protocol.steps=3"]));
+    assert_ok(&run_quiet(&scenario, &out, &["--set", "protocol.steps=3"]));
     let second = names(&out.join("snapshots"));
     assert!(
         second.iter().all(|n| !n.starts_with("step_")),
@@ -300,8 +290,8 @@ fn out_naming_a_file_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = write(dir.path(), "s.toml", SMALL);
     let notes = write(dir.path(), "notes.txt", "mine");
-    assert_fails_with(&run(&scenario, &notes, &[]), &[notes.to_str().unwrap()]);
-    assert_fails_with(&run(&scenario, &notes, &["--force"]), &[notes.to_str().unwrap()]);
+    assert_fails_with(&run_quiet(&scenario, &notes, &[]), &[notes.to_str().unwrap()]);
+    assert_fails_with(&run_quiet(&scenario, &notes, &["--force"]), &[notes.to_str().unwrap()]);
     assert_eq!(std::fs::read_to_string(&notes).unwrap(), "mine");
 }
 

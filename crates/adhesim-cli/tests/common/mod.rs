@@ -31,6 +31,19 @@ pub fn adhesim(args: &[&str]) -> Output {
     Command::new(BIN).args(args).output().expect("binary runs")
 }
 
+/// Runs `adhesim run SCENARIO --out OUT --quiet EXTRA…` to the end.
+pub fn run_quiet(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "run",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    adhesim(&args)
+}
+
 /// The command's stderr as text.
 pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()

@@ -158,17 +158,11 @@ fn a_failed_run_leaves_no_file_under_a_final_name() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("run");
     let jkr = scenarios_dir().join("jkr.toml");
-    let output = adhesim(&[
-        "run",
-        jkr.to_str().unwrap(),
-        "--set",
-        "grid.n=32",
-        "--set",
-        "protocol.max_retract_steps=1",
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let output = run_quiet(
+        &jkr,
+        &out,
+        &["--set", "grid.n=32", "--set", "protocol.max_retract_steps=1"],
+    );
     assert_fails_with(
         &output,
         &[

@@ -256,17 +256,7 @@ fn a_single_approach_step_is_warned_about() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("run");
     let jkr = scenarios_dir().join("jkr.toml");
-    let output = adhesim(&[
-        "run",
-        jkr.to_str().unwrap(),
-        "--set",
-        "grid.n=32",
-        "--set",
-        "protocol.steps=1",
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let output = run_quiet(&jkr, &out, &["--set", "grid.n=32", "--set", "protocol.steps=1"]);
     let expected = "in 1 approach step of";
     assert!(stderr(&output).contains(expected), "{}", stderr(&output));
     if output.status.success() {

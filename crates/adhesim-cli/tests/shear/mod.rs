@@ -2,7 +2,7 @@
 //! "shear"`; docs/tangential.md): Cattaneo–Mindlin through `adhesim run`, gross sliding at
 //! τ0·A, and the errors naming the keys at fault. Part of the translation test binary.
 
-use super::common::{adhesim, assert_fails_with, column_values, read_csv, read_json, repo, stderr, write};
+use super::common::{adhesim, assert_fails_with, column_values, read_csv, read_json, repo, run_quiet, stderr, write};
 
 /// The shear scenario's text with `[friction]` and `[adhesion]` replaced.
 fn shear_text(friction: &str, work_of_adhesion: f64) -> String {
@@ -222,15 +222,7 @@ fn shear_strength_slides_at_tau0_times_area_with_tensile_elements() {
 
 /// `adhesim run SCENARIO --out OUT --quiet EXTRA…`, which must succeed.
 fn run_quietly(scenario: &std::path::Path, out: &std::path::Path, extra: &[&str]) {
-    let mut args = vec![
-        "run",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ];
-    args.extend_from_slice(extra);
-    let output = adhesim(&args);
+    let output = run_quiet(scenario, out, extra);
     assert!(output.status.success(), "{}", stderr(&output));
 }
 
