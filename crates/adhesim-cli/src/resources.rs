@@ -1,22 +1,12 @@
 //! Resource guards of the command line (`docs/reliability.md`, "Scenario inputs and
 //! resources"): the memory available to a run and the thread count.
 
-use adhesim_scenario::memory::SystemMemoryFiles;
 pub use adhesim_scenario::memory::{check_allocation, MemoryLimit};
 
-/// The memory limit for a run, the smallest of RLIMIT_AS, the cgroup's limit and
-/// `MemAvailable` (`adhesim_scenario::memory_available`). With `--allow-large` only
-/// RLIMIT_AS (`prlimit --as`, `ulimit -v`): swap or a lazy allocator may make a run fit
-/// beyond the others, but nothing gets past that one, and a run beyond it aborted.
+/// The memory limit for a run ([`adhesim_scenario::memory_limit`]): with `--allow-large`
+/// only RLIMIT_AS (`prlimit --as`, `ulimit -v`), which nothing gets past.
 pub fn memory_limit(allow_large: bool) -> anyhow::Result<Option<MemoryLimit>> {
-    if allow_large {
-        Ok(SystemMemoryFiles::read().address_space().map(|limit| MemoryLimit {
-            source: format!("{}, which --allow-large does not lift", limit.source),
-            ..limit
-        }))
-    } else {
-        adhesim_scenario::memory_available()
-    }
+    adhesim_scenario::memory_limit(allow_large.then_some("--allow-large"))
 }
 
 /// Cores of this machine.

@@ -83,7 +83,7 @@ impl AdhesiveSolver {
         front_tolerance = adhesim::AdhesiveParams::default().front_tolerance,
         max_cg_iterations = adhesim::AdhesiveParams::default().max_cg_iterations as i64,
         max_rounds = adhesim::AdhesiveParams::default().max_rounds as i64,
-        attachment = attachment_name(adhesim::AdhesiveParams::default().attachment),
+        attachment = attachment_name(adhesim::AdhesiveParams::default().attachment).to_string(),
         worst_first_fraction = worst_first_fraction(adhesim::AdhesiveParams::default().detachment),
         preconditioned = adhesim::AdhesiveParams::default().preconditioned,
         carry_bans_when_retracting = adhesim::AdhesiveParams::default().carry_bans_when_retracting,
@@ -92,24 +92,24 @@ impl AdhesiveSolver {
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
         work_of_adhesion: &Bound<'_, PyAny>,
-        relative_tolerance: f64,
-        front_tolerance: f64,
-        max_cg_iterations: i64,
-        max_rounds: i64,
-        attachment: &str,
-        worst_first_fraction: Option<f64>,
-        preconditioned: bool,
-        carry_bans_when_retracting: bool,
-        retry_after_growth: bool,
+        #[pyo3(from_py_with = crate::args::number::relative_tolerance)] relative_tolerance: f64,
+        #[pyo3(from_py_with = crate::args::number::front_tolerance)] front_tolerance: f64,
+        #[pyo3(from_py_with = crate::args::integer::max_cg_iterations)] max_cg_iterations: i64,
+        #[pyo3(from_py_with = crate::args::integer::max_rounds)] max_rounds: i64,
+        #[pyo3(from_py_with = crate::args::text::attachment)] attachment: String,
+        #[pyo3(from_py_with = crate::args::optional_number::worst_first_fraction)] worst_first_fraction: Option<f64>,
+        #[pyo3(from_py_with = crate::args::flag::preconditioned)] preconditioned: bool,
+        #[pyo3(from_py_with = crate::args::flag::carry_bans_when_retracting)] carry_bans_when_retracting: bool,
+        #[pyo3(from_py_with = crate::args::flag::retry_after_growth)] retry_after_growth: bool,
     ) -> PyResult<Self> {
         let params = adhesive_params(
             relative_tolerance,
             front_tolerance,
             max_cg_iterations,
             max_rounds,
-            attachment,
+            &attachment,
             worst_first_fraction,
             preconditioned,
             carry_bans_when_retracting,
@@ -199,13 +199,13 @@ impl AdhesiveSolver {
         &mut self,
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
-        depth: f64,
-        state: &Bound<'_, ContactState>,
+        #[pyo3(from_py_with = crate::args::number::depth)] depth: f64,
+        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'_, ContactState>,
     ) -> PyResult<StepReport> {
         let depth = finite("depth", depth)?;
         state.borrow().check_grid(&self.grid)?;
         read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
-        self.step_inner(py, depth, state)
+        self.step_inner(py, depth, &state)
     }
 
     /// A sequence of steps at the given depths on fixed heights, in one call.
@@ -239,7 +239,7 @@ impl AdhesiveSolver {
         py: Python<'py>,
         heights: &Bound<'py, PyAny>,
         depths: &Bound<'py, PyAny>,
-        state: &Bound<'py, ContactState>,
+        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'py, ContactState>,
         progress: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let depths = read_vector(depths, "depths")?;
@@ -253,7 +253,7 @@ impl AdhesiveSolver {
         read_field(heights, "heights", &self.grid, true, &mut self.heights)?;
         let mut rows = Vec::with_capacity(depths.len());
         for (index, &depth) in depths.iter().enumerate() {
-            let report = self.step_inner(py, depth, state)?;
+            let report = self.step_inner(py, depth, &state)?;
             let radius = state.borrow().fields().contact_radius(&self.grid, (0.0, 0.0));
             rows.push((report, radius));
             py.check_signals()?;
@@ -309,7 +309,10 @@ impl AdhesiveSolver {
     }
 
     /// Π = ½Δ²Σp·u − Δ²Σ_C γ of a state: elastic energy minus adhesion energy.
-    fn energy(&self, state: &Bound<'_, ContactState>) -> PyResult<f64> {
+    fn energy(
+        &self,
+        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'_, ContactState>,
+    ) -> PyResult<f64> {
         let state = state.borrow();
         state.check_grid(&self.grid)?;
         Ok(self.inner.energy(state.fields()))

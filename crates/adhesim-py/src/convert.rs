@@ -123,7 +123,10 @@ fn argument_error(value: &Bound<'_, PyAny>, name: &str, expected: &str) -> PyErr
         .name()
         .map_or_else(|_| "?".to_string(), |n| n.to_string());
     if value.is_instance_of::<pyo3::types::PyInt>() {
-        PyValueError::new_err(format!("{name} = {repr} is out of range: {name} must be {expected}"))
+        PyValueError::new_err(format!(
+            "{name} = {repr} is out of range: a 64-bit integer holds up to {}",
+            i64::MAX
+        ))
     } else {
         PyTypeError::new_err(format!("{name} must be {expected}, got {type_name} {repr}"))
     }

@@ -8,6 +8,7 @@
 //! scenario crate's pipeline (`scenario.rs`).
 
 mod adhesive;
+mod args;
 mod cli;
 mod convert;
 mod objects;

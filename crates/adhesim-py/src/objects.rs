@@ -78,7 +78,7 @@ impl Grid {
     #[allow(clippy::too_many_arguments)]
     fn new<'py>(
         args: &Bound<'py, pyo3::types::PyTuple>,
-        boundary: Option<String>,
+        #[pyo3(from_py_with = crate::args::optional_text::boundary)] boundary: Option<String>,
         n: Option<Bound<'py, PyAny>>,
         size: Option<Bound<'py, PyAny>>,
         nx: Option<Bound<'py, PyAny>>,
@@ -379,7 +379,10 @@ impl Material {
     /// ValueError
     ///     E or ν out of range.
     #[staticmethod]
-    fn from_two_bodies(first: (f64, f64), second: (f64, f64)) -> PyResult<Self> {
+    fn from_two_bodies(
+        #[pyo3(from_py_with = crate::args::pair::first)] first: (f64, f64),
+        #[pyo3(from_py_with = crate::args::pair::second)] second: (f64, f64),
+    ) -> PyResult<Self> {
         Ok(Self {
             inner: adhesim::ElasticMaterial::from_two_bodies(first, second).map_err(value_error)?,
         })
@@ -425,7 +428,11 @@ pub struct HalfSpace {
 #[pymethods]
 impl HalfSpace {
     #[new]
-    fn new(py: Python<'_>, grid: Grid, material: Material) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+        #[pyo3(from_py_with = crate::args::object::material)] material: Material,
+    ) -> PyResult<Self> {
         fits_in_memory(
             &format!("HalfSpace({}) and its solvers", grid.__repr__()),
             half_space_bytes(&grid.inner),

@@ -187,10 +187,10 @@ pub fn _flat_punch(radius: f64, contact_modulus: f64, work_of_adhesion: f64) -> 
 /// adhesion.
 #[pyfunction]
 pub fn johnson_parameter(
-    wavelength: f64,
-    amplitude: f64,
-    work_of_adhesion: f64,
-    contact_modulus: f64,
+    #[pyo3(from_py_with = crate::args::number::wavelength)] wavelength: f64,
+    #[pyo3(from_py_with = crate::args::number::amplitude)] amplitude: f64,
+    #[pyo3(from_py_with = crate::args::number::work_of_adhesion)] work_of_adhesion: f64,
+    #[pyo3(from_py_with = crate::args::number::contact_modulus)] contact_modulus: f64,
 ) -> PyResult<f64> {
     Ok(adhesim::analysis::reference::johnson_parameter(
         positive("wavelength", wavelength)?,

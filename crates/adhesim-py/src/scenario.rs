@@ -88,7 +88,7 @@ impl Observer for PythonObserver {
 /// Reads, overrides and validates a scenario, refusing before any allocation one whose
 /// memory estimate exceeds the memory this process may use (where `check_memory`: the
 /// smallest of RLIMIT_AS, the cgroup's limit and `MemAvailable`, or
-/// `ADHESIM_MEMORY_AVAILABLE`); errors become `ValueError` with the scenario crate's
+/// `ADHESIM_MEMORY_AVAILABLE`; else RLIMIT_AS alone); errors become `ValueError` with the scenario crate's
 /// message (it names the key and the value, or the file).
 fn load(
     text: &str,
@@ -97,13 +97,11 @@ fn load(
     overrides: &[String],
     check_memory: bool,
 ) -> PyResult<ValidScenario> {
-    let limit = if check_memory {
-        adhesim_scenario::memory_available().map_err(|e| PyValueError::new_err(format!("{e:#}")))?
-    } else {
-        None
-    };
+    // allow_large=True (no `check_memory`) still checks RLIMIT_AS, which nothing gets past.
+    let limit = adhesim_scenario::memory_limit((!check_memory).then_some("allow_large=True"))
+        .map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
     adhesim_scenario::load_within(text, origin, base, overrides, limit.as_ref()).map_err(|e| {
-        let hint = if e.kind == adhesim_scenario::ErrorKind::Resources {
+        let hint = if e.kind == adhesim_scenario::ErrorKind::Resources && check_memory {
             " (refused before allocating; pass allow_large=True to run anyway)"
         } else {
             ""

@@ -10,7 +10,11 @@ use pyo3::prelude::*;
 /// Heights z = (x² + y²)/(2R) of a sphere (paraboloid) of radius R at the element centres,
 /// axis at the origin; shape (ny, nx).
 #[pyfunction]
-pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+pub fn sphere_heights<'py>(
+    py: Python<'py>,
+    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let sphere = adhesim::Sphere::new(radius).map_err(value_error)?;
     fits_in_memory(
         &format!("sphere_heights({})", describe(&grid.inner)),
@@ -22,7 +26,11 @@ pub fn sphere_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult
 /// Heights of a flat circular punch of radius a: 0 on the face, +inf outside (no surface
 /// there: those elements never touch); shape (ny, nx).
 #[pyfunction]
-pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+pub fn flat_punch_heights<'py>(
+    py: Python<'py>,
+    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let punch = adhesim::FlatPunch::new(radius).map_err(value_error)?;
     fits_in_memory(
         &format!("flat_punch_heights({})", describe(&grid.inner)),
@@ -37,11 +45,11 @@ pub fn flat_punch_heights<'py>(py: Python<'py>, grid: Grid, radius: f64) -> PyRe
 #[pyfunction]
 pub fn wavy_sphere_heights<'py>(
     py: Python<'py>,
-    grid: Grid,
-    radius: f64,
-    amplitude: f64,
-    wavelength: f64,
-    angle_degrees: f64,
+    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
+    #[pyo3(from_py_with = crate::args::number::amplitude)] amplitude: f64,
+    #[pyo3(from_py_with = crate::args::number::wavelength)] wavelength: f64,
+    #[pyo3(from_py_with = crate::args::number::angle_degrees)] angle_degrees: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let angle = crate::convert::finite("angle", angle_degrees)?.to_radians();
     let profile = adhesim::WavySphere::new(radius, amplitude, wavelength, angle).map_err(value_error)?;
@@ -58,9 +66,9 @@ pub fn wavy_sphere_heights<'py>(
 #[pyfunction]
 pub fn elliptic_punch_heights<'py>(
     py: Python<'py>,
-    grid: Grid,
-    semi_axes: (f64, f64),
-    angle_degrees: f64,
+    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::args::pair::semi_axes)] semi_axes: (f64, f64),
+    #[pyo3(from_py_with = crate::args::number::angle_degrees)] angle_degrees: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let angle = crate::convert::finite("angle", angle_degrees)?.to_radians();
     let punch = adhesim::EllipticPunch::new(semi_axes, angle).map_err(value_error)?;

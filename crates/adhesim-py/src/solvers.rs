@@ -123,7 +123,12 @@ impl Ccg {
         operator, tolerance = adhesim::CcgParams::default().tolerance,
         max_iterations = adhesim::CcgParams::default().max_iterations as i64
     ))]
-    fn new(py: Python<'_>, operator: Py<HalfSpace>, tolerance: f64, max_iterations: i64) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::args::number::tolerance)] tolerance: f64,
+        #[pyo3(from_py_with = crate::args::integer::max_iterations)] max_iterations: i64,
+    ) -> PyResult<Self> {
         let params = adhesim::CcgParams {
             tolerance: positive("tolerance", tolerance)?,
             max_iterations: count("max_iterations", max_iterations, 1)?,
@@ -172,9 +177,9 @@ impl Ccg {
         &mut self,
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
-        depth: Option<f64>,
-        load: Option<f64>,
-        state: Option<Py<ContactState>>,
+        #[pyo3(from_py_with = crate::args::optional_number::depth)] depth: Option<f64>,
+        #[pyo3(from_py_with = crate::args::optional_number::load)] load: Option<f64>,
+        #[pyo3(from_py_with = crate::args::object::state)] state: Option<Py<ContactState>>,
     ) -> PyResult<SolveReport> {
         let control = match (depth, load) {
             (Some(depth), None) => Control::Displacement(finite("depth", depth)?),
@@ -266,11 +271,11 @@ impl NestedActiveSet {
     ))]
     fn new(
         py: Python<'_>,
-        operator: Py<HalfSpace>,
-        relative_tolerance: f64,
-        max_cg_iterations: i64,
-        max_rounds: i64,
-        coarsest: i64,
+        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::args::number::relative_tolerance)] relative_tolerance: f64,
+        #[pyo3(from_py_with = crate::args::integer::max_cg_iterations)] max_cg_iterations: i64,
+        #[pyo3(from_py_with = crate::args::integer::max_rounds)] max_rounds: i64,
+        #[pyo3(from_py_with = crate::args::integer::coarsest)] coarsest: i64,
     ) -> PyResult<Self> {
         let params = adhesim::NestedParams {
             relative_tolerance: positive("relative_tolerance", relative_tolerance)?,
@@ -326,8 +331,8 @@ impl NestedActiveSet {
         &mut self,
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
-        depth: f64,
-        state: Option<Py<ContactState>>,
+        #[pyo3(from_py_with = crate::args::number::depth)] depth: f64,
+        #[pyo3(from_py_with = crate::args::object::state)] state: Option<Py<ContactState>>,
     ) -> PyResult<SolveReport> {
         let depth = finite("depth", depth)?;
         read_field(heights, "heights", &self.grid, true, &mut self.heights)?;

@@ -93,7 +93,7 @@ impl ContactState {
 #[pymethods]
 impl ContactState {
     #[new]
-    fn new(grid: Grid) -> PyResult<Self> {
+    fn new(#[pyo3(from_py_with = crate::args::object::grid)] grid: Grid) -> PyResult<Self> {
         // Pressure, displacement, contact and the recorded heights, with numpy's copies.
         fits_in_memory(
             &format!("ContactState({})", describe(&grid.inner)),
@@ -193,7 +193,7 @@ impl ContactState {
     /// ValueError
     ///     A centre that is not finite (`(nan, 0)` returned 0).
     #[pyo3(signature = (centre = (0.0, 0.0)), text_signature = "($self, centre=(0.0, 0.0))")]
-    fn contact_radius(&self, centre: (f64, f64)) -> PyResult<f64> {
+    fn contact_radius(&self, #[pyo3(from_py_with = crate::args::pair::centre)] centre: (f64, f64)) -> PyResult<f64> {
         if !(centre.0.is_finite() && centre.1.is_finite()) {
             return Err(PyValueError::new_err(format!(
                 "centre must be a finite point (x, y), got ({}, {})",

@@ -69,11 +69,16 @@ pub fn _sweep_open(
     sweep_table.insert("series".into(), toml::Value::String(series.into()));
     let text = toml::to_string(&sweep_table).map_err(|e| PyValueError::new_err(format!("sweep: {e}")))?;
     let plan = plan::from_text(&text, origin, &base, series).map_err(value_error)?;
-    if check_memory {
-        if let Some(limit) = adhesim_scenario::memory_available().map_err(value_error)? {
-            sweep::check_memory(&plan, jobs, &limit)
-                .map_err(|e| value_error(e.context("refused before allocating (allow_large=True runs anyway)")))?;
-        }
+    // allow_large=True (no `check_memory`) still checks RLIMIT_AS, which nothing gets past.
+    if let Some(limit) =
+        adhesim_scenario::memory_limit((!check_memory).then_some("allow_large=True")).map_err(value_error)?
+    {
+        let context = if check_memory {
+            "refused before allocating"
+        } else {
+            "refused before allocating, even with allow_large=True"
+        };
+        sweep::check_memory(&plan, jobs, &limit, "allow_large=True").map_err(|e| value_error(e.context(context)))?;
     }
     let mut batch = Batch::open(&out, Shard::ALL).map_err(value_error)?;
     // Each case runs through `_sweep_run_case`, with mid-run checkpoints every

@@ -419,6 +419,59 @@ def test_python_functions_name_the_argument_they_cannot_convert(call, words):
         assert word in str(info.value), str(info.value)
 
 
+@pytest.mark.parametrize(
+    "call, error, words",
+    [
+        (lambda op, g: adhesim.HalfSpace("g", adhesim.Material(1.0)), TypeError, ["grid must be an adhesim.Grid, got str 'g'"]),
+        (lambda op, g: adhesim.HalfSpace(g, 1.0), TypeError, ["material must be an adhesim.Material, got float 1.0"]),
+        (lambda op, g: adhesim.ContactState(3), TypeError, ["grid must be an adhesim.Grid, got int 3"]),
+        (lambda op, g: adhesim.Ccg(1.0), TypeError, ["operator must be an adhesim.HalfSpace, got float 1.0"]),
+        (lambda op, g: adhesim.Ccg(op, tolerance="a"), TypeError, ["tolerance must be a number, got str 'a'"]),
+        (lambda op, g: adhesim.Ccg(op, max_iterations=1.5), TypeError, ["max_iterations must be an integer, got float 1.5"]),
+        (lambda op, g: adhesim.Ccg(op, max_iterations=2**70), ValueError, ["max_iterations = 1180591620717411303424 is out of range"]),
+        (lambda op, g: adhesim.NestedActiveSet(op, relative_tolerance="x"), TypeError, ["relative_tolerance must be a number"]),
+        (lambda op, g: adhesim.NestedActiveSet(op, coarsest="a"), TypeError, ["coarsest must be an integer, got str 'a'"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0, attachment=3), TypeError, ["attachment must be a str, got int 3"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0, preconditioned="yes"), TypeError, ["preconditioned must be True or False, got str 'yes'"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0, worst_first_fraction="a"), TypeError, ["worst_first_fraction must be a number"]),
+        (lambda op, g: adhesim.Ccg(op).solve(np.zeros((32, 32)), depth="a"), TypeError, ["depth must be a number, got str 'a'"]),
+        (lambda op, g: adhesim.Ccg(op).solve(np.zeros((32, 32)), load="a"), TypeError, ["load must be a number, got str 'a'"]),
+        (lambda op, g: adhesim.Ccg(op).solve(np.zeros((32, 32)), depth=0.1, state=3), TypeError, ["state must be an adhesim.ContactState or None, got int 3"]),
+        (lambda op, g: adhesim.NestedActiveSet(op).solve(np.zeros((32, 32)), "a"), TypeError, ["depth must be a number, got str 'a'"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0).step(np.zeros((32, 32)), "d", adhesim.ContactState(g)), TypeError, ["depth must be a number, got str 'd'"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0).step(np.zeros((32, 32)), 0.1, None), TypeError, ["state must be an adhesim.ContactState, got NoneType None"]),
+        (lambda op, g: adhesim.AdhesiveSolver(op, 1.0).energy(3), TypeError, ["state must be an adhesim.ContactState, got int 3"]),
+        (lambda op, g: adhesim.Grid(8, 1.0, boundary=3), TypeError, ["boundary must be a str, got int 3"]),
+        (lambda op, g: adhesim.ContactState(g).contact_radius(centre="ab"), TypeError, ["centre must be a pair of numbers, got str 'ab'"]),
+        (lambda op, g: adhesim.ContactState(g).contact_radius(centre=(1.0,)), ValueError, ["centre must be a pair of numbers, got tuple (1.0,) of length 1"]),
+        (lambda op, g: adhesim.ContactState(g).contact_radius(centre=(1.0, "b")), TypeError, ["centre[1] must be a number, got str 'b'"]),
+        (lambda op, g: adhesim.Material.from_two_bodies((1.0, "a"), (1.0, 0.3)), TypeError, ["first[1] must be a number, got str 'a'"]),
+        (lambda op, g: adhesim.reference.johnson_parameter("a", 1.0, 1.0, 1.0), TypeError, ["wavelength must be a number, got str 'a'"]),
+    ],
+)
+def test_compiled_classes_name_the_argument_they_cannot_convert(operator, grid, call, error, words):
+    """pyo3's own conversion errors said 'must be real number, not str' or ''str' object is
+    not an instance of 'Grid'', naming neither the argument nor the value."""
+    with pytest.raises(error) as info:
+        call(operator, grid)
+    for word in words:
+        assert word in str(info.value), str(info.value)
+
+
+def test_compiled_classes_still_take_what_they_took(operator, grid):
+    """The named conversions accept numpy scalars and bools, None for optional arguments,
+    keywords, and a numpy pair."""
+    heights = np.zeros((32, 32))
+    report = adhesim.Ccg(operator, tolerance=np.float32(1e-6), max_iterations=np.int64(500)).solve(
+        heights, depth=np.float64(0.01), load=None, state=None
+    )
+    assert report.state.force > 0.0
+    solver = adhesim.AdhesiveSolver(operator, 0.01, preconditioned=np.bool_(True), worst_first_fraction=None)
+    solver.step(heights, 0.01, adhesim.ContactState(grid))
+    assert adhesim.HalfSpace(grid=grid, material=adhesim.Material(1.0)).grid == grid
+    assert adhesim.ContactState(grid).contact_radius(centre=np.array([0.0, 0.0])) == 0.0
+
+
 def test_grid_takes_its_parameters_by_name():
     """Grid(n=, size=) and Grid(nx=, ny=, size_x=, size_y=), as the stubs say."""
     assert adhesim.Grid(n=8, size=1.0) == adhesim.Grid(8, 1.0)
@@ -466,3 +519,42 @@ def test_fits_count_the_points_they_leave_out():
         adhesim.fit.jkr_work_of_adhesion(a, force, 1.0, 1.0)
     with pytest.warns(UserWarning, match=r"power_law: 1 of 4 points left out"):
         adhesim.fit.power_law(np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, 1.0, 2.0, 3.0]))
+
+
+ADDRESS_SPACE_PROBE = """
+import resource, sys
+import adhesim
+resource.setrlimit(resource.RLIMIT_AS, (2_000_000_000, 2_000_000_000))
+scenario = {scenario!r}
+for call in (
+    lambda: adhesim.run(scenario, overrides={{"grid.n": 2500}}, allow_large=True),
+    lambda: adhesim.sweep(scenario, vary={{"grid.n": [2500]}}, out=sys.argv[1], allow_large=True),
+):
+    try:
+        call()
+        print("ran")
+    except ValueError as error:
+        print("ValueError:", error)
+"""
+
+
+def test_allow_large_still_checks_the_address_space_limit(tmp_path):
+    """allow_large=True lifted every memory check, so under an address-space limit
+    (RLIMIT_AS, `ulimit -v`) a large run aborted the interpreter in an allocation. That
+    limit is checked with it too, as `--allow-large` is on the command line."""
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if k != "ADHESIM_MEMORY_AVAILABLE"}
+    probe = subprocess.run(
+        [sys.executable, "-c", ADDRESS_SPACE_PROBE.format(scenario=BASE), str(tmp_path / "sweep")],
+        capture_output=True, text=True, env=env, timeout=300,
+    )
+    assert probe.returncode == 0, probe.stderr
+    lines = probe.stdout.splitlines()
+    assert len(lines) == 2, probe.stdout
+    for line in lines:
+        assert line.startswith("ValueError:"), line
+        assert "grid.n = 2500 needs about" in line and "RLIMIT_AS" in line, line
+        assert "which allow_large=True does not lift" in line, line

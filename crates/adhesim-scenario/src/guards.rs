@@ -523,8 +523,7 @@ impl ScenarioFile {
             } else {
                 String::new()
             };
-            // The address-space limit under --allow-large cannot be overridden.
-            let hint = if limit.source.contains("--allow-large") {
+            let hint = if limit.survives_lifting() {
                 "lower grid.n or raise the limit"
             } else {
                 "lower grid.n (or override this check where the estimate is known to be too high)"

@@ -67,7 +67,7 @@ pub use guards::{
     memory_estimate, memory_estimate_rectangle, unresolved_contact_warning, MAX_GRID_N, MAX_STEPS,
     MIN_ELEMENTS_PER_FEATURE,
 };
-pub use memory::{memory_available, MemoryLimit};
+pub use memory::{memory_available, memory_limit, MemoryLimit};
 pub use model::*;
 pub use parse::{read_height_map, read_npy_2d};
 pub use pipeline::{run, run_from, Counters, ProtocolReport, ProtocolSetup, Resume, RunOutcome};

@@ -190,6 +190,31 @@ pub fn memory_available() -> Result<Option<MemoryLimit>> {
     Ok(SystemMemoryFiles::read().limit())
 }
 
+/// The memory limit for a run: [`memory_available`], or, where `lifted_by` names the
+/// option that lifts the memory guard (`--allow-large`, `allow_large=True`), only
+/// RLIMIT_AS: swap or a lazy allocator may let a run fit beyond the other limits, but
+/// nothing gets past that one, and a run beyond it aborts in an allocation.
+pub fn memory_limit(lifted_by: Option<&str>) -> Result<Option<MemoryLimit>> {
+    match lifted_by {
+        None => memory_available(),
+        Some(option) => Ok(SystemMemoryFiles::read().address_space().map(|limit| MemoryLimit {
+            source: format!("{}, which {option} {NOT_LIFTED}", limit.source),
+            ..limit
+        })),
+    }
+}
+
+/// How a limit's source says that the option lifting the guard does not lift it.
+const NOT_LIFTED: &str = "does not lift";
+
+impl MemoryLimit {
+    /// Whether this is the address-space limit that the lifting option leaves
+    /// ([`memory_limit`]): raising it is then the only way past it.
+    pub fn survives_lifting(&self) -> bool {
+        self.source.contains(NOT_LIFTED)
+    }
+}
+
 /// Bytes per bin of an isotropic PSD, an upper estimate: its sums and bins (64 bytes) and
 /// what is written, drawn or returned to Python of them (`adhesim topography --bins`,
 /// `adhesim.surface.psd(bins=)`).

@@ -115,7 +115,7 @@ pub fn command(args: &SweepArgs) -> Result<()> {
         None => (cores / jobs).max(1),
     };
     if let Some(limit) = resources::memory_limit(args.allow_large)? {
-        check_memory(&plan, jobs, &limit)?;
+        check_memory(&plan, jobs, &limit, "--allow-large")?;
     }
     let resources = Resources {
         jobs,

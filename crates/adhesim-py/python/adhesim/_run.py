@@ -341,7 +341,8 @@ def run(
         available (the smallest of RLIMIT_AS, the cgroup's ``memory.max`` and
         ``MemAvailable``, or ``ADHESIM_MEMORY_AVAILABLE``),
         like the command line's ``--allow-large``; by default such a scenario is
-        refused with a ValueError before anything is allocated.
+        refused with a ValueError before anything is allocated. The address-space
+        limit RLIMIT_AS, which nothing gets past, is checked even so.
     force : bool
         write into a non-empty ``out`` that is not a run folder (its outputs are
         replaced), like ``--force``.

@@ -197,7 +197,8 @@ def sweep(
     overrides, **keyword_overrides
         Keys set in every case, the sweep file's ``[set]``.
     allow_large : bool
-        Run even when a case's grid is estimated to need more memory than is available.
+        Run even when a case's grid is estimated to need more memory than is available
+        (but within the address-space limit RLIMIT_AS, which nothing gets past).
     retry_failed : bool
         Also redo the cases that finished with an error.
     checkpoint_every : float

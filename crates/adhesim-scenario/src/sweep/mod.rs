@@ -22,8 +22,9 @@ use std::path::Path;
 pub type CaseRunner = dyn Fn(&ValidScenario, &Path, Option<&CheckpointPolicy>) -> Result<()> + Sync;
 
 /// Refuses a plan whose largest grid, run `jobs` at a time, needs more memory than is
-/// available (before any case allocates its FFT buffers).
-pub fn check_memory(plan: &Plan, jobs: usize, limit: &MemoryLimit) -> Result<()> {
+/// available (before any case allocates its FFT buffers). `lifting_option` is how the
+/// caller lifts the guard (`--allow-large`, `allow_large=True`), for the hint.
+pub fn check_memory(plan: &Plan, jobs: usize, limit: &MemoryLimit, lifting_option: &str) -> Result<()> {
     let mut largest: Option<(u64, &Case, crate::ScenarioFile)> = None;
     for case in &plan.cases {
         let table = crate::parse_toml(&case.scenario, &case.id)?;
@@ -35,14 +36,14 @@ pub fn check_memory(plan: &Plan, jobs: usize, limit: &MemoryLimit) -> Result<()>
     }
     let Some((_, case, file)) = largest else { return Ok(()) };
     let runs = jobs.min(plan.cases.len()) as u64;
-    // Under --allow-large the limit is RLIMIT_AS, which the flag does not lift.
-    let hint = if limit.source.contains("--allow-large") {
-        "lower --jobs"
-    } else {
-        "pass --allow-large to run anyway, or lower --jobs"
+    let hint = match (limit.survives_lifting(), runs > 1) {
+        (true, true) => " (lower --jobs)".to_string(),
+        (true, false) => String::new(),
+        (false, true) => format!(" (pass {lifting_option} to run anyway, or lower --jobs)"),
+        (false, false) => format!(" (pass {lifting_option} to run anyway)"),
     };
     file.check_memory(limit, runs)
-        .with_context(|| format!("case {} ({hint})", case.id))
+        .with_context(|| format!("case {}{hint}", case.id))
 }
 
 /// Writes `DIR/sweep.json` (the plan), refusing a folder that holds another sweep.
