@@ -100,9 +100,9 @@ pub use geometry::{
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
-    IndentCheckpoint, IndentPulloff, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
-    Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation, TranslationCheckpoint,
-    TranslationSummary,
+    IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint, ProtocolError,
+    ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation,
+    TranslationCheckpoint, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

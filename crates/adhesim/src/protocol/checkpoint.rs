@@ -6,14 +6,14 @@
 //! A protocol offers one after every step to its [`Observer`](super::Observer), which
 //! decides whether to take it ([`Observer::wants_checkpoint`](super::Observer::wants_checkpoint));
 //! writing it anywhere is the observer's business. Every normal solver supports them (the
-//! non-adhesive CCG and nested active set, the JKR-type active set, a cohesive law);
-//! [`NormalSolver::supports_checkpoints`] says so, and a solver that did not would decline:
-//! the protocol then offers none and runs as without.
+//! non-adhesive CCG and nested active set, the JKR-type active set, a cohesive law); a
+//! family that did not would return `None` from
+//! [`NormalStepper::checkpoint`](super::NormalStepper::checkpoint): the protocol then offers
+//! none and runs as without.
 
 use super::{Phase, ProtocolError, ProtocolSummary, StepRecord, TranslationSummary};
 use crate::grid::Grid;
 use crate::solver::{AdhesiveCheckpoint, CohesiveCheckpoint, ContactState, NestedCheckpoint};
-use crate::NormalSolver;
 
 /// What the normal solver carries from one step to the next.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,57 +107,9 @@ impl ProtocolCheckpoint {
     }
 }
 
-impl NormalSolver {
-    /// The state this solver carries into its next step, or `None` where checkpoints are
-    /// not supported (none today; see [`supports_checkpoints`](Self::supports_checkpoints)).
-    pub fn checkpoint(&self) -> Option<SolverCheckpoint> {
-        Some(match self {
-            Self::NonAdhesive(_) => SolverCheckpoint::Stateless,
-            Self::NonAdhesiveNested(solver) => SolverCheckpoint::Nested(Box::new(solver.checkpoint())),
-            Self::Adhesive(solver) => SolverCheckpoint::Adhesive(Box::new(solver.checkpoint())),
-            Self::Cohesive(solver) => SolverCheckpoint::Cohesive(Box::new(solver.checkpoint())),
-        })
-    }
-
-    /// Whether [`checkpoint`](Self::checkpoint) gives one (every solver does).
-    pub fn supports_checkpoints(&self) -> bool {
-        matches!(
-            self,
-            Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) | Self::Adhesive(_) | Self::Cohesive(_)
-        )
-    }
-
-    /// Puts back the state of `checkpoint` (taken by the same kind of solver on the same
-    /// problem when the step that left `state` ended). An error (nothing changed) for a
-    /// checkpoint of another kind of solver or of another grid.
-    pub fn restore(&mut self, checkpoint: &SolverCheckpoint, state: &ContactState) -> Result<(), String> {
-        match (self, checkpoint) {
-            (Self::NonAdhesive(_), SolverCheckpoint::Stateless) => Ok(()),
-            (Self::NonAdhesiveNested(solver), SolverCheckpoint::Nested(saved)) => solver.restore(saved),
-            (Self::Adhesive(solver), SolverCheckpoint::Adhesive(saved)) => solver.restore(saved, state),
-            (Self::Cohesive(solver), SolverCheckpoint::Cohesive(saved)) => solver.restore(saved),
-            (solver, saved) => Err(format!(
-                "the checkpoint is of {}, this run's solver is {}",
-                saved.solver_name(),
-                solver.name()
-            )),
-        }
-    }
-
-    /// The kind of solver, in words (for errors).
-    fn name(&self) -> &'static str {
-        match self {
-            Self::NonAdhesive(_) => "the non-adhesive CCG",
-            Self::NonAdhesiveNested(_) => "the non-adhesive nested active set",
-            Self::Adhesive(_) => "the JKR-type adhesive solver",
-            Self::Cohesive(_) => "a cohesive law's solver",
-        }
-    }
-}
-
 impl SolverCheckpoint {
     /// The kind of solver that took it, in words (for errors).
-    fn solver_name(&self) -> &'static str {
+    pub(super) fn solver_name(&self) -> &'static str {
         match self {
             Self::Stateless => "the non-adhesive CCG",
             Self::Nested(_) => "the non-adhesive nested active set",

@@ -50,9 +50,9 @@ pub struct ProtocolSummary {
 
 impl IndentPulloff {
     /// Runs approach then retraction; reports each step to `observer`.
-    pub fn run<O: ElasticOperator + ?Sized>(
+    pub fn run(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
@@ -64,9 +64,9 @@ impl IndentPulloff {
     /// protocol, problem and kind of solver) when given: the steps after it are those of
     /// the uninterrupted run, bit for bit. After every step the observer is offered a
     /// checkpoint ([`Observer::wants_checkpoint`]) where the solver supports them.
-    pub fn run_from<O: ElasticOperator + ?Sized>(
+    pub fn run_from(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
@@ -138,9 +138,9 @@ impl IndentPulloff {
 
     /// One step at `depth`: the solve, the record, the totals, the observer.
     #[allow(clippy::too_many_arguments)]
-    fn run_step<O: ElasticOperator + ?Sized>(
+    fn run_step(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,

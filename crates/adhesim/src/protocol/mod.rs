@@ -7,6 +7,7 @@ pub mod bit_string;
 mod checkpoint;
 mod indentation;
 mod shear;
+mod stepper;
 mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
@@ -14,14 +15,15 @@ pub use indentation::{IndentPulloff, ProtocolSummary};
 pub use shear::{
     contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearFields, ShearSummary,
 };
+pub use stepper::NormalStepper;
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use crate::solver::{
-    AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, Control, NestedActiveSet, NestedParams, SolveError,
-    SolveReport, StepReport, TangentialError,
+    AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, NestedActiveSet, NestedParams, SolveError,
+    StepReport, TangentialError,
 };
 use std::ops::ControlFlow;
 use thiserror::Error;
@@ -243,7 +245,9 @@ pub enum ProtocolError {
     InvalidParameter(String),
 }
 
-/// The normal-contact solver a protocol drives.
+/// The normal-contact solver a protocol drives: the library's families by name, or any
+/// other [`NormalStepper`] as [`Family`](Self::Family). Every method goes through the
+/// trait ([`stepper`](Self::stepper)); the named variants are for building and matching.
 pub enum NormalSolver {
     /// Non-adhesive (γ = 0): Polonsky–Keer CCG at each depth.
     NonAdhesive(Ccg),
@@ -254,6 +258,8 @@ pub enum NormalSolver {
     Adhesive(Box<AdhesiveSolver>),
     /// Adhesion by a cohesive law of finite range (Maugis–Dugdale, exponential).
     Cohesive(Box<CohesiveSolver>),
+    /// Any other solver family.
+    Family(Box<dyn NormalStepper>),
 }
 
 /// The non-adhesive solver for `grid`: the nested active set on a free grid, CCG on a
@@ -268,62 +274,77 @@ pub fn non_adhesive_solver(grid: Grid, material: ElasticMaterial) -> NormalSolve
 }
 
 impl NormalSolver {
-    /// Forgets the history of previous steps before a new load path.
+    /// The solver as its family's trait.
+    pub fn stepper(&self) -> &dyn NormalStepper {
+        match self {
+            Self::NonAdhesive(solver) => solver,
+            Self::NonAdhesiveNested(solver) => solver.as_ref(),
+            Self::Adhesive(solver) => solver.as_ref(),
+            Self::Cohesive(solver) => solver.as_ref(),
+            Self::Family(solver) => solver.as_ref(),
+        }
+    }
+
+    /// The solver as its family's trait, mutably.
+    pub fn stepper_mut(&mut self) -> &mut dyn NormalStepper {
+        match self {
+            Self::NonAdhesive(solver) => solver,
+            Self::NonAdhesiveNested(solver) => solver.as_mut(),
+            Self::Adhesive(solver) => solver.as_mut(),
+            Self::Cohesive(solver) => solver.as_mut(),
+            Self::Family(solver) => solver.as_mut(),
+        }
+    }
+
+    /// [`NormalStepper::reset`].
     pub fn reset(&mut self) {
-        match self {
-            Self::Adhesive(solver) => solver.reset(),
-            Self::Cohesive(solver) => solver.reset(),
-            Self::NonAdhesive(_) | Self::NonAdhesiveNested(_) => {}
-        }
+        self.stepper_mut().reset();
     }
 
-    /// The JKR-type solver, whose detachment rule a shear may weaken (None for the others).
+    /// [`NormalStepper::as_adhesive_mut`].
     pub fn as_adhesive_mut(&mut self) -> Option<&mut AdhesiveSolver> {
-        match self {
-            Self::Adhesive(solver) => Some(solver),
-            _ => None,
-        }
+        self.stepper_mut().as_adhesive_mut()
     }
 
-    /// Whether the body can still hold the indenter without contact: a cohesive law pulls
-    /// across a gap, so its pull-off ends when the force vanishes, not when the contact
-    /// does.
+    /// [`NormalStepper::acts_across_gaps`].
     pub fn acts_across_gaps(&self) -> bool {
-        matches!(self, Self::Cohesive(_))
+        self.stepper().acts_across_gaps()
     }
 
-    /// The tensile force at or below which a pull-off has let go, given the largest
-    /// adhesive force seen: a fraction of it for a cohesive law of unbounded support
-    /// (whose tension never vanishes), 0 otherwise.
+    /// [`NormalStepper::released_force`].
     pub fn released_force(&self, max_adhesive_force: f64) -> f64 {
-        match self {
-            Self::Cohesive(solver) => solver.released_force(max_adhesive_force),
-            _ => 0.0,
-        }
+        self.stepper().released_force(max_adhesive_force)
     }
 
-    /// How far above the first contact an indentation starts: for a cohesive law of
-    /// unbounded support the separation at which its pull is negligible, 0 otherwise.
+    /// [`NormalStepper::approach_margin`].
     pub fn approach_margin(&self) -> f64 {
-        match self {
-            Self::Cohesive(solver) => solver.law().negligible_separation(),
-            _ => 0.0,
-        }
+        self.stepper().approach_margin()
     }
 
-    /// Whether a cohesive law's zone (elements carrying a traction) reached the border of
-    /// a free grid at the last step; false for the other solvers.
+    /// [`NormalStepper::zone_touches_border`].
     pub fn zone_touches_border(&self) -> bool {
-        match self {
-            Self::Cohesive(solver) => solver.zone_touches_border(),
-            _ => false,
-        }
+        self.stepper().zone_touches_border()
+    }
+
+    /// [`NormalStepper::checkpoint`].
+    pub fn checkpoint(&self) -> Option<SolverCheckpoint> {
+        self.stepper().checkpoint()
+    }
+
+    /// [`NormalStepper::supports_checkpoints`].
+    pub fn supports_checkpoints(&self) -> bool {
+        self.stepper().supports_checkpoints()
+    }
+
+    /// [`NormalStepper::restore`].
+    pub fn restore(&mut self, checkpoint: &SolverCheckpoint, state: &ContactState) -> Result<(), String> {
+        self.stepper_mut().restore(checkpoint, state)
     }
 
     /// One displacement-controlled step.
-    pub fn step<O: ElasticOperator + ?Sized>(
+    pub fn step(
         &mut self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
@@ -331,60 +352,16 @@ impl NormalSolver {
         self.step_probed(operator, heights, depth, state, &mut |_| {})
     }
 
-    /// One step; `before_change` sees the state on the previous contact set at the new
-    /// depth or position, before the configuration changes.
-    pub fn step_probed<O: ElasticOperator + ?Sized>(
+    /// [`NormalStepper::step_probed`].
+    pub fn step_probed(
         &mut self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         depth: f64,
         state: &mut ContactState,
         before_change: &mut (dyn FnMut(&ContactState) + Send),
     ) -> Result<StepReport, SolveError> {
-        match self {
-            Self::Adhesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
-            Self::Cohesive(solver) => solver.step_probed(operator, heights, depth, state, before_change),
-            Self::NonAdhesive(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
-                solver.solve(operator, heights, Control::Displacement(depth), state)
-            }),
-            Self::NonAdhesiveNested(solver) => non_adhesive_step(operator, state, before_change, |operator, state| {
-                solver.solve(operator, heights, depth, state)
-            }),
-        }
+        self.stepper_mut()
+            .step_probed(operator, heights, depth, state, before_change)
     }
-}
-
-/// One non-adhesive step: the solve, then the step record (nothing is dissipated).
-fn non_adhesive_step<O: ElasticOperator + ?Sized>(
-    operator: &mut O,
-    state: &mut ContactState,
-    before_change: &mut (dyn FnMut(&ContactState) + Send),
-    solve: impl FnOnce(&mut O, &mut ContactState) -> Result<SolveReport, SolveError>,
-) -> Result<StepReport, SolveError> {
-    let before = state.contact.clone();
-    let solve = solve(operator, state)?;
-    before_change(state);
-    let area = operator.grid().element_area();
-    let energy = 0.5
-        * area
-        * state
-            .pressure
-            .iter()
-            .zip(&state.displacement)
-            .map(|(p, u)| p * u)
-            .sum::<f64>();
-    let (attached, detached) = state.changes_from(&before);
-    Ok(StepReport {
-        solves: 1,
-        cg_iterations: solve.iterations,
-        operator_applications: solve.operator_applications,
-        attachment_rounds: 0,
-        attached,
-        detached,
-        force_before_change: solve.force,
-        force: solve.force,
-        energy_before_change: energy,
-        energy,
-        dissipated_energy: 0.0,
-    })
 }

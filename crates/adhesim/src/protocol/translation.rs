@@ -76,9 +76,9 @@ pub struct TranslationSummary {
 
 impl Translation {
     /// Runs the approach and the stroke(s).
-    pub fn run<O: ElasticOperator + ?Sized>(
+    pub fn run(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
@@ -90,9 +90,9 @@ impl Translation {
     /// protocol, contact and kind of solver) when given: the steps after it are those of
     /// the uninterrupted run, bit for bit. After every step but the last the observer is
     /// offered a checkpoint ([`Observer::wants_checkpoint`]).
-    pub fn run_from<O: ElasticOperator + ?Sized>(
+    pub fn run_from(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
@@ -168,9 +168,9 @@ impl Translation {
 
     /// One step (`step`, its stage, depth and offset) on `heights`: the solve, the record
     /// and the totals of `run`.
-    fn run_step<O: ElasticOperator + ?Sized>(
+    fn run_step(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
         solver: &mut NormalSolver,
         run: &mut TranslationCheckpoint,

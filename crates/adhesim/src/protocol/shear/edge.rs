@@ -57,8 +57,8 @@ pub fn element_energy_ratio(material: ShearMaterial) -> f64 {
 
 /// The normal side of a shift step: the half-space, the indenter at `depth` and the
 /// normal solver (the JKR-type one when the shear weakens the edge).
-pub(super) struct NormalSide<'a, O: ElasticOperator + ?Sized> {
-    pub operator: &'a mut O,
+pub(super) struct NormalSide<'a> {
+    pub operator: &'a mut dyn ElasticOperator,
     pub heights: &'a [f64],
     pub depth: f64,
     pub solver: &'a mut NormalSolver,
@@ -112,9 +112,9 @@ impl EdgeWeakening {
     /// until the contact set no longer changes. Each step starts from the unweakened σ_c,
     /// so an element released in an earlier step may attach again if it holds without the
     /// shear it would carry.
-    pub(super) fn step<O: ElasticOperator + ?Sized>(
+    pub(super) fn step(
         &mut self,
-        normal: NormalSide<'_, O>,
+        normal: NormalSide<'_>,
         room: &mut TangentialRoom,
         friction: &mut TangentialSolver,
         shift: [f64; 2],

@@ -112,9 +112,9 @@ pub struct ShearSummary {
 impl Shear {
     /// Runs the approach and the shift; reports each step to `observer`.
     #[allow(clippy::too_many_arguments)]
-    pub fn run<O: ElasticOperator + ?Sized>(
+    pub fn run(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
         material: ShearMaterial,
@@ -222,9 +222,9 @@ impl Shear {
 
     /// The approach to `depth` in `approach_steps` displacement steps; `contact` is the
     /// normal state and the contact set at each step's start.
-    fn approach<O: ElasticOperator + ?Sized>(
+    fn approach(
         &self,
-        operator: &mut O,
+        operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
         contact: (&mut ContactState, &mut Vec<bool>),

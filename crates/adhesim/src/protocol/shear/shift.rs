@@ -5,7 +5,6 @@
 use super::edge::{EdgeWeakening, NormalSide};
 use super::window::TangentialRoom;
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
 use crate::protocol::{NormalSolver, ProtocolError};
 use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver};
@@ -78,9 +77,9 @@ impl ShiftStepper {
 
     /// One step to the tangential `shift` at `normal.depth`; `held_force` is the normal
     /// force of a held normal problem.
-    pub(super) fn step<O: ElasticOperator + ?Sized>(
+    pub(super) fn step(
         &mut self,
-        normal: NormalSide<'_, O>,
+        normal: NormalSide<'_>,
         friction: &mut TangentialSolver,
         shift: [f64; 2],
         step: usize,
