@@ -10,6 +10,7 @@ mod free;
 pub mod influence;
 mod layer;
 mod periodic;
+pub(crate) mod planner;
 mod preconditioner;
 mod spectral;
 mod tangential;

@@ -12,17 +12,18 @@
 //! converted on the way in and out, so a single-precision engine (half the memory traffic,
 //! twice the SIMD width) can stand in where its ~1e-7 relative error is harmless.
 
+use super::planner::{self, Planned};
 use num_complex::Complex;
 use rayon::prelude::*;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftNum, FftPlanner};
+use realfft::{ComplexToReal, RealToComplex};
+use rustfft::{Fft, FftNum};
 use std::ops::Range;
 use std::sync::Arc;
 
 mod pair;
 
 /// Working precision of a [`SpectralConvolution`].
-pub(crate) trait Precision: FftNum + Default {
+pub(crate) trait Precision: FftNum + Planned + Default {
     /// Rounds an f64 to this precision.
     fn narrow(value: f64) -> Self;
     /// Widens back to f64 (exact).
@@ -105,12 +106,10 @@ impl<T: Precision> SpectralConvolution<T> {
     /// the kernel spectrum is zero until set.
     pub(crate) fn planned(data: (usize, usize), padded: (usize, usize)) -> Self {
         let ((nx, ny), (padded_x, padded_y)) = (data, padded);
-        let mut planner = RealFftPlanner::<T>::new();
-        let forward_rows = planner.plan_fft_forward(padded_x);
-        let inverse_rows = planner.plan_fft_inverse(padded_x);
-        let mut complex_planner = FftPlanner::<T>::new();
-        let forward_columns = complex_planner.plan_fft_forward(padded_y);
-        let inverse_columns = complex_planner.plan_fft_inverse(padded_y);
+        let forward_rows = planner::real_forward::<T>(padded_x);
+        let inverse_rows = planner::real_inverse::<T>(padded_x);
+        let forward_columns = planner::complex_forward::<T>(padded_y);
+        let inverse_columns = planner::complex_inverse::<T>(padded_y);
         let spectrum_columns = padded_x / 2 + 1;
         let threads = rayon::current_num_threads().max(1);
         let scratch_len = forward_rows.get_scratch_len().max(inverse_rows.get_scratch_len());

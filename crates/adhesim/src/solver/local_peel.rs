@@ -8,8 +8,8 @@
 //! ratios of Ŝ enter, so Δ = E* = 1 here).
 
 use crate::elastic::influence::love_coefficient;
+use crate::elastic::planner;
 use num_complex::Complex;
-use rustfft::FftPlanner;
 
 /// Free elements within this distance (in elements) of a released one are free in the bound.
 pub(crate) const WINDOW: i64 = 4;
@@ -37,13 +37,12 @@ impl LatticeInverse {
         let mut data: Vec<Complex<f64>> = (0..m * m)
             .map(|k| Complex::new(love_coefficient(wrap(k / m), wrap(k % m), 1.0, 1.0), 0.0))
             .collect();
-        let mut planner = FftPlanner::new();
-        transform_2d(&mut data, m, &*planner.plan_fft_forward(m));
+        transform_2d(&mut data, m, &*planner::complex_forward::<f64>(m));
         // The kernel is even, so its transform is real and (checked in the tests) positive.
         for value in data.iter_mut() {
             *value = Complex::new(1.0 / value.re, 0.0);
         }
-        transform_2d(&mut data, m, &*planner.plan_fft_inverse(m));
+        transform_2d(&mut data, m, &*planner::complex_inverse::<f64>(m));
         let side = (2 * TABLE + 1) as usize;
         let scale = 1.0 / (m * m) as f64;
         let index = |a: i64| a.rem_euclid(m as i64) as usize;

@@ -1,10 +1,9 @@
 use super::random::Xoshiro256;
 use super::{positive, SurfaceError};
+use crate::elastic::planner;
 use crate::geometry::{GeometryError, RoughBase, RoughProfile, Topography};
 use crate::grid::{Boundary, Grid};
 use num_complex::Complex;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
 use std::f64::consts::TAU;
 
 /// Side of the periodic patch on which a free-grid surface is generated, in grid sides:
@@ -399,7 +398,7 @@ fn enforce_hermitian(spectrum: &mut [Complex<f64>], m: usize, amplitudes: Amplit
 /// complex-to-real). Sequential: generation is done once per surface.
 fn inverse_transform(spectrum: &mut [Complex<f64>], m: usize) -> Vec<f64> {
     let columns = m / 2 + 1;
-    let column_fft = FftPlanner::<f64>::new().plan_fft_inverse(m);
+    let column_fft = planner::complex_inverse::<f64>(m);
     let mut column_buffer = vec![Complex::new(0.0, 0.0); m];
     let mut scratch = vec![Complex::new(0.0, 0.0); column_fft.get_inplace_scratch_len()];
     for column in 0..columns {
@@ -411,7 +410,7 @@ fn inverse_transform(spectrum: &mut [Complex<f64>], m: usize) -> Vec<f64> {
             spectrum[row * columns + column] = column_buffer[row];
         }
     }
-    let row_fft = RealFftPlanner::<f64>::new().plan_fft_inverse(m);
+    let row_fft = planner::real_inverse::<f64>(m);
     let mut heights = vec![0.0; m * m];
     let mut row_scratch = row_fft.make_scratch_vec();
     let normalisation = 1.0 / (m * m) as f64;

@@ -6,9 +6,8 @@
 //! periodic map, as [`super::rms_slope`] on a periodic grid.
 
 use super::{PsdBin, SurfaceError};
+use crate::elastic::planner;
 use num_complex::Complex;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
 use std::f64::consts::{PI, TAU};
 
 /// A height map on a rectangular grid: `heights[iy * nx + ix]` at `x = ix·dx`, `y = iy·dy`.
@@ -301,7 +300,7 @@ fn signed_index(row: usize, n: usize) -> f64 {
 /// `nx/2 + 1` columns (also the square grids' statistics, nx = ny).
 pub(super) fn forward_transform(heights: &[f64], nx: usize, ny: usize) -> Vec<Complex<f64>> {
     let columns = nx / 2 + 1;
-    let row_fft = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
+    let row_fft = planner::real_forward::<f64>(nx);
     let mut spectrum = vec![Complex::new(0.0, 0.0); ny * columns];
     let mut input = vec![0.0; nx];
     let mut scratch = row_fft.make_scratch_vec();
@@ -315,7 +314,7 @@ pub(super) fn forward_transform(heights: &[f64], nx: usize, ny: usize) -> Vec<Co
             )
             .expect("buffer lengths match the plan");
     }
-    let column_fft = FftPlanner::<f64>::new().plan_fft_forward(ny);
+    let column_fft = planner::complex_forward::<f64>(ny);
     let mut buffer = vec![Complex::new(0.0, 0.0); ny];
     let mut column_scratch = vec![Complex::new(0.0, 0.0); column_fft.get_inplace_scratch_len()];
     for column in 0..columns {
