@@ -35,6 +35,7 @@ mod map_key;
 mod master_plots;
 mod output;
 mod plots;
+mod progress;
 mod resources;
 mod rough_sphere_plots;
 mod tangential_plots;

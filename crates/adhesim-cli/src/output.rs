@@ -9,8 +9,7 @@ use adhesim::{Grid, Profile, SlipStatus, StepRecord, TranslationSummary};
 use adhesim_scenario::output::observer::{CapturedStep, RunPictures, RunProgress};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
 use anyhow::Result;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
+use indicatif::ProgressBar;
 use std::path::Path;
 
 /// Colours of the contact maps (paper Fig. 16 style).
@@ -29,16 +28,11 @@ pub struct TerminalProgress {
 
 impl TerminalProgress {
     pub fn new(expected_steps: usize, quiet: bool, jkr: Option<Jkr>) -> Self {
-        let bar = if quiet || !std::io::stderr().is_terminal() {
-            ProgressBar::hidden()
-        } else {
-            let bar = ProgressBar::with_draw_target(Some(expected_steps as u64), ProgressDrawTarget::stderr());
-            bar.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps {msg}")
-                    .expect("valid template"),
-            );
-            bar
-        };
+        let bar = crate::progress::bar(
+            expected_steps as u64,
+            crate::progress::RUN_STEPS,
+            crate::progress::drawn(quiet),
+        );
         Self { bar, jkr }
     }
 

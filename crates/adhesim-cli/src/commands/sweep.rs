@@ -18,9 +18,8 @@ use adhesim_scenario::sweep::{check_memory, plan, read_plan, table, write_plan, 
 use adhesim_scenario::ValidScenario;
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Subcommand};
-use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget};
 use plan::Plan;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -144,7 +143,7 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
         .context("--checkpoint-every")?;
     write_plan(dir, plan)?;
     // Shared with the runner, which a sweep case holds for good ('static).
-    let progress = std::sync::Arc::new(SweepProgress::new(quiet || !std::io::stderr().is_terminal()));
+    let progress = std::sync::Arc::new(SweepProgress::new(!crate::progress::drawn(quiet)));
     let runner = {
         let progress = progress.clone();
         move |scenario: &ValidScenario, folder: &Path, checkpoint: Option<&CheckpointPolicy>| {
@@ -234,14 +233,10 @@ struct SweepProgress {
 
 impl SweepProgress {
     fn new(hidden: bool) -> Self {
-        let style = |template: &str| ProgressStyle::with_template(template).expect("valid template");
-        let cases = ProgressBar::hidden();
-        cases.set_style(style(
-            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} cases (eta {eta}) {msg}",
-        ));
-        // A length of 0 to add to (a hidden bar's is unknown, and inc_length keeps it so).
-        let steps = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::hidden());
-        steps.set_style(style("  {bar:40} {pos}/{len} steps {msg}"));
+        // Hidden until `start` adds them to the multi-bar; the steps' length of 0 is added to
+        // (a hidden bar's length is unknown, and inc_length keeps it so).
+        let cases = crate::progress::bar(0, crate::progress::SWEEP_CASES, false);
+        let steps = crate::progress::bar(0, crate::progress::SWEEP_STEPS, false);
         Self {
             multi: (!hidden).then(|| MultiProgress::with_draw_target(ProgressDrawTarget::stderr())),
             cases,

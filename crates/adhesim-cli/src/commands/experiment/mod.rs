@@ -13,12 +13,11 @@ use adhesim_experiment::{
     IndenterTrack, Phase, SegmentationParams, Segmenter,
 };
 use anyhow::{bail, Context, Result};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
 use rayon::prelude::*;
 use serde_json::json;
 use spec::{BackgroundChoice, Reference, Settings};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 pub use synth::{run_synth, SynthArgs};
@@ -77,13 +76,8 @@ fn check_not_a_misspelt_subcommand(spec: &Path) -> Result<()> {
 }
 
 fn progress(len: usize, quiet: bool, what: &str) -> ProgressBar {
-    let bar = ProgressBar::new(len as u64);
-    if quiet || !std::io::stderr().is_terminal() {
-        bar.set_draw_target(ProgressDrawTarget::hidden());
-    } else if let Ok(style) = ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} {per_sec} eta {eta}") {
-        bar.set_style(style.progress_chars("=> "));
-        bar.set_message(what.to_string());
-    }
+    let bar = crate::progress::bar(len as u64, crate::progress::FRAMES, crate::progress::drawn(quiet));
+    bar.set_message(what.to_string());
     bar
 }
 
