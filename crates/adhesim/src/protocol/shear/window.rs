@@ -89,16 +89,16 @@ impl ContactWindow {
         window
     }
 
-    /// As [`gather`](Self::gather), into `window`; false when some element in contact lies
-    /// outside the window (its state is then not all there).
-    pub(super) fn gather_into(&self, state: &ContactState, window: &mut ContactState) -> bool {
+    /// As [`gather`](Self::gather), into `window`. The callers widen the window with the
+    /// contact first, so every element in contact lies inside it (checked in debug builds).
+    pub(super) fn gather_into(&self, state: &ContactState, window: &mut ContactState) {
         let mut inside = 0;
         for (w, k) in self.elements() {
             window.pressure[w] = state.pressure[k];
             window.contact[w] = state.contact[k];
             inside += usize::from(state.contact[k]);
         }
-        inside == state.contact_elements()
+        debug_assert_eq!(inside, state.contact_elements(), "contact outside the window");
     }
 
     /// Copies the window's tangential state into `fields` on the whole grid (which is
