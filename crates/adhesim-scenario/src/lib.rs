@@ -236,6 +236,8 @@ mod cohesive_tests;
 #[cfg(test)]
 mod error_tests;
 #[cfg(test)]
+mod friction_tests;
+#[cfg(test)]
 mod guards_tests;
 #[cfg(test)]
 mod layer_tests;

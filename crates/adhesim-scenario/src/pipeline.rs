@@ -356,6 +356,11 @@ fn run_shear(
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {
     let mut friction = TangentialSolver::new(setup.law, TangentialParams::default());
+    if let Some(static_law) = setup.static_law {
+        friction = friction
+            .with_static_law(static_law)
+            .map_err(|e| ProtocolError::InvalidParameter(e.to_string()))?;
+    }
     let summary = setup.protocol.run(
         operator,
         &scenario.heights,

@@ -59,6 +59,7 @@ impl ScenarioFile {
             bail!("[friction]: validate_shear needs a [friction] section");
         };
         let law = friction_law(friction)?;
+        let static_law = static_friction_law(friction)?;
         let shear_material = self.shear_material(material.contact_modulus())?;
         self.check_shear_combinations(&grid)?;
         let depth = held_depth(p.depth, unit, start_depth)?;
@@ -126,6 +127,7 @@ impl ScenarioFile {
             shear: Some(ShearSetup {
                 protocol,
                 law,
+                static_law,
                 material: shear_material,
             }),
             roughness: None,
@@ -244,6 +246,59 @@ fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
         ),
     };
     Ok(built?)
+}
+
+/// The static law of `[friction]` (`static_coefficient`, `static_shear_strength`; each at
+/// least its kinetic key, and only with a law that has that key), None without them.
+fn static_friction_law(section: &FrictionSection) -> Result<Option<FrictionLaw>> {
+    let law = section.law;
+    let checked = |key: &str, value: Option<f64>, kinetic_key: &str, kinetic: Option<f64>| -> Result<Option<f64>> {
+        let Some(value) = value else { return Ok(None) };
+        let Some(kinetic) = kinetic else {
+            bail!(ScenarioError::invalid_as(
+                &format!("friction.{key}"),
+                value,
+                format!("absent with friction.law = \"{}\"", law.name()),
+                format!(
+                    "friction.{key} is not a key of friction.law = \"{}\" (it goes with friction.{kinetic_key}), got {value}",
+                    law.name()
+                )
+            ));
+        };
+        if !(value.is_finite() && value >= kinetic) {
+            bail!(ScenarioError::invalid_as(
+                &format!("friction.{key}"),
+                value,
+                format!("finite and >= friction.{kinetic_key} = {kinetic}"),
+                format!("friction.{key} must be finite and at least the kinetic friction.{kinetic_key} = {kinetic}, got {value}")
+            ));
+        }
+        Ok(Some(value))
+    };
+    let coefficient = checked(
+        "static_coefficient",
+        section.static_coefficient,
+        "coefficient",
+        section.coefficient,
+    )?;
+    let strength = checked(
+        "static_shear_strength",
+        section.static_shear_strength,
+        "shear_strength",
+        section.shear_strength,
+    )?;
+    let built = match (law, coefficient, strength) {
+        (_, None, None) => return Ok(None),
+        (FrictionLawName::Coulomb, Some(coefficient), _) => FrictionLaw::coulomb(coefficient),
+        (FrictionLawName::ShearStrength, _, Some(strength)) => FrictionLaw::shear_strength(strength),
+        (FrictionLawName::CoulombShear, coefficient, strength) => FrictionLaw::coulomb_shear(
+            coefficient.or(section.coefficient).unwrap_or(0.0),
+            strength.or(section.shear_strength).unwrap_or(0.0),
+        ),
+        // A static key without its kinetic key was refused above.
+        _ => return Ok(None),
+    };
+    Ok(Some(built?))
 }
 
 /// `protocol.incline` in radians (default 0): strictly between −90 and 90 degrees.

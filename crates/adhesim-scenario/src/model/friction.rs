@@ -19,6 +19,12 @@ pub struct FrictionSection {
     /// Normal–tangential coupling; only `"none"` (Goodman's approximation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coupling: Option<CouplingName>,
+    /// Static μs ≥ μ of `coulomb` and `coulomb_shear` (default μ: no static peak).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_coefficient: Option<f64>,
+    /// Static τs ≥ τ0 of `shear_strength` and `coulomb_shear` (default τ0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_shear_strength: Option<f64>,
     /// Share m ∈ [0, 1] of the shear energy that weakens the adhesive edge (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode_mixity: Option<f64>,
@@ -93,5 +99,7 @@ pub struct ShearProtocol {
 pub struct ShearSetup {
     pub protocol: Shear,
     pub law: FrictionLaw,
+    /// The static law of elements stuck at the start of a step (None: `law` throughout).
+    pub static_law: Option<FrictionLaw>,
     pub material: ShearMaterial,
 }

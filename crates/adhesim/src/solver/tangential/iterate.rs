@@ -169,8 +169,17 @@ impl TangentialSolver {
             } else {
                 state.status[i] = SlipStatus::Slip;
                 changes += 1;
+                self.break_loose(i);
             }
+            // The bound after a break (the kinetic one) when a static law holds.
+            let bound = self.bound[i];
             self.unit[i] = (ex, ey);
+            if bound == 0.0 {
+                // Broken loose to no kinetic bound: slips freely, no traction.
+                state.traction[0][i] = 0.0;
+                state.traction[1][i] = 0.0;
+                continue;
+            }
             self.spring[i] = (magnitude - bound) / (bound * rho);
             state.traction[0][i] = bound * ex;
             state.traction[1][i] = bound * ey;

@@ -56,6 +56,15 @@ pub enum FrictionLawError {
     /// τ0 must be finite and ≥ 0.
     #[error("shear strength must be finite and >= 0, got {0}")]
     ShearStrength(f64),
+    /// A static law must be of the kinetic law's kind with every parameter at least the
+    /// kinetic one (so that breaking a stuck element never raises its bound).
+    #[error("the static friction law must be of the kinetic law's kind with every parameter at least the kinetic one: static {static_law:?}, kinetic {kinetic:?}")]
+    StaticBelowKinetic {
+        /// The static law.
+        static_law: FrictionLaw,
+        /// The kinetic law.
+        kinetic: FrictionLaw,
+    },
 }
 
 fn check(value: f64, error: fn(f64) -> FrictionLawError) -> Result<f64, FrictionLawError> {
@@ -99,6 +108,26 @@ impl FrictionLaw {
                 shear_strength,
             } => (shear_strength + coefficient * pressure).max(0.0),
             Self::NoSlip => f64::INFINITY,
+        }
+    }
+
+    /// Whether this law, as the static law of `kinetic`, bounds every element at least as
+    /// `kinetic` does: the same kind, each parameter at least the kinetic one.
+    pub fn holds_at_least(&self, kinetic: &FrictionLaw) -> bool {
+        match (*self, *kinetic) {
+            (Self::Coulomb { coefficient: s }, Self::Coulomb { coefficient: k }) => s >= k,
+            (Self::ShearStrength { shear_strength: s }, Self::ShearStrength { shear_strength: k }) => s >= k,
+            (
+                Self::CoulombShear {
+                    coefficient: s,
+                    shear_strength: t,
+                },
+                Self::CoulombShear {
+                    coefficient: k,
+                    shear_strength: u,
+                },
+            ) => s >= k && t >= u,
+            _ => false,
         }
     }
 

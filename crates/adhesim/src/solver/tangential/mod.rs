@@ -239,6 +239,11 @@ const LOOSE_ROUNDS: usize = 4;
 /// ```
 pub struct TangentialSolver {
     law: FrictionLaw,
+    /// The static law of elements stuck at the start of a step (None: the kinetic `law`).
+    static_law: Option<FrictionLaw>,
+    /// The kinetic bound per element (0 off contact): an element that breaks loose in a
+    /// step drops from its static bound to this one for the rest of the step.
+    kinetic: Vec<f64>,
     params: TangentialParams,
     /// w = u⁻ + Δδ per component.
     target: [Vec<f64>; 2],
@@ -264,6 +269,8 @@ impl TangentialSolver {
     pub fn new(law: FrictionLaw, params: TangentialParams) -> Self {
         Self {
             law,
+            static_law: None,
+            kinetic: Vec::new(),
             params,
             target: [Vec::new(), Vec::new()],
             residual: [Vec::new(), Vec::new()],
@@ -279,6 +286,33 @@ impl TangentialSolver {
     /// The interface law.
     pub fn law(&self) -> FrictionLaw {
         self.law
+    }
+
+    /// The same solver with a static law above the kinetic one: an element stuck at the
+    /// start of a step holds up to the static bound; once it slips it holds the kinetic
+    /// bound until the step ends, and its neighbours take up the difference (stick–slip
+    /// needs such a drop; docs/physics.md §8.2). An error for a static law of another kind
+    /// or below the kinetic law anywhere.
+    pub fn with_static_law(mut self, static_law: FrictionLaw) -> Result<Self, FrictionLawError> {
+        if !static_law.holds_at_least(&self.law) {
+            return Err(FrictionLawError::StaticBelowKinetic {
+                static_law,
+                kinetic: self.law,
+            });
+        }
+        self.static_law = Some(static_law);
+        Ok(self)
+    }
+
+    /// The static law (None: the kinetic law holds throughout).
+    pub fn static_law(&self) -> Option<FrictionLaw> {
+        self.static_law
+    }
+
+    /// Element `i` breaks loose: from its static bound to its kinetic one.
+    #[inline]
+    fn break_loose(&mut self, i: usize) {
+        self.bound[i] = self.kinetic[i];
     }
 
     /// One quasi-static step to the shift `shift` = δ on the contact set and pressure of
@@ -360,6 +394,8 @@ impl TangentialSolver {
         }
         self.bound.clear();
         self.bound.resize(n, 0.0);
+        self.kinetic.clear();
+        self.kinetic.resize(n, 0.0);
         self.unit.clear();
         self.unit.resize(n, (0.0, 0.0));
         self.spring.clear();
@@ -382,10 +418,18 @@ impl TangentialSolver {
                 state.traction[1][i] = 0.0;
                 continue;
             }
-            let bound = self.law.bound(normal.pressure[i]);
-            self.bound[i] = bound;
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
             let magnitude = qx.hypot(qy);
+            let kinetic = self.law.bound(normal.pressure[i]);
+            let slipping = state.status[i] == SlipStatus::Slip && magnitude > 0.0;
+            // A slipping element keeps slipping at the kinetic bound; the others start stuck
+            // under the static one.
+            let bound = match self.static_law {
+                Some(law) if !slipping => law.bound(normal.pressure[i]),
+                _ => kinetic,
+            };
+            self.kinetic[i] = kinetic;
+            self.bound[i] = bound;
             if bound == 0.0 {
                 state.status[i] = SlipStatus::Slip;
                 state.traction[0][i] = 0.0;
@@ -423,6 +467,11 @@ impl TangentialSolver {
             let qy = state.traction[1][i] + ratio * (state.traction[1][i] - before[1][i]);
             let magnitude = qx.hypot(qy);
             if magnitude >= bound {
+                if state.status[i] != SlipStatus::Slip {
+                    // Breaks loose (`break_loose`, inlined: `history` is borrowed).
+                    self.bound[i] = self.kinetic[i];
+                }
+                let bound = self.bound[i];
                 state.status[i] = SlipStatus::Slip;
                 self.unit[i] = (qx / magnitude, qy / magnitude);
                 state.traction[0][i] = bound * self.unit[i].0;

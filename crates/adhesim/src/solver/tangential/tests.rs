@@ -135,3 +135,67 @@ fn reversal_after_gross_slip_settles() {
         );
     }
 }
+
+/// Shear strength with a static value twice the kinetic one on a pressed sphere, shifted
+/// into gross sliding, against the kinetic law alone: at every step the static law holds
+/// at least as many elements stuck and at least the kinetic law's force (a stuck element
+/// holds up to τs before it breaks loose), strictly more stuck at some step; no step
+/// exceeds τs·A; both slide at exactly τk·A (every element at its kinetic bound; 1e-9, the
+/// tractions' rounding). A static law equal to the kinetic one gives the kinetic law's bits.
+#[test]
+fn a_static_shear_strength_delays_slip_and_slides_at_the_kinetic_bound() {
+    let delta_x = 1.0 / 128.0;
+    let (grid, normal, mut operator) = pressed_sphere(48, 48.0 * delta_x, (16.0 * delta_x) * (16.0 * delta_x));
+    let area = grid.element_area();
+    let contact_area = normal.contact_elements() as f64 * area;
+    let (kinetic, stuck) = (1e-2, 2e-2);
+    let law = FrictionLaw::shear_strength(kinetic).unwrap();
+    let mut run = |solver: &mut TangentialSolver| -> Vec<(f64, usize)> {
+        let mut state = TangentialState::new(grid.len());
+        (1..=40)
+            .map(|step| {
+                let shift = 4e-3 * step as f64 / 40.0;
+                let report = solver.step(&mut operator, &normal, [shift, 0.0], &mut state).unwrap();
+                assert!(
+                    report.complementarity.bound_excess < 1e-9,
+                    "{:?}",
+                    report.complementarity
+                );
+                (report.force[0], report.stick_elements)
+            })
+            .collect()
+    };
+    let with_static = run(&mut TangentialSolver::new(law, TangentialParams::default())
+        .with_static_law(FrictionLaw::shear_strength(stuck).unwrap())
+        .unwrap());
+    let plain = run(&mut TangentialSolver::new(law, TangentialParams::default()));
+    for (step, (s, k)) in with_static.iter().zip(&plain).enumerate() {
+        assert!(
+            s.1 >= k.1 && s.0 >= k.0 * (1.0 - 1e-9),
+            "step {step}: static {s:?}, kinetic {k:?}"
+        );
+        assert!(s.0 <= stuck * contact_area * (1.0 + 1e-9));
+    }
+    assert!(with_static.iter().zip(&plain).any(|(s, k)| s.1 > k.1));
+    for end in [with_static.last().unwrap(), plain.last().unwrap()] {
+        assert_eq!(end.1, 0, "gross sliding at the end");
+        assert!((end.0 / (kinetic * contact_area) - 1.0).abs() < 1e-9);
+    }
+    let same = run(&mut TangentialSolver::new(law, TangentialParams::default())
+        .with_static_law(law)
+        .unwrap());
+    assert_eq!(format!("{plain:?}"), format!("{same:?}"));
+}
+
+#[test]
+fn a_static_law_below_or_unlike_the_kinetic_one_is_refused() {
+    let kinetic = FrictionLaw::coulomb(0.3).unwrap();
+    let solver = || TangentialSolver::new(kinetic, TangentialParams::default());
+    assert!(solver().with_static_law(FrictionLaw::coulomb(0.2).unwrap()).is_err());
+    assert!(solver()
+        .with_static_law(FrictionLaw::shear_strength(1.0).unwrap())
+        .is_err());
+    assert!(solver().with_static_law(FrictionLaw::NoSlip).is_err());
+    let accepted = solver().with_static_law(FrictionLaw::coulomb(0.5).unwrap()).unwrap();
+    assert_eq!(accepted.static_law(), Some(FrictionLaw::coulomb(0.5).unwrap()));
+}

@@ -1,0 +1,99 @@
+//! `friction.static_coefficient` and `friction.static_shear_strength`: the static law
+//! reaches the tangential solver (slip comes later, sliding stays at the kinetic τ0·A),
+//! and the keys are refused where they do not belong or lie below their kinetic keys.
+
+use crate::tests::error_of;
+use crate::*;
+
+/// An adhesive sphere on 48², shifted into gross sliding under a shear strength in steps
+/// of a tenth of the slip distance τ0·a/G ≈ 2e-4 (a = √(Rd) = 0.1, G = 1): a coarser step
+/// breaks the whole contact loose in one step, and no peak can show.
+const TRESCA: &str = r#"
+[grid]
+n = 48
+size = 0.5
+[material]
+youngs_modulus = 3.0
+poisson_ratio = 0.5
+[adhesion]
+work_of_adhesion = 2e-3
+[indenter]
+shape = "sphere"
+radius = 1.0
+[friction]
+law = "shear_strength"
+shear_strength = 0.002
+[protocol]
+kind = "shear"
+depth = 0.01
+depth_unit = "length"
+approach_steps = 5
+distance = 0.002
+steps = 20
+"#;
+
+fn shear_run(overrides: &[&str]) -> (ShearResults, Vec<adhesim::StepRecord>) {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let scenario = load(TRESCA, "tresca.toml", Path::new("."), &overrides).unwrap();
+    let outcome = run(&scenario, &mut ()).unwrap();
+    let RunResults::Shear(results) = outcome.results else {
+        panic!("not a shear run")
+    };
+    (results, outcome.records)
+}
+
+/// The static value reaches the solver: at every shift step the contact holds at least as
+/// many elements stuck and at least the kinetic run's force, strictly more stuck at some
+/// step, never above τs·A; both slide at the kinetic τ0·A (1e-9: every element at its
+/// kinetic bound).
+#[test]
+fn a_static_shear_strength_delays_slip_and_slides_at_the_kinetic_bound() {
+    let (kinetic, kinetic_records) = shear_run(&[]);
+    let (with_static, static_records) = shear_run(&["friction.static_shear_strength=0.004"]);
+    let area = with_static.contact_area;
+    assert_eq!(kinetic_records.len(), static_records.len());
+    for (s, k) in static_records.iter().zip(&kinetic_records) {
+        assert!(
+            s.stick_elements >= k.stick_elements && s.force_tangential >= k.force_tangential * (1.0 - 1e-9),
+            "step {}: stuck {} against {}, force {} against {}",
+            s.step,
+            s.stick_elements,
+            k.stick_elements,
+            s.force_tangential,
+            k.force_tangential
+        );
+        assert!(s.force_tangential <= 0.004 * area * (1.0 + 1e-9));
+    }
+    assert!(static_records
+        .iter()
+        .zip(&kinetic_records)
+        .any(|(s, k)| s.stick_elements > k.stick_elements));
+    for results in [&with_static, &kinetic] {
+        let sliding = results.sliding_friction_force.expect("gross slip");
+        assert!(
+            (sliding / (0.002 * area) - 1.0).abs() < 1e-9,
+            "{sliding} vs τ0·A {}",
+            0.002 * area
+        );
+    }
+}
+
+#[test]
+fn static_keys_are_refused_below_their_kinetic_keys_or_with_another_law() {
+    let below = error_of(TRESCA, &["friction.static_shear_strength=0.001"]);
+    assert!(
+        below.contains("friction.static_shear_strength must be finite and at least the kinetic friction.shear_strength = 0.002, got 0.001"),
+        "{below}"
+    );
+    let other = error_of(TRESCA, &["friction.static_coefficient=0.5"]);
+    assert!(
+        other.contains("friction.static_coefficient is not a key of friction.law = \"shear_strength\""),
+        "{other}"
+    );
+    let glued_text = TRESCA.replace(
+        "law = \"shear_strength\"\nshear_strength = 0.002",
+        "law = \"no_slip\"\nstatic_shear_strength = 0.004",
+    );
+    let glued = error_of(&glued_text, &[]);
+    assert!(glued.contains("friction.static_shear_strength"), "{glued}");
+}
