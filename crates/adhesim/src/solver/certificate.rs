@@ -23,7 +23,13 @@ pub const CERTIFICATE_SAFETY: f64 = 2.0;
 /// Bound on |p_i − p*_i| over the set for the residual `residual` (zero outside the set):
 /// `CERTIFICATE_SAFETY`·2·`LATTICE_INVERSE_DIAGONAL`·(E*/Δ)·‖r‖∞.
 pub fn pressure_error_bound(residual: &[f64], contact_modulus: f64, element_size: f64) -> f64 {
-    CERTIFICATE_SAFETY * 2.0 * LATTICE_INVERSE_DIAGONAL * contact_modulus / element_size * largest_magnitude(residual)
+    pressure_error_bound_of(largest_magnitude(residual), contact_modulus, element_size)
+}
+
+/// [`pressure_error_bound`] of a residual whose ‖r‖∞ is `largest` (known from the pass
+/// that updated it).
+pub fn pressure_error_bound_of(largest: f64, contact_modulus: f64, element_size: f64) -> f64 {
+    CERTIFICATE_SAFETY * 2.0 * LATTICE_INVERSE_DIAGONAL * contact_modulus / element_size * largest
 }
 
 /// max |r| (0 for an empty field), on the pool: a maximum is exact in any order.
@@ -54,7 +60,12 @@ pub fn attachments_certain(heights: &[f64], depth: f64, displacement: &[f64], co
 
 /// Bound on |u_i − u*_i| over the free elements: `CERTIFICATE_SAFETY`·‖r‖∞.
 pub fn gap_error_bound(residual: &[f64]) -> f64 {
-    CERTIFICATE_SAFETY * largest_magnitude(residual)
+    gap_error_bound_of(largest_magnitude(residual))
+}
+
+/// [`gap_error_bound`] of a residual whose ‖r‖∞ is `largest`.
+pub fn gap_error_bound_of(largest: f64) -> f64 {
+    CERTIFICATE_SAFETY * largest
 }
 
 /// The release decision an iterate certifies.

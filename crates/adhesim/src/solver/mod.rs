@@ -207,7 +207,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
     displacement: &mut [f64],
     buffers: PcgBuffers<'_>,
     mut precondition: impl FnMut(&[f64], &mut [f64], Range<usize>),
-    mut converged: impl FnMut(f64, &[f64], &[f64], &[f64], Range<usize>) -> Option<bool>,
+    mut converged: impl FnMut(Residual, &[f64], &[f64], &[f64], Range<usize>) -> Option<bool>,
     max_iterations: usize,
 ) -> Result<PcgInfo, PcgError> {
     let PcgBuffers {
@@ -251,7 +251,7 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
             .par_chunks_mut(PARALLEL_CHUNK)
             .zip(response.par_chunks(PARALLEL_CHUNK))
             .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += step * du));
-        pressure[set.clone()]
+        let largest = pressure[set.clone()]
             .par_chunks_mut(PARALLEL_CHUNK)
             .zip(residual[set.clone()].par_chunks_mut(PARALLEL_CHUNK))
             .zip(direction[set.clone()].par_chunks(PARALLEL_CHUNK))
@@ -260,14 +260,22 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
                     .par_chunks(PARALLEL_CHUNK)
                     .zip(mask[set.clone()].par_chunks(PARALLEL_CHUNK)),
             )
-            .for_each(|(((p, r), d), (du, m))| {
+            .map(|(((p, r), d), (du, m))| {
+                // ‖r‖∞ in the same pass (a maximum is exact in any order).
+                let mut largest = 0.0f64;
                 for k in 0..p.len() {
                     p[k] += step * d[k];
                     r[k] -= step * du[k] * m[k];
+                    largest = largest.max(r[k].abs());
                 }
-            });
+                largest
+            })
+            .reduce(|| 0.0, f64::max);
         norm2 = dot_on(residual, residual, set.clone());
-        if converged(norm2, residual, pressure, displacement, set.clone()).ok_or(PcgError::NonFinite { iteration })? {
+        let measured = Residual { norm2, largest };
+        if converged(measured, residual, pressure, displacement, set.clone())
+            .ok_or(PcgError::NonFinite { iteration })?
+        {
             return Ok(PcgInfo { iterations: iteration });
         }
         let new_rho = apply_preconditioner(residual, preconditioned);
@@ -287,6 +295,14 @@ fn masked_pcg<O: ElasticOperator + ?Sized>(
         iterations: max_iterations,
         residual_norm: norm2.sqrt(),
     })
+}
+
+/// The residual of a CG iterate as the update measured it: ‖r‖² (the serial `dot_on`) and
+/// ‖r‖∞ over the set.
+#[derive(Debug, Clone, Copy)]
+struct Residual {
+    norm2: f64,
+    largest: f64,
 }
 
 /// Elements per rayon task in the element-wise loops and exact reductions (max, any) over

@@ -540,8 +540,8 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
         &mut state.displacement,
         buffers,
         |residual, preconditioned, rows| preconditioner.apply_rows(residual, preconditioned, rows),
-        |norm2, _, _, _, _| {
-            let norm = norm2.sqrt();
+        |residual, _, _, _, _| {
+            let norm = residual.norm2.sqrt();
             norm.is_finite().then_some(norm <= goal)
         },
         max_iterations,

@@ -5,7 +5,10 @@ use super::{AdhesiveSolver, Attachment, Detachment, StopRule};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::ElasticOperator;
 use crate::grid::Boundary;
-use crate::solver::certificate::{attachments_certain, count_releases, gap_error_bound, pressure_error_bound};
+use crate::solver::certificate::{
+    attachments_certain, count_releases, gap_error_bound, gap_error_bound_of, pressure_error_bound,
+    pressure_error_bound_of,
+};
 use crate::solver::{contact_span, masked_pcg, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
 use rayon::prelude::*;
 use std::ops::Range;
@@ -352,7 +355,8 @@ impl AdhesiveSolver {
                     preconditioned[set.clone()].copy_from_slice(&residual[set]);
                 }
             },
-            |norm2, residual, pressure, displacement, set| {
+            |measured, residual, pressure, displacement, set| {
+                let norm2 = measured.norm2;
                 // r and the set lie in `set`: the scans there see every element that counts.
                 let (residual, contact_rows) = (&residual[set.clone()], &contact[set.clone()]);
                 if converged(tolerance_scale, norm2, residual, contact_rows) {
@@ -360,7 +364,7 @@ impl AdhesiveSolver {
                 }
                 // Stop once the release decisions cannot change (docs/fast-step.md).
                 if stop != StopRule::Converge && stop != StopRule::Output {
-                    let band = pressure_error_bound(residual, contact_modulus, element_size);
+                    let band = pressure_error_bound_of(measured.largest, contact_modulus, element_size);
                     let critical_stress = &critical_stress[set.clone()];
                     let (certain, uncertain) = count_releases(&pressure[set], contact_rows, critical_stress, band);
                     certified = if stop == StopRule::Decided {
@@ -370,7 +374,13 @@ impl AdhesiveSolver {
                     } else if certain > 0 {
                         uncertain <= certain
                     } else if uncertain == 0 && stop == StopRule::ReleasesOrAttachments {
-                        attachments_certain(heights, depth, displacement, contact, gap_error_bound(residual))
+                        attachments_certain(
+                            heights,
+                            depth,
+                            displacement,
+                            contact,
+                            gap_error_bound_of(measured.largest),
+                        )
                     } else {
                         false
                     };
