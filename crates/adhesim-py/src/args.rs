@@ -120,12 +120,21 @@ fn described(value: &Bound<'_, PyAny>) -> String {
     format!("{type_name} {repr}")
 }
 
-fn optional_float(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<f64>> {
+/// None, or what `convert` makes of the value.
+fn optional<T>(
+    value: &Bound<'_, PyAny>,
+    name: &str,
+    convert: fn(&Bound<'_, PyAny>, &str) -> PyResult<T>,
+) -> PyResult<Option<T>> {
     if value.is_none() {
         Ok(None)
     } else {
-        float_argument(value, name).map(Some)
+        convert(value, name).map(Some)
     }
+}
+
+fn optional_float(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<f64>> {
+    optional(value, name, float_argument)
 }
 
 fn text_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<String> {
@@ -135,11 +144,7 @@ fn text_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<String> {
 }
 
 fn optional_text(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<String>> {
-    if value.is_none() {
-        Ok(None)
-    } else {
-        text_argument(value, name).map(Some)
-    }
+    optional(value, name, text_argument)
 }
 
 fn bool_argument(value: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
