@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
+use crate::common;
 use common::{
     adhesim, assert_fails_with, assert_ok, kill_after_checkpoint, read_json, scenarios_dir, stderr, sweeps_dir, write,
     BIN,

@@ -1,7 +1,7 @@
 //! Malformed, truncated and hostile files give errors naming the file and the problem, never a
 //! panic, an abort or a huge allocation.
 
-mod common;
+use crate::common;
 
 use adhesim_topography::{read_topography_from_bytes, ReadOptions, TopographyError};
 use common::*;

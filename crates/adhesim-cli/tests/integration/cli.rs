@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::Output;
 
-mod common;
+use crate::common;
 use common::{adhesim, assert_fails_with, column_values, read_csv, read_json, scenarios_dir, stderr, write};
 
 const HERTZ: &str = r#"

@@ -1,6 +1,6 @@
 //! End-to-end tests of friction at the interface (`[friction]`, `[protocol] kind =
 //! "shear"`; docs/tangential.md): Cattaneo–Mindlin through `adhesim run`, gross sliding at
-//! τ0·A, and the errors naming the keys at fault. Part of the translation test binary.
+//! τ0·A, and the errors naming the keys at fault. A module of the translation tests.
 
 use super::common::{adhesim, assert_fails_with, column_values, read_csv, read_json, repo, run_quiet, stderr, write};
 

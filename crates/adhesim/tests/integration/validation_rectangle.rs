@@ -1,7 +1,7 @@
 //! Rectangular grids (Nx ≠ Ny, Δx ≠ Δy; docs/validation.md §12) against closed forms and
 //! against the same physical case on a square grid.
 
-mod common;
+use crate::common;
 
 use adhesim::analysis::reference::Hertz;
 use adhesim::{

@@ -1,7 +1,7 @@
 //! Text headers in Gwyddion's languages, decimal commas, and files whose units are missing
 //! (an empty-unit .gwy): read with the caller's option or refused naming it.
 
-mod common;
+use crate::common;
 
 use adhesim_topography::{read_topography_from_bytes, ReadOptions, TopographyError};
 use common::*;

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::{scenarios_dir, BIN};
 
 fn run(scenario: &Path, out: &Path, threads: &str) -> Vec<u8> {

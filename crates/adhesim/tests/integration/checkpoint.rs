@@ -15,7 +15,7 @@ use adhesim::{
     PeriodicKernel, PeriodicOperator, Profile, ProtocolSummary, Sphere, WavySphere,
 };
 
-mod checkpoint_common;
+use crate::checkpoint_common;
 use checkpoint_common::{bits, round_trip};
 
 type Taker = checkpoint_common::Taker<IndentCheckpoint>;

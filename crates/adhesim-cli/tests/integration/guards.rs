@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-mod common;
+use crate::common;
 use common::{assert_fails_with, npy_bytes, read_json, stderr, write, BIN};
 
 fn adhesim(args: &[&str], memory: Option<&str>) -> Output {

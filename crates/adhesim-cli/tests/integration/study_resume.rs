@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-mod common;
+use crate::common;
 use common::{adhesim, kill_after_checkpoint, repo, stderr, write};
 
 fn args(study: &Path, out: &Path) -> Vec<String> {

@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
+use crate::common;
 use common::{
     adhesim, assert_fails_with, assert_ok, npy_bytes, read_json, run_quiet, scenarios_dir, stderr, write, BIN,
 };

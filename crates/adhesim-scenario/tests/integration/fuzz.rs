@@ -32,39 +32,39 @@ const RUN_MAX_STEPS: usize = 60;
 const AVAILABLE_MEMORY: u64 = 1 << 30;
 
 const SCENARIOS: [(&str, &str); 16] = [
-    ("fig1.toml", include_str!("../../../scenarios/fig1.toml")),
+    ("fig1.toml", include_str!("../../../../scenarios/fig1.toml")),
     (
         "fig12_homogeneous.toml",
-        include_str!("../../../scenarios/fig12_homogeneous.toml"),
+        include_str!("../../../../scenarios/fig12_homogeneous.toml"),
     ),
     (
         "fig12_ratio13.toml",
-        include_str!("../../../scenarios/fig12_ratio13.toml"),
+        include_str!("../../../../scenarios/fig12_ratio13.toml"),
     ),
     (
         "fig12_ratio20.toml",
-        include_str!("../../../scenarios/fig12_ratio20.toml"),
+        include_str!("../../../../scenarios/fig12_ratio20.toml"),
     ),
-    ("fig2_h029.toml", include_str!("../../../scenarios/fig2_h029.toml")),
-    ("fig2_h050.toml", include_str!("../../../scenarios/fig2_h050.toml")),
-    ("fig2_h090.toml", include_str!("../../../scenarios/fig2_h090.toml")),
-    ("fig2_h120.toml", include_str!("../../../scenarios/fig2_h120.toml")),
-    ("fig4.toml", include_str!("../../../scenarios/fig4.toml")),
-    ("fig6.toml", include_str!("../../../scenarios/fig6.toml")),
+    ("fig2_h029.toml", include_str!("../../../../scenarios/fig2_h029.toml")),
+    ("fig2_h050.toml", include_str!("../../../../scenarios/fig2_h050.toml")),
+    ("fig2_h090.toml", include_str!("../../../../scenarios/fig2_h090.toml")),
+    ("fig2_h120.toml", include_str!("../../../../scenarios/fig2_h120.toml")),
+    ("fig4.toml", include_str!("../../../../scenarios/fig4.toml")),
+    ("fig6.toml", include_str!("../../../../scenarios/fig6.toml")),
     (
         "fig6_translate_control.toml",
-        include_str!("../../../scenarios/fig6_translate_control.toml"),
+        include_str!("../../../../scenarios/fig6_translate_control.toml"),
     ),
-    ("fig9.toml", include_str!("../../../scenarios/fig9.toml")),
-    ("hertz.toml", include_str!("../../../scenarios/hertz.toml")),
-    ("jkr.toml", include_str!("../../../scenarios/jkr.toml")),
+    ("fig9.toml", include_str!("../../../../scenarios/fig9.toml")),
+    ("hertz.toml", include_str!("../../../../scenarios/hertz.toml")),
+    ("jkr.toml", include_str!("../../../../scenarios/jkr.toml")),
     (
         "rough_sphere.toml",
-        include_str!("../../../scenarios/rough_sphere.toml"),
+        include_str!("../../../../scenarios/rough_sphere.toml"),
     ),
     (
         "layer/thin_sphere.toml",
-        include_str!("../../../scenarios/layer/thin_sphere.toml"),
+        include_str!("../../../../scenarios/layer/thin_sphere.toml"),
     ),
 ];
 

@@ -1,7 +1,7 @@
 //! JKR fits of the effective works of adhesion on simulated smooth-sphere cycles: the
 //! paper finds γ1 → γ0 and γ2 → γ0 for smooth surfaces (Fig. 3, large α).
 
-mod common;
+use crate::common;
 
 use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use common::JkrCase;

@@ -4,7 +4,7 @@
 //!
 //! `cargo test --release -p adhesim --test rough_sphere_limit` (about a second)
 
-mod common;
+use crate::common;
 
 use adhesim::analysis::johnson::rough_sphere_parameter;
 use adhesim::surface::{rms_height, rms_slope};

@@ -12,7 +12,7 @@ use adhesim::{
     FreeOperator, Grid, Kinematics, NormalSolver, TranslatingContact, Translation, TranslationCheckpoint, WavySphere,
 };
 
-mod checkpoint_common;
+use crate::checkpoint_common;
 use checkpoint_common::{bits, round_trip};
 
 type Taker = checkpoint_common::Taker<TranslationCheckpoint>;

@@ -2,7 +2,7 @@
 //! `size = [sx, sy]`, a measured Nx × Ny map pressed on the matching grid, fields of shape
 //! (ny, nx), and the keys named in every refusal.
 
-mod common;
+use crate::common;
 
 use common::{adhesim, assert_fails_with, assert_ok, npy_bytes, read_json, write};
 use std::io::Read;

@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
+use crate::common;
 use common::{adhesim, assert_fails_with, npy_bytes, read_json, run_quiet, scenarios_dir, stderr, write, BIN};
 
 fn hertz() -> String {
@@ -59,9 +59,6 @@ protocol = { kind = "indent_pulloff", max_depth = 6.0, depth_unit = "jkr", steps
 alpha = [1.0]
 "#;
 
-#[path = "hostile/files.rs"]
 mod files;
-#[path = "hostile/limits.rs"]
 mod limits;
-#[path = "hostile/values.rs"]
 mod values;

@@ -6,7 +6,7 @@
 //! a_JKR/Δ = 8 and 16 (seconds); the 3 % accuracy at a_JKR/Δ ≥ 60 is checked by the
 //! ignored tests (`cargo test --release -- --ignored`), which take minutes.
 
-mod common;
+use crate::common;
 
 use adhesim::{AdhesiveParams, Phase};
 use common::{loop_area, JkrCase};

@@ -6,7 +6,7 @@
 //!
 //! `cargo test --release -p adhesim-cli --test periodic_runs`
 
-mod common;
+use crate::common;
 
 use common::*;
 

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod common;
+use crate::common;
 mod shear;
 use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
 

@@ -3,7 +3,7 @@
 //!
 //! `cargo test --release -p adhesim --test rough_indenter`
 
-mod common;
+use crate::common;
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator,

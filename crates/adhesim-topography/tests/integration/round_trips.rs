@@ -2,7 +2,7 @@
 //! values, spacing and units. Heights compare to 1e-18 m (exact arithmetic up to the last
 //! bits of metres-sized conversions) unless the format stores fewer bits (stated per test).
 
-mod common;
+use crate::common;
 
 use adhesim_topography::{read_topography, ReadOptions, Topography, TopographyError};
 use common::*;

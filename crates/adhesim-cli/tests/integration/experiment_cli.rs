@@ -1,6 +1,6 @@
 //! Integration tests of `adhesim experiment` on small synthetic sequences.
 
-mod common;
+use crate::common;
 use common::{adhesim, read_csv, read_json, synth_experiment as synth};
 
 /// A corrupt frame (text with a .png name) and an empty .tif among 8 good frames: the run

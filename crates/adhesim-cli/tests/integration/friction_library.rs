@@ -16,7 +16,7 @@ use adhesim::{
     TranslatingContact, Translation,
 };
 
-mod common;
+use crate::common;
 use common::{read_json, scenarios_dir};
 
 fn reduced_fig6() -> TranslationResults {

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 use common::{adhesim, synth_experiment};
 
 /// A synthetic sequence of `frames` frames in a fresh folder.
