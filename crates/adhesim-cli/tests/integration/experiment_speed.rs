@@ -2,7 +2,7 @@
 //! §How fast is a run of each kind › Experiment analysis).
 //!
 //! Ignored by default: it writes ≈ 1.7 GB of PNG frames and takes minutes. Run with
-//! `cargo test --release -p adhesim-cli --test experiment_speed -- --ignored --nocapture`.
+//! `cargo test --release -p adhesim-cli --test integration experiment_speed:: -- --ignored --nocapture`.
 //! `ADHESIM_SPEED_DIR=DIR` reuses (or creates) the synthetic sequence in DIR instead of a
 //! temporary folder; `ADHESIM_MIN_FPS` (default 50) is the required analysis rate.
 
@@ -14,7 +14,7 @@ use std::process::Command;
 /// Wall-clock rates depend on what else runs on the machine; see BENCHMARKS.md §How fast is
 /// a run of each kind › Experiment analysis.
 #[test]
-#[ignore = "a wall-clock benchmark of 1,000 frames (BENCHMARKS.md §5): cargo test --release -p adhesim-cli --test experiment_speed -- --ignored"]
+#[ignore = "a wall-clock benchmark of 1,000 frames (BENCHMARKS.md §5): cargo test --release -p adhesim-cli --test integration experiment_speed:: -- --ignored"]
 fn thousand_frames_1600x1200() {
     let temp = tempfile::tempdir().unwrap();
     let dir = std::env::var_os("ADHESIM_SPEED_DIR").map_or_else(|| temp.path().to_path_buf(), Into::into);

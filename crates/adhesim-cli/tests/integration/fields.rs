@@ -342,7 +342,7 @@ impl Nc {
 /// printed "skipped" and reported `ok`). `.ci/run` runs it with the CI's virtual
 /// environment.
 #[test]
-#[ignore = "needs a Python with numpy: ADHESIM_PYTHON=... cargo test --release -p adhesim-cli --test fields -- --ignored"]
+#[ignore = "needs a Python with numpy: ADHESIM_PYTHON=... cargo test --release -p adhesim-cli --test integration fields:: -- --ignored"]
 fn fields_npz_loads_with_numpy_when_python_has_it() {
     let python = std::env::var("ADHESIM_PYTHON").unwrap_or_else(|_| "python3".into());
     let probe = Command::new(&python).args(["-c", "import numpy"]).output();

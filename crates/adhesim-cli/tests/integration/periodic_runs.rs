@@ -4,7 +4,7 @@
 //! driven past full contact of its periodic cell (now refused before the run, naming the
 //! key and the depth at which the whole cell touches: docs/physics.md §1b).
 //!
-//! `cargo test --release -p adhesim-cli --test periodic_runs`
+//! `cargo test --release -p adhesim-cli --test integration periodic_runs::`
 
 use crate::common;
 

@@ -10,7 +10,7 @@
 //!
 //! The seed is fixed so that a failure reproduces; `PROPTEST_CASES` sets the case count
 //! (default [`DEFAULT_CASES`], about 16 s in `cargo test --release`). A longer run:
-//! `PROPTEST_CASES=20000 cargo test --release -p adhesim-scenario --test fuzz`.
+//! `PROPTEST_CASES=20000 cargo test --release -p adhesim-scenario --test integration fuzz::`.
 //! `PROPTEST_RNG_SEED=N` draws other cases; `FUZZ_SLOW=1` lists the runs that take over 0.2 s and
 //! `FUZZ_ERRORS=1` the errors of runs (with `-- --nocapture`).
 

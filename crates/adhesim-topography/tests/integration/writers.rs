@@ -226,7 +226,7 @@ fn netcdf_classic_layout_round_trip() {
 /// the default suite, and a failure where it is asked for and cannot run (it printed
 /// "skipped" and reported `ok`). `.ci/run` runs it with the CI's virtual environment.
 #[test]
-#[ignore = "needs a Python with numpy: ADHESIM_PYTHON=... cargo test --release -p adhesim-topography --test writers -- --ignored"]
+#[ignore = "needs a Python with numpy: ADHESIM_PYTHON=... cargo test --release -p adhesim-topography --test integration writers:: -- --ignored"]
 fn numpy_loads_the_npz() {
     let python = std::env::var("ADHESIM_PYTHON").unwrap_or_else(|_| "python3".into());
     let has_numpy = Command::new(&python)

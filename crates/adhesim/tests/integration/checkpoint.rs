@@ -280,13 +280,13 @@ fn cohesive(law: impl Fn(&Grid) -> Box<dyn CohesiveLaw>, params: CohesiveParams)
 }
 
 fn dugdale(grid: &Grid) -> Box<dyn CohesiveLaw> {
-    // Maugis' λ = 0.3 at γ0 = 1e-4 (tests/validation_maugis.rs's fast case).
+    // Maugis' λ = 0.3 at γ0 = 1e-4 (tests/integration/validation_maugis.rs's fast case).
     let sigma = cohesive_stress_for(1.0, 1.0, 1e-4, 0.3);
     Box::new(Dugdale::new(sigma, vec![1e-4; grid.len()]))
 }
 
 fn exponential(grid: &Grid) -> Box<dyn CohesiveLaw> {
-    // Tabor's μ = 1 at γ0 = 1e-4: ρ = γ0^(2/3) (tests/validation_exponential.rs).
+    // Tabor's μ = 1 at γ0 = 1e-4: ρ = γ0^(2/3) (tests/integration/validation_exponential.rs).
     Box::new(Exponential::new(1e-8f64.cbrt(), vec![1e-4; grid.len()]))
 }
 

@@ -19,8 +19,9 @@ type Taker = checkpoint_common::Taker<TranslationCheckpoint>;
 
 const GAMMA: f64 = 2e-5;
 
-/// A wavy sphere at α ≈ 0.6 (the rough rolling regime of tests/validation_translation.rs)
-/// on an n × n free grid, moved by `kinematics` over one wavelength after 12 approach steps.
+/// A wavy sphere at α ≈ 0.6 (the rough rolling regime of
+/// tests/integration/validation_translation.rs) on an n × n free grid, moved by
+/// `kinematics` over one wavelength after 12 approach steps.
 fn setup(n: usize, kinematics: Kinematics) -> (Grid, TranslatingContact, Translation) {
     let grid = Grid::new(n, 0.4, Boundary::Free).unwrap();
     let amplitude = 7.5e-4;

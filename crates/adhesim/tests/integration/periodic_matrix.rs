@@ -19,7 +19,7 @@
 //! contact (the load bracket doubled to infinity) and a rough flat whose contact is one
 //! element under load control (the CG ratio divided by a zero previous gap norm).
 //!
-//! `cargo test --release -p adhesim --test periodic_matrix`
+//! `cargo test --release -p adhesim --test integration periodic_matrix::`
 
 use adhesim::protocol::non_adhesive_solver;
 use adhesim::{

@@ -1,7 +1,7 @@
 //! Rough indenters (`rough_sphere`, `rough_flat`): a base shape carrying a random
 //! self-affine surface, peaks towards the half-space.
 //!
-//! `cargo test --release -p adhesim --test rough_indenter`
+//! `cargo test --release -p adhesim --test integration rough_indenter::`
 
 use crate::common;
 

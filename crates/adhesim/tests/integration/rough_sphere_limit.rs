@@ -2,7 +2,7 @@
 //! self-affine roughness of vanishing amplitude detaches like the smooth JKR sphere, and its
 //! rough-sphere parameter diverges as the roughness vanishes.
 //!
-//! `cargo test --release -p adhesim --test rough_sphere_limit` (about a second)
+//! `cargo test --release -p adhesim --test integration rough_sphere_limit::` (about a second)
 
 use crate::common;
 

@@ -9,7 +9,7 @@
 //!
 //! which a Maugis–Dugdale zone approaches as its length ℓ = πE*γ0/(4σ0²) (the plane-strain
 //! Dugdale zone at K = √(2E*γ0)) becomes small beside a. The slow studies (`#[ignore]`):
-//! `cargo test --release -p adhesim --test validation_cohesive_periodic -- --ignored --nocapture`.
+//! `cargo test --release -p adhesim --test integration validation_cohesive_periodic:: -- --ignored --nocapture`.
 
 use adhesim::{
     Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, Grid, HalfSpace,
@@ -133,7 +133,7 @@ fn laws(alpha: f64, ratio: f64) -> [(&'static str, LawOnGrid); 2] {
 /// sharp criterion, for σ0 = p*/2 and p*, on N = 64, 128, 256 (minutes). Subsets:
 /// `ADHESIM_RATIOS=0.5`, `ADHESIM_SIZES=128`, `ADHESIM_LAWS=exponential` (comma lists).
 #[test]
-#[ignore = "minutes, a printed study: cargo test --release -p adhesim --test validation_cohesive_periodic wavy_pull_off -- --ignored --nocapture"]
+#[ignore = "minutes, a printed study: cargo test --release -p adhesim --test integration validation_cohesive_periodic::wavy_pull_off -- --ignored --nocapture"]
 fn wavy_pull_off_mesh_convergence() {
     let alpha = 0.3;
     let gamma = work_of_adhesion(alpha);
@@ -201,10 +201,10 @@ fn wavy_cycles_balance_energy_and_pull_off_near_johnson() {
 /// "Exponential law on a periodic cell"): the exponential law of the test above on the
 /// wavy surface, stepped through the depths from −h to 0.6h in steps of h/50 (warm
 /// started, as the peer is); prints depth, mean pressure over p* and the time.
-/// `cargo test --release -p adhesim --test validation_cohesive_periodic peer_side -- --ignored --nocapture`
-/// (N from `ADHESIM_N`, default 64).
+/// `cargo test --release -p adhesim --test integration validation_cohesive_periodic::peer_side
+/// -- --ignored --nocapture` (N from `ADHESIM_N`, default 64).
 #[test]
-#[ignore = "the peer comparison's printout (bench/compare/README.md): cargo test --release -p adhesim --test validation_cohesive_periodic peer_side -- --ignored --nocapture"]
+#[ignore = "the peer comparison's printout (bench/compare/README.md): cargo test --release -p adhesim --test integration validation_cohesive_periodic::peer_side -- --ignored --nocapture"]
 fn peer_side_exponential_approach() {
     let n = std::env::var("ADHESIM_N").map_or(64, |v| v.parse().unwrap());
     let (_, law) = laws(0.3, 0.5).into_iter().nth(1).unwrap();

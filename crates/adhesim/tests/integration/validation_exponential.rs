@@ -6,7 +6,7 @@
 //! limits and decreasing with μ, the energy balance of the cycle, and that the accelerated
 //! rounds reach the states of the plain ones. The slow studies (`#[ignore]`): the mesh
 //! convergence at μ = 1 and 2,
-//! `cargo test --release -p adhesim --test validation_exponential -- --ignored --nocapture`.
+//! `cargo test --release -p adhesim --test integration validation_exponential:: -- --ignored --nocapture`.
 
 use adhesim::{
     Acceleration, Boundary, CohesiveParams, CohesiveSolver, ElasticMaterial, Exponential, FreeOperator, Grid,
@@ -138,7 +138,7 @@ fn a_step_out_of_rounds_is_a_typed_error() {
 /// Mesh convergence of the pull-off at μ = 1 and 2 (N = 64, 128, 256): prints F/(2πγ0R)
 /// and the rounds; the differences between successive grids shrink.
 #[test]
-#[ignore = "minutes: cargo test --release -p adhesim --test validation_exponential -- --ignored --nocapture"]
+#[ignore = "minutes: cargo test --release -p adhesim --test integration validation_exponential:: -- --ignored --nocapture"]
 fn pull_off_mesh_convergence() {
     for mu in [1.0, 2.0] {
         let ratios: Vec<f64> = [64, 128, 256]

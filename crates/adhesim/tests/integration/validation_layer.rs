@@ -99,7 +99,8 @@ fn thin_incompressible_layer_is_the_lubrication_limit() {
 }
 
 /// A layer much thicker than the contact is the half-space: Hertz to the tolerances of
-/// tests/validation_hertz.rs (force within 0.5 % at a = 32Δ; radius within one element).
+/// tests/integration/validation_hertz.rs (force within 0.5 % at a = 32Δ; radius within one
+/// element).
 #[test]
 fn thick_layer_is_hertz() {
     let depth = (32.0f64 / 128.0).powi(2);

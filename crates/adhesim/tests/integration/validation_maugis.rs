@@ -5,7 +5,7 @@
 //! σ0 or nothing): measured at λ = 1 +7.6 %, +3.8 %, +1.6 % for 5.4, 10.8, 21.7 elements
 //! across the zone at pull-off. The fast tests run grids whose measured error is well
 //! inside the tolerances; the slow ones (`#[ignore]`) check λ = 1 and the mesh
-//! convergence: `cargo test --release -p adhesim --test validation_maugis -- --ignored`.
+//! convergence: `cargo test --release -p adhesim --test integration validation_maugis:: -- --ignored`.
 
 use adhesim::analysis::reference::{cohesive_stress_for, MaugisDugdale};
 use adhesim::{
@@ -114,7 +114,7 @@ fn dissipation_balances_the_work_over_a_cycle() {
 /// measured +1.65 %, about 20 s on 2 cores), and the retraction branch within 3 % of the
 /// pull-off force (measured 1.65 %, largest at the pull-off point).
 #[test]
-#[ignore = "20 s: cargo test --release -p adhesim --test validation_maugis -- --ignored"]
+#[ignore = "20 s: cargo test --release -p adhesim --test integration validation_maugis:: -- --ignored"]
 fn pull_off_matches_maugis_at_lambda_one() {
     let (summary, records, model) = run(1.0, 256, 0.31, 2e-5);
     let error = summary.max_adhesive_force / model.max_adhesive_force() - 1.0;
@@ -127,7 +127,7 @@ fn pull_off_matches_maugis_at_lambda_one() {
 /// measured ratios 2.0 and 2.3), and the error keeps its sign (an element whose centre
 /// lies in the zone carries σ0 over its whole area).
 #[test]
-#[ignore = "25 s: cargo test --release -p adhesim --test validation_maugis -- --ignored"]
+#[ignore = "25 s: cargo test --release -p adhesim --test integration validation_maugis:: -- --ignored"]
 fn pull_off_converges_at_first_order() {
     let errors: Vec<f64> = [64, 128, 256].iter().map(|&n| pull_off_error(1.0, n, 0.31)).collect();
     for pair in errors.windows(2) {

@@ -146,12 +146,12 @@ fn area_grows_linearly_with_load_persson() {
     check("N = 256/128, q_r = 4, q_s = 32 (2π/L)", &study(256, 4.0, 32.0, 6));
 }
 
-/// The full study, `cargo test --release -p adhesim --test validation_persson -- --ignored
-/// --nocapture` (3.4 min wall on the shared 2-core machine, load ≈ 10): a broader band
-/// (q_s = 64·2π/L, N = 512/256) and the band of the default test resolved twice as finely
-/// (N = 512/256, 16 elements per λ_s), 8 seeds each.
+/// The full study, `cargo test --release -p adhesim --test integration validation_persson::
+/// -- --ignored --nocapture` (3.4 min wall on the shared 2-core machine, load ≈ 10): a
+/// broader band (q_s = 64·2π/L, N = 512/256) and the band of the default test resolved twice
+/// as finely (N = 512/256, 16 elements per λ_s), 8 seeds each.
 #[test]
-#[ignore = "3.4 min: cargo test --release -p adhesim --test validation_persson -- --ignored --nocapture"]
+#[ignore = "3.4 min: cargo test --release -p adhesim --test integration validation_persson:: -- --ignored --nocapture"]
 fn area_grows_linearly_with_load_persson_full() {
     check("N = 512/256, q_r = 4, q_s = 64 (2π/L)", &study(512, 4.0, 64.0, 8));
     check("N = 512/256, q_r = 4, q_s = 32 (2π/L)", &study(512, 4.0, 32.0, 8));
