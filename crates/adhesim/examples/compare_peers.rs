@@ -140,8 +140,8 @@ fn hertz_entry(n: usize, options: &Options) -> String {
     }
     let report = last.expect("one repeat");
     let reference = hertz.force(depth);
-    // 0.5 %: the bound of tests/validation_hertz.rs for a contact of 32 elements in radius
-    // (here N/4; measured 1.3e-4 at N = 64).
+    // 0.5 %: the bound of tests/integration/validation_hertz.rs for a contact of 32 elements
+    // in radius (here N/4; measured 1.3e-4 at N = 64).
     assert!(
         (report.force / reference - 1.0).abs() < 5e-3,
         "Hertz force error {:.2e} at N = {n}",

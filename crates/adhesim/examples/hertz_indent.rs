@@ -4,8 +4,8 @@
 //!
 //! R = E* = 1 on a free grid of side 1, depth (1/4)², so the contact radius is N/4 elements.
 //! Both non-adhesive solvers must give the Hertz force within 0.5 % (the bound of
-//! tests/validation_hertz.rs at 32 elements; measured 1.3e-4 at N = 64) and the contact
-//! radius within one element. `cargo test --release -p adhesim --example hertz_indent` runs
+//! tests/integration/validation_hertz.rs at 32 elements; measured 1.3e-4 at N = 64) and the
+//! contact radius within one element. `cargo test --release -p adhesim --example hertz_indent` runs
 //! it at N = 64 (a fraction of a second).
 use adhesim::analysis::reference::Hertz;
 use adhesim::{

@@ -32,8 +32,9 @@
 //!
 //! let hertz = Hertz { radius: 1.0, contact_modulus: 1.0 };
 //! let force_error = report.force / hertz.force(depth) - 1.0;
-//! // 0.5 %, the bound tests/validation_hertz.rs sets at 32 elements: the staircase edge of
-//! // the discrete contact costs far less here (measured 0.04 % at 8 elements).
+//! // 0.5 %, the bound tests/integration/validation_hertz.rs sets at 32 elements: the
+//! // staircase edge of the discrete contact costs far less here (measured 0.04 % at 8
+//! // elements).
 //! assert!(force_error.abs() < 0.005, "force error {force_error}");
 //! // The contact radius (farthest element centre in contact) is within one element of √(Rd).
 //! let radius_error = state.contact_radius(&grid, (0.0, 0.0)) - hertz.contact_radius(depth);

@@ -7,7 +7,7 @@ Run with a Python that has numpy, x3pio (2.0.0), gwyfile (0.3.0) and surfalize (
 
 The map is 5 columns (x) by 4 rows (y) with z[row, col] = (col + 10 row) nm - 7 nm, so a
 transposed or flipped read is caught; x spacing 0.5 um, y spacing 0.25 um. The Rust tests
-(tests/reference_files.rs) check the same numbers.
+(tests/integration/reference_files.rs) check the same numbers.
 """
 import numpy as np
 import x3pio

@@ -1,8 +1,9 @@
-"""Prints SurfaceTopography's values for the fixtures of this folder, as tests/surfacetopography.rs
-holds them: grid, physical size (m), rms height (Sq over the valid points, m), rms gradient
-(finite differences, rms_gradient), rms mean curvature (rms_curvature_from_area) and, for maps
-with invalid points, the same after SurfaceTopography's harmonic filling
-(interpolate_undefined_data). Run with SurfaceTopography 1.27.1 installed:
+"""Prints SurfaceTopography's values for the fixtures of this folder, as
+tests/integration/surfacetopography.rs holds them: grid, physical size (m), rms height (Sq
+over the valid points, m), rms gradient (finite differences, rms_gradient), rms mean curvature
+(rms_curvature_from_area) and, for maps with invalid points, the same after
+SurfaceTopography's harmonic filling (interpolate_undefined_data). Run with SurfaceTopography
+1.27.1 installed:
 
     python reference_values.py
 

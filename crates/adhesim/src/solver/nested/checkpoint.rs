@@ -16,7 +16,8 @@
 //!   [`NestedActiveSet::window_applications`]; every solve zeroes them first).
 //!
 //! Not carried, by reading the code (and checked by the bit-identical resume tests in
-//! `tests/checkpoint.rs`, which restore into a fresh solver whose buffers are all zero):
+//! `tests/integration/checkpoint.rs`, which restore into a fresh solver whose buffers are
+//! all zero):
 //! - a window's position: [`WindowLevel::enter`] places it on the contact before use;
 //! - a window's and a coarse level's heights, contact and pressure: `enter` copies the
 //!   whole window's from the level, `restrict` writes every coarse height, and `cold_start`

@@ -1,0 +1,6 @@
+//! The integration tests of `adhesim-experiment`, gathered into one test binary so that the
+//! crate and its dependencies are linked once: a module per topic (a file of this folder),
+//! run alone with the module as the filter:
+//! `cargo test --release -p adhesim-experiment --test integration inputs::`.
+
+mod inputs;
