@@ -9,7 +9,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::PyClass;
 
-use crate::convert::{float_argument, int_argument};
+use crate::convert::{described, float_argument, int_argument};
 
 /// One extractor per name: `fn name(value) -> PyResult<$output>` calling `$convert(value,
 /// "name")`.
@@ -108,16 +108,6 @@ fn instance<'py, T: PyClass>(value: &Bound<'py, PyAny>, name: &str, expected: &s
             described(value)
         ))),
     }
-}
-
-/// "type repr", as the messages print a value they refuse.
-fn described(value: &Bound<'_, PyAny>) -> String {
-    let repr = value.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
-    let type_name = value
-        .get_type()
-        .name()
-        .map_or_else(|_| "?".to_string(), |n| n.to_string());
-    format!("{type_name} {repr}")
 }
 
 /// None, or what `convert` makes of the value.

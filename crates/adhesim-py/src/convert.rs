@@ -117,19 +117,29 @@ pub fn count(name: &str, value: i64, minimum: usize) -> PyResult<usize> {
 /// `name`, its value and the `expected` type: pyo3's own message ("'str' object cannot be
 /// interpreted as an integer", "int too big to convert") named no argument.
 fn argument_error(value: &Bound<'_, PyAny>, name: &str, expected: &str) -> PyErr {
-    let repr = value.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
+    if value.is_instance_of::<pyo3::types::PyInt>() {
+        PyValueError::new_err(format!(
+            "{name} = {} is out of range: a 64-bit integer holds up to {}",
+            repr_of(value),
+            i64::MAX
+        ))
+    } else {
+        PyTypeError::new_err(format!("{name} must be {expected}, got {}", described(value)))
+    }
+}
+
+/// Python's `repr` of a value ("?" where it fails).
+fn repr_of(value: &Bound<'_, PyAny>) -> String {
+    value.repr().map_or_else(|_| "?".to_string(), |r| r.to_string())
+}
+
+/// "type repr", as the messages print a value they refuse: `str 'a'`.
+pub fn described(value: &Bound<'_, PyAny>) -> String {
     let type_name = value
         .get_type()
         .name()
         .map_or_else(|_| "?".to_string(), |n| n.to_string());
-    if value.is_instance_of::<pyo3::types::PyInt>() {
-        PyValueError::new_err(format!(
-            "{name} = {repr} is out of range: a 64-bit integer holds up to {}",
-            i64::MAX
-        ))
-    } else {
-        PyTypeError::new_err(format!("{name} must be {expected}, got {type_name} {repr}"))
-    }
+    format!("{type_name} {}", repr_of(value))
 }
 
 /// An integer argument (a Python int or an integer numpy scalar), or an error naming `name`.

@@ -434,7 +434,7 @@ impl TangentialSolver {
                 state.status[i] = SlipStatus::Slip;
                 state.traction[0][i] = 0.0;
                 state.traction[1][i] = 0.0;
-            } else if state.status[i] == SlipStatus::Slip && magnitude > 0.0 {
+            } else if slipping {
                 self.unit[i] = (qx / magnitude, qy / magnitude);
                 state.traction[0][i] = bound * qx / magnitude;
                 state.traction[1][i] = bound * qy / magnitude;
