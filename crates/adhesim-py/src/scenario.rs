@@ -332,12 +332,7 @@ pub fn _scenario_heights<'py>(
 #[pyfunction]
 pub fn _curve_column_kinds(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let dict = PyDict::new(py);
-    let jkr = adhesim::analysis::reference::Jkr {
-        radius: 1.0,
-        contact_modulus: 1.0,
-        work_of_adhesion: 1.0,
-    };
-    for column in CurveColumns::new(Some(jkr)).columns() {
+    for column in CurveColumns::every() {
         let kind = match column.kind {
             CurveKind::Integer => "int",
             CurveKind::Float => "float",

@@ -52,3 +52,23 @@ def test_a_glued_adhesive_contact_shrinks_under_shear_with_mode_mixity():
     lost = 1 - float(shear["area"].iloc[-1]) / rest
     assert abs(lost / 0.0970 - 1) < 0.2, lost
     assert result.summary["results"]["contact_area_reduction"] < 1
+
+
+def test_a_compliant_drive_saws_and_reads_back_with_its_kinds(tmp_path):
+    # scenarios/friction/stick_slip.toml on 64² (a = 20 elements), the drive's stroke cut to
+    # 0.036: the spring's balance F = k(X − δ) holds at every shift step (1e-9, the
+    # solver's stretch against the tractions' sum), the force falls in slip events, and a
+    # run read back by load() has the run's columns with the run's dtypes, bit for bit.
+    stiffness = 0.5
+    overrides = {"grid.n": 64, "protocol.distance": 0.036, "protocol.steps": 36}
+    result = adhesim.run(REPO / "scenarios" / "friction" / "stick_slip.toml", out=tmp_path, overrides=overrides)
+    arrays = result.curve_arrays
+    shear = arrays["phase"] == "shear"
+    force, stretch = arrays["force_tangential"][shear], (arrays["drive_x"] - arrays["x"])[shear]
+    assert np.all(np.abs(force - stiffness * stretch) <= 1e-9 * np.abs(force).max())
+    assert result.summary["results"]["slip_events"] >= 2
+    assert np.any(np.diff(force) < 0)
+    loaded = adhesim.load(tmp_path)
+    for name, values in arrays.items():
+        assert loaded.curve_arrays[name].dtype == values.dtype, name
+        assert np.array_equal(loaded.curve_arrays[name], values), name

@@ -128,6 +128,10 @@ const FRICTION: [CurveColumn; 5] = [
     }),
 ];
 
+/// The drive's position under a compliant drive, last (`x` is the indenter's shift, which
+/// lags it).
+const DRIVE: CurveColumn = float("drive_x", |r, _| Float(r.drive_offset));
+
 /// The columns of one run's `curve.csv` (they depend on whether the JKR scales exist and
 /// whether the interface has friction).
 #[derive(Debug, Clone)]
@@ -160,9 +164,22 @@ impl CurveColumns {
     /// `[friction]`.
     pub fn of(scenario: &crate::model::ValidScenario) -> Self {
         let mut columns = Self::new(scenario.jkr);
-        if scenario.shear.is_some() {
+        if let Some(shear) = &scenario.shear {
             columns.columns.extend(FRICTION);
+            if shear.drive_stiffness.is_some() {
+                columns.columns.push(DRIVE);
+            }
         }
+        columns
+    }
+
+    /// Every column a run's `curve.csv` can have (for reading one back by name).
+    pub fn every() -> Vec<CurveColumn> {
+        let mut columns = LEADING.to_vec();
+        columns.extend(NORMALISED);
+        columns.extend(TRAILING);
+        columns.extend(FRICTION);
+        columns.push(DRIVE);
         columns
     }
 

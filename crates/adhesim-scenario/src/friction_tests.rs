@@ -97,3 +97,74 @@ fn static_keys_are_refused_below_their_kinetic_keys_or_with_another_law() {
     let glued = error_of(&glued_text, &[]);
     assert!(glued.contains("friction.static_shear_strength"), "{glued}");
 }
+
+/// `protocol.drive_stiffness`: the indenter lags the drive by the spring's stretch F/k at
+/// every shift step (1e-9: the tractions' sum against the solver's stretch), and
+/// `curve.csv` gains `drive_x`. With a static shear strength three times the kinetic one
+/// the force saws: slip events in which the whole contact slides at τ0·A and the indenter
+/// jumps ahead, each followed by a stick phase.
+#[test]
+fn a_compliant_drive_lets_the_contact_stick_and_slip() {
+    let stiffness = 0.5;
+    let settings = [
+        "friction.static_shear_strength=0.006",
+        "protocol.drive_stiffness=0.5",
+        "protocol.distance=0.01",
+        "protocol.steps=50",
+    ];
+    let (results, records) = shear_run(&settings);
+    let shifts: Vec<_> = records
+        .iter()
+        .filter(|r| r.phase == Some(adhesim::Phase::Shear))
+        .collect();
+    let sliding = 0.002 * results.contact_area;
+    let mut events = 0;
+    for (k, r) in shifts.iter().enumerate() {
+        let stretch = r.drive_offset - r.offset;
+        assert!(
+            (r.force_tangential - stiffness * stretch).abs() <= 1e-9 * r.force_tangential.abs().max(sliding),
+            "step {}: F {} against k(X − δ) {}",
+            r.step,
+            r.force_tangential,
+            stiffness * stretch
+        );
+        assert!(r.force_tangential <= 0.006 * r.area * (1.0 + 1e-9));
+        if k > 0 && r.force_tangential < shifts[k - 1].force_tangential && r.stick_elements == 0 {
+            events += 1;
+            let ratio = r.force_tangential / (0.002 * r.area);
+            assert!(ratio > 0.99 && ratio <= 1.0 + 1e-9, "step {}: F/τ0A {ratio}", r.step);
+            assert!(
+                r.offset - shifts[k - 1].offset > 0.01 / 50.0,
+                "step {}: no jump",
+                r.step
+            );
+        }
+    }
+    assert_eq!(results.slip_events, events);
+    assert!(events >= 3, "{events} slip events: no sawtooth");
+    let scenario = load(TRESCA, "tresca.toml", Path::new("."), &settings.map(String::from)).unwrap();
+    let names: Vec<_> = CurveColumns::of(&scenario).names().collect();
+    assert_eq!(names.last(), Some(&"drive_x"));
+    let rigid = load(TRESCA, "tresca.toml", Path::new("."), &[]).unwrap();
+    assert!(!CurveColumns::of(&rigid).names().any(|name| name == "drive_x"));
+}
+
+#[test]
+fn a_drive_stiffness_must_be_positive_and_not_inclined() {
+    for bad in ["0", "-1", "nan"] {
+        let error = error_of(TRESCA, &[&format!("protocol.drive_stiffness={bad}")]);
+        assert!(error.contains("protocol.drive_stiffness"), "{bad}: {error}");
+    }
+    let inclined = error_of(TRESCA, &["protocol.drive_stiffness=1", "protocol.incline=10"]);
+    assert!(
+        inclined.contains("protocol.drive_stiffness") && inclined.contains("protocol.incline"),
+        "{inclined}"
+    );
+    let elsewhere = error_of(
+        &TRESCA
+            .replace("kind = \"shear\"", "kind = \"roll\"")
+            .replace("[friction]\nlaw = \"shear_strength\"\nshear_strength = 0.002\n", ""),
+        &["protocol.drive_stiffness=1"],
+    );
+    assert!(elsewhere.contains("drive_stiffness"), "{elsewhere}");
+}

@@ -361,6 +361,11 @@ fn run_shear(
             .with_static_law(static_law)
             .map_err(|e| ProtocolError::InvalidParameter(e.to_string()))?;
     }
+    if let Some(stiffness) = setup.drive_stiffness {
+        friction = friction
+            .with_drive_stiffness(stiffness)
+            .map_err(|e| ProtocolError::InvalidParameter(e.to_string()))?;
+    }
     let summary = setup.protocol.run(
         operator,
         &scenario.heights,

@@ -79,6 +79,7 @@ impl ScenarioFile {
         let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let mode_mixity = mode_mixity(friction, gamma0)?;
+        let drive_stiffness = drive_stiffness(p)?;
         let protocol = Shear {
             start_depth,
             depth,
@@ -128,6 +129,7 @@ impl ScenarioFile {
                 protocol,
                 law,
                 static_law,
+                drive_stiffness,
                 material: shear_material,
             }),
             roughness: None,
@@ -246,6 +248,24 @@ fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
         ),
     };
     Ok(built?)
+}
+
+/// `protocol.drive_stiffness`: finite and > 0, and not with an inclined path (the drive
+/// pulls along the surface).
+fn drive_stiffness(protocol: &ShearProtocol) -> Result<Option<f64>> {
+    let Some(stiffness) = protocol.drive_stiffness else {
+        return Ok(None);
+    };
+    let stiffness = positive("protocol.drive_stiffness", stiffness)?;
+    if protocol.incline.is_some_and(|incline| incline != 0.0) {
+        bail!(ScenarioError::invalid_as(
+            "protocol.drive_stiffness",
+            stiffness,
+            "absent with protocol.incline",
+            "protocol.drive_stiffness pulls the indenter along the surface; an inclined path (protocol.incline) takes a rigid drive"
+        ));
+    }
+    Ok(Some(stiffness))
 }
 
 /// The static law of `[friction]` (`static_coefficient`, `static_shear_strength`; each at
@@ -405,6 +425,9 @@ pub struct ShearResults {
     pub dissipated_energy: f64,
     /// The worst optimality conditions of any tangential step.
     pub complementarity: Complementarity,
+    /// Slip events: steps in which elements broke loose from a static bound and the
+    /// tangential force fell (0 without a static law).
+    pub slip_events: usize,
     pub border_contact: bool,
 }
 
@@ -446,6 +469,7 @@ impl ShearResults {
             contact_lost_at_shift: summary.contact_lost_at,
             dissipated_energy: summary.dissipated_energy,
             complementarity: summary.complementarity,
+            slip_events: summary.slip_events,
             border_contact: summary.touches_border,
         }
     }

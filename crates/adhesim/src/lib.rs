@@ -77,7 +77,11 @@
 /// the residual, and hold mixing back while the plain rounds escape (docs/physics.md §2.6):
 /// trapezoid and exponential runs move (rolls that failed now converge; where jumps happen
 /// another local minimum may be reached), the JKR criterion and Dugdale are bit-identical.
-pub const RESULTS_REVISION: u32 = 8;
+/// 9: a static friction law lets the contact come to rest after a slip event (elements
+/// broke loose and the tangential force fell; docs/physics.md §8.2): the next step starts
+/// stuck under the static bound instead of sliding on at the kinetic one. Shear runs with
+/// a static law and such a drop move; every other result is bit-identical to revision 8.
+pub const RESULTS_REVISION: u32 = 9;
 
 pub mod analysis;
 pub mod elastic;

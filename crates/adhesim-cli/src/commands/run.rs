@@ -199,6 +199,12 @@ fn print_shear(summary: &ShearSummary, outcome: &RunOutcome, wall_seconds: f64) 
         ),
         None => outln!("  no gross slip at the end of the stroke"),
     }
+    if results.slip_events > 0 {
+        outln!(
+            "  {} slip events (the force fell as the contact broke loose, then stuck again)",
+            results.slip_events
+        );
+    }
     if results.contact_area_reduction != 1.0 {
         outln!(
             "  contact area at the peak / at rest = {:.4}",

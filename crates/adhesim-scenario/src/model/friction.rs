@@ -91,6 +91,10 @@ pub struct ShearProtocol {
     /// Fretting cycles between +distance and −distance after the forward stroke.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cycles: Option<i64>,
+    /// Stiffness of a spring between the drive and the indenter (force per length; absent:
+    /// a rigid drive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive_stiffness: Option<f64>,
 }
 
 /// A validated shear run: the library's protocol, the interface law and the half-space's
@@ -101,5 +105,7 @@ pub struct ShearSetup {
     pub law: FrictionLaw,
     /// The static law of elements stuck at the start of a step (None: `law` throughout).
     pub static_law: Option<FrictionLaw>,
+    /// The drive's spring (None: a rigid drive).
+    pub drive_stiffness: Option<f64>,
     pub material: ShearMaterial,
 }

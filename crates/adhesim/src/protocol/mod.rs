@@ -110,6 +110,10 @@ pub struct StepRecord {
     /// Energy dissipated by friction up to and including this step.
     #[cfg_attr(feature = "serde", serde(default))]
     pub cumulative_frictional_dissipation: f64,
+    /// The drive's position along the shift (the shear protocol; `offset` is the
+    /// indenter's, which lags it under a compliant drive).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub drive_offset: f64,
 }
 
 impl StepRecord {

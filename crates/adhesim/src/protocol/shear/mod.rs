@@ -103,6 +103,10 @@ pub struct ShearSummary {
     pub contact_lost_at: Option<f64>,
     /// Energy released by normal configuration changes (adhesive jumps) on the approach.
     pub dissipated_energy: f64,
+    /// Slip events: steps in which elements broke loose from their static bound and the
+    /// tangential force fell (a static friction law; docs/physics.md §8.2).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub slip_events: usize,
     /// The worst optimality conditions met by any step.
     pub complementarity: Complementarity,
     /// Some step had contact on the border of a free grid.
@@ -141,6 +145,12 @@ impl Shear {
             observer,
         )?;
         let inclined = self.incline != 0.0;
+        let compliant = friction.drive_stiffness().is_some();
+        if inclined && compliant {
+            return Err(ProtocolError::InvalidParameter(
+                "a compliant drive moves the indenter along the surface only: an inclined path (incline ≠ 0) takes a rigid drive".into(),
+            ));
+        }
         let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, solver)?;
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
@@ -180,6 +190,7 @@ impl Shear {
             summary.cg_iterations += report.cg_iterations;
             summary.tangential_rounds += report.rounds;
             summary.frictional_dissipation += report.dissipated_energy;
+            summary.slip_events += usize::from(report.slip_event);
             if stroke == Stroke::Cycle(self.cycles) {
                 summary.last_cycle_dissipation += report.dissipated_energy;
             }
@@ -194,7 +205,13 @@ impl Shear {
                 summary.dissipated_energy,
             );
             let along = report.force[0] * unit[0] + report.force[1] * unit[1];
-            record.offset = shift;
+            // The indenter's shift (under a compliant drive it lags the drive's).
+            record.offset = if compliant {
+                report.shift[0] * unit[0] + report.shift[1] * unit[1]
+            } else {
+                shift
+            };
+            record.drive_offset = shift;
             record.force_tangential = along;
             record.force_tangential_before_change = along;
             record.stick_elements = report.stick_elements;

@@ -192,6 +192,8 @@ impl TangentialRoom {
             wider.state.status[w] = old.status[from];
         }
         wider.state.shift = old.shift;
+        wider.state.drive = old.drive;
+        wider.state.at_rest = old.at_rest;
         {
             let [ux, uy] = &mut wider.state.displacement;
             wider

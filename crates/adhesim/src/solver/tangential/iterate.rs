@@ -43,6 +43,8 @@ impl TangentialSolver {
             let [ux, uy] = &mut state.displacement;
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
+        self.refresh_drive_offset(state);
+        let compliance = self.drive_compliance;
         let mut target_norm = 0.0;
         let (mut rr, mut rz) = (0.0, 0.0);
         for i in 0..n {
@@ -51,11 +53,7 @@ impl TangentialSolver {
                 target_norm += self.target[0][i].powi(2) + self.target[1][i].powi(2);
             }
             // The spring's force is zero at the round's start (θ = 0).
-            let v = (
-                self.target[0][i] - state.displacement[0][i],
-                self.target[1][i] - state.displacement[1][i],
-            );
-            let (rx, ry) = project(status, self.unit[i], v);
+            let (rx, ry) = project(status, self.unit[i], self.gap(state, i));
             (self.residual[0][i], self.residual[1][i]) = (rx, ry);
             let inverse = 1.0 / (diagonal + self.spring[i]);
             (self.direction[0][i], self.direction[1][i]) = (rx * inverse, ry * inverse);
@@ -81,6 +79,13 @@ impl TangentialSolver {
                 let (dx, dy) = (self.direction[0][i], self.direction[1][i]);
                 curvature += dx * self.applied[0][i] + dy * self.applied[1][i] + self.spring[i] * (dx * dx + dy * dy);
             }
+            // A compliant drive's rank-one spring (Δ²/k)·𝟙𝟙ᵀ: a uniform displacement.
+            let mut drive = [0.0; 2];
+            if compliance > 0.0 {
+                let sums = [0, 1].map(|c| self.direction[c].iter().sum::<f64>());
+                drive = sums.map(|sum| compliance * sum);
+                curvature += drive[0] * sums[0] + drive[1] * sums[1];
+            }
             if !(curvature.is_finite() && curvature > 0.0) {
                 return Err(TangentialError::NonFinite(iterations));
             }
@@ -89,7 +94,11 @@ impl TangentialSolver {
             for i in 0..n {
                 let status = self.face_status(state.status[i], i);
                 let (dx, dy) = (self.direction[0][i], self.direction[1][i]);
-                let (ax, ay) = project(status, self.unit[i], (self.applied[0][i], self.applied[1][i]));
+                let (mut ax, mut ay) = (self.applied[0][i], self.applied[1][i]);
+                if compliance > 0.0 {
+                    (ax, ay) = (ax + drive[0], ay + drive[1]);
+                }
+                let (ax, ay) = project(status, self.unit[i], (ax, ay));
                 let spring = self.spring[i];
                 for c in 0..2 {
                     state.displacement[c][i] += alpha * self.applied[c][i];
@@ -101,6 +110,9 @@ impl TangentialSolver {
                 let squared = self.residual[0][i].powi(2) + self.residual[1][i].powi(2);
                 next += squared;
                 next_rz += squared / (diagonal + spring);
+            }
+            for c in 0..2 {
+                self.drive_offset[c] += alpha * drive[c];
             }
             let beta = next_rz / rz;
             (rr, rz) = (next, next_rz);
@@ -144,8 +156,8 @@ impl TangentialSolver {
                 continue;
             }
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
-            let zx = qx + rho * (self.target[0][i] - state.displacement[0][i]);
-            let zy = qy + rho * (self.target[1][i] - state.displacement[1][i]);
+            let (gx, gy) = self.gap(state, i);
+            let (zx, zy) = (qx + rho * gx, qy + rho * gy);
             let magnitude = zx.hypot(zy);
             let was = state.status[i];
             if magnitude <= bound {
@@ -206,8 +218,7 @@ impl TangentialSolver {
             if !normal.contact[i] {
                 continue;
             }
-            let sx = self.target[0][i] - state.displacement[0][i];
-            let sy = self.target[1][i] - state.displacement[1][i];
+            let (sx, sy) = self.gap(state, i);
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
             let magnitude = qx.hypot(qy);
             c.bound_excess = c.bound_excess.max((magnitude - self.bound[i]).max(0.0));
@@ -235,6 +246,7 @@ impl TangentialSolver {
         report.dissipated_energy = dissipated;
         (report.stick_elements, report.slip_elements) = state.counts();
         report.force = state.force(area);
-        state.shift = shift;
+        state.shift = self.indenter_shift(shift);
+        state.drive = shift;
     }
 }

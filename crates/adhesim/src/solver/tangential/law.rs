@@ -65,6 +65,9 @@ pub enum FrictionLawError {
         /// The kinetic law.
         kinetic: FrictionLaw,
     },
+    /// The drive's spring must be finite and > 0.
+    #[error("drive stiffness must be finite and > 0, got {0}")]
+    DriveStiffness(f64),
 }
 
 fn check(value: f64, error: fn(f64) -> FrictionLawError) -> Result<f64, FrictionLawError> {

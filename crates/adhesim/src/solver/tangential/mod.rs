@@ -76,6 +76,14 @@ pub struct TangentialState {
     pub status: Vec<SlipStatus>,
     /// The indenter's tangential shift δ of the last step.
     pub shift: [f64; 2],
+    /// The drive's position X of the last step: the shift itself under a rigid drive, the
+    /// far end of the spring under a compliant one ([`TangentialSolver::with_drive_stiffness`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub drive: [f64; 2],
+    /// The last step was a slip event (docs/physics.md §8.2): the contact has come to rest
+    /// and every element starts the next step stuck under its static bound.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub at_rest: bool,
 }
 
 impl TangentialState {
@@ -88,6 +96,8 @@ impl TangentialState {
             slip: zeros(),
             status: vec![SlipStatus::Open; elements],
             shift: [0.0; 2],
+            drive: [0.0; 2],
+            at_rest: false,
         }
     }
 
@@ -166,6 +176,14 @@ pub struct TangentialReport {
     pub dissipated_energy: f64,
     /// The optimality conditions as met.
     pub complementarity: Complementarity,
+    /// The indenter's shift δ at the end of the step (the drive's position under a rigid
+    /// drive).
+    pub shift: [f64; 2],
+    /// Elements that broke loose from their static bound in the step.
+    pub broke_loose: usize,
+    /// The step was a slip event: elements broke loose and the force along the drive's
+    /// motion fell.
+    pub slip_event: bool,
 }
 
 /// Why a tangential step failed.
@@ -262,6 +280,15 @@ pub struct TangentialSolver {
     /// The tractions before the last step and that step's shift increment: the predictor
     /// of the next step's start (None before a first step on this grid).
     history: Option<([Vec<f64>; 2], [f64; 2])>,
+    /// Stiffness k of the spring between the drive and the indenter (None: a rigid drive).
+    drive_stiffness: Option<f64>,
+    /// Δ²/k of the step (0 under a rigid drive): the indenter lags the drive by this times
+    /// Σq per component.
+    drive_compliance: f64,
+    /// X − δ per component: the spring's stretch, (Δ²/k)·Σq.
+    drive_offset: [f64; 2],
+    /// Elements that broke loose from a static bound in the step.
+    broke_loose: usize,
 }
 
 impl TangentialSolver {
@@ -280,6 +307,10 @@ impl TangentialSolver {
             unit: Vec::new(),
             spring: Vec::new(),
             history: None,
+            drive_stiffness: None,
+            drive_compliance: 0.0,
+            drive_offset: [0.0; 2],
+            broke_loose: 0,
         }
     }
 
@@ -312,11 +343,16 @@ impl TangentialSolver {
     /// Element `i` breaks loose: from its static bound to its kinetic one.
     #[inline]
     fn break_loose(&mut self, i: usize) {
+        if self.bound[i] > self.kinetic[i] {
+            self.broke_loose += 1;
+        }
         self.bound[i] = self.kinetic[i];
     }
 
     /// One quasi-static step to the shift `shift` = δ on the contact set and pressure of
-    /// `normal`; `state` holds the last step's fields and receives this one's.
+    /// `normal`; `state` holds the last step's fields and receives this one's. With a
+    /// compliant drive, `shift` is the drive's position X and the indenter's δ follows
+    /// from the balance of the spring ([`TangentialReport::shift`]).
     pub fn step(
         &mut self,
         operator: &mut TangentialOperator,
@@ -333,7 +369,12 @@ impl TangentialSolver {
         }
         let pairs_before = operator.transform_pairs();
         let before = state.traction.clone();
-        let increment = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
+        // The drive's increment (the shift's under a rigid drive).
+        let increment = [shift[0] - state.drive[0], shift[1] - state.drive[1]];
+        self.drive_compliance = self
+            .drive_stiffness
+            .map_or(0.0, |stiffness| operator.grid().element_area() / stiffness);
+        self.broke_loose = 0;
         self.prepare(normal, shift, state, n);
         self.predict(normal, increment, state);
         let scale = self.target_scale(normal);
@@ -370,7 +411,9 @@ impl TangentialSolver {
             let [ux, uy] = &mut state.displacement;
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
+        self.refresh_drive_offset(state);
         self.finish(operator, normal, shift, state, scale, &mut report);
+        self.note_slip_event(&before, increment, state, &mut report);
         self.history = Some((before, increment));
         report.transform_pairs = operator.transform_pairs() - pairs_before;
         Ok(report)
@@ -400,7 +443,8 @@ impl TangentialSolver {
         self.unit.resize(n, (0.0, 0.0));
         self.spring.clear();
         self.spring.resize(n, 0.0);
-        let increment = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
+        // X − δ⁻: the stuck displacement's advance if the spring keeps its stretch.
+        let advance = [shift[0] - state.shift[0], shift[1] - state.shift[1]];
         // Glued (no slip): every contact element moves with the indenter, one that
         // touches again included; otherwise an element sticks where it is.
         let glued = self.law == FrictionLaw::NoSlip;
@@ -409,7 +453,7 @@ impl TangentialSolver {
                 self.target[c][i] = if glued {
                     shift[c]
                 } else {
-                    state.displacement[c][i] + increment[c]
+                    state.displacement[c][i] + advance[c]
                 };
             }
             if !normal.contact[i] {
@@ -421,7 +465,8 @@ impl TangentialSolver {
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
             let magnitude = qx.hypot(qy);
             let kinetic = self.law.bound(normal.pressure[i]);
-            let slipping = state.status[i] == SlipStatus::Slip && magnitude > 0.0;
+            // After a slip event the contact is at rest: every element starts stuck.
+            let slipping = !state.at_rest && state.status[i] == SlipStatus::Slip && magnitude > 0.0;
             // A slipping element keeps slipping at the kinetic bound; the others start stuck
             // under the static one.
             let bound = match self.static_law {
@@ -448,10 +493,26 @@ impl TangentialSolver {
     /// step's traction change, scaled to this step's shift increment, added to each
     /// contact element's traction and put back in its disc (on the circle: slipping along
     /// it). Only the starting point of the Newton rounds changes, not their solution.
+    /// (Not after a slip event: its change is no guide to the next step's.)
     fn predict(&mut self, normal: &ContactState, increment: [f64; 2], state: &mut TangentialState) {
-        let Some((before, last)) = &self.history else {
+        if state.at_rest {
+            return;
+        }
+        let Some(history) = self.history.take() else {
             return;
         };
+        self.extrapolate(&history, normal, increment, state);
+        self.history = Some(history);
+    }
+
+    /// [`predict`](Self::predict) from the last step's tractions `before` and increment.
+    fn extrapolate(
+        &mut self,
+        (before, last): &([Vec<f64>; 2], [f64; 2]),
+        normal: &ContactState,
+        increment: [f64; 2],
+        state: &mut TangentialState,
+    ) {
         let last_squared = last[0] * last[0] + last[1] * last[1];
         let along = increment[0] * last[0] + increment[1] * last[1];
         if before[0].len() != state.status.len() || !(last_squared > 0.0 && along > 0.0) {
@@ -468,8 +529,7 @@ impl TangentialSolver {
             let magnitude = qx.hypot(qy);
             if magnitude >= bound {
                 if state.status[i] != SlipStatus::Slip {
-                    // Breaks loose (`break_loose`, inlined: `history` is borrowed).
-                    self.bound[i] = self.kinetic[i];
+                    self.break_loose(i);
                 }
                 let bound = self.bound[i];
                 state.status[i] = SlipStatus::Slip;
@@ -498,6 +558,7 @@ impl TangentialSolver {
     }
 }
 
+mod drive;
 mod iterate;
 
 #[cfg(test)]

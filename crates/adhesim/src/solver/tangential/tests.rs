@@ -150,7 +150,7 @@ fn a_static_shear_strength_delays_slip_and_slides_at_the_kinetic_bound() {
     let contact_area = normal.contact_elements() as f64 * area;
     let (kinetic, stuck) = (1e-2, 2e-2);
     let law = FrictionLaw::shear_strength(kinetic).unwrap();
-    let mut run = |solver: &mut TangentialSolver| -> Vec<(f64, usize)> {
+    let mut run = |solver: &mut TangentialSolver| -> Vec<(f64, usize, bool)> {
         let mut state = TangentialState::new(grid.len());
         (1..=40)
             .map(|step| {
@@ -161,7 +161,7 @@ fn a_static_shear_strength_delays_slip_and_slides_at_the_kinetic_bound() {
                     "{:?}",
                     report.complementarity
                 );
-                (report.force[0], report.stick_elements)
+                (report.force[0], report.stick_elements, report.slip_event)
             })
             .collect()
     };
@@ -169,18 +169,37 @@ fn a_static_shear_strength_delays_slip_and_slides_at_the_kinetic_bound() {
         .with_static_law(FrictionLaw::shear_strength(stuck).unwrap())
         .unwrap());
     let plain = run(&mut TangentialSolver::new(law, TangentialParams::default()));
-    for (step, (s, k)) in with_static.iter().zip(&plain).enumerate() {
+    // Up to the first slip event the static law holds more at every step.
+    let first_event = with_static.iter().position(|s| s.2).expect("a slip event");
+    for (step, (s, k)) in with_static.iter().zip(&plain).enumerate().take(first_event + 1) {
         assert!(
             s.1 >= k.1 && s.0 >= k.0 * (1.0 - 1e-9),
             "step {step}: static {s:?}, kinetic {k:?}"
         );
-        assert!(s.0 <= stuck * contact_area * (1.0 + 1e-9));
     }
     assert!(with_static.iter().zip(&plain).any(|(s, k)| s.1 > k.1));
-    for end in [with_static.last().unwrap(), plain.last().unwrap()] {
-        assert_eq!(end.1, 0, "gross sliding at the end");
-        assert!((end.0 / (kinetic * contact_area) - 1.0).abs() < 1e-9);
+    // Each event: the force falls, the whole contact slides at the kinetic bound, and the
+    // contact comes to rest; the next step sticks again and the force rises.
+    let sliding = kinetic * contact_area;
+    for (step, s) in with_static.iter().enumerate() {
+        assert!(s.0 <= stuck * contact_area * (1.0 + 1e-9));
+        if s.2 {
+            assert!(s.0 < with_static[step - 1].0 && s.1 == 0, "step {step}: {s:?}");
+            assert!(
+                s.0 <= sliding * (1.0 + 1e-9) && s.0 > 0.99 * sliding,
+                "step {step}: {s:?}"
+            );
+            if let Some(next) = with_static.get(step + 1) {
+                assert!(next.0 > s.0 && !next.2, "step {}: {next:?}", step + 1);
+            }
+        }
     }
+    let last_event = with_static.iter().rposition(|s| s.2).unwrap();
+    assert!((with_static[last_event].0 / sliding - 1.0).abs() < 1e-9);
+    let end = plain.last().unwrap();
+    assert!(plain.iter().all(|k| !k.2));
+    assert_eq!(end.1, 0, "gross sliding at the end");
+    assert!((end.0 / sliding - 1.0).abs() < 1e-9);
     let same = run(&mut TangentialSolver::new(law, TangentialParams::default())
         .with_static_law(law)
         .unwrap());
@@ -198,4 +217,128 @@ fn a_static_law_below_or_unlike_the_kinetic_one_is_refused() {
     assert!(solver().with_static_law(FrictionLaw::NoSlip).is_err());
     let accepted = solver().with_static_law(FrictionLaw::coulomb(0.5).unwrap()).unwrap();
     assert_eq!(accepted.static_law(), Some(FrictionLaw::coulomb(0.5).unwrap()));
+}
+
+/// A disc of `radius` elements in contact at the centre of a free n×n grid of unit
+/// side, under unit pressure, and the operator (G = 1, ν = 1/2).
+fn pressed_disc(n: usize, radius: f64) -> (Grid, ContactState, TangentialOperator) {
+    let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
+    let mut normal = ContactState::new(&grid);
+    for k in 0..grid.len() {
+        let (x, y) = grid.centre(k);
+        if x.hypot(y) < radius * grid.dx() {
+            normal.contact[k] = true;
+            normal.pressure[k] = 1.0;
+        }
+    }
+    let operator = TangentialOperator::new(grid, ShearMaterial::from_contact_modulus(4.0, 0.5)).unwrap();
+    (grid, normal, operator)
+}
+
+#[test]
+fn a_compliant_drive_is_a_spring_in_series_with_the_contact() {
+    // A glued contact is linear: F = K_c·δ. Pulled through a spring k by a drive at X, the
+    // indenter stops at δ = X·k/(k + K_c), the two springs in series. Tolerance 1e-8: the
+    // CG solves to 1e-10 of the target, and K_c comes from a second such solve.
+    let (grid, normal, mut operator) = pressed_disc(32, 8.0);
+    let rigid_shift = 1e-3;
+    let mut rigid = TangentialSolver::new(FrictionLaw::NoSlip, TangentialParams::default());
+    let report = rigid
+        .step(
+            &mut operator,
+            &normal,
+            [rigid_shift, 0.0],
+            &mut TangentialState::new(grid.len()),
+        )
+        .unwrap();
+    let contact_stiffness = report.force[0] / rigid_shift;
+    assert_eq!(report.shift, [rigid_shift, 0.0]);
+    for ratio in [0.1, 1.0, 10.0] {
+        let stiffness = ratio * contact_stiffness;
+        let mut solver = TangentialSolver::new(FrictionLaw::NoSlip, TangentialParams::default())
+            .with_drive_stiffness(stiffness)
+            .unwrap();
+        let mut state = TangentialState::new(grid.len());
+        for step in 1..=3 {
+            let drive = 1e-3 * step as f64;
+            let report = solver.step(&mut operator, &normal, [drive, 0.0], &mut state).unwrap();
+            let expected = drive * stiffness / (stiffness + contact_stiffness);
+            assert!(
+                (report.shift[0] / expected - 1.0).abs() < 1e-8,
+                "k/K_c = {ratio}, X = {drive}: δ {} vs {expected}",
+                report.shift[0]
+            );
+            assert!((report.force[0] / (stiffness * (drive - report.shift[0])) - 1.0).abs() < 1e-12);
+            assert!(report.shift[1].abs() < 1e-12 * expected && !report.slip_event);
+            assert_eq!((state.shift, state.drive), (report.shift, [drive, 0.0]));
+        }
+    }
+}
+
+#[test]
+fn a_static_shear_strength_under_a_compliant_drive_sticks_and_slips() {
+    // A flat contact under a shear strength τk with a static τs = 3τk, pulled through a
+    // spring as stiff as the contact. Stick: the force rises with the drive at the series
+    // stiffness kK_c/(k + K_c) (exact while every element sticks: the step is linear). A
+    // slip event: the contact breaks loose, the force falls to the kinetic τk·A (every
+    // element slides at τk) and the indenter jumps ahead. The
+    // contact then rests and sticks again, so the events repeat: a sawtooth.
+    let (grid, normal, mut operator) = pressed_disc(32, 8.0);
+    let contact_area = normal.contact_elements() as f64 * grid.element_area();
+    let (kinetic, stuck) = (0.05, 0.15);
+    let mut rigid = TangentialSolver::new(FrictionLaw::NoSlip, TangentialParams::default());
+    let contact_stiffness = rigid
+        .step(
+            &mut operator,
+            &normal,
+            [1e-3, 0.0],
+            &mut TangentialState::new(grid.len()),
+        )
+        .unwrap()
+        .force[0]
+        / 1e-3;
+    let stiffness = contact_stiffness;
+    let series = stiffness * contact_stiffness / (stiffness + contact_stiffness);
+    let mut solver = TangentialSolver::new(
+        FrictionLaw::shear_strength(kinetic).unwrap(),
+        TangentialParams::default(),
+    )
+    .with_static_law(FrictionLaw::shear_strength(stuck).unwrap())
+    .unwrap()
+    .with_drive_stiffness(stiffness)
+    .unwrap();
+    let mut state = TangentialState::new(grid.len());
+    let drive_step = 2e-3;
+    let (mut events, mut last_force, mut last_shift, mut resting) = (0, 0.0, 0.0, false);
+    for step in 1..=60 {
+        let drive = drive_step * step as f64;
+        let report = solver.step(&mut operator, &normal, [drive, 0.0], &mut state).unwrap();
+        let force = report.force[0];
+        let c = report.complementarity;
+        assert!(c.stick_residual < 1e-8 && c.bound_excess < 1e-12, "step {step}: {c:?}");
+        assert!(force <= stuck * contact_area * (1.0 + 1e-9), "step {step}: above τs·A");
+        if report.slip_event {
+            events += 1;
+            assert!(force < last_force, "step {step}: an event drops the force");
+            assert_eq!(report.stick_elements, 0, "step {step}: the whole contact slides");
+            // Every traction at τk; the directions keep some of the stuck tractions'
+            // sideways part (as Cattaneo–Mindlin's gross slip), so F is just below τk·A.
+            let ratio = force / (kinetic * contact_area);
+            assert!(ratio <= 1.0 + 1e-9 && ratio > 0.999, "step {step}: F/τkA {ratio}");
+            assert!(
+                report.shift[0] - last_shift > drive_step,
+                "step {step}: the indenter jumps"
+            );
+        }
+        if resting && report.slip_elements == 0 {
+            let slope = (force - last_force) / drive_step;
+            assert!(
+                (slope / series - 1.0).abs() < 1e-8,
+                "step {step}: stick slope {slope} vs {series}"
+            );
+        }
+        assert_eq!(state.at_rest, report.slip_event);
+        (last_force, last_shift, resting) = (force, report.shift[0], report.slip_event);
+    }
+    assert!(events >= 3, "{events} slip events: no sawtooth");
 }
