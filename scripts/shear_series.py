@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
-"""Time series of a shear run in the style of the paper's Figs. 17 and 19 (docs/tangential.md).
+"""Time series of a run with friction at the interface in the style of the paper's Figs. 17
+and 19 (docs/tangential.md): a shear, or a roll, slide or translate with [friction].
 
     adhesim run scenarios/friction/shear_strength.toml --out out/tresca
     python3 scripts/shear_series.py out/tresca docs/img/tangential/shear_strength_series.png
+    adhesim run scenarios/friction/slide_shear_strength.toml --out out/slide
+    python3 scripts/shear_series.py out/slide docs/img/tangential/slide_series.png "A slide with τ0 (JKR contact)"
 
-Draws, against the step (the shift goes out and back): the tangential force F_T, the
-total, front and rear contact areas, the stick and slip areas, and τ = F_T/A.
-Needs numpy and matplotlib.
+Draws, against the step (the indenter goes out and back): the tangential force F_T, the
+total, front and rear contact areas, the stick and slip areas, and τ = F_T/A. An optional
+third argument is the title. Needs matplotlib.
 """
 import csv
 import sys
@@ -20,7 +23,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main() -> None:
     out, path = Path(sys.argv[1]), sys.argv[2]
-    rows = [r for r in csv.DictReader(open(out / "curve.csv")) if r["phase"] == "shear"]
+    title = sys.argv[3] if len(sys.argv) > 3 else "Shear with a constant shear strength τ0 (JKR contact)"
+    rows = [r for r in csv.DictReader(open(out / "curve.csv")) if r["phase"] != "approach"]
     step = [int(r["step"]) for r in rows]
     shift = [float(r["x"]) for r in rows]
     force = [float(r["force_tangential"]) for r in rows]
@@ -34,9 +38,9 @@ def main() -> None:
     fig, axes = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
     axes[0].plot(step, force, color="C0", label="F_T")
     twin = axes[0].twinx()
-    twin.plot(step, shift, color="0.6", ls="--", label="shift x")
-    axes[0].set(ylabel="tangential force F_T", title="Shear with a constant shear strength τ0 (JKR contact)")
-    twin.set_ylabel("shift x")
+    twin.plot(step, shift, color="0.6", ls="--", label="position x")
+    axes[0].set(ylabel="tangential force F_T", title=title)
+    twin.set_ylabel("position x")
     axes[0].legend(loc="upper left")
     twin.legend(loc="upper right")
     axes[1].plot(step, area, color="k", label="total A")

@@ -72,3 +72,21 @@ def test_a_compliant_drive_saws_and_reads_back_with_its_kinds(tmp_path):
     for name, values in arrays.items():
         assert loaded.curve_arrays[name].dtype == values.dtype, name
         assert np.array_equal(loaded.curve_arrays[name], values), name
+
+
+def test_a_slide_with_friction_adds_tau0_times_area_to_the_boundary_force():
+    # scenarios/friction/slide_shear_strength.toml on 64² (a ≈ 10 elements), 20 steps of
+    # 0.6Δ out: the same run pipeline as the command line gives the friction columns and
+    # results of a translation with [friction]; once the whole contact slides, F_T/A is
+    # τ0 up to the boundary force of the smooth sphere's lattice pinning (2 %: a per-step
+    # boundary force of a JKR edge on a coarse grid).
+    overrides = {"grid.n": 64, "protocol.steps": 20, "protocol.return_stroke": False}
+    result = adhesim.run(REPO / "scenarios" / "friction" / "slide_shear_strength.toml", overrides=overrides)
+    curve = result.curve
+    moving = curve[curve["phase"] == "slide"]
+    sliding = moving[moving["n_stick"] == 0]
+    assert len(sliding) >= 10
+    assert np.all(np.abs(sliding["force_tangential"] / sliding["area"] / 0.05 - 1) < 0.02)
+    results = result.summary["results"]
+    assert results["frictional_dissipation"] > 0 and results["measured_q"] is None
+    assert abs(results["interface_friction_force"] / (0.05 * results["real_contact_area"]) - 1) < 0.01

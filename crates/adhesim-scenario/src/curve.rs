@@ -164,11 +164,11 @@ impl CurveColumns {
     /// `[friction]`.
     pub fn of(scenario: &crate::model::ValidScenario) -> Self {
         let mut columns = Self::new(scenario.jkr);
-        if let Some(shear) = &scenario.shear {
+        if scenario.has_interface_friction() {
             columns.columns.extend(FRICTION);
-            if shear.drive_stiffness.is_some() {
-                columns.columns.push(DRIVE);
-            }
+        }
+        if scenario.shear.is_some_and(|shear| shear.drive_stiffness.is_some()) {
+            columns.columns.push(DRIVE);
         }
         columns
     }

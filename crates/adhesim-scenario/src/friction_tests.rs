@@ -1,6 +1,6 @@
-//! `friction.static_coefficient` and `friction.static_shear_strength`: the static law
-//! reaches the tangential solver (slip comes later, sliding stays at the kinetic τ0·A),
-//! and the keys are refused where they do not belong or lie below their kinetic keys.
+//! Friction through the scenario layer: the static law reaches the tangential solver (slip
+//! comes later, sliding stays at the kinetic τ0·A) and its keys are refused where they do
+//! not belong; a compliant drive saws; roll, slide and translate carry friction too.
 
 use crate::tests::error_of;
 use crate::*;
@@ -32,14 +32,19 @@ distance = 0.002
 steps = 20
 "#;
 
-fn shear_run(overrides: &[&str]) -> (ShearResults, Vec<adhesim::StepRecord>) {
+/// The results and records of the scenario `text` with `overrides`.
+fn outcome_of(text: &str, overrides: &[&str]) -> (RunResults, Vec<adhesim::StepRecord>) {
     let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let scenario = load(TRESCA, "tresca.toml", Path::new("."), &overrides).unwrap();
+    let scenario = load(text, "friction.toml", Path::new("."), &overrides).unwrap();
     let outcome = run(&scenario, &mut ()).unwrap();
-    let RunResults::Shear(results) = outcome.results else {
+    (outcome.results, outcome.records)
+}
+
+fn shear_run(overrides: &[&str]) -> (ShearResults, Vec<adhesim::StepRecord>) {
+    let (RunResults::Shear(results), records) = outcome_of(TRESCA, overrides) else {
         panic!("not a shear run")
     };
-    (results, outcome.records)
+    (results, records)
 }
 
 /// The static value reaches the solver: at every shift step the contact holds at least as
@@ -167,4 +172,122 @@ fn a_drive_stiffness_must_be_positive_and_not_inclined() {
         &["protocol.drive_stiffness=1"],
     );
     assert!(elsewhere.contains("drive_stiffness"), "{elsewhere}");
+}
+
+/// A smooth sphere (R = 1, E = 3, ν = 1/2) translated at d = 0.005 (a ≈ 0.07 = 9Δ) over 0.1
+/// in 20 steps of 0.005: each step outruns the slip distance τ0·a/G ≈ 1.4e-4 seventy
+/// times over, so every element in contact slips at every step.
+const SLIDE: &str = r#"
+[grid]
+n = 64
+size = 0.5
+[material]
+youngs_modulus = 3.0
+poisson_ratio = 0.5
+[adhesion]
+work_of_adhesion = 0.0
+[indenter]
+shape = "sphere"
+radius = 1.0
+[friction]
+law = "shear_strength"
+shear_strength = 0.002
+[protocol]
+kind = "translate"
+depth = 0.005
+depth_unit = "length"
+approach_steps = 5
+distance = 0.1
+steps = 20
+"#;
+
+fn translation_run(text: &str, overrides: &[&str]) -> (TranslationResults, Vec<adhesim::StepRecord>) {
+    let (RunResults::Translation(results), records) = outcome_of(text, overrides) else {
+        panic!("not a translation")
+    };
+    (results, records)
+}
+
+/// A slide with a shear strength τ0: every moving step slides the whole contact, so the
+/// interface adds τ0·A to the boundary force (to 1e-3: the slip directions keep a small
+/// sideways part, as in the shear protocol's gross slip), friction's dissipation per
+/// distance is that force, and the energy balance closes with it.
+#[test]
+fn a_translation_under_a_shear_strength_slides_at_tau0_times_area() {
+    let (results, records) = translation_run(SLIDE, &[]);
+    let frictionless = translation_run(
+        &SLIDE.replace("[friction]\nlaw = \"shear_strength\"\nshear_strength = 0.002\n", ""),
+        &[],
+    )
+    .1;
+    for (r, plain) in records
+        .iter()
+        .zip(&frictionless)
+        .filter(|(r, _)| r.phase != Some(adhesim::Phase::Approach))
+    {
+        assert_eq!(
+            (r.stick_elements, r.slip_elements),
+            (0, r.contact_elements),
+            "step {}",
+            r.step
+        );
+        assert_eq!(
+            r.contact_elements, plain.contact_elements,
+            "step {}: the normal problem is Goodman's",
+            r.step
+        );
+        let interface = r.force_tangential - plain.force_tangential;
+        assert!(
+            (interface / (0.002 * r.area) - 1.0).abs() < 1e-3,
+            "step {}: interface force {interface} against τ0·A {}",
+            r.step,
+            0.002 * r.area
+        );
+    }
+    // Friction's dissipation per distance against τ0·A: 2e-3, a first-order error of the
+    // step (a backward step's slip, 1.4e-3 at ΔX = 0.64Δ here, 3e-4 at 0.16Δ, 1e-4 at
+    // 0.04Δ); the energy balance closes to the same order (6e-4 here).
+    let interface = results.interface_friction_force.expect("with [friction]");
+    assert!(
+        (interface / (0.002 * results.real_contact_area) - 1.0).abs() < 2e-3,
+        "{interface}"
+    );
+    let ratio = results.energy_balance_ratio.unwrap();
+    assert!((ratio - 1.0).abs() < 2e-3, "energy balance {ratio}");
+    assert!(results.measured_q.is_none() && results.frictional_dissipation.unwrap() > 0.0);
+}
+
+/// A roll does not shift the indenter's material where it touches (free rolling): under
+/// any law the interface carries no traction, and the forces are the frictionless run's.
+#[test]
+fn a_roll_with_friction_carries_no_interface_traction() {
+    let roll = SLIDE.replace("kind = \"translate\"", "kind = \"roll\"");
+    let coulomb = roll.replace(
+        "law = \"shear_strength\"\nshear_strength = 0.002",
+        "law = \"coulomb\"\ncoefficient = 0.5",
+    );
+    let (results, records) = translation_run(&coulomb, &[]);
+    let plain = translation_run(
+        &roll.replace("[friction]\nlaw = \"shear_strength\"\nshear_strength = 0.002\n", ""),
+        &[],
+    )
+    .1;
+    for (r, p) in records.iter().zip(&plain) {
+        assert_eq!(r.force_tangential, p.force_tangential, "step {}", r.step);
+        assert_eq!(r.slip_elements, 0, "step {}", r.step);
+    }
+    assert_eq!(results.frictional_dissipation, Some(0.0));
+}
+
+#[test]
+fn friction_on_a_translation_refuses_what_only_the_shear_offers() {
+    let mixity = error_of(SLIDE, &["friction.mode_mixity=1"]);
+    assert!(mixity.contains("friction.mode_mixity"), "{mixity}");
+    let analysis = error_of(&format!("{SLIDE}\n[analysis]\ntau0 = 0.002\n"), &[]);
+    assert!(analysis.contains("[friction] and [analysis]"), "{analysis}");
+    let indentation = error_of(
+        &SLIDE.replace("kind = \"translate\"", "kind = \"indent_pulloff\""),
+        &["protocol.max_depth=0.005"],
+    );
+    assert!(indentation.contains("protocol.kind"), "{indentation}");
 }

@@ -10,10 +10,10 @@ mod layer;
 mod per_axis;
 mod roughness;
 mod solver;
-pub use friction::{CouplingName, FrictionLawName, FrictionSection, ShearProtocol, ShearSetup};
+pub use friction::{CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup};
 pub use layer::LayerBaseName;
 pub use per_axis::PerAxis;
-pub use roughness::{InvalidPoints, RoughnessMode, RoughnessSection};
+pub use roughness::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection};
 pub use solver::{PredictedGrowthName, SolverSection};
 
 /// The whole scenario file.
@@ -542,6 +542,8 @@ pub struct TranslationSetup {
     pub tau0: Option<f64>,
     /// Waviness wavelength λ (None for a smooth sphere).
     pub wavelength: Option<f64>,
+    /// `[friction]` at the interface (None: frictionless, the paper's model).
+    pub friction: Option<InterfaceFriction>,
 }
 
 /// Derived quantities for `summary.json`; `None` is written as null.
@@ -558,8 +560,7 @@ pub struct Derived {
     pub element_size_y: Option<f64>,
     pub critical_stress: Option<f64>,
     /// Maugis' λ = 2σ0·(R/(πγ0K²))^(1/3) of `adhesion.law = "dugdale"` (or of the
-    /// plateau traction σ0 of `"trapezoid"`) on a curved
-    /// indenter (absent otherwise).
+    /// plateau traction σ0 of `"trapezoid"`) on a curved indenter (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub maugis_parameter: Option<f64>,
     /// Tabor's μ = (Rγ0²/(E*²ρ³))^(1/3) of `adhesion.law = "exponential"` on a curved
@@ -585,15 +586,4 @@ pub struct RoughnessStatistics {
     /// map has none (or is generated).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub invalid_points: Option<InvalidPointsReport>,
-}
-
-/// The invalid points of a measured map as summary.json reports them.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct InvalidPointsReport {
-    /// Points the file marks invalid.
-    pub count: usize,
-    /// Points of the map.
-    pub of: usize,
-    /// `"interpolate"`: filled by harmonic interpolation before resampling onto the grid.
-    pub handling: InvalidPoints,
 }

@@ -7,9 +7,9 @@ use crate::results::{fit_results, Results, RunResults};
 use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticLayer, ElasticOperator, HalfSpace, IndentPulloff, LayerBase,
-    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearSummary,
-    StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticLayer, ElasticOperator, FrictionLaw, HalfSpace,
+    IndentPulloff, LayerBase, LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError,
+    ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -329,15 +329,30 @@ pub fn run_from(
         }
         ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut *operator, &mut solver, recording),
         ProtocolSetup::Translation(setup) => {
-            let summary = setup.protocol.run_from(
-                &mut *operator,
-                &setup.contact,
-                &mut solver,
-                &mut recording,
-                translation_start.as_deref(),
-            )?;
+            let summary = match &setup.friction {
+                Some(friction) => setup.protocol.run_with_friction(
+                    &mut *operator,
+                    &setup.contact,
+                    &mut solver,
+                    (
+                        friction.material,
+                        &mut tangential_solver(friction.law, friction.static_law, None)?,
+                    ),
+                    &mut recording,
+                )?,
+                None => setup.protocol.run_from(
+                    &mut *operator,
+                    &setup.contact,
+                    &mut solver,
+                    &mut recording,
+                    translation_start.as_deref(),
+                )?,
+            };
             let records = recording.records;
-            let results = analyse_translation(scenario, setup, &summary, &records);
+            let mut results = analyse_translation(scenario, setup, &summary, &records);
+            if setup.friction.is_some() {
+                results = results.with_interface_friction(&summary);
+            }
             Ok(RunOutcome {
                 results: RunResults::Translation(results),
                 report: ProtocolReport::Translation(summary),
@@ -355,17 +370,7 @@ fn run_shear(
     solver: &mut NormalSolver,
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut friction = TangentialSolver::new(setup.law, TangentialParams::default());
-    if let Some(static_law) = setup.static_law {
-        friction = friction
-            .with_static_law(static_law)
-            .map_err(|e| ProtocolError::InvalidParameter(e.to_string()))?;
-    }
-    if let Some(stiffness) = setup.drive_stiffness {
-        friction = friction
-            .with_drive_stiffness(stiffness)
-            .map_err(|e| ProtocolError::InvalidParameter(e.to_string()))?;
-    }
+    let mut friction = tangential_solver(setup.law, setup.static_law, setup.drive_stiffness)?;
     let summary = setup.protocol.run(
         operator,
         &scenario.heights,
@@ -380,6 +385,23 @@ fn run_shear(
         report: ProtocolReport::Shear(summary),
         records,
     })
+}
+
+/// The tangential solver of a law, its static law and a compliant drive.
+fn tangential_solver(
+    law: FrictionLaw,
+    static_law: Option<FrictionLaw>,
+    drive_stiffness: Option<f64>,
+) -> Result<TangentialSolver, ProtocolError> {
+    let invalid = |e: adhesim::FrictionLawError| ProtocolError::InvalidParameter(e.to_string());
+    let mut solver = TangentialSolver::new(law, TangentialParams::default());
+    if let Some(static_law) = static_law {
+        solver = solver.with_static_law(static_law).map_err(invalid)?;
+    }
+    if let Some(stiffness) = drive_stiffness {
+        solver = solver.with_drive_stiffness(stiffness).map_err(invalid)?;
+    }
+    Ok(solver)
 }
 
 /// The library's friction analysis with the scenario's inputs.

@@ -10,25 +10,31 @@ use adhesim::{Boundary, Complementarity, FrictionLaw, Grid, Shear, ShearMaterial
 use anyhow::{bail, Result};
 use serde::Serialize;
 
+impl ValidScenario {
+    /// The interface carries friction: a shear, or a roll, slide or translate with
+    /// `[friction]` (the friction columns and fields are written).
+    pub fn has_interface_friction(&self) -> bool {
+        self.shear.is_some() || self.translation.as_ref().is_some_and(|t| t.friction.is_some())
+    }
+}
+
 impl ScenarioFile {
-    /// `[friction]` only with `kind = "shear"`, and `kind = "shear"` only with it.
+    /// `kind = "shear"` only with `[friction]`; `[friction]` with a shear, roll, slide or
+    /// translate, not with an indentation.
     pub(crate) fn check_friction_pairing(&self) -> Result<()> {
         let kind = self.protocol.kind();
         match (&self.friction, kind) {
-            (Some(_), ProtocolKind::Shear) | (None, ProtocolKind::IndentPulloff) => Ok(()),
+            (Some(_), ProtocolKind::IndentPulloff) => bail!(ScenarioError::invalid_as(
+                "protocol.kind",
+                "\"indent_pulloff\"",
+                "\"shear\", \"roll\", \"slide\" or \"translate\" with [friction]",
+                "[friction] acts where the indenter moves along the surface (protocol.kind = \"shear\", \"roll\", \"slide\" or \"translate\"), got \"indent_pulloff\""
+            )),
+            (Some(_), _) | (None, ProtocolKind::IndentPulloff) => Ok(()),
             (None, ProtocolKind::Shear) => bail!(ScenarioError::missing(
                 "friction",
                 "a [friction] section with protocol.kind = \"shear\"",
                 "protocol.kind = \"shear\" needs a [friction] section (friction.law = \"coulomb\", \"shear_strength\" or \"coulomb_shear\")"
-            )),
-            (Some(_), _) => bail!(ScenarioError::invalid_as(
-                "protocol.kind",
-                format!("\"{}\"", kind.name()),
-                "\"shear\" with [friction]",
-                format!(
-                    "[friction] acts in protocol.kind = \"shear\" only, got \"{}\" (roll, slide and translate keep a frictionless interface)",
-                    kind.name()
-                )
             )),
             (None, _) => Ok(()),
         }
@@ -137,6 +143,34 @@ impl ScenarioFile {
         })
     }
 
+    /// `[friction]` of a roll, slide or translate (None without one): the laws and the
+    /// tangential constants, with what shear alone offers refused by name.
+    pub(crate) fn interface_friction(&self, grid: &Grid, contact_modulus: f64) -> Result<Option<InterfaceFriction>> {
+        let Some(friction) = &self.friction else {
+            return Ok(None);
+        };
+        if let Some(mixity) = friction.mode_mixity.filter(|&m| m != 0.0) {
+            bail!(ScenarioError::invalid_as(
+                "friction.mode_mixity",
+                mixity,
+                "absent with a roll, slide or translate",
+                format!(
+                    "friction.mode_mixity weakens the adhesive edge under protocol.kind = \"shear\" only, got {mixity} with \"{}\"",
+                    self.protocol.kind().name()
+                )
+            ));
+        }
+        let law = friction_law(friction)?;
+        let static_law = static_friction_law(friction)?;
+        let material = self.shear_material(contact_modulus)?;
+        self.check_shear_combinations(grid)?;
+        Ok(Some(InterfaceFriction {
+            law,
+            static_law,
+            material,
+        }))
+    }
+
     /// What `[friction]` does not combine with yet: a periodic grid, a cohesive law,
     /// `[analysis]`; each refused naming its key.
     fn check_shear_combinations(&self, grid: &Grid) -> Result<()> {
@@ -155,6 +189,18 @@ impl ScenarioFile {
                 format!("{law_name:?}").to_lowercase(),
                 "\"jkr\" with [friction]",
                 "[friction] works with the JKR-type adhesion (adhesion.law = \"jkr\", or work_of_adhesion = 0); a cohesive law's tractions across gaps have no friction law yet"
+            ));
+        }
+        let kind = self.protocol.kind();
+        if !self.analysis.is_empty() && kind != ProtocolKind::Shear {
+            bail!(ScenarioError::invalid_as(
+                "friction",
+                "[friction]",
+                "absent with [analysis]",
+                format!(
+                    "[friction] and [analysis] do not go together: [analysis] reads the forces of a frictionless interface (its tau0 adds the paper's area friction after the run), while [friction] puts the friction into the interface of this \"{}\"",
+                    kind.name()
+                )
             ));
         }
         if !self.analysis.is_empty() {

@@ -283,7 +283,7 @@ impl SnapshotFields {
                 .collect(),
             step: snapshots.iter().map(|s| s.step as i64).collect(),
             stacked: Stacked::of(&snapshots, &gaps),
-            shear: matches!(scenario.protocol_setup(), ProtocolSetup::Shear(_)).then(|| ShearStacked::of(&snapshots)),
+            shear: scenario.has_interface_friction().then(|| ShearStacked::of(&snapshots)),
             snapshots,
             gaps,
         }

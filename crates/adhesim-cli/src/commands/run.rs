@@ -242,12 +242,19 @@ fn print_translation(scenario: &ValidScenario, summary: &TranslationSummary, out
     let force = scenario.jkr.map_or(1.0, |j| j.critical_force().abs());
     let unit = if scenario.jkr.is_some() { " |F_JKR|" } else { "" };
     outln!(
-        "  mean F_T = {:.4}{unit} (per step), {:.4}{unit} (work), fluctuation {:.4}{unit}, mean F_N = {:.4}{unit}",
+        "  mean F_T = {:.4e}{unit} (per step), {:.4e}{unit} (work), fluctuation {:.4e}{unit}, mean F_N = {:.4e}{unit}",
         summary.mean_tangential_force / force,
         summary.mean_tangential_force_work / force,
         summary.tangential_force_fluctuation / force,
         summary.mean_normal_force / force,
     );
+    if let Some(interface) = results.interface_friction_force {
+        outln!(
+            "  friction at the interface: {:.4e}{unit} of F_T (its dissipation per distance), {:.4e} dissipated",
+            interface / force,
+            summary.frictional_dissipation
+        );
+    }
     if let (Some(p), Some(r)) = (results.eq12_prediction, results.eq12_ratio) {
         outln!("  Eq. 12: 2a(γ2−γ1) = {:.4}{unit}, F_T / 2a(γ2−γ1) = {r:.3}", p / force);
     }

@@ -97,6 +97,16 @@ pub struct ShearProtocol {
     pub drive_stiffness: Option<f64>,
 }
 
+/// `[friction]` of a roll, slide or translate: the interface laws and the half-space's
+/// tangential constants.
+#[derive(Debug, Clone, Copy)]
+pub struct InterfaceFriction {
+    pub law: FrictionLaw,
+    /// The static law of elements at rest (None: `law` throughout).
+    pub static_law: Option<FrictionLaw>,
+    pub material: ShearMaterial,
+}
+
 /// A validated shear run: the library's protocol, the interface law and the half-space's
 /// tangential constants.
 #[derive(Debug, Clone, Copy)]

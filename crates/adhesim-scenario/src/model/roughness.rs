@@ -74,3 +74,14 @@ pub enum RoughnessMode {
     RandomPhase,
     Filtered,
 }
+
+/// The invalid points of a measured map as summary.json reports them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct InvalidPointsReport {
+    /// Points the file marks invalid.
+    pub count: usize,
+    /// Points of the map.
+    pub of: usize,
+    /// `"interpolate"`: filled by harmonic interpolation before resampling onto the grid.
+    pub handling: InvalidPoints,
+}

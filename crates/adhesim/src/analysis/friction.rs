@@ -106,6 +106,17 @@ pub struct TranslationResults {
     pub tau_mean_eq18: Option<f64>,
     /// Contact on the border of a free grid at some step.
     pub border_contact: bool,
+    /// Energy dissipated by friction at the interface over the run (null without
+    /// `[friction]`; with it, the tangential forces above include the interface's).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub frictional_dissipation: Option<f64>,
+    /// Friction's dissipation per travelled distance over the stationary part: the
+    /// interface's mean force in a steady slide (null without `[friction]`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub interface_friction_force: Option<f64>,
+    /// The worst optimality conditions of any tangential step (null without `[friction]`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub complementarity: Option<crate::solver::Complementarity>,
 }
 
 /// What the translation analysis needs besides the library summary.
@@ -245,6 +256,22 @@ impl TranslationResults {
                 _ => None,
             },
             border_contact: summary.touches_border,
+            frictional_dissipation: None,
+            interface_friction_force: None,
+            complementarity: None,
+        }
+    }
+
+    /// The results of a run with friction at the interface: its dissipation, its mean
+    /// force and its optimality; the boundary friction per width is not measured, since
+    /// the tangential force holds the interface's too.
+    pub fn with_interface_friction(self, summary: &TranslationSummary) -> Self {
+        Self {
+            frictional_dissipation: Some(summary.frictional_dissipation),
+            interface_friction_force: Some(summary.frictional_dissipation_per_distance),
+            complementarity: Some(summary.complementarity),
+            measured_q: None,
+            ..self
         }
     }
 }

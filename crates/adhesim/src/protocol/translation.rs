@@ -72,6 +72,16 @@ pub struct TranslationSummary {
     pub operator_applications: u64,
     /// Some step had contact on the border of a free grid.
     pub touches_border: bool,
+    /// Energy dissipated by friction at the interface over the run (0 without).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub frictional_dissipation: f64,
+    /// Friction's dissipation per travelled distance over the stationary part: the mean
+    /// interface force of a steady slide (0 without friction).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub frictional_dissipation_per_distance: f64,
+    /// The worst optimality conditions of any tangential step (friction at the interface).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub complementarity: crate::solver::Complementarity,
 }
 
 impl Translation {
@@ -140,6 +150,7 @@ impl Translation {
                 &mut run,
                 (step, stage, depth, offset),
                 &heights,
+                &mut |_, _| Ok(()),
             )?;
             if let ControlFlow::Break(()) = observer.on_step(StepView {
                 record: &record,
@@ -167,8 +178,10 @@ impl Translation {
     }
 
     /// One step (`step`, its stage, depth and offset) on `heights`: the solve, the record
-    /// and the totals of `run`.
-    fn run_step(
+    /// and the totals of `run`. `interface` completes the record from the normal state
+    /// before it counts (friction at the interface adds its force and work there).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn run_step(
         &self,
         operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
@@ -176,6 +189,7 @@ impl Translation {
         run: &mut TranslationCheckpoint,
         (step, stage, depth, offset): (usize, Phase, f64, f64),
         heights: &[f64],
+        interface: &mut dyn FnMut(&ContactState, &mut StepRecord) -> Result<(), ProtocolError>,
     ) -> Result<StepRecord, ProtocolError> {
         let grid = *operator.grid();
         let forward_end = self.approach_steps + self.steps;
@@ -204,6 +218,8 @@ impl Translation {
             record.force_tangential = contact.tangential_force(&grid, &run.state.pressure, offset);
             record.force_tangential_before_change = tangential_before;
         }
+        interface(&run.state, &mut record)?;
+        let report = record.report;
         let summary = &mut run.summary;
         summary.steps += 1;
         summary.solves += report.solves;
@@ -221,7 +237,7 @@ impl Translation {
     }
 
     /// The parameters a run needs, checked before anything is allocated.
-    fn check(&self) -> Result<(), ProtocolError> {
+    pub(super) fn check(&self) -> Result<(), ProtocolError> {
         if self.steps == 0 || self.approach_steps == 0 {
             return Err(ProtocolError::InvalidParameter("steps must be >= 1".into()));
         }
@@ -242,7 +258,7 @@ impl Translation {
 
     /// (phase, depth, offset) of every step: the approach at x = 0, the forward stroke and,
     /// if asked, the return stroke.
-    fn schedule(&self, phase: Phase) -> Vec<(Phase, f64, f64)> {
+    pub(super) fn schedule(&self, phase: Phase) -> Vec<(Phase, f64, f64)> {
         let mut schedule: Vec<(Phase, f64, f64)> = (1..=self.approach_steps)
             .map(|i| {
                 let depth = self.start_depth + (self.depth - self.start_depth) * i as f64 / self.approach_steps as f64;
@@ -262,7 +278,7 @@ impl Translation {
 }
 
 /// Means over the stationary part of the forward stroke (paper Eqs. 12–18 read these).
-fn stationary_means(summary: &mut TranslationSummary, stationary: &[StepRecord]) {
+pub(super) fn stationary_means(summary: &mut TranslationSummary, stationary: &[StepRecord]) {
     if stationary.is_empty() {
         return;
     }
@@ -289,7 +305,14 @@ fn stationary_means(summary: &mut TranslationSummary, stationary: &[StepRecord])
             .map(|w| 0.5 * (w[0].force_tangential + w[1].force_tangential_before_change) * (w[1].offset - w[0].offset))
             .sum();
         summary.mean_tangential_force_work = work / travelled;
-        let released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
+        let mut released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();
+        // Friction at the interface dissipates too (cumulative in the records).
+        let frictional = stationary.last().map_or(0.0, |r| r.cumulative_frictional_dissipation)
+            - stationary[0].cumulative_frictional_dissipation;
+        if frictional != 0.0 {
+            released += frictional;
+            summary.frictional_dissipation_per_distance = frictional / travelled;
+        }
         summary.dissipation_per_distance = released / travelled;
     }
 }

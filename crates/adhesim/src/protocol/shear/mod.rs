@@ -3,6 +3,7 @@
 
 mod edge;
 mod shift;
+mod sliding;
 mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
@@ -421,6 +422,11 @@ fn worst(into: &mut Complementarity, from: Complementarity) {
 /// # Ok::<(), adhesim::GridError>(())
 /// ```
 pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f64, f64) {
+    contact_split_about(grid, contact, direction, 0.0)
+}
+
+/// [`contact_split`] about the indenter's axis at (`axis`, 0) (a translation's).
+pub(super) fn contact_split_about(grid: &Grid, contact: &[bool], direction: f64, axis: f64) -> (usize, f64, f64) {
     let (ux, uy) = (direction.cos(), direction.sin());
     let (mut count, mut front, mut rear) = (0, 0.0, 0.0);
     let area = grid.element_area();
@@ -428,7 +434,7 @@ pub fn contact_split(grid: &Grid, contact: &[bool], direction: f64) -> (usize, f
     for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
         count += 1;
         let (x, y) = grid.centre(k);
-        if x * ux + y * uy > tolerance {
+        if (x - axis) * ux + y * uy > tolerance {
             front += area;
         } else {
             rear += area;

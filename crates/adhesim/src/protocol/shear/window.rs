@@ -163,45 +163,73 @@ impl TangentialRoom {
     /// recomputed on the new one (u = K q is the same field, now seen on more elements).
     /// Returns the FFT pairs this spent (0 when the window already held the contact).
     pub(super) fn cover(&mut self, contact: &[bool]) -> Result<u64, ProtocolError> {
-        let nx = self.grid.nx();
-        let outside = contact
-            .iter()
-            .enumerate()
-            .any(|(k, &c)| c && !(self.window.rows.contains(&(k / nx)) && self.window.columns.contains(&(k % nx))));
-        if !outside {
+        if !self.outside(contact) {
             return Ok(0);
         }
         let mut union = contact.to_vec();
         for (_, k) in self.window.elements() {
             union[k] = true;
         }
-        let mut wider = Self::new(&self.grid, &union, self.margin, self.material)?;
+        let wider = Self::new(&self.grid, &union, self.margin, self.material)?;
+        Ok(self.move_into(wider))
+    }
+
+    /// Moves the window onto `contact` when the contact has left it (a translation): the
+    /// new window holds the contact, the elements that still carry a traction and the
+    /// margin, not the path behind. The fields of the elements both windows hold carry
+    /// over; those left behind carry no traction, so u = K q, recomputed, is the same
+    /// field. Returns the FFT pairs this spent.
+    pub(super) fn follow(&mut self, contact: &[bool]) -> Result<u64, ProtocolError> {
+        if !self.outside(contact) {
+            return Ok(0);
+        }
+        let mut loaded = contact.to_vec();
+        for (w, k) in self.window.elements() {
+            if self.state.traction[0][w] != 0.0 || self.state.traction[1][w] != 0.0 {
+                loaded[k] = true;
+            }
+        }
+        let moved = Self::new(&self.grid, &loaded, self.margin, self.material)?;
+        Ok(self.move_into(moved))
+    }
+
+    /// Some element of `contact` lies outside the window.
+    fn outside(&self, contact: &[bool]) -> bool {
+        let nx = self.grid.nx();
+        contact
+            .iter()
+            .enumerate()
+            .any(|(k, &c)| c && !(self.window.rows.contains(&(k / nx)) && self.window.columns.contains(&(k % nx))))
+    }
+
+    /// Carries the fields into the room `next` and takes its place; returns the FFT pairs
+    /// of recomputing the displacements there.
+    fn move_into(&mut self, mut next: Self) -> u64 {
         let old = &self.state;
         let mut at = vec![usize::MAX; self.grid.len()];
         for (w, k) in self.window.elements() {
             at[k] = w;
         }
-        for (w, k) in wider.window.elements() {
+        for (w, k) in next.window.elements() {
             let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
                 continue;
             };
             for c in 0..2 {
-                wider.state.traction[c][w] = old.traction[c][from];
-                wider.state.slip[c][w] = old.slip[c][from];
+                next.state.traction[c][w] = old.traction[c][from];
+                next.state.slip[c][w] = old.slip[c][from];
             }
-            wider.state.status[w] = old.status[from];
+            next.state.status[w] = old.status[from];
         }
-        wider.state.shift = old.shift;
-        wider.state.drive = old.drive;
-        wider.state.at_rest = old.at_rest;
+        next.state.shift = old.shift;
+        next.state.drive = old.drive;
+        next.state.at_rest = old.at_rest;
         {
-            let [ux, uy] = &mut wider.state.displacement;
-            wider
-                .operator
-                .apply([&wider.state.traction[0], &wider.state.traction[1]], [ux, uy]);
+            let [ux, uy] = &mut next.state.displacement;
+            next.operator
+                .apply([&next.state.traction[0], &next.state.traction[1]], [ux, uy]);
         }
-        let pairs = wider.operator.transform_pairs();
-        *self = wider;
-        Ok(pairs)
+        let pairs = next.operator.transform_pairs();
+        *self = next;
+        pairs
     }
 }
