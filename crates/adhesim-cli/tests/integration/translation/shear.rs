@@ -383,11 +383,12 @@ fn friction_errors_name_their_keys() {
         ]),
         &["grid.boundary"],
     );
-    let roll = repo().join("scenarios/fig6.toml");
-    let text = std::fs::read_to_string(roll).unwrap() + "\n[friction]\nlaw = \"coulomb\"\ncoefficient = 0.3\n";
-    let path = write(dir.path(), "roll.toml", &text);
+    // [friction] goes where the indenter moves along the surface, not with an indentation.
+    let indentation = repo().join("scenarios/jkr.toml");
+    let text = std::fs::read_to_string(indentation).unwrap() + "\n[friction]\nlaw = \"coulomb\"\ncoefficient = 0.3\n";
+    let path = write(dir.path(), "indentation.toml", &text);
     assert_fails_with(
         &adhesim(&["run", path.to_str().unwrap(), "--out", out.to_str().unwrap()]),
-        &["protocol.kind", "[friction]"],
+        &["protocol.kind", "[friction]", "indent_pulloff"],
     );
 }
