@@ -6,7 +6,7 @@ use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
 use crate::translation::{held_depth, ValidatedSections, DEFAULT_APPROACH_STEPS};
 use crate::validate::{finite, positive};
-use adhesim::{Boundary, Complementarity, FrictionLaw, Grid, Shear, ShearMaterial, ShearSummary, StepRecord};
+use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;
 
@@ -67,7 +67,7 @@ impl ScenarioFile {
         let law = friction_law(friction)?;
         let static_law = static_friction_law(friction)?;
         let shear_material = self.shear_material(material.contact_modulus())?;
-        self.check_shear_combinations(&grid)?;
+        self.check_shear_combinations()?;
         let depth = held_depth(p.depth, unit, start_depth)?;
         let distance = positive("protocol.distance", p.distance)?;
         let steps = step_count("protocol.steps", p.steps)?;
@@ -145,7 +145,7 @@ impl ScenarioFile {
 
     /// `[friction]` of a roll, slide or translate (None without one): the laws and the
     /// tangential constants, with what shear alone offers refused by name.
-    pub(crate) fn interface_friction(&self, grid: &Grid, contact_modulus: f64) -> Result<Option<InterfaceFriction>> {
+    pub(crate) fn interface_friction(&self, contact_modulus: f64) -> Result<Option<InterfaceFriction>> {
         let Some(friction) = &self.friction else {
             return Ok(None);
         };
@@ -163,7 +163,7 @@ impl ScenarioFile {
         let law = friction_law(friction)?;
         let static_law = static_friction_law(friction)?;
         let material = self.shear_material(contact_modulus)?;
-        self.check_shear_combinations(grid)?;
+        self.check_shear_combinations()?;
         Ok(Some(InterfaceFriction {
             law,
             static_law,
@@ -171,17 +171,9 @@ impl ScenarioFile {
         }))
     }
 
-    /// What `[friction]` does not combine with yet: a periodic grid, a cohesive law,
-    /// `[analysis]`; each refused naming its key.
-    fn check_shear_combinations(&self, grid: &Grid) -> Result<()> {
-        if grid.boundary() == Boundary::Periodic {
-            bail!(ScenarioError::invalid_as(
-                "grid.boundary",
-                "\"periodic\"",
-                "\"free\" with [friction]",
-                "[friction] needs grid.boundary = \"free\": a periodic grid leaves the mean tangential displacement undefined (it would need a force-controlled shear)"
-            ));
-        }
+    /// What `[friction]` does not combine with yet: a cohesive law, `[analysis]`; each
+    /// refused naming its key.
+    fn check_shear_combinations(&self) -> Result<()> {
         let law_name = self.adhesion.law.unwrap_or_default();
         if law_name != LawName::Jkr {
             bail!(ScenarioError::invalid_as(

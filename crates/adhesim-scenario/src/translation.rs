@@ -117,7 +117,7 @@ impl ScenarioFile {
             ));
         }
         let (gammas, tau0) = analysis_inputs(&self.analysis)?;
-        let friction = self.interface_friction(&grid, material.contact_modulus())?;
+        let friction = self.interface_friction(material.contact_modulus())?;
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let protocol = Translation {
             start_depth,

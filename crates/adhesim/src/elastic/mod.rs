@@ -14,6 +14,7 @@ pub(crate) mod planner;
 mod preconditioner;
 mod spectral;
 mod tangential;
+mod tangential_periodic;
 
 pub use free::FreeOperator;
 pub use layer::{layer_compliance_factor, ElasticLayer, LayerBase, LayerError, LayerOperator};

@@ -370,19 +370,7 @@ fn friction_errors_name_their_keys() {
             fragments,
         );
     }
-    let shear = repo().join("scenarios/shear.toml");
     let out = dir.path().join("p");
-    assert_fails_with(
-        &adhesim(&[
-            "run",
-            shear.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--set",
-            "grid.boundary=\"periodic\"",
-        ]),
-        &["grid.boundary"],
-    );
     // [friction] goes where the indenter moves along the surface, not with an indentation.
     let indentation = repo().join("scenarios/jkr.toml");
     let text = std::fs::read_to_string(indentation).unwrap() + "\n[friction]\nlaw = \"coulomb\"\ncoefficient = 0.3\n";

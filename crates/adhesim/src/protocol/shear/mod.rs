@@ -12,7 +12,7 @@ pub use window::ShearFields;
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::ElasticOperator;
-use crate::grid::{Boundary, Grid};
+use crate::grid::Grid;
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
 use edge::NormalSide;
 use shift::ShiftStepper;
@@ -128,11 +128,6 @@ impl Shear {
     ) -> Result<ShearSummary, ProtocolError> {
         self.check()?;
         let grid = *operator.grid();
-        if grid.boundary() == Boundary::Periodic {
-            return Err(ProtocolError::InvalidParameter(
-                crate::elastic::TangentialOperatorError::Periodic.to_string(),
-            ));
-        }
         solver.reset();
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();

@@ -4,9 +4,9 @@
 use super::window::TangentialRoom;
 use super::{contact_split_about, worst, ShearFields};
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::{ElasticOperator, TangentialOperatorError};
+use crate::elastic::ElasticOperator;
 use crate::geometry::{Kinematics, TranslatingContact};
-use crate::grid::{Boundary, Grid};
+use crate::grid::Grid;
 use crate::protocol::translation::stationary_means;
 use crate::protocol::{
     NormalSolver, Observer, Phase, ProtocolError, SolverCheckpoint, StepRecord, StepView, Translation,
@@ -86,8 +86,7 @@ impl Interface<'_> {
 }
 
 impl Translation {
-    /// Rolling or sliding with friction at the interface ([`TangentialSolver`] on a free
-    /// grid): after each normal step of the stroke, a tangential step on the contact's
+    /// Rolling or sliding with friction at the interface ([`TangentialSolver`]): after each normal step of the stroke, a tangential step on the contact's
     /// window. A slide (and a translation) shifts the indenter's material with its axis; a
     /// roll does not (free rolling: the surfaces do not slip where they touch). New contact
     /// sticks where it touches. The step's tangential force is the boundary force of the
@@ -104,11 +103,6 @@ impl Translation {
     ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
         let grid = *operator.grid();
-        if grid.boundary() == Boundary::Periodic {
-            return Err(ProtocolError::InvalidParameter(
-                TangentialOperatorError::Periodic.to_string(),
-            ));
-        }
         solver.reset();
         let phase = match contact.kinematics() {
             Kinematics::Roll => Phase::Roll,

@@ -45,9 +45,19 @@ pub(super) struct ContactWindow {
 
 impl ContactWindow {
     /// The window of `contact` on `grid`, widened by `margin` elements on each side where
-    /// the grid allows (at least 2×2 elements, as a grid needs).
+    /// the grid allows (at least 2×2 elements, as a grid needs). On a periodic grid the
+    /// window is the whole grid: a contact may wrap around its edges, and the periodic
+    /// operator couples every element with every other.
     pub(super) fn around(grid: &Grid, contact: &[bool], margin: usize) -> Result<Self, ProtocolError> {
         let nx = grid.nx();
+        if grid.boundary() == Boundary::Periodic {
+            return Ok(Self {
+                grid: *grid,
+                rows: 0..grid.ny(),
+                columns: 0..nx,
+                nx,
+            });
+        }
         let (mut rows, mut columns) = ((usize::MAX, 0), (usize::MAX, 0));
         for (k, _) in contact.iter().enumerate().filter(|(_, &c)| c) {
             let (i, j) = (k / nx, k % nx);

@@ -1,0 +1,93 @@
+//! The periodic tangential half-space: Cerruti's surface compliance as a Fourier
+//! multiplier, element-consistent as the periodic normal operator's.
+
+use super::cerruti::ShearMaterial;
+use super::spectral::SpectralConvolution;
+use crate::grid::Grid;
+use std::f64::consts::TAU;
+
+/// Aliases |m|, |n| ≤ this in the element-consistent sums, as the periodic normal
+/// operator's (docs/physics.md §1b).
+const ALIASES: i32 = 40;
+
+fn sinc(t: f64) -> f64 {
+    if t.abs() < 1e-8 {
+        1.0 - t * t / 6.0
+    } else {
+        t.sin() / t
+    }
+}
+
+/// The three spectra of a periodic grid: K̂_xx, K̂_yy and K̂_xy (None at ν = 0), laid out
+/// for [`SpectralConvolution`] with no padding.
+///
+/// Cerruti's surface displacements transform to K̂_xx(Q) = (1 − ν Q_x²/Q²)/(G Q),
+/// K̂_yy(Q) = (1 − ν Q_y²/Q²)/(G Q) and K̂_xy(Q) = −ν Q_x Q_y/(G Q³) (docs/physics.md
+/// §8.1); each is summed over the aliases Q = q + G_mn with the element's form factor
+/// sinc(Q_xΔx/2)·sinc(Q_yΔy/2), so that a uniform traction on each element, collocated at
+/// its centre, is what the operator sees, as on the free grid. K̂(0) = 0: the mean
+/// tangential displacement of a periodic half-space is undefined, so a shift here is
+/// the indenter's relative to the surface's mean displacement. K̂_xy is odd in each
+/// wavenumber and so zero on the Nyquist row and column of an even grid.
+pub(super) fn periodic_spectra(
+    grid: &Grid,
+    material: ShearMaterial,
+) -> (SpectralConvolution, SpectralConvolution, Option<Vec<f64>>) {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let (g, nu) = (material.shear_modulus, material.poisson_ratio);
+    // Signed shifted wavenumbers q + 2πm/Δ and their form factors, per wave index.
+    let table = |index: usize, n: usize, delta: f64, size: f64| -> Vec<(f64, f64)> {
+        let k = if index <= n / 2 {
+            index as f64
+        } else {
+            index as f64 - n as f64
+        };
+        let q = TAU * k / size;
+        (-ALIASES..=ALIASES)
+            .map(|m| {
+                let shifted = q + TAU * m as f64 / delta;
+                (shifted, sinc(0.5 * shifted * delta))
+            })
+            .collect()
+    };
+    let columns = nx / 2 + 1;
+    let x_tables: Vec<_> = (0..columns).map(|i| table(i, nx, grid.dx(), grid.size_x())).collect();
+    let y_tables: Vec<_> = (0..ny).map(|i| table(i, ny, grid.dy(), grid.size_y())).collect();
+    let normalisation = 1.0 / (nx as f64 * ny as f64 * g);
+    // [xx, yy, xy] at (row, column).
+    let entry = |row: usize, column: usize| -> [f64; 3] {
+        if row == 0 && column == 0 {
+            return [0.0; 3];
+        }
+        let mut sums = [0.0; 3];
+        for &(qx, sx) in &x_tables[column] {
+            for &(qy, sy) in &y_tables[row] {
+                let squared = qx * qx + qy * qy;
+                let wavenumber = squared.sqrt();
+                let weight = sx * sy / wavenumber;
+                sums[0] += weight * (1.0 - nu * qx * qx / squared);
+                sums[1] += weight * (1.0 - nu * qy * qy / squared);
+                sums[2] -= weight * nu * qx * qy / squared;
+            }
+        }
+        let nyquist = (nx % 2 == 0 && column == nx / 2) || (ny % 2 == 0 && row == ny / 2);
+        if nyquist {
+            sums[2] = 0.0;
+        }
+        sums.map(|sum| sum * normalisation)
+    };
+    let values: Vec<[f64; 3]> = {
+        use rayon::prelude::*;
+        (0..ny * columns)
+            .into_par_iter()
+            .map(|k| entry(k / columns, k % columns))
+            .collect()
+    };
+    let engine = |component: usize| {
+        let mut engine = SpectralConvolution::planned((nx, ny), (nx, ny));
+        engine.set_kernel_spectrum(|row, column| values[row * columns + column][component]);
+        engine
+    };
+    let cross = (nu != 0.0).then(|| engine(2).into_kernel());
+    (engine(0), engine(1), cross)
+}
