@@ -357,3 +357,28 @@ fn a_shear_on_a_periodic_grid_follows_cattaneo_mindlin() {
         last.force_tangential / limit
     );
 }
+
+/// A shear pressed in one approach step: no warning without adhesion (Goodman: the held
+/// normal problem does not depend on the approach), one naming `protocol.approach_steps`
+/// with it (the edge's attachment follows the approach).
+#[test]
+fn a_one_step_approach_is_warned_about_only_with_adhesion() {
+    let warnings = |text: &str| {
+        load(
+            text,
+            "friction.toml",
+            Path::new("."),
+            &["protocol.approach_steps=1".to_string()],
+        )
+        .unwrap()
+        .warnings
+    };
+    assert!(warnings(PERIODIC).iter().all(|w| !w.contains("approach step")));
+    let adhesive = warnings(TRESCA);
+    assert!(
+        adhesive
+            .iter()
+            .any(|w| w.contains("protocol.approach_steps") && !w.contains("max_depth")),
+        "{adhesive:?}"
+    );
+}

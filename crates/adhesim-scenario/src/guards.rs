@@ -449,9 +449,19 @@ pub(crate) fn contact_radius_warning(valid: &ValidScenario) -> Option<String> {
 /// moves in steps as large, and the jumps and the dissipated energy of such a run are not
 /// results (a sphere with `protocol.step = 1e6` |d_JKR| "ran" one step each way and
 /// reported a dissipated energy of 57,198).
+/// A shear has no retraction: its one approach step matters only with adhesion (the
+/// contact's attachment follows the approach), and the warning names its key.
 pub(crate) fn single_step_warning(valid: &ValidScenario) -> Option<String> {
     if valid.translation.is_some() || valid.approach_steps > 1 {
         return None;
+    }
+    if valid.shear.is_some() {
+        return (valid.gamma0 > 0.0).then(|| {
+            format!(
+                "the adhesive contact is pressed to protocol.depth in 1 approach step of {}: the attachment of its edge follows the approach, which one step cannot resolve; choose more protocol.approach_steps",
+                show(valid.depth_step)
+            )
+        });
     }
     let keys = match &valid.file.protocol {
         crate::model::ProtocolSection::IndentPulloff(p) if p.step.is_some() => "protocol.step",

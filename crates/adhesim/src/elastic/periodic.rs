@@ -7,7 +7,7 @@ use std::ops::Range;
 
 /// Number of aliases |m|, |n| ≤ this kept in the element-consistent kernel: reproduces
 /// Love's near-field coefficient differences to 1e-5 (docs/physics.md §1b).
-const ALIASES: i32 = 40;
+pub(super) const ALIASES: i32 = 40;
 
 /// Fourier multiplier used by the periodic operator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,7 +36,8 @@ pub struct PeriodicOperator {
     applications: u64,
 }
 
-fn sinc(t: f64) -> f64 {
+/// sin t / t, its series near 0: the form factor of a uniform element.
+pub(super) fn sinc(t: f64) -> f64 {
     if t.abs() < 1e-8 {
         1.0 - t * t / 6.0
     } else {

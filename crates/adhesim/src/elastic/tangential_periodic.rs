@@ -2,30 +2,20 @@
 //! multiplier, element-consistent as the periodic normal operator's.
 
 use super::cerruti::ShearMaterial;
+use super::periodic::{sinc, ALIASES};
 use super::spectral::SpectralConvolution;
 use crate::grid::Grid;
 use std::f64::consts::TAU;
-
-/// Aliases |m|, |n| ≤ this in the element-consistent sums, as the periodic normal
-/// operator's (docs/physics.md §1b).
-const ALIASES: i32 = 40;
-
-fn sinc(t: f64) -> f64 {
-    if t.abs() < 1e-8 {
-        1.0 - t * t / 6.0
-    } else {
-        t.sin() / t
-    }
-}
 
 /// The three spectra of a periodic grid: K̂_xx, K̂_yy and K̂_xy (None at ν = 0), laid out
 /// for [`SpectralConvolution`] with no padding.
 ///
 /// Cerruti's surface displacements transform to K̂_xx(Q) = (1 − ν Q_x²/Q²)/(G Q),
 /// K̂_yy(Q) = (1 − ν Q_y²/Q²)/(G Q) and K̂_xy(Q) = −ν Q_x Q_y/(G Q³) (docs/physics.md
-/// §8.1); each is summed over the aliases Q = q + G_mn with the element's form factor
-/// sinc(Q_xΔx/2)·sinc(Q_yΔy/2), so that a uniform traction on each element, collocated at
-/// its centre, is what the operator sees, as on the free grid. K̂(0) = 0: the mean
+/// §8.1); each is summed over the aliases Q = q + G_mn (|m|, |n| ≤ 40, as the periodic
+/// normal operator's) with the element's form factor sinc(Q_xΔx/2)·sinc(Q_yΔy/2), so that
+/// a uniform traction on each element, collocated at its centre, is what the operator
+/// sees, as on the free grid. K̂(0) = 0: the mean
 /// tangential displacement of a periodic half-space is undefined, so a shift here is
 /// the indenter's relative to the surface's mean displacement. K̂_xy is odd in each
 /// wavenumber and so zero on the Nyquist row and column of an even grid.
