@@ -64,10 +64,11 @@ impl ScenarioFile {
         let Some(friction) = &self.friction else {
             bail!("[friction]: validate_shear needs a [friction] section");
         };
-        let law = friction_law(friction)?;
-        let static_law = static_friction_law(friction)?;
-        let shear_material = self.shear_material(material.contact_modulus())?;
-        self.check_shear_combinations()?;
+        let InterfaceFriction {
+            law,
+            static_law,
+            material: shear_material,
+        } = self.interface_laws(friction, material.contact_modulus())?;
         let depth = held_depth(p.depth, unit, start_depth)?;
         let distance = positive("protocol.distance", p.distance)?;
         let steps = step_count("protocol.steps", p.steps)?;
@@ -160,15 +161,21 @@ impl ScenarioFile {
                 )
             ));
         }
+        self.interface_laws(friction, contact_modulus).map(Some)
+    }
+
+    /// The laws of `friction` and the tangential constants, with what no protocol combines
+    /// with `[friction]` yet refused (the checks a shear and a translation share).
+    fn interface_laws(&self, friction: &FrictionSection, contact_modulus: f64) -> Result<InterfaceFriction> {
         let law = friction_law(friction)?;
         let static_law = static_friction_law(friction)?;
         let material = self.shear_material(contact_modulus)?;
         self.check_shear_combinations()?;
-        Ok(Some(InterfaceFriction {
+        Ok(InterfaceFriction {
             law,
             static_law,
             material,
-        }))
+        })
     }
 
     /// What `[friction]` does not combine with yet: a cohesive law, `[analysis]`; each
