@@ -47,10 +47,12 @@ def main() -> None:
     print(f"Mindlin-Deresiewicz {expected:.6e}; ratio {dissipated / expected:.4f}")
     if figure:
         full_slip = 3 * mu * p * (2 - nu) / (16 * g * a)
-        draw(shift, force, (start, end), (mu * p, full_slip, amplitude, shift[end]), figure)
+        control = "imposed force" if "tangential_force" in inputs["protocol"] else "imposed shift"
+        title = f"Fretting loop of a sphere ({control}), Coulomb $\\mu$ = {mu:g}, $\\nu$ = {nu:g}"
+        draw(shift, force, (start, end), (mu * p, full_slip, amplitude, shift[end]), figure, title)
 
 
-def draw(shift, force, cycle, constants, figure) -> None:
+def draw(shift, force, cycle, constants, figure, title) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -70,7 +72,7 @@ def draw(shift, force, cycle, constants, figure) -> None:
     ax.plot(shift[start:end + 1], [q / limit for q in force[start:end + 1]], "o", ms=3, color="C3", label="adhesim, last cycle")
     ax.set_xlabel("shift $\\delta$")
     ax.set_ylabel("tangential force $Q/\\mu P$")
-    ax.set_title("Fretting loop of a sphere, Coulomb $\\mu$ = 0.3, $\\nu$ = 1/2")
+    ax.set_title(title, fontsize=10)
     ax.axhline(0, color="0.85", lw=0.8)
     ax.axvline(0, color="0.85", lw=0.8)
     ax.legend(frameon=False, fontsize=8, loc="upper left")

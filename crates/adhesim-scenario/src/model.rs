@@ -10,7 +10,9 @@ mod layer;
 mod per_axis;
 mod roughness;
 mod solver;
-pub use friction::{CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup};
+pub use friction::{
+    CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup, TangentialForceUnit,
+};
 pub use layer::LayerBaseName;
 pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection};

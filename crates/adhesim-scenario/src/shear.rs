@@ -10,6 +10,10 @@ use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, 
 use anyhow::{bail, Result};
 use serde::Serialize;
 
+mod force_control;
+
+use force_control::shift_or_force;
+
 impl ValidScenario {
     /// The interface carries friction: a shear, or a roll, slide or translate with
     /// `[friction]` (the friction columns and fields are written).
@@ -70,7 +74,7 @@ impl ScenarioFile {
             material: shear_material,
         } = self.interface_laws(friction, material.contact_modulus())?;
         let depth = held_depth(p.depth, unit, start_depth)?;
-        let distance = positive("protocol.distance", p.distance)?;
+        let (distance, force_control) = shift_or_force(p, friction, law, static_law)?;
         let steps = step_count("protocol.steps", p.steps)?;
         let approach_steps = step_count(
             "protocol.approach_steps",
@@ -102,6 +106,7 @@ impl ScenarioFile {
             jump_force_threshold,
             incline: incline(p.incline)?,
             mode_mixity,
+            force_control,
         };
         if protocol.shift_steps() > MAX_STEPS {
             bail!(ScenarioError::invalid_as(

@@ -106,8 +106,8 @@ pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
     IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint, ProtocolError,
-    ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, Translation,
-    TranslationCheckpoint, TranslationSummary,
+    ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, TangentialForce,
+    Translation, TranslationCheckpoint, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

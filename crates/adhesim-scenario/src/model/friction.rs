@@ -64,7 +64,7 @@ pub enum CouplingName {
 }
 
 /// `kind = "shear"`: approach to `depth`, then shift the indenter tangentially by
-/// `distance` at fixed depth.
+/// `distance` at fixed depth, or impose a `tangential_force` instead.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ShearProtocol {
@@ -75,8 +75,9 @@ pub struct ShearProtocol {
     /// Steps of the approach to `depth` (default 50).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub approach_steps: Option<i64>,
-    /// Shift of the indenter (length units).
-    pub distance: f64,
+    /// Shift of the indenter (length units); exactly one of it and `tangential_force`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distance: Option<f64>,
     /// Steps of the shift.
     pub steps: i64,
     /// Direction of the shift, degrees from +x (default 0).
@@ -95,6 +96,25 @@ pub struct ShearProtocol {
     /// a rigid drive).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drive_stiffness: Option<f64>,
+    /// The imposed tangential force along `direction` at the end of the forward stroke
+    /// (force control), in `tangential_force_unit`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_force: Option<f64>,
+    /// `"force"` (default) or `"friction_limit"`: a share of what the interface holds at
+    /// the end of the approach (μP, τ0·A).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_force_unit: Option<TangentialForceUnit>,
+}
+
+/// The unit of `protocol.tangential_force`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TangentialForceUnit {
+    /// Force units.
+    #[default]
+    Force,
+    /// A share of Δ²Σg over the contact at the end of the approach (Q/μP).
+    FrictionLimit,
 }
 
 /// `[friction]` of a roll, slide or translate: the interface laws and the half-space's

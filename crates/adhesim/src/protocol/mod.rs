@@ -14,6 +14,7 @@ pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, Tra
 pub use indentation::{IndentPulloff, ProtocolSummary};
 pub use shear::{
     contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearFields, ShearSummary,
+    TangentialForce,
 };
 pub use stepper::NormalStepper;
 pub use translation::{Translation, TranslationSummary};

@@ -15,7 +15,7 @@ use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
 use edge::NormalSide;
-use shift::ShiftStepper;
+use shift::{ShiftStepper, ShiftTarget};
 use std::ops::ControlFlow;
 
 /// Indent to `depth` in `approach_steps` displacement steps, then shift the indenter by
@@ -56,6 +56,22 @@ pub struct Shear {
     /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion). Above 0
     /// it needs the JKR-type adhesive solver.
     pub mode_mixity: f64,
+    /// Force control: the tangential force along `direction` is imposed, and `distance` is
+    /// not used. None: the shift is imposed.
+    pub force_control: Option<TangentialForce>,
+}
+
+/// The imposed tangential force of a force-controlled shear: the forward stroke ramps it
+/// from 0 to this amplitude, the cycles go between ± it, the return brings it back to 0
+/// (the force-controlled loading of Cattaneo 1938, Mindlin 1949 and Mindlin & Deresiewicz
+/// 1953).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialForce {
+    /// In force units.
+    Absolute(f64),
+    /// As a share of what the interface holds at the end of the approach, Δ²Σg over the
+    /// contact (μP for Coulomb, τ0·A for a shear strength): Q/μP of Cattaneo–Mindlin.
+    OfCapacity(f64),
 }
 
 /// The part of the shift path a step belongs to.
@@ -147,6 +163,11 @@ impl Shear {
                 "a compliant drive moves the indenter along the surface only: an inclined path (incline ≠ 0) takes a rigid drive".into(),
             ));
         }
+        let amplitude = match self.force_control {
+            None => self.distance,
+            Some(TangentialForce::Absolute(force)) => force,
+            Some(TangentialForce::OfCapacity(share)) => share * friction.capacity(&state, grid.element_area()),
+        };
         let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, solver)?;
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
@@ -154,10 +175,20 @@ impl Shear {
         summary.normal_force = state.force(grid.element_area());
         summary.area = state.contact_elements() as f64 * grid.element_area();
         summary.min_normal_force = summary.normal_force;
-        for (k, (shift, stroke)) in self.path().enumerate() {
+        for (k, (value, stroke)) in self.path(amplitude).enumerate() {
             let step = self.approach_steps + k;
             let forward = stroke == Stroke::Forward;
-            let displacement = [shift * unit[0], shift * unit[1]];
+            let target = match self.force_control {
+                None => ShiftTarget::Shift([value * unit[0], value * unit[1]]),
+                Some(_) => ShiftTarget::Force { unit, force: value },
+            };
+            // The imposed shift, or under force control the indenter's at the step's start.
+            let shift = match target {
+                ShiftTarget::Shift(_) => value,
+                ShiftTarget::Force { .. } => {
+                    stepper.room.state.shift[0] * unit[0] + stepper.room.state.shift[1] * unit[1]
+                }
+            };
             let depth = if inclined {
                 self.depth + shift * slope
             } else {
@@ -173,7 +204,7 @@ impl Shear {
                     state: &mut state,
                 },
                 friction,
-                displacement,
+                target,
                 step,
                 summary.normal_force,
             )?;
@@ -201,13 +232,12 @@ impl Shear {
                 summary.dissipated_energy,
             );
             let along = report.force[0] * unit[0] + report.force[1] * unit[1];
-            // The indenter's shift (under a compliant drive it lags the drive's).
-            record.offset = if compliant {
-                report.shift[0] * unit[0] + report.shift[1] * unit[1]
-            } else {
-                shift
-            };
-            record.drive_offset = shift;
+            // The indenter's shift (under a compliant drive it lags the drive's; under force
+            // control it is found).
+            let indenter = report.shift[0] * unit[0] + report.shift[1] * unit[1];
+            let controlled_force = self.force_control.is_some();
+            record.offset = if compliant || controlled_force { indenter } else { shift };
+            record.drive_offset = if controlled_force { indenter } else { shift };
             record.force_tangential = along;
             record.force_tangential_before_change = along;
             record.stick_elements = report.stick_elements;
@@ -225,7 +255,7 @@ impl Shear {
             self.report(&mut summary, &record, (&state, &previous, Some(&fields)), observer)?;
             if record.contact_elements == 0 {
                 // An inclined path out of the body has pulled the indenter off.
-                summary.contact_lost_at = Some(shift);
+                summary.contact_lost_at = Some(record.offset);
                 break;
             }
         }
@@ -279,10 +309,11 @@ impl Shear {
         self.steps * (1 + 4 * self.cycles + usize::from(self.return_stroke))
     }
 
-    /// The shift of every step after the approach, and the stroke it belongs to.
-    fn path(&self) -> impl Iterator<Item = (f64, Stroke)> + '_ {
+    /// The shift (or imposed force) of every step after the approach, for the stroke's
+    /// `amplitude`, and the stroke it belongs to.
+    fn path(&self, amplitude: f64) -> impl Iterator<Item = (f64, Stroke)> + '_ {
         let steps = self.steps as i64;
-        let shift = move |travelled: i64| self.distance * travelled as f64 / steps as f64;
+        let shift = move |travelled: i64| amplitude * travelled as f64 / steps as f64;
         let forward = (1..=steps).map(move |k| (shift(k), Stroke::Forward));
         // A cycle: from +distance down to −distance and back up, 2·steps steps each way.
         let cycles = (1..=self.cycles).flat_map(move |cycle| {
@@ -320,6 +351,20 @@ impl Shear {
         }
         if !(0.0..=1.0).contains(&self.mode_mixity) {
             return invalid(format!("mode_mixity ({}) must lie in [0, 1]", self.mode_mixity));
+        }
+        if let Some(force) = self.force_control {
+            let (TangentialForce::Absolute(value) | TangentialForce::OfCapacity(value)) = force;
+            if !value.is_finite() || matches!(force, TangentialForce::OfCapacity(share) if share.abs() >= 1.0) {
+                return invalid(format!(
+                    "the imposed tangential force ({force:?}) must be finite, and as a share of what the interface holds below 1"
+                ));
+            }
+            if self.incline != 0.0 || self.mode_mixity > 0.0 {
+                return invalid(format!(
+                    "an imposed tangential force holds the normal problem fixed: it takes incline = 0 and mode_mixity = 0 (got {} rad and {})",
+                    self.incline, self.mode_mixity
+                ));
+            }
         }
         if !(self.distance.is_finite() && self.direction.is_finite()) {
             return invalid(format!(

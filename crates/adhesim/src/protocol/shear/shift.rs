@@ -23,6 +23,15 @@ enum NormalMode {
     Weakened(Box<EdgeWeakening>),
 }
 
+/// What a shift step imposes.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum ShiftTarget {
+    /// The indenter's shift (the drive's position under a compliant drive).
+    Shift([f64; 2]),
+    /// The tangential force along the unit vector (the normal problem held).
+    Force { unit: [f64; 2], force: f64 },
+}
+
 /// What a shift step did.
 pub(super) struct ShiftOutcome {
     /// The final tangential solve, with the counters of all its rounds.
@@ -75,22 +84,46 @@ impl ShiftStepper {
         })
     }
 
-    /// One step to the tangential `shift` at `normal.depth`; `held_force` is the normal
+    /// One step to the tangential `target` at `normal.depth`; `held_force` is the normal
     /// force of a held normal problem.
     pub(super) fn step(
         &mut self,
         normal: NormalSide<'_>,
         friction: &mut TangentialSolver,
-        shift: [f64; 2],
+        target: ShiftTarget,
         step: usize,
         held_force: f64,
     ) -> Result<ShiftOutcome, ProtocolError> {
+        let shift = match target {
+            ShiftTarget::Shift(shift) => shift,
+            ShiftTarget::Force { .. } => self.room.state.shift,
+        };
         let along = shift[0].hypot(shift[1]);
         let tangential_error = |source| ProtocolError::Tangential {
             step,
             shift: along,
             source,
         };
+        if let (ShiftTarget::Force { unit, force }, NormalMode::Held) = (target, &self.mode) {
+            let tangential = friction
+                .step_to_force(
+                    &mut self.room.operator,
+                    &self.window_state,
+                    unit,
+                    force,
+                    &mut self.room.state,
+                )
+                .map_err(tangential_error)?;
+            return Ok(ShiftOutcome {
+                tangential,
+                normal: held(held_force),
+            });
+        }
+        if let ShiftTarget::Force { .. } = target {
+            return Err(ProtocolError::InvalidParameter(
+                "an imposed tangential force holds the normal problem fixed (no incline, no mode_mixity)".into(),
+            ));
+        }
         match &mut self.mode {
             NormalMode::Weakened(edge) => {
                 let weakened = edge.step(normal, &mut self.room, friction, shift, step)?;
@@ -126,13 +159,10 @@ impl ShiftStepper {
                 let tangential = friction
                     .step(&mut self.room.operator, &self.window_state, shift, &mut self.room.state)
                     .map_err(tangential_error)?;
-                // The normal problem is unchanged: no normal solve in this step.
-                let normal = StepReport {
-                    force: held_force,
-                    force_before_change: held_force,
-                    ..StepReport::default()
-                };
-                Ok(ShiftOutcome { tangential, normal })
+                Ok(ShiftOutcome {
+                    tangential,
+                    normal: held(held_force),
+                })
             }
         }
     }
@@ -142,5 +172,14 @@ impl ShiftStepper {
         if let (NormalMode::Weakened(edge), Some(adhesive)) = (self.mode, solver.as_adhesive_mut()) {
             edge.restore(adhesive);
         }
+    }
+}
+
+/// The report of a held normal problem: unchanged, no normal solve in the step.
+fn held(force: f64) -> StepReport {
+    StepReport {
+        force,
+        force_before_change: force,
+        ..StepReport::default()
     }
 }

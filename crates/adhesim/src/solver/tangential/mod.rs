@@ -184,6 +184,10 @@ pub struct TangentialReport {
     /// The step was a slip event: elements broke loose and the force along the drive's
     /// motion fell.
     pub slip_event: bool,
+    /// Displacement-controlled trial steps of a force-controlled step (0: the step was
+    /// displacement-controlled; [`TangentialSolver::step_to_force`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub trials: usize,
 }
 
 /// Why a tangential step failed.
@@ -210,6 +214,30 @@ pub enum TangentialError {
     /// A non-finite number appeared.
     #[error("non-finite value in the tangential solve at CG iteration {0}")]
     NonFinite(usize),
+    /// An imposed force at or beyond what the interface holds: the contact would slide
+    /// without end.
+    #[error("the imposed tangential force {force:e} reaches what the interface holds, {capacity:e} (Δ² times the sum of the friction bounds over the contact): no shift carries it, the contact slides; impose a smaller force or control the shift")]
+    ForceBeyondCapacity {
+        /// The imposed force along the direction.
+        force: f64,
+        /// Δ²Σg over the contact.
+        capacity: f64,
+    },
+    /// The trials of a force-controlled step neither met the force nor bracketed it.
+    #[error(
+        "the imposed tangential force {target:e} was not reached in {trials} trial steps (last force {reached:e})"
+    )]
+    ForceNotReached {
+        /// The imposed force.
+        target: f64,
+        /// The force of the last trial.
+        reached: f64,
+        /// Trial steps done.
+        trials: usize,
+    },
+    /// Force control with a static law or a compliant drive.
+    #[error("a tangential force cannot be imposed with a static friction law or a compliant drive: their force falls in a slip event, which no imposed force can follow quasi-statically")]
+    ForceControlUnsupported,
     /// The normal state does not match the operator's grid.
     #[error("normal state has {got} elements, the grid {expected}")]
     GridMismatch {
@@ -289,6 +317,9 @@ pub struct TangentialSolver {
     drive_offset: [f64; 2],
     /// Elements that broke loose from a static bound in the step.
     broke_loose: usize,
+    /// The secant stiffness dF/dδ of the last force-controlled step: its successor's
+    /// first trial.
+    force_stiffness: Option<f64>,
 }
 
 impl TangentialSolver {
@@ -311,6 +342,7 @@ impl TangentialSolver {
             drive_compliance: 0.0,
             drive_offset: [0.0; 2],
             broke_loose: 0,
+            force_stiffness: None,
         }
     }
 
@@ -559,6 +591,7 @@ impl TangentialSolver {
 }
 
 mod drive;
+mod force;
 mod iterate;
 
 #[cfg(test)]

@@ -342,3 +342,102 @@ fn a_static_shear_strength_under_a_compliant_drive_sticks_and_slips() {
     }
     assert!(events >= 3, "{events} slip events: no sawtooth");
 }
+
+#[test]
+fn an_imposed_force_follows_cattaneo_mindlin_and_mindlin_deresiewicz() {
+    // The sphere of `cattaneo_mindlin_stick_radius_and_compliance` (a = 32Δ, ν = 1/2, G = 1,
+    // μ = 0.3) under an imposed force: Q/μP = 0.1 … 0.8, then unloaded to −0.4.
+    // Loading: δ = δ*[1 − (1 − Q/μP)^{2/3}] and c/a = (1 − Q/μP)^{1/3} (Cattaneo–Mindlin).
+    // Unloading from Q*: δ = δ*[2(1 − (Q* − Q)/(2μP))^{2/3} − (1 − Q*/μP)^{2/3} − 1]
+    // (Mindlin & Deresiewicz 1953; Johnson 1985 §7.4). Tolerance 2 %, as the displacement-
+    // controlled test (the staircase edges). The force is met to 1e-8 relative (the search's
+    // tolerance), and a displacement-controlled solver driven through the shifts found
+    // gives the same forces to 1e-7 (each step is one from the same state).
+    let delta_x = 1.0 / 256.0;
+    let (grid, normal, mut operator) = pressed_sphere(80, 80.0 * delta_x, (32.0 * delta_x) * (32.0 * delta_x));
+    let area = grid.element_area();
+    let force_normal = normal.force(area);
+    let contact = normal.contact_elements();
+    let radius = (contact as f64 * area / std::f64::consts::PI).sqrt();
+    let mu = 0.3;
+    let limit = mu * force_normal;
+    let full_slip_shift = 3.0 * limit * 1.5 / (16.0 * radius);
+    let law = FrictionLaw::coulomb(mu).unwrap();
+    let mut solver = TangentialSolver::new(law, TangentialParams::default());
+    let mut twin = TangentialSolver::new(law, TangentialParams::default());
+    let (mut state, mut twin_state) = (TangentialState::new(grid.len()), TangentialState::new(grid.len()));
+    let peak = 0.8;
+    let path = (1..=8)
+        .map(|k| 0.1 * k as f64)
+        .chain((1..=6).map(|k| peak - 0.2 * k as f64));
+    let mut trials = 0;
+    for (step, ratio) in path.enumerate() {
+        let report = solver
+            .step_to_force(&mut operator, &normal, [1.0, 0.0], ratio * limit, &mut state)
+            .unwrap();
+        trials += report.trials;
+        assert!(
+            (report.force[0] - ratio * limit).abs() <= 1e-8 * limit,
+            "step {step}: force {} vs {}",
+            report.force[0],
+            ratio * limit
+        );
+        let shift = report.shift[0];
+        assert_eq!(report.shift[1], 0.0);
+        let expected = if step < 8 {
+            full_slip_shift * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
+        } else {
+            let unloaded = (peak - ratio) / 2.0;
+            full_slip_shift * (2.0 * (1.0 - unloaded).powf(2.0 / 3.0) - (1.0 - peak).powf(2.0 / 3.0) - 1.0)
+        };
+        eprintln!(
+            "step {step}: Q/μP {ratio:.2} δ/δ* {:.5} vs {:.5}; trials {} pairs {}",
+            shift / full_slip_shift,
+            expected / full_slip_shift,
+            report.trials,
+            report.transform_pairs
+        );
+        if expected.abs() > 0.05 * full_slip_shift {
+            assert!(
+                (shift / expected - 1.0).abs() < 0.02,
+                "step {step}: δ {shift} vs {expected}"
+            );
+        }
+        if step < 8 && (1.0 - ratio).cbrt() * radius >= 12.0 * delta_x {
+            let stick_ratio = (report.stick_elements as f64 / contact as f64).sqrt();
+            assert!(
+                ((stick_ratio / (1.0 - ratio).cbrt()) - 1.0).abs() < 0.02,
+                "step {step}: c/a {stick_ratio}"
+            );
+        }
+        let twin_report = twin
+            .step(&mut operator, &normal, report.shift, &mut twin_state)
+            .unwrap();
+        assert!(
+            (twin_report.force[0] - report.force[0]).abs() <= 1e-7 * limit,
+            "step {step}: the displacement-controlled twin's force {} vs {}",
+            twin_report.force[0],
+            report.force[0]
+        );
+    }
+    assert!(trials <= 14 * 8, "{trials} trials for 14 steps");
+    // At and beyond what the interface holds no shift carries the force.
+    for ratio in [1.0, -1.0, 1.5] {
+        let beyond = solver.step_to_force(&mut operator, &normal, [1.0, 0.0], ratio * limit, &mut state);
+        assert!(
+            matches!(beyond, Err(TangentialError::ForceBeyondCapacity { .. })),
+            "{beyond:?}"
+        );
+    }
+    let with_static = TangentialSolver::new(law, TangentialParams::default())
+        .with_static_law(FrictionLaw::coulomb(0.4).unwrap())
+        .unwrap()
+        .step_to_force(
+            &mut operator,
+            &normal,
+            [1.0, 0.0],
+            0.1 * limit,
+            &mut TangentialState::new(grid.len()),
+        );
+    assert_eq!(with_static.unwrap_err(), TangentialError::ForceControlUnsupported);
+}
