@@ -53,6 +53,7 @@ mod results;
 mod roughness;
 mod sections;
 mod shear;
+mod snapshot_fields;
 mod snapshot_shear;
 mod snapshots;
 mod summary;
@@ -74,7 +75,8 @@ pub use pipeline::{run, run_from, Counters, ProtocolReport, ProtocolSetup, Resum
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
 pub use shear::ShearResults;
-pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder, Stacked};
+pub use snapshot_fields::{FieldShapes, SnapshotFields, Stacked};
+pub use snapshots::{FieldSnapshot, SnapshotPlan, SnapshotRecorder};
 pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes, Summary};
 pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
 
