@@ -44,6 +44,7 @@ mod error;
 pub mod error_text;
 mod files;
 mod guards;
+mod hash;
 pub mod memory;
 mod model;
 pub mod output;
