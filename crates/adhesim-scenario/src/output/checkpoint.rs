@@ -13,7 +13,7 @@
 //! checkpoint edited, cut or taken from another case is never continued, the case restarts
 //! from scratch with a warning naming the file.
 
-use super::observer::ObserverState;
+use super::observer_state::ObserverState;
 use crate::hash::fnv1a;
 use adhesim::{ProtocolCheckpoint, StepRecord};
 use anyhow::{anyhow, bail, Context, Result};
