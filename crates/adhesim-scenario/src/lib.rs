@@ -38,6 +38,7 @@
 //! ```
 
 pub mod batch;
+mod checks;
 mod cohesive;
 mod curve;
 mod error;

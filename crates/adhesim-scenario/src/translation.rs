@@ -1,10 +1,10 @@
 //! Validation of the roll / slide / translate protocols (`[protocol]` kind roll, slide,
 //! translate, and `[analysis]`).
 
+use crate::checks::{check_periodic_depth, finite, held_depth, non_negative, positive};
 use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::step_count;
 use crate::model::*;
-use crate::validate::{finite, non_negative, positive};
 use adhesim::analysis::reference::Jkr;
 use adhesim::geometry::WavySphere;
 use adhesim::{ElasticMaterial, Grid, Indenter, Kinematics, TranslatingContact, Translation};
@@ -24,25 +24,6 @@ pub(crate) struct ValidatedSections {
     pub(crate) derived: Derived,
     /// `[substrate_roughness]` on the grid (slide only).
     pub(crate) substrate_roughness: Option<Vec<f64>>,
-}
-
-/// `protocol.depth` (in depth units of `unit` length) as a length, refused unless it goes
-/// deeper than the first contact at `start_depth`: the indentation held by a roll, slide,
-/// translate or shear.
-pub(crate) fn held_depth(raw_depth: f64, unit: f64, start_depth: f64) -> Result<f64> {
-    let depth = finite("protocol.depth", raw_depth)? * unit;
-    if depth <= start_depth {
-        bail!(ScenarioError::invalid_as(
-            "protocol.depth",
-            raw_depth,
-            format!("> {:.6e} (the depth of first contact)", start_depth / unit),
-            format!(
-                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
-                start_depth / unit
-            )
-        ));
-    }
-    Ok(depth)
 }
 
 /// Default approach steps of roll / slide / translate.
@@ -77,7 +58,7 @@ impl ScenarioFile {
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let raw_depth = p.depth;
         let depth = held_depth(raw_depth, unit, start_depth)?;
-        crate::validate::check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
+        check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
         let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
             DistanceUnit::Length => 1.0,
