@@ -62,6 +62,7 @@ mod summary;
 pub mod sweep;
 mod translation;
 mod validate;
+mod validated;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
 pub use error::{ErrorKind, ScenarioError};
@@ -80,7 +81,8 @@ pub use shear::ShearResults;
 pub use snapshot_fields::{FieldShapes, SnapshotFields, Stacked};
 pub use snapshots::{FieldSnapshot, SnapshotPlan, SnapshotRecorder};
 pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes, Summary};
-pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
+pub use translation::{DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
+pub use validated::DEFAULT_APPROACH_STEPS;
 
 pub use adhesim::analysis::friction::TranslationResults;
 use std::path::Path;

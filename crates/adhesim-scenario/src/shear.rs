@@ -5,7 +5,7 @@ use crate::checks::{finite, held_depth, positive};
 use crate::error::ScenarioError;
 use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
-use crate::translation::{ValidatedSections, DEFAULT_APPROACH_STEPS};
+use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
 use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;

@@ -5,29 +5,12 @@ use crate::checks::{check_periodic_depth, finite, held_depth, non_negative, posi
 use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::step_count;
 use crate::model::*;
+use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
 use adhesim::analysis::reference::Jkr;
 use adhesim::geometry::WavySphere;
-use adhesim::{ElasticMaterial, Grid, Indenter, Kinematics, TranslatingContact, Translation};
+use adhesim::{Grid, Indenter, Kinematics, TranslatingContact, Translation};
 use anyhow::{bail, Result};
 
-/// What `validate` has built from every section but `[protocol]`, handed to the
-/// indentation or the roll/slide part (not the friction analysis's `TranslationInputs`).
-pub(crate) struct ValidatedSections {
-    pub(crate) grid: Grid,
-    pub(crate) material: ElasticMaterial,
-    pub(crate) gamma: Vec<f64>,
-    pub(crate) gamma0: f64,
-    pub(crate) indenter: Indenter,
-    /// Length of one `depth_unit`.
-    pub(crate) unit: f64,
-    pub(crate) jkr: Option<Jkr>,
-    pub(crate) derived: Derived,
-    /// `[substrate_roughness]` on the grid (slide only).
-    pub(crate) substrate_roughness: Option<Vec<f64>>,
-}
-
-/// Default approach steps of roll / slide / translate.
-pub const DEFAULT_APPROACH_STEPS: i64 = 50;
 /// Default stationary fraction.
 pub const DEFAULT_STATIONARY_FROM: f64 = 0.5;
 /// Default substrate angle of a slide, degrees.

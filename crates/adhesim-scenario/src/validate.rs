@@ -10,7 +10,7 @@ use crate::model::*;
 use crate::parse::read_height_map;
 use crate::roughness::{roughness_on_grid, RoughnessMap};
 use crate::sections::{validate_adhesion, validate_grid, validate_layer, validate_material};
-use crate::translation::ValidatedSections;
+use crate::validated::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
 use adhesim::geometry::{EllipticPunch, FlatPunch, RoughProfile, Sphere, Topography, WavySphere};
