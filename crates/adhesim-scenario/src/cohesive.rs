@@ -2,10 +2,10 @@
 //! (docs/cli.md, docs/physics.md §2.6). The sharp JKR-type criterion (`law = "jkr"`, the
 //! default) takes neither `cohesive_stress` nor `range` and is built in `pipeline.rs`.
 
+use crate::checks::positive;
 use crate::error::{ErrorKind, ScenarioError};
 use crate::model::{AdhesionSection, LawName, ScenarioFile, ValidScenario};
 use crate::results::RunResults;
-use crate::validate::positive;
 use adhesim::analysis::reference::{maugis_parameter, MaugisDugdale};
 use adhesim::{
     CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, Grid, Indenter, Profile,

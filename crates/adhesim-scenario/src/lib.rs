@@ -38,12 +38,14 @@
 //! ```
 
 pub mod batch;
+mod checks;
 mod cohesive;
 mod curve;
 mod error;
 pub mod error_text;
 mod files;
 mod guards;
+mod hash;
 pub mod memory;
 mod model;
 pub mod output;
@@ -53,12 +55,14 @@ mod results;
 mod roughness;
 mod sections;
 mod shear;
+mod snapshot_fields;
 mod snapshot_shear;
 mod snapshots;
 mod summary;
 pub mod sweep;
 mod translation;
 mod validate;
+mod validated;
 
 pub use curve::{CurveCell, CurveColumn, CurveColumns, CurveKind};
 pub use error::{ErrorKind, ScenarioError};
@@ -74,9 +78,11 @@ pub use pipeline::{run, run_from, Counters, ProtocolReport, ProtocolSetup, Resum
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
 pub use shear::ShearResults;
-pub use snapshots::{FieldShapes, FieldSnapshot, SnapshotFields, SnapshotPlan, SnapshotRecorder, Stacked};
+pub use snapshot_fields::{FieldShapes, SnapshotFields, Stacked};
+pub use snapshots::{FieldSnapshot, SnapshotPlan, SnapshotRecorder};
 pub use summary::{border_warning, lost_contact_warning, Performance, PhaseTimes, Summary};
-pub use translation::{DEFAULT_APPROACH_STEPS, DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
+pub use translation::{DEFAULT_STATIONARY_FROM, DEFAULT_SUBSTRATE_ANGLE};
+pub use validated::DEFAULT_APPROACH_STEPS;
 
 pub use adhesim::analysis::friction::TranslationResults;
 use std::path::Path;

@@ -3,10 +3,10 @@
 //! `adhesim_topography` (`file` keys), sampled on the simulation grid. Every error names
 //! the dotted key (`roughness.hurst must lie in (0, 1], got 1.5`).
 
+use crate::checks::{grid_keys, positive};
 use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::usable_positive;
 use crate::model::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection, RoughnessStatistics};
-use crate::validate::{grid_keys, positive};
 use adhesim::surface::{fill_invalid_harmonic, statistics, Amplitudes, RmsTarget, SelfAffine, SurfaceError};
 use adhesim::Grid;
 use adhesim_topography::{read_topography, ReadOptions, Topography, TopographyError};

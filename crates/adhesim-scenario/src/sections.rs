@@ -1,11 +1,11 @@
 //! The sections checked on their own: `[grid]`, `[material]` and `[adhesion]` (γ0 and γ per
 //! element). Every error names the key at fault, its value and what it must satisfy.
 
+use crate::checks::{grid_keys, non_negative, positive};
 use crate::error::ScenarioError;
 use crate::guards::{check_field, MAX_GRID_N};
 use crate::model::*;
 use crate::parse::read_npy_2d;
-use crate::validate::{grid_keys, non_negative, positive};
 use adhesim::{Axis, Boundary, ElasticLayer, ElasticMaterial, Grid, GridError, Indenter, LayerBase, WorkOfAdhesion};
 use anyhow::{bail, Result};
 use std::path::Path;

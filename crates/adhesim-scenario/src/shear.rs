@@ -1,11 +1,11 @@
 //! Friction at the interface: `[friction]` and `[protocol] kind = "shear"` validated into
 //! a [`ShearSetup`], and the `results` of a shear run.
 
+use crate::checks::{finite, held_depth, positive};
 use crate::error::ScenarioError;
 use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
-use crate::translation::{held_depth, ValidatedSections, DEFAULT_APPROACH_STEPS};
-use crate::validate::{finite, positive};
+use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
 use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;

@@ -1,52 +1,16 @@
 //! Validation of the roll / slide / translate protocols (`[protocol]` kind roll, slide,
 //! translate, and `[analysis]`).
 
+use crate::checks::{check_periodic_depth, finite, held_depth, non_negative, positive};
 use crate::error::{ErrorKind, ScenarioError};
 use crate::guards::step_count;
 use crate::model::*;
-use crate::validate::{finite, non_negative, positive};
+use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
 use adhesim::analysis::reference::Jkr;
 use adhesim::geometry::WavySphere;
-use adhesim::{ElasticMaterial, Grid, Indenter, Kinematics, TranslatingContact, Translation};
+use adhesim::{Grid, Indenter, Kinematics, TranslatingContact, Translation};
 use anyhow::{bail, Result};
 
-/// What `validate` has built from every section but `[protocol]`, handed to the
-/// indentation or the roll/slide part (not the friction analysis's `TranslationInputs`).
-pub(crate) struct ValidatedSections {
-    pub(crate) grid: Grid,
-    pub(crate) material: ElasticMaterial,
-    pub(crate) gamma: Vec<f64>,
-    pub(crate) gamma0: f64,
-    pub(crate) indenter: Indenter,
-    /// Length of one `depth_unit`.
-    pub(crate) unit: f64,
-    pub(crate) jkr: Option<Jkr>,
-    pub(crate) derived: Derived,
-    /// `[substrate_roughness]` on the grid (slide only).
-    pub(crate) substrate_roughness: Option<Vec<f64>>,
-}
-
-/// `protocol.depth` (in depth units of `unit` length) as a length, refused unless it goes
-/// deeper than the first contact at `start_depth`: the indentation held by a roll, slide,
-/// translate or shear.
-pub(crate) fn held_depth(raw_depth: f64, unit: f64, start_depth: f64) -> Result<f64> {
-    let depth = finite("protocol.depth", raw_depth)? * unit;
-    if depth <= start_depth {
-        bail!(ScenarioError::invalid_as(
-            "protocol.depth",
-            raw_depth,
-            format!("> {:.6e} (the depth of first contact)", start_depth / unit),
-            format!(
-                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
-                start_depth / unit
-            )
-        ));
-    }
-    Ok(depth)
-}
-
-/// Default approach steps of roll / slide / translate.
-pub const DEFAULT_APPROACH_STEPS: i64 = 50;
 /// Default stationary fraction.
 pub const DEFAULT_STATIONARY_FROM: f64 = 0.5;
 /// Default substrate angle of a slide, degrees.
@@ -77,7 +41,7 @@ impl ScenarioFile {
         let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let raw_depth = p.depth;
         let depth = held_depth(raw_depth, unit, start_depth)?;
-        crate::validate::check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
+        check_periodic_depth(&grid, &heights, "protocol.depth", raw_depth, unit)?;
         let raw_distance = p.distance;
         let distance_scale = match p.distance_unit.unwrap_or_default() {
             DistanceUnit::Length => 1.0,

@@ -2,6 +2,7 @@
 //! names the dotted key at fault and the value it had (`indenter.radius must be > 0, got
 //! -1`); nothing here panics on bad input.
 
+use crate::checks::{check_periodic_depth, finite, grid_keys, non_negative, positive};
 use crate::cohesive::{translation_pinning_warning, zone_resolution_warning};
 use crate::error::ScenarioError;
 use crate::guards::{resolution_warnings, step_count};
@@ -9,88 +10,14 @@ use crate::model::*;
 use crate::parse::read_height_map;
 use crate::roughness::{roughness_on_grid, RoughnessMap};
 use crate::sections::{validate_adhesion, validate_grid, validate_layer, validate_material};
-use crate::translation::ValidatedSections;
+use crate::validated::ValidatedSections;
 use adhesim::analysis::reference::{johnson_parameter, Jkr};
 use adhesim::analysis::scale::adhesive_force_scale;
 use adhesim::geometry::{EllipticPunch, FlatPunch, RoughProfile, Sphere, Topography, WavySphere};
 use adhesim::solver::critical_stress;
-use adhesim::{Boundary, ElasticMaterial, Grid, Indenter, Profile};
+use adhesim::{ElasticMaterial, Grid, Indenter, Profile};
 use anyhow::{bail, Result};
 use std::path::Path;
-
-/// The grid as its keys give it: `grid.n = 64, grid.size = 0.8` for a square,
-/// `grid.n = [96, 64], grid.size = [1.5, 1]` for a rectangle.
-pub(crate) fn grid_keys(grid: &Grid) -> String {
-    if grid.is_square() {
-        format!("grid.n = {}, grid.size = {}", grid.nx(), grid.size_x())
-    } else {
-        format!(
-            "grid.n = [{}, {}], grid.size = [{}, {}]",
-            grid.nx(),
-            grid.ny(),
-            grid.size_x(),
-            grid.size_y()
-        )
-    }
-}
-
-pub(crate) fn positive(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(ScenarioError::invalid(key, value, "> 0").into())
-    }
-}
-
-pub(crate) fn non_negative(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(ScenarioError::invalid(key, value, ">= 0").into())
-    }
-}
-
-pub(crate) fn finite(key: &str, value: f64) -> Result<f64> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(ScenarioError::invalid(key, value, "finite").into())
-    }
-}
-
-/// On a periodic grid the surface displacement has zero mean (K̂(0) = 0), so the mean gap
-/// is mean(z) − d: the whole cell is in contact at d = mean(z) and no load goes deeper
-/// (docs/physics.md §1b). `key` = `raw` (in depth units of `unit` length) is refused
-/// beyond that depth, before the run, instead of failing at the step that crosses it.
-pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw: f64, unit: f64) -> Result<()> {
-    if grid.boundary() != Boundary::Periodic || heights.iter().any(|z| !z.is_finite()) {
-        return Ok(());
-    }
-    let full_contact_depth = heights.iter().sum::<f64>() / heights.len() as f64;
-    let range = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-        - heights.iter().copied().fold(f64::INFINITY, f64::min);
-    // The solver's own depth tolerance (CcgParams::depth_tolerance) times the scale.
-    if raw * unit > full_contact_depth + 1e-10 * range.max((raw * unit).abs()) {
-        let requirement = format!(
-            "<= {:.6e} (full contact of the periodic cell)",
-            full_contact_depth / unit
-        );
-        bail!(ScenarioError::invalid_as(
-            key,
-            raw,
-            requirement,
-            format!(
-                "{key} = {raw} lies beyond full contact of the periodic cell: the whole cell touches at depth \
-             {:.6e} (in depth_unit; the indenter's mean height over the cell, since the displacement of a \
-             periodic half-space has zero mean) and no load goes deeper. Use {key} <= {:.6e}, a larger \
-             grid.size, or grid.boundary = \"free\"",
-                full_contact_depth / unit,
-                full_contact_depth / unit
-            )
-        ));
-    }
-    Ok(())
-}
 
 impl ScenarioFile {
     /// A layer (`material.thickness`) runs the non-adhesive indentation only: the JKR-type

@@ -2,6 +2,7 @@
 //! computed in `DIR/tmp/<id>.<pid>/` and renamed into place when finished.
 
 use super::{pool::catch_panic, BatchCase};
+use crate::hash::fnv1a;
 use crate::output::checkpoint::{read_header, CheckpointPolicy, CHECKPOINT_FILE};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -158,25 +159,4 @@ pub fn results_hash(scenario_text: &str) -> u64 {
         "{scenario_text}\nresults revision {}",
         adhesim::RESULTS_REVISION
     ))
-}
-
-/// 64-bit FNV-1a (stable across platforms and Rust versions, unlike `DefaultHasher`).
-pub fn fnv1a(text: &str) -> u64 {
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    hash
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn fnv1a_is_the_standard_hash() {
-        assert_eq!(fnv1a(""), 0xcbf2_9ce4_8422_2325);
-        assert_eq!(fnv1a("a"), 0xaf63_dc4c_8601_ec8c);
-    }
 }

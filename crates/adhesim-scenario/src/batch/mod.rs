@@ -16,10 +16,11 @@ mod pool;
 #[cfg(test)]
 mod tests;
 
+pub use crate::hash::fnv1a;
 use crate::output::checkpoint::CheckpointPolicy;
 use crate::output::folder::{FolderLock, Shard};
 use anyhow::{anyhow, bail, Context, Result};
-pub use cases::{case_state, fnv1a, results_hash, run_case, CaseState};
+pub use cases::{case_state, results_hash, run_case, CaseState};
 use std::path::{Path, PathBuf};
 
 /// One case of a batch.

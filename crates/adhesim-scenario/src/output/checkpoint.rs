@@ -13,7 +13,8 @@
 //! checkpoint edited, cut or taken from another case is never continued, the case restarts
 //! from scratch with a warning naming the file.
 
-use super::observer::ObserverState;
+use super::observer_state::ObserverState;
+use crate::hash::fnv1a;
 use adhesim::{ProtocolCheckpoint, StepRecord};
 use anyhow::{anyhow, bail, Context, Result};
 use serde::{Deserialize, Serialize};
@@ -95,7 +96,7 @@ impl CheckpointHeader {
             "{}\n{}\n{}\n{}\n{}\n{body}",
             self.format, self.adhesim_version, self.results_revision, self.case_hash, self.steps_done
         );
-        format!("{:016x}", crate::batch::fnv1a(&text))
+        format!("{:016x}", fnv1a(&text))
     }
 
     /// Why a run of the case with `case_hash` by this build cannot continue from it.

@@ -7,6 +7,7 @@ pub mod curve_csv;
 pub mod fields;
 pub mod folder;
 pub mod observer;
+mod observer_state;
 pub mod run;
 pub mod timings;
 

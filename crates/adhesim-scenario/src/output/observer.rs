@@ -6,12 +6,12 @@
 use super::checkpoint::CheckpointPolicy;
 use super::curve_csv::CurveCsv;
 use super::fields::FieldsRecorder;
+use super::observer_state::{Bits, ObserverState};
 use super::timings::PhaseTimings;
 use crate::{CurveColumns, RunOutcome, SnapshotFields, SnapshotPlan, ValidScenario};
-use adhesim::protocol::bit_string;
 use adhesim::{Grid, Observer, ProtocolCheckpoint, StepRecord, StepView};
 use anyhow::{Context, Result};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::ops::ControlFlow;
@@ -96,39 +96,6 @@ struct Checkpoints {
     last: Instant,
     records: Vec<StepRecord>,
     warned: bool,
-}
-
-/// A contact set in a checkpoint.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
-struct Bits(#[serde(with = "bit_string")] Vec<bool>);
-
-/// What the observer of a run carries from step to step (in a checkpoint): everything the
-/// files written after the checkpoint depend on.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
-pub(crate) struct ObserverState {
-    jump_snapshots: usize,
-    largest: (usize, usize, Bits),
-    last_in_contact: Option<(usize, Bits, Bits)>,
-    warnings: Vec<String>,
-    border_warned: bool,
-    snapshot_files: Vec<String>,
-    captured: Vec<(usize, Bits, Bits)>,
-    phase_seconds: BTreeMap<String, f64>,
-    phase_steps: BTreeMap<String, usize>,
-    output_seconds: f64,
-    fields: Option<crate::SnapshotRecorder>,
-}
-
-impl ObserverState {
-    /// Whether its contact sets and fields are of a grid of `elements` (a checkpoint read
-    /// back: a mismatch would otherwise stop the run later).
-    pub(crate) fn fits(&self, elements: usize) -> bool {
-        let set = |bits: &Bits| bits.0.len() == elements;
-        (self.largest.2 .0.is_empty() || set(&self.largest.2))
-            && self.last_in_contact.iter().all(|(_, c, p)| set(c) && set(p))
-            && self.captured.iter().all(|(_, c, p)| set(c) && set(p))
-            && self.fields.as_ref().is_none_or(|f| f.fits(elements))
-    }
 }
 
 /// The phase names of the timings (`Phase::name`, or "unknown").

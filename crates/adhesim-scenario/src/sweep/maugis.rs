@@ -7,6 +7,7 @@
 //! `adhesion.work_of_adhesion`, as `derived.maugis_parameter` in summary.json reports it.
 
 use crate::error::ScenarioError;
+use crate::sweep::keys::{contact_modulus, get, number};
 use adhesim::analysis::reference::cohesive_stress_for;
 use anyhow::{bail, Result};
 
@@ -14,7 +15,7 @@ use anyhow::{bail, Result};
 /// overrides), refusing a law other than `dugdale` and a scenario without the inputs.
 pub(super) fn cohesive_stress(table: &toml::Table, lambda: f64) -> Result<f64> {
     let why = "maugis_parameter";
-    match super::plan::get(table, "adhesion.law") {
+    match get(table, "adhesion.law") {
         Some(toml::Value::String(law)) if law == "dugdale" => {}
         Some(other) => bail!(ScenarioError::invalid_as(
             "adhesion.law",
@@ -32,9 +33,9 @@ pub(super) fn cohesive_stress(table: &toml::Table, lambda: f64) -> Result<f64> {
             )
         )),
     }
-    let radius = super::plan::number(table, "indenter.radius", why)?;
-    let contact_modulus = super::plan::contact_modulus(table, why)?;
-    let work_of_adhesion = super::plan::number(table, "adhesion.work_of_adhesion", why)?;
+    let radius = number(table, "indenter.radius", why)?;
+    let contact_modulus = contact_modulus(table, why)?;
+    let work_of_adhesion = number(table, "adhesion.work_of_adhesion", why)?;
     for (key, value) in [
         ("indenter.radius", radius),
         ("material.contact_modulus", contact_modulus),

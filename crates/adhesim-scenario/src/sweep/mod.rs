@@ -5,6 +5,7 @@
 //! How a case's folder is filled is injected ([`CaseRunner`]): the command line's run with
 //! its figures, so that a case folder is the same whoever runs it.
 
+mod keys;
 mod maugis;
 pub mod plan;
 pub mod table;

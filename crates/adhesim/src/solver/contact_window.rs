@@ -12,7 +12,7 @@
 //! and the contact set with the full operator, so an element outside the window that
 //! should touch, or a rounding difference, is corrected there.
 
-use super::nested::Workspace;
+use super::workspace::Workspace;
 use super::ContactState;
 use crate::elastic::FreeOperator;
 use crate::grid::{Boundary, Grid};

@@ -15,6 +15,7 @@ mod nested;
 mod peel_predictor;
 mod state;
 mod tangential;
+mod workspace;
 
 pub use adhesive::{
     critical_stress, detachment_element_size, AdhesiveCheckpoint, AdhesiveParams, AdhesiveSolver, Attachment,

@@ -3,8 +3,9 @@ mod checkpoint;
 pub use checkpoint::NestedCheckpoint;
 
 use super::contact_window::WindowLevel;
+use super::workspace::Workspace;
 use super::{dot, masked_pcg, ContactState, PcgBuffers, SolveError, SolveReport};
-use crate::elastic::{ElasticOperator, FreeOperator, SpectralPreconditioner};
+use crate::elastic::{ElasticOperator, FreeOperator};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 
@@ -41,32 +42,6 @@ impl Default for NestedParams {
             coarsest: 32,
             warm_unload: false,
             contact_window: true,
-        }
-    }
-}
-
-/// Buffers and preconditioner of the fixed-set CG on one grid.
-pub(super) struct Workspace {
-    target: Vec<f64>,
-    residual: Vec<f64>,
-    preconditioned: Vec<f64>,
-    direction: Vec<f64>,
-    response: Vec<f64>,
-    mask: Vec<f64>,
-    preconditioner: SpectralPreconditioner,
-}
-
-impl Workspace {
-    pub(super) fn new(grid: &Grid, contact_modulus: f64) -> Self {
-        let len = grid.len();
-        Self {
-            target: vec![0.0; len],
-            residual: vec![0.0; len],
-            preconditioned: vec![0.0; len],
-            direction: vec![0.0; len],
-            response: vec![0.0; len],
-            mask: vec![0.0; len],
-            preconditioner: SpectralPreconditioner::new(grid, contact_modulus),
         }
     }
 }

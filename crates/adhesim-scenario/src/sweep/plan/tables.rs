@@ -6,9 +6,10 @@
 //! its errors keep the scenario key (`grid.n`).
 
 // SplitMix64 through plan.rs's import, which the draws moved here from.
-use super::{get, round10, set, Range, SplitMix64, MAX_CASES, PSEUDO_KEYS};
+use super::{round10, Range, SplitMix64, MAX_CASES, PSEUDO_KEYS};
 use crate as scenario;
 use crate::error::{ErrorKind, ScenarioError};
+use crate::sweep::keys::{get, set};
 use anyhow::{bail, Context, Result};
 use serde::Deserialize;
 

@@ -35,7 +35,7 @@
 use super::NestedActiveSet;
 use crate::elastic::FreeOperator;
 use crate::solver::contact_window::WindowLevel;
-use crate::solver::nested::Workspace;
+use crate::solver::workspace::Workspace;
 
 /// A coarse level's part of a [`NestedCheckpoint`].
 #[derive(Debug, Clone, PartialEq)]
