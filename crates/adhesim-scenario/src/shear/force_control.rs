@@ -3,7 +3,7 @@
 
 use crate::error::ScenarioError;
 use crate::model::*;
-use crate::validate::positive;
+use crate::checks::positive;
 use adhesim::{FrictionLaw, TangentialForce};
 use anyhow::{bail, Result};
 
