@@ -90,3 +90,25 @@ def test_a_slide_with_friction_adds_tau0_times_area_to_the_boundary_force():
     results = result.summary["results"]
     assert results["frictional_dissipation"] > 0 and results["measured_q"] is None
     assert abs(results["interface_friction_force"] / (0.05 * results["real_contact_area"]) - 1) < 0.01
+
+
+def test_an_imposed_tangential_force_is_met_and_follows_cattaneo_mindlin():
+    # scenarios/friction/fretting_force.toml on 64² (a = 20 elements), the forward stroke to
+    # Q* = 0.75μP and one cycle: every shift step carries its imposed force to 1e-8 of μP
+    # (the search's tolerance), and the loading shift follows Cattaneo–Mindlin within 3 %
+    # (the staircase edge at a/Δ = 20, as the displacement-controlled test above).
+    toml = REPO / "scenarios" / "friction" / "fretting_force.toml"
+    result = adhesim.run(toml, overrides={"grid.n": 64, "protocol.cycles": 1, "protocol.steps": 6})
+    shear = result.curve[result.curve["phase"] == "shear"]
+    assert len(shear) == 6 * 5
+    mu, g, nu = 0.3, 1.0, 0.5
+    p = float(shear["force_normal"].iloc[-1])
+    a = float(np.sqrt(shear["area"].iloc[-1] / np.pi))
+    levels = [k / 6 for k in range(1, 7)] + [1 - k / 6 for k in range(1, 13)] + [-1 + k / 6 for k in range(1, 13)]
+    imposed = 0.75 * mu * p * np.array(levels)
+    assert np.all(np.abs(shear["force_tangential"].to_numpy() - imposed) <= 1e-8 * mu * p)
+    loading = shear.iloc[:6]
+    ratio = loading["force_tangential"] / (mu * p)
+    full_slip = 3 * mu * p * (2 - nu) / (16 * g * a)
+    expected = full_slip * (1 - (1 - ratio) ** (2 / 3))
+    assert np.all(np.abs(loading["x"] / expected - 1) < 0.03)

@@ -1,9 +1,9 @@
 //! Force control of a shear: `protocol.tangential_force` in place of `protocol.distance`,
 //! with what it does not combine with refused by name.
 
+use crate::checks::positive;
 use crate::error::ScenarioError;
 use crate::model::*;
-use crate::checks::positive;
 use adhesim::{FrictionLaw, TangentialForce};
 use anyhow::{bail, Result};
 

@@ -56,7 +56,11 @@ fn an_imposed_force_follows_cattaneo_mindlin_and_mindlin_deresiewicz() {
         if travelled <= steps {
             let ratio = force[k] / limit;
             let shift = full_slip * (1.0 - (1.0 - ratio).powf(2.0 / 3.0));
-            assert!((x[k] / shift - 1.0).abs() < 0.02, "row {k}: δ {} vs Cattaneo–Mindlin {shift}", x[k]);
+            assert!(
+                (x[k] / shift - 1.0).abs() < 0.02,
+                "row {k}: δ {} vs Cattaneo–Mindlin {shift}",
+                x[k]
+            );
         }
     }
     let (first_cycle, second_cycle) = (approach + 5 * steps as usize - 1, last);
