@@ -21,6 +21,43 @@ fn pressed_sphere(n: usize, size: f64, depth: f64) -> (Grid, ContactState, Tange
     (grid, state, tangential)
 }
 
+/// The Cattaneo–Mindlin sphere of the tests below: a = 32Δ on 80² (Δ = 1/256), μ = 0.3.
+struct MindlinSphere {
+    grid: Grid,
+    normal: ContactState,
+    operator: TangentialOperator,
+    /// P.
+    force_normal: f64,
+    /// Elements in contact.
+    contact: usize,
+    /// a from the contact's area.
+    radius: f64,
+    /// δ* = 3μP(2 − ν)/(16Ga).
+    full_slip_shift: f64,
+}
+
+const MINDLIN_ELEMENT: f64 = 1.0 / 256.0;
+const MINDLIN_MU: f64 = 0.3;
+
+fn mindlin_sphere() -> MindlinSphere {
+    let delta_x = MINDLIN_ELEMENT;
+    let (grid, normal, operator) = pressed_sphere(80, 80.0 * delta_x, (32.0 * delta_x) * (32.0 * delta_x));
+    let area = grid.element_area();
+    let force_normal = normal.force(area);
+    let contact = normal.contact_elements();
+    let radius = (contact as f64 * area / std::f64::consts::PI).sqrt();
+    let full_slip_shift = 3.0 * MINDLIN_MU * force_normal * 1.5 / (16.0 * radius);
+    MindlinSphere {
+        grid,
+        normal,
+        operator,
+        force_normal,
+        contact,
+        radius,
+        full_slip_shift,
+    }
+}
+
 #[test]
 fn cattaneo_mindlin_stick_radius_and_compliance() {
     // a = √(Rd) = 32Δ. Cattaneo–Mindlin (Johnson 1985 §7.2), rigid sphere, ν = 1/2, G = 1:
@@ -29,14 +66,16 @@ fn cattaneo_mindlin_stick_radius_and_compliance() {
     // staircase edge of the contact and of the stick zone, ~1/(2·32) per radius, partly
     // cancels in the ratios); c/a is checked while the stick zone's radius spans ≥ 12
     // elements (below, the staircase error of a radius from an area grows as Δ/c).
-    let delta_x = 1.0 / 256.0;
-    let (grid, normal, mut operator) = pressed_sphere(80, 80.0 * delta_x, (32.0 * delta_x) * (32.0 * delta_x));
-    let area = grid.element_area();
-    let force_normal = normal.force(area);
-    let contact = normal.contact_elements();
-    let radius = (contact as f64 * area / std::f64::consts::PI).sqrt();
-    let mu = 0.3;
-    let full_slip_shift = 3.0 * mu * force_normal * 1.5 / (16.0 * radius);
+    let MindlinSphere {
+        grid,
+        normal,
+        mut operator,
+        force_normal,
+        contact,
+        radius,
+        full_slip_shift,
+    } = mindlin_sphere();
+    let (delta_x, mu) = (MINDLIN_ELEMENT, MINDLIN_MU);
     let mut solver = TangentialSolver::new(FrictionLaw::coulomb(mu).unwrap(), TangentialParams::default());
     let mut state = TangentialState::new(grid.len());
     let steps = 12;
@@ -353,15 +392,17 @@ fn an_imposed_force_follows_cattaneo_mindlin_and_mindlin_deresiewicz() {
     // controlled test (the staircase edges). The force is met to 1e-8 relative (the search's
     // tolerance), and a displacement-controlled solver driven through the shifts found
     // gives the same forces to 1e-7 (each step is one from the same state).
-    let delta_x = 1.0 / 256.0;
-    let (grid, normal, mut operator) = pressed_sphere(80, 80.0 * delta_x, (32.0 * delta_x) * (32.0 * delta_x));
-    let area = grid.element_area();
-    let force_normal = normal.force(area);
-    let contact = normal.contact_elements();
-    let radius = (contact as f64 * area / std::f64::consts::PI).sqrt();
-    let mu = 0.3;
+    let MindlinSphere {
+        grid,
+        normal,
+        mut operator,
+        force_normal,
+        contact,
+        radius,
+        full_slip_shift,
+    } = mindlin_sphere();
+    let (delta_x, mu) = (MINDLIN_ELEMENT, MINDLIN_MU);
     let limit = mu * force_normal;
-    let full_slip_shift = 3.0 * limit * 1.5 / (16.0 * radius);
     let law = FrictionLaw::coulomb(mu).unwrap();
     let mut solver = TangentialSolver::new(law, TangentialParams::default());
     let mut twin = TangentialSolver::new(law, TangentialParams::default());
