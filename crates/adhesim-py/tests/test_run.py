@@ -496,3 +496,19 @@ def test_cli_fields_npz_follows_the_documented_contract(tmp_path):
             force = dx * dx * npz[f"pressure_{step:06d}"].sum()
             assert abs(force - curve["force_normal"][step]) <= 1e-12 * scale, (step, force)
             assert contact.sum() == curve["n_contact"][step]
+
+
+def test_a_hold_with_aging_adhesion_reads_back_its_time_and_raises_the_pull_off():
+    # scenarios/aging.toml on 64²: bonds aging as γ0(1 + t/t_ref)^0.0883 during a hold of
+    # 10 min in 20 steps. The hold's rows carry phase "hold" and their time; the pull-off
+    # force exceeds the unaged one by the aged factor (1 + 10/0.01)^0.0883 = 1.84 within 3 %
+    # (the mesh's excess changes by 1.4Δ/a_JKR(1 − 1.84^(-1/3)) ≈ 1.7 % at a_JKR ≈ 16Δ, and
+    # the lattice scatters the pull-off by ~1 %).
+    toml = REPO / "scenarios" / "aging.toml"
+    aged = adhesim.run(toml, overrides={"grid.n": 64})
+    hold = aged.curve[aged.curve["phase"] == "hold"]
+    assert len(hold) == 20
+    assert abs(float(hold["time"].iloc[-1]) - 10.0) < 1e-12
+    fresh = adhesim.run(toml, overrides={"grid.n": 64, "protocol.hold_time": 1e-9, "protocol.time_step": 1e-9})
+    ratio = aged.summary["results"]["max_adhesive_force"] / fresh.summary["results"]["max_adhesive_force"]
+    assert abs(ratio / (1 + 10 / 0.01) ** 0.0883 - 1) < 0.03, ratio

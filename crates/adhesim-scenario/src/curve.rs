@@ -132,6 +132,9 @@ const FRICTION: [CurveColumn; 5] = [
 /// lags it).
 const DRIVE: CurveColumn = float("drive_x", |r, _| Float(r.drive_offset));
 
+/// The time since the hold began (an indentation with `protocol.hold_time`), last.
+const TIME: CurveColumn = float("time", |r, _| Float(r.time));
+
 /// The columns of one run's `curve.csv` (they depend on whether the JKR scales exist and
 /// whether the interface has friction).
 #[derive(Debug, Clone)]
@@ -170,6 +173,9 @@ impl CurveColumns {
         if scenario.shear.is_some_and(|shear| shear.drive_stiffness.is_some()) {
             columns.columns.push(DRIVE);
         }
+        if scenario.hold.is_some() {
+            columns.columns.push(TIME);
+        }
         columns
     }
 
@@ -180,6 +186,7 @@ impl CurveColumns {
         columns.extend(TRAILING);
         columns.extend(FRICTION);
         columns.push(DRIVE);
+        columns.push(TIME);
         columns
     }
 

@@ -46,6 +46,7 @@ pub mod error_text;
 mod files;
 mod guards;
 mod hash;
+mod hold;
 pub mod memory;
 mod model;
 pub mod output;
@@ -237,6 +238,8 @@ pub fn load_within(
     file.validate(base)
 }
 
+#[cfg(test)]
+mod aging_tests;
 #[cfg(test)]
 mod cohesive_tests;
 #[cfg(test)]

@@ -5,11 +5,13 @@ use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+mod adhesion;
 mod friction;
 mod layer;
 mod per_axis;
 mod roughness;
 mod solver;
+pub use adhesion::{AdhesionSection, AgingLawName, AgingSection, LawName};
 pub use friction::{
     CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup, TangentialForceUnit,
 };
@@ -103,49 +105,6 @@ pub struct MaterialSection {
     /// How the layer rests on its base; absent means `bonded` (and is echoed absent).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub base: Option<LayerBaseName>,
-}
-
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AdhesionSection {
-    pub work_of_adhesion: f64,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub field: Option<FieldSpec>,
-    /// The adhesion law; absent means `jkr` (and is echoed absent).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub law: Option<LawName>,
-    /// σ0 of `law = "dugdale"` or `"trapezoid"`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub cohesive_stress: Option<f64>,
-    /// s ∈ (0, 1] of `law = "trapezoid"`: the fraction of the range over which the
-    /// traction falls.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub softening_fraction: Option<f64>,
-    /// ρ of `law = "exponential"`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub range: Option<f64>,
-}
-
-/// `adhesion.law`: the paper's sharp JKR-type criterion, or a cohesive law of finite range.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum LawName {
-    #[default]
-    Jkr,
-    Dugdale,
-    Exponential,
-    Trapezoid,
-}
-
-impl LawName {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Jkr => "jkr",
-            Self::Dugdale => "dugdale",
-            Self::Exponential => "exponential",
-            Self::Trapezoid => "trapezoid",
-        }
-    }
 }
 
 /// Heterogeneous work of adhesion.
@@ -397,6 +356,13 @@ pub struct IndentationProtocol {
     /// Safety limit on retraction steps (default: 20 × the approach steps, at least 1000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_retract_steps: Option<i64>,
+    /// A hold at the deepest indentation before the retraction, in the unit of time of
+    /// `adhesion.aging.reference_time`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hold_time: Option<f64>,
+    /// The hold's longest time step (default: hold_time/20).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_step: Option<f64>,
 }
 
 /// `kind = "roll"` or `"translate"`: approach to `depth`, then travel by `distance` in +x.
@@ -524,6 +490,8 @@ pub struct ValidScenario {
     pub translation: Option<TranslationSetup>,
     /// shear: the protocol and the interface law (`None` otherwise).
     pub shear: Option<ShearSetup>,
+    /// The hold of an indentation (`protocol.hold_time`), with its aging.
+    pub hold: Option<adhesim::Hold>,
     /// Resolution warnings (elements per wavelength, across a punch, per a_JKR), for
     /// stderr and `summary.json`.
     pub warnings: Vec<String>,

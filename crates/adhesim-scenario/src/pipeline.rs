@@ -88,7 +88,7 @@ impl ValidScenario {
     /// indentation (an estimate), approach + stroke(s) of a translation.
     pub fn expected_steps(&self) -> usize {
         match self.protocol_setup() {
-            ProtocolSetup::Indentation(_) => 2 * self.approach_steps,
+            ProtocolSetup::Indentation(_) => 2 * self.approach_steps + self.hold.map_or(0, |hold| hold.steps()),
             ProtocolSetup::Translation(setup) => {
                 let p = &setup.protocol;
                 p.approach_steps + p.steps + if p.return_stroke { p.steps } else { 0 }
@@ -309,13 +309,13 @@ pub fn run_from(
     };
     match scenario.protocol_setup() {
         ProtocolSetup::Indentation(protocol) => {
-            let summary = protocol.run_from(
-                &mut *operator,
-                &scenario.heights,
-                &mut solver,
-                &mut recording,
-                indentation_start.as_deref(),
-            )?;
+            let (heights, start) = (&scenario.heights, indentation_start.as_deref());
+            let summary = match &scenario.hold {
+                Some(hold) => {
+                    protocol.run_holding(&mut *operator, heights, &mut solver, &mut recording, start, hold)?
+                }
+                None => protocol.run_from(&mut *operator, heights, &mut solver, &mut recording, start)?,
+            };
             let records = recording.records;
             let (fits, _) = fit_results(scenario, &records);
             Ok(RunOutcome {

@@ -145,6 +145,7 @@ impl ScenarioFile {
                 material: shear_material,
             }),
             roughness: None,
+            hold: None,
             warnings: Vec::new(),
         })
     }

@@ -120,6 +120,7 @@ impl ScenarioFile {
             }),
             shear: None,
             roughness: None,
+            hold: None,
             warnings: Vec::new(),
         })
     }

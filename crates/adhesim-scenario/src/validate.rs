@@ -111,6 +111,7 @@ impl ScenarioFile {
             substrate_roughness: substrate_roughness.map(|map| map.heights),
         };
         self.check_friction_pairing()?;
+        self.check_aging_pairing()?;
         if let Some(solver) = &self.solver {
             let law = crate::cohesive::law_name(&self.adhesion);
             solver.check(inputs.gamma0 > 0.0, law, self.grid.boundary)?;
@@ -244,6 +245,7 @@ impl ScenarioFile {
         };
 
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, contact_modulus)?;
+        let hold = self.validate_hold(p, gamma0)?;
 
         Ok(ValidScenario {
             file: self,
@@ -263,6 +265,7 @@ impl ScenarioFile {
             jump_force_threshold,
             translation: None,
             shear: None,
+            hold,
             warnings: Vec::new(),
             roughness: None,
         })

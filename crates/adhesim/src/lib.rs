@@ -105,9 +105,9 @@ pub use geometry::{
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
-    IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint, ProtocolError,
-    ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView, TangentialForce,
-    Translation, TranslationCheckpoint, TranslationSummary,
+    AgingLaw, Hold, IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint,
+    ProtocolError, ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView,
+    TangentialForce, Translation, TranslationCheckpoint, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

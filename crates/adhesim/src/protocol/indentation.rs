@@ -4,6 +4,10 @@ use crate::grid::Grid;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
+mod hold;
+
+pub use hold::{AgingLaw, Hold};
+
 /// Displacement-controlled indentation to `max_depth` and retraction until contact is
 /// lost, in fixed steps of `depth_step` (paper Sect. 2.1, Fig. 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,6 +76,21 @@ impl IndentPulloff {
         observer: &mut dyn Observer,
         start: Option<&IndentCheckpoint>,
     ) -> Result<ProtocolSummary, ProtocolError> {
+        self.run_phases(operator, heights, solver, observer, start, None)
+    }
+
+    /// The approach, the `hold` at the deepest indentation when given, and the retraction;
+    /// from `start` when given. With a hold, checkpoints are offered during the approach
+    /// only (the hold's ages are not in them), so a resumed run holds from its start.
+    fn run_phases(
+        &self,
+        operator: &mut dyn ElasticOperator,
+        heights: &[f64],
+        solver: &mut NormalSolver,
+        observer: &mut dyn Observer,
+        start: Option<&IndentCheckpoint>,
+        hold: Option<&Hold>,
+    ) -> Result<ProtocolSummary, ProtocolError> {
         self.check()?;
         let grid = *operator.grid();
         solver.reset();
@@ -90,10 +109,18 @@ impl IndentPulloff {
             }
             None => RunState::new(&grid, self.max_depth),
         };
+        if hold.is_some() && run.step > approach_steps {
+            return Err(ProtocolError::InvalidParameter(
+                "a run with a hold resumes only from a checkpoint of its approach".into(),
+            ));
+        }
         while run.step < approach_steps {
             let depth = (start_depth + (run.step + 1) as f64 * self.depth_step).min(self.max_depth);
             self.run_step(operator, heights, solver, observer, &mut run, depth, Phase::Approach)?;
             run.offer_checkpoint(solver, observer)?;
+        }
+        if let Some(hold) = hold {
+            self.hold(operator, heights, solver, observer, &mut run, hold)?;
         }
         while run.step - approach_steps < self.max_retract_steps {
             run.depth -= self.depth_step;
@@ -111,7 +138,9 @@ impl IndentPulloff {
             if record.contact_elements > 0 {
                 run.last_in_contact = Some(depth);
             }
-            run.offer_checkpoint(solver, observer)?;
+            if hold.is_none() {
+                run.offer_checkpoint(solver, observer)?;
+            }
         }
         Err(ProtocolError::ContactNotLost {
             steps: self.max_retract_steps,
@@ -168,6 +197,7 @@ impl IndentPulloff {
         );
         // A cohesive zone cut by the border is as wrong as a contact cut by it.
         record.touches_border |= solver.zone_touches_border();
+        record.time = run.time;
         let contact_elements = record.contact_elements;
         summary.steps += 1;
         summary.solves += report.solves;
@@ -207,6 +237,8 @@ struct RunState {
     state: ContactState,
     previous: Vec<bool>,
     summary: ProtocolSummary,
+    /// Time since the hold began.
+    time: f64,
 }
 
 impl RunState {
@@ -220,6 +252,7 @@ impl RunState {
             previous: state.contact.clone(),
             state,
             summary: ProtocolSummary::default(),
+            time: 0.0,
         }
     }
 
@@ -232,6 +265,7 @@ impl RunState {
             state: checkpoint.state.clone(),
             previous: checkpoint.previous.clone(),
             summary: checkpoint.summary,
+            time: 0.0,
         }
     }
 

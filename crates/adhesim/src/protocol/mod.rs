@@ -11,7 +11,7 @@ mod stepper;
 mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
-pub use indentation::{IndentPulloff, ProtocolSummary};
+pub use indentation::{AgingLaw, Hold, IndentPulloff, ProtocolSummary};
 pub use shear::{
     contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearFields, ShearSummary,
     TangentialForce,
@@ -43,6 +43,8 @@ pub enum Phase {
     Slide,
     /// Tangential shift with friction at fixed indentation.
     Shear,
+    /// Held at the deepest indentation while time passes (aging adhesion).
+    Hold,
 }
 
 impl Phase {
@@ -54,6 +56,7 @@ impl Phase {
             Self::Roll => "roll",
             Self::Slide => "slide",
             Self::Shear => "shear",
+            Self::Hold => "hold",
         }
     }
 }
@@ -115,6 +118,10 @@ pub struct StepRecord {
     /// indenter's, which lags it under a compliant drive).
     #[cfg_attr(feature = "serde", serde(default))]
     pub drive_offset: f64,
+    /// Time since a hold began (an indentation with a hold; 0 before it, its duration
+    /// after it).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub time: f64,
 }
 
 impl StepRecord {

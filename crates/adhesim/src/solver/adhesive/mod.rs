@@ -3,6 +3,7 @@
 //! rules (violators, local rounds, failed-ring prediction) in `release`, attachment and
 //! predicted-subset growth in `growth`.
 
+mod aging;
 mod checkpoint;
 mod fixed_set;
 mod growth;
@@ -38,6 +39,9 @@ const EXACT_DISPLACEMENT_PERIOD: usize = 32;
 pub struct AdhesiveSolver {
     params: AdhesiveParams,
     grid: Grid,
+    /// E*, and the element size Δ of σ_c (for a work of adhesion replaced during a run).
+    contact_modulus: f64,
+    detachment_size: f64,
     work_of_adhesion: Vec<f64>,
     critical_stress: Vec<f64>,
     minimum_critical_stress: f64,
@@ -152,6 +156,8 @@ impl AdhesiveSolver {
         Self {
             params,
             grid,
+            contact_modulus,
+            detachment_size: delta,
             work_of_adhesion,
             critical_stress,
             minimum_critical_stress,
