@@ -533,7 +533,7 @@ impl ScenarioFile {
             } else {
                 String::new()
             };
-            let hint = if limit.survives_lifting() {
+            let hint = if limit.survives_lifting {
                 "lower grid.n or raise the limit"
             } else {
                 "lower grid.n (or override this check where the estimate is known to be too high)"

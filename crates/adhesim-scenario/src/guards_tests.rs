@@ -151,6 +151,7 @@ fn a_grid_beyond_the_available_memory_is_refused_before_allocation() {
     let big = MINIMAL.replace("n = 16", "n = 8192");
     // 1 GiB available: n = 8192 needs tens of GiB.
     let limit = MemoryLimit {
+        survives_lifting: false,
         bytes: 1 << 30,
         source: "a test's limit".to_string(),
     };

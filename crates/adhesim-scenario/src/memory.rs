@@ -17,6 +17,9 @@ pub struct MemoryLimit {
     pub bytes: u64,
     /// What sets it, for messages: `the address-space limit RLIMIT_AS of 1.9 GiB, less 0.1 GiB in use`.
     pub source: String,
+    /// This is the address-space limit that the option lifting the memory guard leaves
+    /// ([`memory_limit`]): raising it is then the only way past it.
+    pub survives_lifting: bool,
 }
 
 impl std::fmt::Display for MemoryLimit {
@@ -82,6 +85,7 @@ impl SystemMemoryFiles {
             .and_then(|t| kilobyte_line(t, "VmSize:"))
             .unwrap_or(0);
         Some(MemoryLimit {
+            survives_lifting: false,
             bytes: limit.saturating_sub(in_use),
             source: format!(
                 "the address-space limit RLIMIT_AS of {}, less {} in use",
@@ -96,6 +100,7 @@ impl SystemMemoryFiles {
         let mut candidates = Vec::new();
         if let Some(bytes) = self.meminfo.as_deref().and_then(|t| kilobyte_line(t, "MemAvailable:")) {
             candidates.push(MemoryLimit {
+                survives_lifting: false,
                 bytes,
                 source: "MemAvailable of /proc/meminfo".to_string(),
             });
@@ -104,6 +109,7 @@ impl SystemMemoryFiles {
         if let Some(limit) = self.cgroup_max.as_deref().and_then(cgroup_bytes) {
             let in_use = self.cgroup_current.as_deref().and_then(cgroup_bytes).unwrap_or(0);
             candidates.push(MemoryLimit {
+                survives_lifting: false,
                 bytes: limit.saturating_sub(in_use),
                 source: format!(
                     "the cgroup memory limit of {}, less {} in use",
@@ -181,6 +187,7 @@ pub fn memory_available() -> Result<Option<MemoryLimit>> {
     if let Ok(value) = std::env::var(MEMORY_VARIABLE) {
         return match value.trim().parse::<u64>() {
             Ok(bytes) => Ok(Some(MemoryLimit {
+                survives_lifting: false,
                 bytes,
                 source: format!("{MEMORY_VARIABLE} = {bytes}"),
             })),
@@ -198,20 +205,10 @@ pub fn memory_limit(lifted_by: Option<&str>) -> Result<Option<MemoryLimit>> {
     match lifted_by {
         None => memory_available(),
         Some(option) => Ok(SystemMemoryFiles::read().address_space().map(|limit| MemoryLimit {
-            source: format!("{}, which {option} {NOT_LIFTED}", limit.source),
+            source: format!("{}, which {option} does not lift", limit.source),
+            survives_lifting: true,
             ..limit
         })),
-    }
-}
-
-/// How a limit's source says that the option lifting the guard does not lift it.
-const NOT_LIFTED: &str = "does not lift";
-
-impl MemoryLimit {
-    /// Whether this is the address-space limit that the lifting option leaves
-    /// ([`memory_limit`]): raising it is then the only way past it.
-    pub fn survives_lifting(&self) -> bool {
-        self.source.contains(NOT_LIFTED)
     }
 }
 
@@ -284,6 +281,7 @@ mod tests {
     #[test]
     fn an_allocation_beyond_the_limit_names_what_and_the_limit() {
         let limit = MemoryLimit {
+            survives_lifting: false,
             bytes: 1 << 30,
             source: "test".to_string(),
         };

@@ -37,7 +37,7 @@ pub fn check_memory(plan: &Plan, jobs: usize, limit: &MemoryLimit, lifting_optio
     }
     let Some((_, case, file)) = largest else { return Ok(()) };
     let runs = jobs.min(plan.cases.len()) as u64;
-    let hint = match (limit.survives_lifting(), runs > 1) {
+    let hint = match (limit.survives_lifting, runs > 1) {
         (true, true) => " (lower --jobs)".to_string(),
         (true, false) => String::new(),
         (false, true) => format!(" (pass {lifting_option} to run anyway, or lower --jobs)"),

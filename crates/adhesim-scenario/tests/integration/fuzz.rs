@@ -367,6 +367,7 @@ fn check_case(
             &base,
             &all,
             Some(&MemoryLimit {
+                survives_lifting: false,
                 bytes: AVAILABLE_MEMORY,
                 source: "the fuzz test's limit".to_string(),
             }),
