@@ -57,9 +57,24 @@ fn layer_keys_are_checked_with_their_names() {
 
 #[test]
 fn combinations_not_implemented_on_a_layer_are_refused() {
-    let error = error_of(LAYER, &["adhesion.work_of_adhesion=0.01"]);
+    let error = error_of(
+        LAYER,
+        &[
+            "adhesion.work_of_adhesion=0.01",
+            "adhesion.law=\"dugdale\"",
+            "adhesion.cohesive_stress=1",
+        ],
+    );
     assert!(
-        error.contains("adhesion on a layer (material.thickness) is not implemented yet"),
+        error.contains("a cohesive law on a layer (material.thickness) is not implemented"),
+        "{error}"
+    );
+    let error = error_of(
+        LAYER,
+        &["adhesion.work_of_adhesion=0.01", "solver.predicted_growth=\"on\""],
+    );
+    assert!(
+        error.contains("solver.predicted_growth") && error.contains("reference rule"),
         "{error}"
     );
     let protocol = LAYER.find("[protocol]").unwrap();
@@ -136,4 +151,58 @@ fn the_layer_scenario_file_loads() {
     let layer = scenario.layer().unwrap();
     assert_eq!(layer.thickness(), 0.01);
     assert!((scenario.material.contact_modulus() - 4.0).abs() < 1e-15);
+}
+
+#[test]
+fn a_jkr_sphere_on_a_thick_layer_is_the_half_space_one() {
+    // The JKR-type solver on a layer runs its reference rule on the layer's operator; a
+    // layer of t = 1e6 is the half-space to 5e-7 of max|u| (docs/validation.md §18), and
+    // the reference rule has the fast rule's contact sets (docs/fast-step.md). So the run
+    // has the half-space run's contact at every step, and its forces to 1e-4 of the
+    // largest (the operators' difference and the solves' tolerance, 1e-6, are far below).
+    let jkr = r#"
+[grid]
+n = 64
+size = 1.0
+[material]
+youngs_modulus = 3.0
+poisson_ratio = 0.5
+thickness = 1e6
+[adhesion]
+work_of_adhesion = 1e-3
+[indenter]
+shape = "sphere"
+radius = 1.0
+[protocol]
+kind = "indent_pulloff"
+max_depth = 1.0
+depth_unit = "jkr"
+steps = 20
+"#;
+    let layer = load(jkr, "layer", std::path::Path::new("."), &[]).unwrap();
+    let half_space = load(
+        &jkr.replace("thickness = 1e6\n", ""),
+        "half",
+        std::path::Path::new("."),
+        &[],
+    )
+    .unwrap();
+    let on_layer = run(&layer, &mut ()).unwrap();
+    let on_half_space = run(&half_space, &mut ()).unwrap();
+    assert_eq!(on_layer.records.len(), on_half_space.records.len());
+    let largest = on_half_space
+        .records
+        .iter()
+        .map(|r| r.force_normal.abs())
+        .fold(0.0, f64::max);
+    for (a, b) in on_layer.records.iter().zip(&on_half_space.records) {
+        assert_eq!(a.contact_elements, b.contact_elements, "step {}", a.step);
+        assert!(
+            (a.force_normal - b.force_normal).abs() < 1e-4 * largest,
+            "step {}: {} vs {}",
+            a.step,
+            a.force_normal,
+            b.force_normal
+        );
+    }
 }

@@ -60,14 +60,24 @@ impl ValidScenario {
         if let Some(solver) = cohesive_solver(&self.file.adhesion, self.grid, self.material, &self.gamma) {
             NormalSolver::Cohesive(Box::new(solver))
         } else if self.gamma0 > 0.0 {
+            // On a layer the reference rule: the certified stops and local replays are
+            // derived for the half-space's kernel.
+            let params = match self.layer() {
+                Some(_) => AdhesiveParams {
+                    reference_rule: true,
+                    predicted_growth: adhesim::solver::PredictedGrowth::Off,
+                    ..AdhesiveParams::default()
+                },
+                None => AdhesiveParams {
+                    predicted_growth: self.predicted_growth(),
+                    ..AdhesiveParams::default()
+                },
+            };
             NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
                 self.grid,
                 self.material.contact_modulus(),
                 self.gamma.clone(),
-                AdhesiveParams {
-                    predicted_growth: self.predicted_growth(),
-                    ..AdhesiveParams::default()
-                },
+                params,
             )))
         } else if self.layer().is_some() {
             // The nested active set's coarse levels and windows are half-space operators:

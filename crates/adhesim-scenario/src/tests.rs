@@ -193,7 +193,9 @@ fn each_protocol_kind_takes_exactly_its_own_keys() {
         let expected = format!("unknown key `{key}` for protocol.kind = \"indent_pulloff\" (a key of protocol.kind = ");
         assert!(error.starts_with(&expected), "{set}: {error}");
         assert!(
-            error.ends_with("; expected one of `max_depth`, `depth_unit`, `steps`, `step`, `max_retract_steps`)"),
+            error.ends_with(
+                "; expected one of `max_depth`, `depth_unit`, `steps`, `step`, `max_retract_steps`, `hold_time`, `time_step`)"
+            ),
             "{error}"
         );
     }

@@ -20,9 +20,11 @@ use anyhow::{bail, Result};
 use std::path::Path;
 
 impl ScenarioFile {
-    /// A layer (`material.thickness`) runs the non-adhesive indentation only: the JKR-type
-    /// and cohesive solvers' detachment stress and error bounds are the half-space
-    /// element's, and the tangential operator is Cerruti's half-space (docs/physics.md §9).
+    /// A layer (`material.thickness`) runs an indentation, without adhesion or with the
+    /// JKR-type rule: a cohesive law's tractions across gaps and the tangential operator
+    /// are the half-space's (docs/physics.md §9). The JKR-type solver runs its reference
+    /// rule there (full solves, no local replays: the certificates and local rules are
+    /// derived for the half-space's kernel), so `solver.predicted_growth` does not apply.
     fn check_layer_pairing(&self) -> Result<()> {
         let kind = self.protocol.kind();
         if !matches!(kind, ProtocolKind::IndentPulloff) {
@@ -36,18 +38,24 @@ impl ScenarioFile {
                 )
             ));
         }
-        let adhesion = &self.adhesion;
-        let law = adhesion.law.unwrap_or_default();
-        if adhesion.work_of_adhesion != 0.0 || adhesion.field.is_some() || law != LawName::Jkr {
+        let law = self.adhesion.law.unwrap_or_default();
+        if law != LawName::Jkr {
             bail!(ScenarioError::invalid_as(
-                "adhesion.work_of_adhesion",
-                adhesion.work_of_adhesion,
-                "0 with material.thickness (no field, no cohesive law)",
+                "adhesion.law",
+                format!("\"{}\"", law.name()),
+                "\"jkr\" with material.thickness",
                 format!(
-                    "adhesion on a layer (material.thickness) is not implemented yet: set adhesion.work_of_adhesion = 0 without a field or law (got {}, law \"{}\")",
-                    adhesion.work_of_adhesion,
+                    "a cohesive law on a layer (material.thickness) is not implemented: adhesion.law = \"jkr\" (the sharp rule) or no adhesion, got \"{}\"",
                     law.name()
                 )
+            ));
+        }
+        if let Some(rule) = self.solver.as_ref().and_then(|solver| solver.predicted_growth) {
+            bail!(ScenarioError::invalid_as(
+                "solver.predicted_growth",
+                format!("\"{}\"", rule.name()),
+                "absent with material.thickness",
+                "solver.predicted_growth replays the half-space's kernel; on a layer the adhesive solver runs its reference rule: remove the key"
             ));
         }
         Ok(())
