@@ -13,7 +13,7 @@ use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
 use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
-use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
+use crate::solver::{Complementarity, ContactState, StepReport, TangentialReport, TangentialSolver};
 use edge::NormalSide;
 use shift::{ShiftStepper, ShiftTarget};
 use std::ops::ControlFlow;
@@ -209,19 +209,7 @@ impl Shear {
                 summary.normal_force,
             )?;
             let (report, mut normal) = (outcome.tangential, outcome.normal);
-            add_normal_counters(&mut summary, &normal);
-            normal.cg_iterations += report.cg_iterations;
-            normal.operator_applications += report.transform_pairs;
-            summary.tangential_transform_pairs += report.transform_pairs;
-            summary.operator_applications += report.transform_pairs;
-            summary.cg_iterations += report.cg_iterations;
-            summary.tangential_rounds += report.rounds;
-            summary.frictional_dissipation += report.dissipated_energy;
-            summary.slip_events += usize::from(report.slip_event);
-            if stroke == Stroke::Cycle(self.cycles) {
-                summary.last_cycle_dissipation += report.dissipated_energy;
-            }
-            worst(&mut summary.complementarity, report.complementarity);
+            add_shift_counters(&mut summary, &mut normal, &report, stroke == Stroke::Cycle(self.cycles));
             let mut record = self.record(
                 step,
                 Phase::Shear,
@@ -430,6 +418,30 @@ fn add_normal_counters(summary: &mut ShearSummary, report: &StepReport) {
     summary.solves += report.solves;
     summary.cg_iterations += report.cg_iterations;
     summary.operator_applications += report.operator_applications;
+}
+
+/// A shift step's normal and tangential counters into the totals, and the tangential ones
+/// into the step's `normal` report; `last_cycle`: the step belongs to the last fretting
+/// cycle.
+fn add_shift_counters(
+    summary: &mut ShearSummary,
+    normal: &mut StepReport,
+    report: &TangentialReport,
+    last_cycle: bool,
+) {
+    add_normal_counters(summary, normal);
+    normal.cg_iterations += report.cg_iterations;
+    normal.operator_applications += report.transform_pairs;
+    summary.tangential_transform_pairs += report.transform_pairs;
+    summary.operator_applications += report.transform_pairs;
+    summary.cg_iterations += report.cg_iterations;
+    summary.tangential_rounds += report.rounds;
+    summary.frictional_dissipation += report.dissipated_energy;
+    summary.slip_events += usize::from(report.slip_event);
+    if last_cycle {
+        summary.last_cycle_dissipation += report.dissipated_energy;
+    }
+    worst(&mut summary.complementarity, report.complementarity);
 }
 
 /// The worse of each optimality measure.
