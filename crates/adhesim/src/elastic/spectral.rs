@@ -67,9 +67,13 @@ pub(crate) struct SpectralConvolution<T: Precision = f64> {
     inverse_columns: Arc<dyn Fft<T>>,
     /// Row spectra, `[row * spectrum_columns + column]` for the Ny data rows.
     row_spectra: Vec<Complex<T>>,
-    /// The convolved spectrum on the kept output rows, tile by tile: tile t (columns
-    /// t·TILE..) holds `[row * TILE + column − t·TILE]` for the Ny rows.
+    /// The convolved spectrum on the kept output rows, in one piece per block of
+    /// `kept_tiles_per_block` tiles: the piece of block b (columns from b·W, W its tiles
+    /// times TILE) holds `[row * W + column − b·W]`, so that an output row is gathered
+    /// from a few long runs (one per block) instead of one short run per tile.
     kept: Vec<Complex<T>>,
+    /// Tiles per block of the last write of `kept`.
+    kept_tiles_per_block: usize,
     blocks: Vec<BlockScratch<T>>,
 }
 
@@ -138,6 +142,7 @@ impl<T: Precision> SpectralConvolution<T> {
             inverse_columns,
             row_spectra: vec![Complex::default(); ny * spectrum_columns],
             kept: vec![Complex::default(); spectrum_columns.div_ceil(TILE) * ny * TILE],
+            kept_tiles_per_block: 1,
             blocks,
         }
     }
@@ -235,12 +240,14 @@ impl<T: Precision> SpectralConvolution<T> {
         let (forward_columns, inverse_columns) = (&self.forward_columns, &self.inverse_columns);
         let first_output = output_rows.start;
         let stride = column_stride(padded);
+        self.kept_tiles_per_block = tiles_per_block;
         self.kept[..tiles * tile_len]
             .par_chunks_mut(tiles_per_block * tile_len)
             .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(block, (kept, scratch))| {
-                for (local, kept) in kept.chunks_mut(tile_len).enumerate() {
+                let block_width = kept.len() / output_rows.len();
+                for local in 0..block_width / TILE {
                     let first = (block * tiles_per_block + local) * TILE;
                     let width = TILE.min(columns - first);
                     let tile = &mut scratch.tile[..width * stride];
@@ -257,7 +264,7 @@ impl<T: Precision> SpectralConvolution<T> {
                         }
                         inverse_columns.process_with_scratch(column, &mut scratch.complex_scratch);
                     }
-                    keep_rows(kept, tile, first_output, (width, padded));
+                    keep_rows(kept, tile, first_output, (local * TILE, block_width), (width, padded));
                 }
             });
 
@@ -294,8 +301,8 @@ impl<T: Precision> SpectralConvolution<T> {
     fn inverse_rows_into(&mut self, output: &mut [f64], output_rows: &Range<usize>) {
         let (n, columns, padded_x) = (self.nx, self.spectrum_columns, self.padded_x);
         let blocks = self.blocks.len();
-        let tile_len = output_rows.len() * TILE;
-        let kept = &self.kept;
+        let block_len_kept = self.kept_tiles_per_block * TILE * output_rows.len();
+        let kept = &self.kept[..columns.div_ceil(TILE) * TILE * output_rows.len()];
         let inverse_rows = &self.inverse_rows;
         let rows_per_block = block_len(output_rows.len(), blocks);
         output[output_rows.start * n..output_rows.end * n]
@@ -306,8 +313,12 @@ impl<T: Precision> SpectralConvolution<T> {
                 for (local, row_out) in out.chunks_mut(n).enumerate() {
                     let row = block * rows_per_block + local;
                     let spectrum = &mut scratch.spectrum[..columns];
-                    for (tile, values) in spectrum.chunks_mut(TILE).enumerate() {
-                        values.copy_from_slice(&kept[tile * tile_len + row * TILE..][..values.len()]);
+                    for (piece, values) in kept
+                        .chunks(block_len_kept)
+                        .zip(spectrum.chunks_mut(block_len_kept / output_rows.len()))
+                    {
+                        let block_width = piece.len() / output_rows.len();
+                        values.copy_from_slice(&piece[row * block_width..][..values.len()]);
                     }
                     // Exactly real in exact arithmetic; drop round-off so c2r accepts it.
                     spectrum[0].im = T::zero();
@@ -327,7 +338,8 @@ impl<T: Precision> SpectralConvolution<T> {
 
 /// Fills `width` columns of a tile (`[column * column_stride(padded) + row]`) with the
 /// column values `first..first + width` of the row spectra (`columns` per row), zero
-/// outside the data rows `rows`.
+/// outside the data rows `rows`. Four rows at a time, so that each column receives a run
+/// of four values instead of one (the same values: only the order of the stores differs).
 fn gather_columns<T: Precision>(
     tile: &mut [Complex<T>],
     spectra: &[Complex<T>],
@@ -339,27 +351,53 @@ fn gather_columns<T: Precision>(
         column[..rows.start].fill(Complex::default());
         column[rows.end..padded].fill(Complex::default());
     }
-    for i in rows.clone() {
-        let row = &spectra[i * columns + first..][..width];
-        for (offset, &value) in row.iter().enumerate() {
-            tile[offset * stride + i] = value;
+    let row_of = |i: usize| &spectra[i * columns + first..][..width];
+    let mut i = rows.start;
+    while i + 4 <= rows.end {
+        let (a, b, c, d) = (row_of(i), row_of(i + 1), row_of(i + 2), row_of(i + 3));
+        for ((((column, &a), &b), &c), &d) in tile.chunks_mut(stride).zip(a).zip(b).zip(c).zip(d) {
+            column[i..i + 4].copy_from_slice(&[a, b, c, d]);
+        }
+        i += 4;
+    }
+    for i in i..rows.end {
+        for (column, &value) in tile.chunks_mut(stride).zip(row_of(i)) {
+            column[i] = value;
         }
     }
 }
 
-/// Copies the tile's rows `first_row..` (as many as `kept` holds, TILE values a row) into
-/// `kept`, the first `width` values of each.
+/// Copies the tile's rows `first_row..` (as many as `kept` holds, `row_stride` values a
+/// row) into `kept` at columns `column..column + width`, four rows at a time.
 fn keep_rows<T: Precision>(
     kept: &mut [Complex<T>],
     tile: &[Complex<T>],
     first_row: usize,
+    (column, row_stride): (usize, usize),
     (width, padded): (usize, usize),
 ) {
     let stride = column_stride(padded);
-    for (row, kept_row) in kept.chunks_mut(TILE).enumerate() {
+    let count = kept.len() / row_stride;
+    let mut rows = kept.chunks_mut(row_stride).map(|row| &mut row[column..column + width]);
+    let mut row = 0;
+    while row + 4 <= count {
+        let (a, b, c, d) = (
+            rows.next().expect("row"),
+            rows.next().expect("row"),
+            rows.next().expect("row"),
+            rows.next().expect("row"),
+        );
         let i = first_row + row;
-        for (offset, target) in kept_row[..width].iter_mut().enumerate() {
-            *target = tile[offset * stride + i];
+        for ((((source, a), b), c), d) in tile.chunks(stride).zip(a).zip(b).zip(c).zip(d) {
+            let values = &source[i..i + 4];
+            (*a, *b, *c, *d) = (values[0], values[1], values[2], values[3]);
+        }
+        row += 4;
+    }
+    for (offset, target) in rows.enumerate() {
+        let i = first_row + row + offset;
+        for (source, target) in tile.chunks(stride).zip(target) {
+            *target = source[i];
         }
     }
 }

@@ -12,6 +12,7 @@
 use super::dot;
 use crate::elastic::influence::love_coefficient;
 use rayon::prelude::*;
+use std::collections::HashMap;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
 /// The tension of a peeling front is shed far along the front: 8, 12 and 16 give 113, 101
@@ -48,8 +49,71 @@ pub(crate) struct PeelPredictor {
     planned: Vec<Released>,
     /// Per element: its place in the planned batch plus one, 0 if not in it.
     batch_rank: Vec<u32>,
-    /// One dense matrix per thread for the planned windows.
-    matrices: Vec<Vec<f64>>,
+    /// One dense matrix and one shape key per thread for the planned windows.
+    matrices: Vec<(Vec<f64>, Shape)>,
+    /// Rises already solved, by window shape.
+    solved: RiseCache,
+}
+
+/// Rises already solved, by the window's shape: its elements' offsets from the released
+/// element, in window order. The dense system K_AA δt_A = K_Av has entries K(offset
+/// differences) only, so two windows of one shape have the same matrix and right-hand
+/// side, and the stored rises are the bits a new solve would give. A peeling front
+/// replays the same local configurations over and over (the verification solves of a
+/// ring, the rings of a step), so most windows have been met before.
+#[derive(Default)]
+struct RiseCache {
+    rises: HashMap<Shape, Vec<f64>>,
+    /// The shape of the last lookup (reused: no allocation on a hit).
+    key: Shape,
+}
+
+/// A window's offsets (row, column) from its released element, in window order.
+type Shape = Vec<(i8, i8)>;
+
+/// Shapes kept at most (each at most `MAX_WINDOW` offsets and rises, ≈ 1 KiB); the cache
+/// is emptied when full.
+const CACHE_CAPACITY: usize = 1 << 14;
+
+/// Writes the shape of `window` about `centre` into `key`.
+fn window_shape(window: &[(i64, i64)], centre: (i64, i64), key: &mut Shape) {
+    key.clear();
+    // Offsets lie within ±RADIUS (the disk), so they fit an i8.
+    key.extend(
+        window
+            .iter()
+            .map(|&(r, c)| ((r - centre.0) as i8, (c - centre.1) as i8)),
+    );
+}
+
+impl RiseCache {
+    /// The rises of `window` released at `centre` into `rises`: the stored ones if its
+    /// shape was solved before, else solved (and stored).
+    fn rises_of(
+        &mut self,
+        kernel: &[f64],
+        window: &[(i64, i64)],
+        centre: (i64, i64),
+        matrix: &mut Vec<f64>,
+        rises: &mut Vec<f64>,
+    ) {
+        window_shape(window, centre, &mut self.key);
+        if let Some(stored) = self.rises.get(self.key.as_slice()) {
+            rises.clear();
+            rises.extend_from_slice(stored);
+            return;
+        }
+        solve_rises(kernel, window, centre, matrix, rises);
+        self.store(rises);
+    }
+
+    /// Stores `rises` under the shape of the last lookup.
+    fn store(&mut self, rises: &[f64]) {
+        if self.rises.len() >= CACHE_CAPACITY {
+            self.rises.clear();
+        }
+        self.rises.insert(self.key.clone(), rises.to_vec());
+    }
 }
 
 /// The window of one release, (row, column) of its elements, and their tension rises per
@@ -58,6 +122,8 @@ pub(crate) struct PeelPredictor {
 struct Released {
     window: Vec<(i64, i64)>,
     rises: Vec<f64>,
+    /// Solved here rather than found in the cache (a planned window, to be stored).
+    solved: bool,
 }
 
 /// Batches shorter than this are replayed one release at a time (the same bits either way).
@@ -83,7 +149,8 @@ impl PeelPredictor {
             matrix: Vec::new(),
             planned: Vec::new(),
             batch_rank: vec![0; len],
-            matrices: vec![Vec::new(); rayon::current_num_threads().max(1)],
+            matrices: vec![(Vec::new(), Vec::new()); rayon::current_num_threads().max(1)],
+            solved: RiseCache::default(),
         }
     }
 
@@ -105,6 +172,7 @@ impl PeelPredictor {
             touched,
             last,
             matrix,
+            solved,
             ..
         } = self;
         collect_window(disk, n, centre, &mut last.window, |row, column| {
@@ -119,7 +187,7 @@ impl PeelPredictor {
             }
             cache[k] == 1
         });
-        solve_rises(kernel, &last.window, centre, matrix, &mut last.rises);
+        solved.rises_of(kernel, &last.window, centre, matrix, &mut last.rises);
     }
 
     /// Computes, on all threads, the windows of releasing `batch` one after the other from
@@ -139,13 +207,13 @@ impl PeelPredictor {
             self.planned.resize_with(batch.len(), Released::default);
         }
         let per_thread = batch.len().div_ceil(self.matrices.len());
-        let (kernel, disk, rank) = (&self.kernel, &self.disk, &self.batch_rank);
+        let (kernel, disk, rank, stored) = (&self.kernel, &self.disk, &self.batch_rank, &self.solved.rises);
         self.planned[..batch.len()]
             .par_chunks_mut(per_thread)
             .zip(batch.par_chunks(per_thread))
             .zip(self.matrices.par_iter_mut())
             .enumerate()
-            .for_each(|(chunk, ((planned, released), matrix))| {
+            .for_each(|(chunk, ((planned, released), (matrix, key)))| {
                 for (offset, (slot, &k)) in planned.iter_mut().zip(released).enumerate() {
                     // Released so far: batch[..=place].
                     let place = (chunk * per_thread + offset) as u32 + 1;
@@ -154,11 +222,26 @@ impl PeelPredictor {
                     collect_window(disk, n, centre, &mut slot.window, |row, column| {
                         in_contact(row as usize * n + column as usize) && near_free(n, row, column, &in_contact)
                     });
-                    solve_rises(kernel, &slot.window, centre, matrix, &mut slot.rises);
+                    window_shape(&slot.window, centre, key);
+                    slot.solved = match stored.get(key.as_slice()) {
+                        Some(rises) => {
+                            slot.rises.clear();
+                            slot.rises.extend_from_slice(rises);
+                            false
+                        }
+                        None => {
+                            solve_rises(kernel, &slot.window, centre, matrix, &mut slot.rises);
+                            true
+                        }
+                    };
                 }
             });
-        for &k in batch {
+        for (slot, &k) in self.planned[..batch.len()].iter().zip(batch) {
             self.batch_rank[k] = 0;
+            if slot.solved {
+                window_shape(&slot.window, ((k / n) as i64, (k % n) as i64), &mut self.solved.key);
+                self.solved.store(&slot.rises);
+            }
         }
         true
     }
@@ -315,6 +398,43 @@ mod tests {
         assert!(neighbour > 0.0, "{neighbour}");
         predictor.finish();
         assert!(predictor.near_free.iter().all(|&v| v == 0));
+    }
+
+    /// A window of a shape met before takes its rises from the cache, and they are the
+    /// bits a fresh solve gives: two releases on a straight edge, far from each other and
+    /// from the grid's sides, share one shape; the second is not solved again.
+    #[test]
+    fn a_cached_shape_gives_the_rises_of_a_fresh_solve() {
+        let n = 64;
+        let contact = |k: usize| k % n < 40;
+        let mut predictor = PeelPredictor::new(n * n);
+        predictor.release(n, (20, 39), |k| contact(k) && k != 20 * n + 39);
+        predictor.finish();
+        assert_eq!(predictor.solved.rises.len(), 1);
+        predictor.release(n, (44, 39), |k| contact(k) && k != 44 * n + 39);
+        assert_eq!(predictor.solved.rises.len(), 1, "the second release is a hit");
+        let cached: Vec<((i64, i64), u64)> = predictor.window(None).map(|(w, r)| (w, r.to_bits())).collect();
+        let (mut matrix, mut fresh) = (Vec::new(), Vec::new());
+        solve_rises(
+            &predictor.kernel,
+            &predictor.last.window,
+            (44, 39),
+            &mut matrix,
+            &mut fresh,
+        );
+        let solved: Vec<((i64, i64), u64)> = predictor
+            .last
+            .window
+            .iter()
+            .cloned()
+            .zip(fresh.iter().map(|r| r.to_bits()))
+            .collect();
+        assert!(!cached.is_empty());
+        assert_eq!(cached, solved);
+        // A different shape (a release near the grid's side) is solved and stored.
+        predictor.finish();
+        predictor.release(n, (2, 39), |k| contact(k) && k != 2 * n + 39);
+        assert_eq!(predictor.solved.rises.len(), 2);
     }
 
     /// A planned batch gives every release the window and rises, to the bit, that the

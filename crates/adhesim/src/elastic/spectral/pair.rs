@@ -44,9 +44,8 @@ impl<T: Precision> SpectralConvolution<T> {
             .zip(self.blocks.par_iter_mut().zip(other.blocks.par_iter_mut()))
             .enumerate()
             .for_each(|(block, ((kept_a, kept_b), (scratch_a, scratch_b)))| {
-                for (local, (kept_a, kept_b)) in
-                    kept_a.chunks_mut(tile_len).zip(kept_b.chunks_mut(tile_len)).enumerate()
-                {
+                let block_width = kept_a.len() / all.len();
+                for local in 0..block_width / TILE {
                     let first = (block * tiles_per_block + local) * TILE;
                     let width = TILE.min(columns - first);
                     let tile_a = &mut scratch_a.tile[..width * stride];
@@ -71,10 +70,11 @@ impl<T: Precision> SpectralConvolution<T> {
                         inverse_columns.process_with_scratch(column_a, &mut scratch_a.complex_scratch);
                         inverse_columns.process_with_scratch(column_b, &mut scratch_a.complex_scratch);
                     }
-                    keep_rows(kept_a, tile_a, 0, (width, padded));
-                    keep_rows(kept_b, tile_b, 0, (width, padded));
+                    keep_rows(kept_a, tile_a, 0, (local * TILE, block_width), (width, padded));
+                    keep_rows(kept_b, tile_b, 0, (local * TILE, block_width), (width, padded));
                 }
             });
+        (self.kept_tiles_per_block, other.kept_tiles_per_block) = (tiles_per_block, tiles_per_block);
         let [out_a, out_b] = output;
         self.inverse_rows_into(out_a, &all);
         other.inverse_rows_into(out_b, &all);
