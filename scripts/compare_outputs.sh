@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Behaviour check for refactors: runs every scenario in scenarios/ (reduced in size so
-# that each takes seconds), the tiny sweep and tiny rolling/sliding studies with a given
-# `adhesim` binary into DIR. With a reference folder, compares the outputs:
+# Behaviour check for refactors: runs every scenario in scenarios/ and its folders (reduced
+# in size so that each takes seconds), a Dugdale and a trapezoid roll, the tiny sweep and
+# tiny rolling/sliding studies with a given `adhesim` binary into DIR. With a reference folder, compares the outputs:
 # curve.csv and the studies' CSV tables byte for byte (minus the *wall_seconds columns),
 # summary.json values minus `performance` (timings and counters that vary).
 #
@@ -18,6 +18,17 @@ for file in "$repo"/scenarios/*.toml; do
     name=$(basename "$file" .toml)
     if grep -q '^kind = "indent_pulloff"' "$file"; then set_args=("${indent_set[@]}"); else set_args=("${translate_set[@]}"); fi
     "$bin" run "$file" --out "$out/run/$name" --quiet --threads 1 "${set_args[@]}"
+done
+for file in "$repo"/scenarios/*/*.toml; do
+    name=$(basename "$(dirname "$file")")_$(basename "$file" .toml)
+    if grep -q '^kind = "indent_pulloff"' "$file"; then set_args=("${indent_set[@]}"); else set_args=("${translate_set[@]}"); fi
+    "$bin" run "$file" --out "$out/run/$name" --quiet --threads 1 "${set_args[@]}"
+done
+# Dugdale's and the trapezoidal law on a roll (their pinning warnings and estimate).
+for law in dugdale trapezoid; do
+    law_args=(--set "adhesion.law=\"$law\"" --set adhesion.cohesive_stress=0.05)
+    [ "$law" = trapezoid ] && law_args+=(--set adhesion.softening_fraction=0.5)
+    "$bin" run "$repo/scenarios/fig6.toml" --out "$out/run/fig6_$law" --quiet --threads 1 "${translate_set[@]}" "${law_args[@]}"
 done
 "$bin" sweep "$repo/sweeps/tiny.toml" --out "$out/sweep_tiny" --jobs 1 --quiet
 cat > "$out/rolling.toml" <<TOML

@@ -1,8 +1,9 @@
 //! The adhesive solver and its quasi-static step API.
 
 use crate::convert::{finite, non_negative, read_field, read_vector, solve_error, value_error};
-use crate::objects::{ContactState, HalfSpace};
+use crate::objects::HalfSpace;
 use crate::solvers::{adhesive_params, attachment_name, step_columns, step_report, worst_first_fraction, StepReport};
+use crate::state::ContactState;
 use crate::views::Cached;
 use adhesim::WorkOfAdhesion;
 use pyo3::exceptions::PyValueError;
@@ -92,7 +93,7 @@ impl AdhesiveSolver {
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::objects::operator_argument)] operator: Py<HalfSpace>,
         work_of_adhesion: &Bound<'_, PyAny>,
         #[pyo3(from_py_with = crate::args::number::relative_tolerance)] relative_tolerance: f64,
         #[pyo3(from_py_with = crate::args::number::front_tolerance)] front_tolerance: f64,
@@ -200,7 +201,7 @@ impl AdhesiveSolver {
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
         #[pyo3(from_py_with = crate::args::number::depth)] depth: f64,
-        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'_, ContactState>,
+        #[pyo3(from_py_with = crate::state::contact_state_argument)] state: Bound<'_, ContactState>,
     ) -> PyResult<StepReport> {
         let depth = finite("depth", depth)?;
         state.borrow().check_grid(&self.grid)?;
@@ -239,7 +240,7 @@ impl AdhesiveSolver {
         py: Python<'py>,
         heights: &Bound<'py, PyAny>,
         depths: &Bound<'py, PyAny>,
-        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'py, ContactState>,
+        #[pyo3(from_py_with = crate::state::contact_state_argument)] state: Bound<'py, ContactState>,
         progress: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let depths = read_vector(depths, "depths")?;
@@ -311,7 +312,7 @@ impl AdhesiveSolver {
     /// Π = ½Δ²Σp·u − Δ²Σ_C γ of a state: elastic energy minus adhesion energy.
     fn energy(
         &self,
-        #[pyo3(from_py_with = crate::args::object::contact_state)] state: Bound<'_, ContactState>,
+        #[pyo3(from_py_with = crate::state::contact_state_argument)] state: Bound<'_, ContactState>,
     ) -> PyResult<f64> {
         let state = state.borrow();
         state.check_grid(&self.grid)?;

@@ -67,40 +67,12 @@ pub mod pair {
     named!((f64, f64), super::pair_argument; centre, first, second, semi_axes);
 }
 
-/// The package's own objects, by the class they must be.
-pub mod object {
-    use super::*;
-    use crate::objects::{ContactState, Grid, HalfSpace, Material};
-
-    pub fn grid(value: &Bound<'_, PyAny>) -> PyResult<Grid> {
-        Ok(*instance::<Grid>(value, "grid", "an adhesim.Grid")?.get())
-    }
-
-    pub fn material(value: &Bound<'_, PyAny>) -> PyResult<Material> {
-        Ok(*instance::<Material>(value, "material", "an adhesim.Material")?.get())
-    }
-
-    pub fn operator(value: &Bound<'_, PyAny>) -> PyResult<Py<HalfSpace>> {
-        Ok(instance::<HalfSpace>(value, "operator", "an adhesim.HalfSpace")?.unbind())
-    }
-
-    pub fn state(value: &Bound<'_, PyAny>) -> PyResult<Option<Py<ContactState>>> {
-        if value.is_none() {
-            return Ok(None);
-        }
-        Ok(Some(
-            instance::<ContactState>(value, "state", "an adhesim.ContactState or None")?.unbind(),
-        ))
-    }
-
-    /// The `state` a step updates in place (None is refused).
-    pub fn contact_state<'py>(value: &Bound<'py, PyAny>) -> PyResult<Bound<'py, ContactState>> {
-        instance::<ContactState>(value, "state", "an adhesim.ContactState")
-    }
-}
-
 /// `value` as an instance of `T`, or a `TypeError` naming `name`, the value and `expected`.
-fn instance<'py, T: PyClass>(value: &Bound<'py, PyAny>, name: &str, expected: &str) -> PyResult<Bound<'py, T>> {
+pub(crate) fn instance<'py, T: PyClass>(
+    value: &Bound<'py, PyAny>,
+    name: &str,
+    expected: &str,
+) -> PyResult<Bound<'py, T>> {
     match value.cast::<T>() {
         Ok(bound) => Ok(bound.clone()),
         Err(_) => Err(PyTypeError::new_err(format!(

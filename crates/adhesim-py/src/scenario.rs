@@ -321,10 +321,10 @@ pub fn _scenario_heights<'py>(
     origin: &str,
     base: PathBuf,
     overrides: Vec<String>,
-) -> PyResult<(crate::objects::Grid, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<(crate::grid::Grid, Bound<'py, PyArray2<f64>>)> {
     let scenario = load(text, origin, &base, &overrides, true)?;
     let heights = crate::convert::field(py, &scenario.heights, &scenario.grid)?;
-    Ok((crate::objects::Grid { inner: scenario.grid }, heights))
+    Ok((crate::grid::Grid { inner: scenario.grid }, heights))
 }
 
 /// Every column `curve.csv` can have, with its kind ("int", "float" or "str"), for

@@ -2,7 +2,7 @@
 //! shape (ny, nx): the functions behind `adhesim.geometry`.
 
 use crate::convert::{elements, field, fits_in_memory, value_error};
-use crate::objects::{describe, Grid};
+use crate::grid::{describe, Grid};
 use adhesim::Profile;
 use numpy::PyArray2;
 use pyo3::prelude::*;
@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 #[pyfunction]
 pub fn sphere_heights<'py>(
     py: Python<'py>,
-    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::grid::grid_argument)] grid: Grid,
     #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let sphere = adhesim::Sphere::new(radius).map_err(value_error)?;
@@ -28,7 +28,7 @@ pub fn sphere_heights<'py>(
 #[pyfunction]
 pub fn flat_punch_heights<'py>(
     py: Python<'py>,
-    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::grid::grid_argument)] grid: Grid,
     #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let punch = adhesim::FlatPunch::new(radius).map_err(value_error)?;
@@ -45,7 +45,7 @@ pub fn flat_punch_heights<'py>(
 #[pyfunction]
 pub fn wavy_sphere_heights<'py>(
     py: Python<'py>,
-    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::grid::grid_argument)] grid: Grid,
     #[pyo3(from_py_with = crate::args::number::radius)] radius: f64,
     #[pyo3(from_py_with = crate::args::number::amplitude)] amplitude: f64,
     #[pyo3(from_py_with = crate::args::number::wavelength)] wavelength: f64,
@@ -66,7 +66,7 @@ pub fn wavy_sphere_heights<'py>(
 #[pyfunction]
 pub fn elliptic_punch_heights<'py>(
     py: Python<'py>,
-    #[pyo3(from_py_with = crate::args::object::grid)] grid: Grid,
+    #[pyo3(from_py_with = crate::grid::grid_argument)] grid: Grid,
     #[pyo3(from_py_with = crate::args::pair::semi_axes)] semi_axes: (f64, f64),
     #[pyo3(from_py_with = crate::args::number::angle_degrees)] angle_degrees: f64,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {

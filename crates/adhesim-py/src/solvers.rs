@@ -5,7 +5,8 @@
 //! it owns (reused from call to call), then releases the GIL for the solve.
 
 use crate::convert::{count, finite, positive, read_field, solve_error};
-use crate::objects::{ContactState, HalfSpace};
+use crate::objects::HalfSpace;
+use crate::state::ContactState;
 use adhesim::{Boundary, Control};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -125,7 +126,7 @@ impl Ccg {
     ))]
     fn new(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::objects::operator_argument)] operator: Py<HalfSpace>,
         #[pyo3(from_py_with = crate::args::number::tolerance)] tolerance: f64,
         #[pyo3(from_py_with = crate::args::integer::max_iterations)] max_iterations: i64,
     ) -> PyResult<Self> {
@@ -179,7 +180,7 @@ impl Ccg {
         heights: &Bound<'_, PyAny>,
         #[pyo3(from_py_with = crate::args::optional_number::depth)] depth: Option<f64>,
         #[pyo3(from_py_with = crate::args::optional_number::load)] load: Option<f64>,
-        #[pyo3(from_py_with = crate::args::object::state)] state: Option<Py<ContactState>>,
+        #[pyo3(from_py_with = crate::state::state_argument)] state: Option<Py<ContactState>>,
     ) -> PyResult<SolveReport> {
         let control = match (depth, load) {
             (Some(depth), None) => Control::Displacement(finite("depth", depth)?),
@@ -271,7 +272,7 @@ impl NestedActiveSet {
     ))]
     fn new(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::args::object::operator)] operator: Py<HalfSpace>,
+        #[pyo3(from_py_with = crate::objects::operator_argument)] operator: Py<HalfSpace>,
         #[pyo3(from_py_with = crate::args::number::relative_tolerance)] relative_tolerance: f64,
         #[pyo3(from_py_with = crate::args::integer::max_cg_iterations)] max_cg_iterations: i64,
         #[pyo3(from_py_with = crate::args::integer::max_rounds)] max_rounds: i64,
@@ -332,7 +333,7 @@ impl NestedActiveSet {
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
         #[pyo3(from_py_with = crate::args::number::depth)] depth: f64,
-        #[pyo3(from_py_with = crate::args::object::state)] state: Option<Py<ContactState>>,
+        #[pyo3(from_py_with = crate::state::state_argument)] state: Option<Py<ContactState>>,
     ) -> PyResult<SolveReport> {
         let depth = finite("depth", depth)?;
         read_field(heights, "heights", &self.grid, true, &mut self.heights)?;

@@ -1,7 +1,7 @@
 //! The contact state: the fields of a configuration and the warm start of the next solve.
 
 use crate::convert::{elements, field, fits_in_memory};
-use crate::objects::{describe, Grid};
+use crate::grid::{describe, Grid};
 use crate::views::Cached;
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
@@ -93,7 +93,7 @@ impl ContactState {
 #[pymethods]
 impl ContactState {
     #[new]
-    fn new(#[pyo3(from_py_with = crate::args::object::grid)] grid: Grid) -> PyResult<Self> {
+    fn new(#[pyo3(from_py_with = crate::grid::grid_argument)] grid: Grid) -> PyResult<Self> {
         // Pressure, displacement, contact and the recorded heights, with numpy's copies.
         fits_in_memory(
             &format!("ContactState({})", describe(&grid.inner)),
@@ -229,4 +229,19 @@ impl ContactState {
             self.inner.contact_elements()
         )
     }
+}
+
+/// The `state` argument of a solve: an `adhesim.ContactState` or None.
+pub fn state_argument(value: &Bound<'_, PyAny>) -> PyResult<Option<Py<ContactState>>> {
+    if value.is_none() {
+        return Ok(None);
+    }
+    Ok(Some(
+        crate::args::instance::<ContactState>(value, "state", "an adhesim.ContactState or None")?.unbind(),
+    ))
+}
+
+/// The `state` a step updates in place (None is refused).
+pub fn contact_state_argument<'py>(value: &Bound<'py, PyAny>) -> PyResult<Bound<'py, ContactState>> {
+    crate::args::instance::<ContactState>(value, "state", "an adhesim.ContactState")
 }

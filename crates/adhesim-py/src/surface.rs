@@ -5,7 +5,7 @@
 //! `adhesim.read_topography` wrap these with docstrings.
 
 use crate::convert::{positive, value_error};
-use crate::objects::Grid;
+use crate::grid::Grid;
 use adhesim::surface::{fill_invalid_harmonic, Amplitudes, HeightMap, RmsTarget, SelfAffine};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};

@@ -1,10 +1,11 @@
-//! `adhesion.law` and its keys: checking them, and the cohesive solver they build
-//! (docs/cli.md, docs/physics.md §2.6). The sharp JKR-type criterion (`law = "jkr"`, the
-//! default) takes neither `cohesive_stress` nor `range` and is built in `pipeline.rs`.
+//! `adhesion.law` and its keys checked into an [`AdhesionLaw`], and the cohesive laws': the
+//! work of adhesion they need, Maugis' and Tabor's parameters, the cohesive solver they build and
+//! their resolution and pinning warnings (docs/cli.md, docs/physics.md §2.6). The sharp
+//! JKR-type criterion (`law = "jkr"`, the default) is built in `pipeline.rs`.
 
 use crate::checks::positive;
 use crate::error::{ErrorKind, ScenarioError};
-use crate::model::{AdhesionSection, LawName, ScenarioFile, ValidScenario};
+use crate::model::{AdhesionLaw, AdhesionSection, LawName, ScenarioFile, ValidScenario};
 use crate::results::RunResults;
 use adhesim::analysis::reference::{maugis_parameter, MaugisDugdale};
 use adhesim::{
@@ -22,6 +23,76 @@ use anyhow::{bail, Result};
 /// at σ0/10 at most; below it the law is Dugdale's to one part in a million of its range.
 pub(crate) const MIN_SOFTENING_FRACTION: f64 = 1e-6;
 
+/// The law of `section`: each law's own keys required and checked, the other laws'
+/// keys refused (an unknown key, naming the law it belongs to).
+pub(crate) fn adhesion_law(section: &AdhesionSection) -> Result<AdhesionLaw> {
+    let law = section.law.unwrap_or_default();
+    let name = law.name();
+    let stray = |key: &str, value: Option<f64>| -> Result<()> {
+        let Some(value) = value else { return Ok(()) };
+        bail!(ScenarioError::new(
+            ErrorKind::UnknownKey,
+            format!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (got adhesion.{key} = {value}; cohesive_stress belongs to \"dugdale\" and \"trapezoid\", range to \"exponential\", softening_fraction to \"trapezoid\")")
+        )
+        .with_key(format!("adhesion.{key}"))
+        .with_value(value.to_string())
+        .with_requirement(format!("absent with adhesion.law = \"{name}\"")))
+    };
+    let required = |key: &str, value: Option<f64>, what: &str| -> Result<f64> {
+        let Some(value) = value else {
+            bail!(ScenarioError::missing(
+                &format!("adhesion.{key}"),
+                format!("with adhesion.law = \"{name}\""),
+                format!("adhesion.law = \"{name}\" needs adhesion.{key} ({what})")
+            ));
+        };
+        // A law parameter beyond 1e-150..1e150 degenerates the law: cohesive_stress =
+        // 5e-324 gave F_ad = 0, range = 5e-324 NaN tractions (the usable magnitudes of
+        // the roughness keys).
+        positive(&format!("adhesion.{key}"), value)?;
+        crate::guards::usable_positive(&format!("adhesion.{key}"), value)
+    };
+    Ok(match law {
+        LawName::Jkr => {
+            stray("cohesive_stress", section.cohesive_stress)?;
+            stray("range", section.range)?;
+            stray("softening_fraction", section.softening_fraction)?;
+            AdhesionLaw::Jkr
+        }
+        LawName::Dugdale => {
+            stray("range", section.range)?;
+            stray("softening_fraction", section.softening_fraction)?;
+            AdhesionLaw::Dugdale {
+                cohesive_stress: required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?,
+            }
+        }
+        LawName::Exponential => {
+            stray("cohesive_stress", section.cohesive_stress)?;
+            stray("softening_fraction", section.softening_fraction)?;
+            AdhesionLaw::Exponential {
+                range: required("range", section.range, "ρ > 0")?,
+            }
+        }
+        LawName::Trapezoid => {
+            stray("range", section.range)?;
+            let cohesive_stress = required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?;
+            let softening_fraction = required("softening_fraction", section.softening_fraction, "0 < s ≤ 1")?;
+            if softening_fraction > 1.0 {
+                bail!(ScenarioError::invalid(
+                    "adhesion.softening_fraction",
+                    softening_fraction,
+                    "in (0, 1] (the fraction of the range over which the traction falls)"
+                ));
+            }
+            check_softening_resolved(softening_fraction)?;
+            AdhesionLaw::Trapezoid {
+                cohesive_stress,
+                softening_fraction,
+            }
+        }
+    })
+}
+
 /// Refuses a softening fraction the cohesive rounds cannot resolve ([`MIN_SOFTENING_FRACTION`]).
 fn check_softening_resolved(fraction: f64) -> Result<()> {
     if fraction >= MIN_SOFTENING_FRACTION {
@@ -38,154 +109,82 @@ fn check_softening_resolved(fraction: f64) -> Result<()> {
     ));
 }
 
-/// The law a scenario asks for.
-pub(crate) fn law_name(section: &AdhesionSection) -> LawName {
-    section.law.unwrap_or_default()
-}
-
 impl ScenarioFile {
-    /// Checks `adhesion.law` with its keys, the grid and protocol it runs on, and returns
-    /// Maugis' parameter of a Dugdale law and Tabor's of an exponential law on a curved
-    /// indenter (for `derived`).
-    pub(crate) fn validate_law(&self, indenter: &Indenter, contact_modulus: f64) -> Result<(Option<f64>, Option<f64>)> {
-        let section = &self.adhesion;
-        let law = law_name(section);
-        let name = law.name();
-        let stray = |key: &str, value: Option<f64>| -> Result<()> {
-            let Some(value) = value else { return Ok(()) };
-            bail!(ScenarioError::new(
-                ErrorKind::UnknownKey,
-                format!("adhesion.{key} is not a key of adhesion.law = \"{name}\" (got adhesion.{key} = {value}; cohesive_stress belongs to \"dugdale\" and \"trapezoid\", range to \"exponential\", softening_fraction to \"trapezoid\")")
-            )
-            .with_key(format!("adhesion.{key}"))
-            .with_value(value.to_string())
-            .with_requirement(format!("absent with adhesion.law = \"{name}\"")))
-        };
-        let required = |key: &str, value: Option<f64>, what: &str| -> Result<f64> {
-            let Some(value) = value else {
-                bail!(ScenarioError::missing(
-                    &format!("adhesion.{key}"),
-                    format!("with adhesion.law = \"{name}\""),
-                    format!("adhesion.law = \"{name}\" needs adhesion.{key} ({what})")
-                ));
-            };
-            // A law parameter beyond 1e-150..1e150 degenerates the law: cohesive_stress =
-            // 5e-324 gave F_ad = 0, range = 5e-324 NaN tractions (the usable magnitudes of
-            // the roughness keys).
-            positive(&format!("adhesion.{key}"), value)?;
-            crate::guards::usable_positive(&format!("adhesion.{key}"), value)
-        };
-        match law {
-            LawName::Jkr => {
-                stray("cohesive_stress", section.cohesive_stress)?;
-                stray("range", section.range)?;
-                stray("softening_fraction", section.softening_fraction)?;
-                return Ok((None, None));
-            }
-            LawName::Dugdale => {
-                stray("range", section.range)?;
-                stray("softening_fraction", section.softening_fraction)?;
-                required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?;
-            }
-            LawName::Exponential => {
-                stray("cohesive_stress", section.cohesive_stress)?;
-                stray("softening_fraction", section.softening_fraction)?;
-                required("range", section.range, "ρ > 0")?;
-            }
-            LawName::Trapezoid => {
-                stray("range", section.range)?;
-                required("cohesive_stress", section.cohesive_stress, "σ0 > 0")?;
-                let fraction = required("softening_fraction", section.softening_fraction, "0 < s ≤ 1")?;
-                if fraction > 1.0 {
-                    bail!(ScenarioError::invalid(
-                        "adhesion.softening_fraction",
-                        fraction,
-                        "in (0, 1] (the fraction of the range over which the traction falls)"
-                    ));
-                }
-                check_softening_resolved(fraction)?;
-            }
+    /// Checks `adhesion.law` with its keys ([`adhesion_law`]) and the work of
+    /// adhesion a cohesive law needs, and returns the law with Maugis' parameter of a
+    /// Dugdale or trapezoidal law and Tabor's of an exponential law on a curved indenter
+    /// (for `derived`).
+    pub(crate) fn validate_law(
+        &self,
+        indenter: &Indenter,
+        contact_modulus: f64,
+    ) -> Result<(AdhesionLaw, Option<f64>, Option<f64>)> {
+        let law = adhesion_law(&self.adhesion)?;
+        if law == AdhesionLaw::Jkr {
+            return Ok((law, None, None));
         }
-        if section.work_of_adhesion <= 0.0 {
+        let gamma = self.adhesion.work_of_adhesion;
+        if gamma <= 0.0 {
+            let name = law.name().name();
             bail!(ScenarioError::invalid_as(
                 "adhesion.work_of_adhesion",
-                section.work_of_adhesion,
+                gamma,
                 format!("> 0 with adhesion.law = \"{name}\""),
-                format!(
-                    "adhesion.law = \"{name}\" needs adhesion.work_of_adhesion > 0, got {}",
-                    section.work_of_adhesion
-                )
+                format!("adhesion.law = \"{name}\" needs adhesion.work_of_adhesion > 0, got {gamma}")
             ));
         }
-        let radius = indenter.radius_of_curvature();
-        let gamma = section.work_of_adhesion;
-        Ok(match (law, radius) {
-            (LawName::Dugdale | LawName::Trapezoid, Some(radius)) => (
-                section
-                    .cohesive_stress
-                    .map(|stress| maugis_parameter(radius, contact_modulus, gamma, stress)),
+        let Some(radius) = indenter.radius_of_curvature() else {
+            return Ok((law, None, None));
+        };
+        Ok(match law {
+            AdhesionLaw::Dugdale { cohesive_stress } | AdhesionLaw::Trapezoid { cohesive_stress, .. } => (
+                law,
+                Some(maugis_parameter(radius, contact_modulus, gamma, cohesive_stress)),
                 None,
             ),
-            (LawName::Exponential, Some(radius)) => (
-                None,
-                section
-                    .range
-                    .map(|range| tabor_parameter(radius, contact_modulus, gamma, range)),
-            ),
-            _ => (None, None),
+            AdhesionLaw::Exponential { range } => {
+                (law, None, Some(tabor_parameter(radius, contact_modulus, gamma, range)))
+            }
+            AdhesionLaw::Jkr => (law, None, None),
         })
     }
 }
 
-impl ScenarioFile {
-    /// An indentation with a law of unbounded support (exponential) starts the law's
-    /// negligible separation (ρ·ln 1000 = 6.9ρ) above first contact, in depth steps that
-    /// the step cap of `protocol.steps` / `protocol.step` did not count: `range = 1e3` made
-    /// about 3.5·10⁸ approach steps. Refused, with the estimate and the keys to change,
-    /// beyond [`crate::MAX_STEPS`]; `keys` names the inputs that set `depth_step`.
-    pub(crate) fn check_approach_margin(
-        &self,
-        start_depth: f64,
-        max_depth: f64,
-        depth_step: f64,
-        keys: &str,
-    ) -> Result<()> {
-        let margin = approach_margin(&self.adhesion);
-        if margin == 0.0 {
-            return Ok(());
-        }
-        let steps = ((max_depth - (start_depth - margin)) / depth_step).ceil();
-        if steps <= crate::MAX_STEPS as f64 {
-            return Ok(());
-        }
-        let show = crate::guards::show;
-        let range = self.adhesion.range.unwrap_or_default();
-        bail!(ScenarioError::derived(
+/// An indentation with a law of unbounded support (exponential) starts the law's
+/// negligible separation (ρ·ln 1000 = 6.9ρ, the protocol's `NormalSolver::approach_margin`)
+/// above first contact, in depth steps that the step cap of `protocol.steps` /
+/// `protocol.step` did not count: `range = 1e3` made about 3.5·10⁸ approach steps.
+/// Refused, with the estimate and the keys to change, beyond [`crate::MAX_STEPS`]; `keys`
+/// names the inputs that set `depth_step`.
+pub(crate) fn check_approach_margin(
+    law: &AdhesionLaw,
+    start_depth: f64,
+    max_depth: f64,
+    depth_step: f64,
+    keys: &str,
+) -> Result<()> {
+    let AdhesionLaw::Exponential { range } = *law else {
+        return Ok(());
+    };
+    let margin = Exponential::new(range, Vec::new()).negligible_separation();
+    let steps = ((max_depth - (start_depth - margin)) / depth_step).ceil();
+    if steps <= crate::MAX_STEPS as f64 {
+        return Ok(());
+    }
+    let show = crate::guards::show;
+    bail!(ScenarioError::derived(
+        show(steps),
+        format!("at most {} approach steps", crate::MAX_STEPS),
+        format!(
+            "adhesion.law = \"exponential\" with adhesion.range = {} starts the approach {} (ρ·ln 1000) above first contact; in depth steps of {} (from {keys}) that is about {} approach steps, more than the cap of {}: choose a smaller adhesion.range or a larger depth step",
+            show(range),
+            show(margin),
+            show(depth_step),
             show(steps),
-            format!("at most {} approach steps", crate::MAX_STEPS),
-            format!(
-                "adhesion.law = \"exponential\" with adhesion.range = {} starts the approach {} (ρ·ln 1000) above first contact; in depth steps of {} (from {keys}) that is about {} approach steps, more than the cap of {}: choose a smaller adhesion.range or a larger depth step",
-                show(range),
-                show(margin),
-                show(depth_step),
-                show(steps),
-                crate::MAX_STEPS
-            )
+            crate::MAX_STEPS
         )
-        .with_key("adhesion.range"))
-    }
-}
-
-/// How far above first contact an indentation with the law of `section` starts: the
-/// negligible separation of a law of unbounded support (the protocol's
-/// `NormalSolver::approach_margin`), 0 for the others.
-fn approach_margin(section: &AdhesionSection) -> f64 {
-    match (law_name(section), section.range) {
-        (LawName::Exponential, Some(range)) if range.is_finite() && range > 0.0 => {
-            Exponential::new(range, Vec::new()).negligible_separation()
-        }
-        _ => 0.0,
-    }
+    )
+    .with_key("adhesion.range"))
 }
 
 /// Tabor's parameter μ = (Rγ0²/(E*²ρ³))^(1/3) of the exponential law of range ρ on a
@@ -198,20 +197,19 @@ pub(crate) fn tabor_parameter(radius: f64, contact_modulus: f64, work_of_adhesio
 /// The cohesive solver of a scenario whose law is not `jkr` (None for `jkr`), with the
 /// work of adhesion per element `gamma`.
 pub(crate) fn cohesive_solver(
-    section: &AdhesionSection,
+    law: &AdhesionLaw,
     grid: Grid,
     material: ElasticMaterial,
     gamma: &[f64],
 ) -> Option<CohesiveSolver> {
-    let law: Box<dyn CohesiveLaw> = match law_name(section) {
-        LawName::Jkr => return None,
-        LawName::Dugdale => Box::new(Dugdale::new(section.cohesive_stress?, gamma.to_vec())),
-        LawName::Exponential => Box::new(Exponential::new(section.range?, gamma.to_vec())),
-        LawName::Trapezoid => Box::new(Trapezoid::new(
-            section.cohesive_stress?,
-            section.softening_fraction?,
-            gamma.to_vec(),
-        )),
+    let law: Box<dyn CohesiveLaw> = match *law {
+        AdhesionLaw::Jkr => return None,
+        AdhesionLaw::Dugdale { cohesive_stress } => Box::new(Dugdale::new(cohesive_stress, gamma.to_vec())),
+        AdhesionLaw::Exponential { range } => Box::new(Exponential::new(range, gamma.to_vec())),
+        AdhesionLaw::Trapezoid {
+            cohesive_stress,
+            softening_fraction,
+        } => Box::new(Trapezoid::new(cohesive_stress, softening_fraction, gamma.to_vec())),
     };
     Some(CohesiveSolver::new(grid, material, law, CohesiveParams::default()))
 }
@@ -227,25 +225,22 @@ pub(crate) const MIN_ZONE_ELEMENTS: f64 = 15.0;
 ///
 /// For the exponential law: [`range_resolution_warning`].
 pub(crate) fn zone_resolution_warning(
-    section: &AdhesionSection,
+    law: &AdhesionLaw,
+    work_of_adhesion: f64,
     grid: &Grid,
     indenter: &Indenter,
     contact_modulus: f64,
 ) -> Option<String> {
-    if law_name(section) == LawName::Exponential {
-        return range_resolution_warning(section, grid, contact_modulus);
+    if let AdhesionLaw::Exponential { range } = *law {
+        return range_resolution_warning(range, work_of_adhesion, grid, contact_modulus);
     }
-    let (LawName::Dugdale | LawName::Trapezoid, Some(stress), Some(radius)) = (
-        law_name(section),
-        section.cohesive_stress,
-        indenter.radius_of_curvature(),
-    ) else {
+    let (Some(stress), Some(radius)) = (law.cohesive_stress(), indenter.radius_of_curvature()) else {
         return None;
     };
     let model = MaugisDugdale {
         radius,
         contact_modulus,
-        work_of_adhesion: section.work_of_adhesion,
+        work_of_adhesion,
         cohesive_stress: stress,
     };
     let point = model.at_max_adhesive_force();
@@ -282,9 +277,7 @@ pub(crate) const MIN_RANGE_ELEMENTS: f64 = 2.0;
 /// and Rupture of Elastic Solids*, §5); it does not depend on the indenter. Measured on
 /// the smooth sphere at μ = 2: pull-off +19 % at ℓ = 0.5Δ, +2.1 % at 1Δ, 0.1 % at 2Δ
 /// (against N = 128).
-pub(crate) fn range_resolution_warning(section: &AdhesionSection, grid: &Grid, contact_modulus: f64) -> Option<String> {
-    let range = section.range?;
-    let gamma = section.work_of_adhesion;
+pub(crate) fn range_resolution_warning(range: f64, gamma: f64, grid: &Grid, contact_modulus: f64) -> Option<String> {
     if gamma.is_nan() || gamma <= 0.0 {
         return None;
     }
@@ -351,25 +344,27 @@ fn ratio_text(ratio: f64) -> String {
 /// grid pins: Dugdale always ([`dugdale_pinning_per_width`]); the trapezoidal law when its
 /// softening length s·ℓ spans fewer than [`MIN_SOFTENING_ELEMENTS`] elements.
 pub(crate) fn translation_pinning_warning(
-    section: &AdhesionSection,
+    law: &AdhesionLaw,
+    gamma: f64,
     grid: &Grid,
     contact_modulus: f64,
     translation: Option<&str>,
 ) -> Option<String> {
     let kind = translation?;
-    let stress = section.cohesive_stress?;
-    let gamma = section.work_of_adhesion;
+    let stress = law.cohesive_stress()?;
     let length = dugdale_zone_length(gamma, stress, contact_modulus);
     let delta = grid.dx().max(grid.dy());
-    match law_name(section) {
-        LawName::Dugdale => Some(format!(
+    match *law {
+        AdhesionLaw::Dugdale { .. } => Some(format!(
             "adhesion.law = \"dugdale\" with protocol.kind = \"{kind}\": an element carries sigma0 or nothing, so the zone's edge moves by whole elements and the grid pins it, a spurious tangential force of about gamma0*2b*delta/l = {:.4e} times the contact width 2b (l = pi*E*gamma0/(4*sigma0^2) = {length:.4e} spans {:.2} elements of {delta:.4e}; first order in the element size, measured 0.88-1.11 of the estimate on a smooth sphere, whose true rolling resistance is 0, docs/validation.md §15){}; it can exceed the resistance of the surface itself: compare summary.json's estimate with the mean tangential force, or use adhesion.law = \"trapezoid\" with a resolved softening length (§16)",
             dugdale_pinning_per_width(stress, delta, contact_modulus),
             length / delta,
             pinning_caveat(length / delta)
         )),
-        LawName::Trapezoid => {
-            let fraction = section.softening_fraction?;
+        AdhesionLaw::Trapezoid {
+            softening_fraction: fraction,
+            ..
+        } => {
             let elements = fraction * length / delta;
             (elements < MIN_SOFTENING_ELEMENTS).then(|| {
                 format!(
@@ -378,7 +373,7 @@ pub(crate) fn translation_pinning_warning(
                 )
             })
         }
-        LawName::Jkr | LawName::Exponential => None,
+        AdhesionLaw::Jkr | AdhesionLaw::Exponential { .. } => None,
     }
 }
 
@@ -386,18 +381,20 @@ pub(crate) fn translation_pinning_warning(
 /// ([`dugdale_pinning_per_width`]) for the run's mean contact width, set beside its mean
 /// tangential force, so that a reader sees how much of F_T the grid may have made.
 pub(crate) fn dugdale_pinning_estimate(scenario: &ValidScenario, results: &RunResults) -> Option<String> {
-    let (LawName::Dugdale, Some(stress), RunResults::Translation(results)) = (
-        law_name(&scenario.file.adhesion),
-        scenario.file.adhesion.cohesive_stress,
-        results,
-    ) else {
+    let (
+        AdhesionLaw::Dugdale {
+            cohesive_stress: stress,
+        },
+        RunResults::Translation(results),
+    ) = (scenario.law, results)
+    else {
         return None;
     };
     let delta = scenario.grid.dx().max(scenario.grid.dy());
     let width = 2.0 * results.contact_half_width;
     let modulus = scenario.material.contact_modulus();
     let pinning = width * dugdale_pinning_per_width(stress, delta, modulus);
-    let zone = dugdale_zone_length(scenario.file.adhesion.work_of_adhesion, stress, modulus);
+    let zone = dugdale_zone_length(scenario.gamma0, stress, modulus);
     let against = match results.mean_tangential_force {
         Some(force) if force.is_finite() && pinning > 0.0 => {
             format!(

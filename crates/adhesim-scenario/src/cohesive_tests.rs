@@ -533,3 +533,53 @@ fn an_unresolved_softening_length_is_warned_about_under_translation() {
         "{warning}"
     );
 }
+
+fn law_of(keys: &str) -> AdhesionLaw {
+    loaded(&with_adhesion(keys), &[]).law
+}
+
+/// The validated scenario carries each law with the parameters the file gives, and no
+/// other: what the run builds its solver from.
+#[test]
+fn each_law_is_read_with_its_own_parameters() {
+    assert_eq!(law_of(""), AdhesionLaw::Jkr);
+    assert_eq!(law_of("law = \"jkr\""), AdhesionLaw::Jkr);
+    assert_eq!(
+        law_of("law = \"dugdale\"\ncohesive_stress = 0.25"),
+        AdhesionLaw::Dugdale { cohesive_stress: 0.25 }
+    );
+    assert_eq!(
+        law_of("law = \"exponential\"\nrange = 0.002"),
+        AdhesionLaw::Exponential { range: 0.002 }
+    );
+    let trapezoid = law_of("law = \"trapezoid\"\ncohesive_stress = 0.25\nsoftening_fraction = 0.5");
+    assert_eq!(
+        trapezoid,
+        AdhesionLaw::Trapezoid {
+            cohesive_stress: 0.25,
+            softening_fraction: 0.5
+        }
+    );
+    assert_eq!(trapezoid.name(), LawName::Trapezoid);
+    assert_eq!(trapezoid.cohesive_stress(), Some(0.25));
+    assert_eq!(law_of("law = \"exponential\"\nrange = 0.002").cohesive_stress(), None);
+}
+
+/// Another law's key is refused as an unknown key, naming the law it belongs to.
+#[test]
+fn a_key_of_another_law_is_refused_by_name() {
+    let section = AdhesionSection {
+        work_of_adhesion: 0.01,
+        field: None,
+        law: Some(LawName::Dugdale),
+        cohesive_stress: Some(0.25),
+        softening_fraction: None,
+        range: Some(0.002),
+        aging: None,
+    };
+    let error = crate::cohesive::adhesion_law(&section).unwrap_err();
+    let error = error.downcast_ref::<ScenarioError>().expect("a ScenarioError");
+    assert_eq!(error.kind, ErrorKind::UnknownKey);
+    assert_eq!(error.key.as_deref(), Some("adhesion.range"));
+    assert!(error.to_string().contains("range to \"exponential\""), "{error}");
+}

@@ -1,12 +1,13 @@
 //! The serde mirror of a scenario file (one struct per `[section]`) and the validated scenario built from it.
 
 use adhesim::analysis::reference::Jkr;
-use adhesim::{ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
+use adhesim::{ElasticLayer, ElasticMaterial, Grid, Indenter, TranslatingContact, Translation};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 mod adhesion;
 mod friction;
+mod law;
 mod layer;
 mod per_axis;
 mod roughness;
@@ -15,6 +16,7 @@ pub use adhesion::{AdhesionSection, AgingLawName, AgingSection, LawName};
 pub use friction::{
     CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup, TangentialForceUnit,
 };
+pub use law::AdhesionLaw;
 pub use layer::LayerBaseName;
 pub use per_axis::PerAxis;
 pub use roughness::{InvalidPoints, InvalidPointsReport, RoughnessMode, RoughnessSection};
@@ -469,10 +471,15 @@ pub struct ValidScenario {
     pub file: ScenarioFile,
     pub grid: Grid,
     pub material: ElasticMaterial,
+    /// The elastic layer of `material.thickness` (None: the half-space).
+    pub layer: Option<ElasticLayer>,
     /// γ per element.
     pub gamma: Vec<f64>,
     /// Reference γ0.
     pub gamma0: f64,
+    /// `[adhesion]`'s law with its parameters, checked (the run reads this, not the
+    /// file's keys).
+    pub law: AdhesionLaw,
     pub indenter: Indenter,
     pub heights: Vec<f64>,
     /// Depth of first contact (lowest finite height).

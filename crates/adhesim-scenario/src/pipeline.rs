@@ -8,8 +8,8 @@ use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticLayer, ElasticOperator, FrictionLaw, HalfSpace,
-    IndentPulloff, LayerBase, LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError,
-    ProtocolSummary, ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
+    IndentPulloff, LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
+    ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -28,12 +28,7 @@ impl ValidScenario {
     /// The elastic layer of `material.thickness` (checked when the scenario was
     /// validated), or `None` for the half-space.
     pub fn layer(&self) -> Option<ElasticLayer> {
-        let material = &self.file.material;
-        let base = match material.base.unwrap_or_default() {
-            crate::model::LayerBaseName::Bonded => LayerBase::Bonded,
-            crate::model::LayerBaseName::Frictionless => LayerBase::Frictionless,
-        };
-        ElasticLayer::new(material.thickness?, material.poisson_ratio?, base).ok()
+        self.layer
     }
 
     /// The scenario's protocol.
@@ -57,7 +52,7 @@ impl ValidScenario {
     /// "exponential", the adhesive active set where γ0 > 0, the library's non-adhesive
     /// default otherwise.
     pub fn normal_solver(&self) -> NormalSolver {
-        if let Some(solver) = cohesive_solver(&self.file.adhesion, self.grid, self.material, &self.gamma) {
+        if let Some(solver) = cohesive_solver(&self.law, self.grid, self.material, &self.gamma) {
             NormalSolver::Cohesive(Box::new(solver))
         } else if self.gamma0 > 0.0 {
             // On a layer the reference rule: the certified stops and local replays are

@@ -80,7 +80,7 @@ pub struct FieldSnapshot {
     /// Normal displacement u (> 0 into the body).
     pub displacement: Vec<f64>,
     /// The contact set.
-    #[serde(with = "adhesim::protocol::bit_string")]
+    #[serde(with = "adhesim::bit_string")]
     pub contact: Vec<bool>,
     /// The tangential fields of a shear's shift step.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -3,7 +3,7 @@
 //! -1`); nothing here panics on bad input.
 
 use crate::checks::{check_periodic_depth, finite, grid_keys, non_negative, positive};
-use crate::cohesive::{translation_pinning_warning, zone_resolution_warning};
+use crate::cohesive::{check_approach_margin, translation_pinning_warning, zone_resolution_warning};
 use crate::error::ScenarioError;
 use crate::guards::{resolution_warnings, step_count};
 use crate::model::*;
@@ -66,7 +66,8 @@ impl ScenarioFile {
     pub(crate) fn validate_sections(self, base: &Path) -> Result<ValidScenario> {
         let grid = validate_grid(&self.grid)?;
         let material = validate_material(&self.material)?;
-        if validate_layer(&self.material, &grid)?.is_some() {
+        let layer = validate_layer(&self.material, &grid)?;
+        if layer.is_some() {
             self.check_layer_pairing()?;
         }
         let (roughness, substrate_roughness) = self.roughness_maps(&grid, base)?;
@@ -75,20 +76,23 @@ impl ScenarioFile {
         let shape = self.indenter.shape();
         let (gamma0, gamma) = validate_adhesion(&self.adhesion, &grid, &indenter, shape, base)?;
         let (jkr, mut derived) = derived_scales(&grid, &material, &indenter, gamma0);
-        (derived.maugis_parameter, derived.tabor_parameter) =
+        let law;
+        (law, derived.maugis_parameter, derived.tabor_parameter) =
             self.validate_law(&indenter, material.contact_modulus())?;
         self.check_derived(&derived)?;
         self.check_field_stresses(&grid, &gamma)?;
         let mut warnings = resolution_warnings(&grid, &indenter, &derived);
         warnings.extend(zone_resolution_warning(
-            &self.adhesion,
+            &law,
+            gamma0,
             &grid,
             &indenter,
             material.contact_modulus(),
         ));
         let kind = self.protocol.kind();
         warnings.extend(translation_pinning_warning(
-            &self.adhesion,
+            &law,
+            gamma0,
             &grid,
             material.contact_modulus(),
             kind.is_translation().then(|| kind.name()),
@@ -110,8 +114,10 @@ impl ScenarioFile {
         let inputs = ValidatedSections {
             grid,
             material,
+            layer,
             gamma,
             gamma0,
+            law,
             indenter,
             unit,
             jkr,
@@ -121,8 +127,7 @@ impl ScenarioFile {
         self.check_friction_pairing()?;
         self.check_aging_pairing()?;
         if let Some(solver) = &self.solver {
-            let law = crate::cohesive::law_name(&self.adhesion);
-            solver.check(inputs.gamma0 > 0.0, law, self.grid.boundary)?;
+            solver.check(inputs.gamma0 > 0.0, inputs.law.name(), self.grid.boundary)?;
         }
         let mut valid = match self.protocol.kind() {
             ProtocolKind::Shear => self.validate_shear(inputs, heights, start_depth)?,
@@ -184,8 +189,10 @@ impl ScenarioFile {
         let ValidatedSections {
             grid,
             material,
+            layer,
             gamma,
             gamma0,
+            law,
             indenter,
             unit,
             jkr,
@@ -245,7 +252,7 @@ impl ScenarioFile {
             )),
         };
         let approach_steps = self.check_step(start_depth, max_depth, depth_step, keys)?;
-        self.check_approach_margin(start_depth, max_depth, depth_step, keys)?;
+        check_approach_margin(&law, start_depth, max_depth, depth_step, keys)?;
         let max_retract_steps = match p.max_retract_steps {
             Some(s) if s < 1 => bail!(ScenarioError::invalid("protocol.max_retract_steps", s, ">= 1")),
             Some(s) => s as usize,
@@ -259,8 +266,10 @@ impl ScenarioFile {
             file: self,
             grid,
             material,
+            layer,
             gamma,
             gamma0,
+            law,
             indenter,
             heights,
             start_depth,

@@ -4,17 +4,21 @@
 //! validate.rs builds it, translation.rs and shear.rs take it apart; it imports neither,
 //! so that the protocols' validators need not import validate.rs or each other.
 
-use crate::model::Derived;
+use crate::model::{AdhesionLaw, Derived};
 use adhesim::analysis::reference::Jkr;
-use adhesim::{ElasticMaterial, Grid, Indenter};
+use adhesim::{ElasticLayer, ElasticMaterial, Grid, Indenter};
 
 /// What `validate` has built from every section but `[protocol]`, handed to the
 /// indentation or the roll/slide part (not the friction analysis's `TranslationInputs`).
 pub(crate) struct ValidatedSections {
     pub(crate) grid: Grid,
     pub(crate) material: ElasticMaterial,
+    /// The layer of `material.thickness` (None: the half-space).
+    pub(crate) layer: Option<ElasticLayer>,
     pub(crate) gamma: Vec<f64>,
     pub(crate) gamma0: f64,
+    /// `[adhesion]`'s law with its parameters.
+    pub(crate) law: AdhesionLaw,
     pub(crate) indenter: Indenter,
     /// Length of one `depth_unit`.
     pub(crate) unit: f64,

@@ -84,6 +84,8 @@
 pub const RESULTS_REVISION: u32 = 9;
 
 pub mod analysis;
+#[cfg(feature = "serde")]
+pub mod bit_string;
 pub mod elastic;
 pub mod geometry;
 pub mod grid;

@@ -4,7 +4,7 @@
 //! apart from both, so that the observer imports the checkpoint's writer and the
 //! checkpoint does not import the observer.
 
-use adhesim::protocol::bit_string;
+use adhesim::bit_string;
 use std::collections::BTreeMap;
 
 /// A contact set in a checkpoint.

@@ -121,7 +121,7 @@ pub fn run_into_folder(
     let summary_json = summary
         .to_json()
         .with_context(|| format!("cannot write {}", path.display()))?;
-    crate::batch::write_atomically(&path, summary_json.as_bytes())?;
+    super::write_through_temp(&path, summary_json.as_bytes(), true)?;
     let fields = observer
         .written_fields
         .take()

@@ -4,5 +4,6 @@
 //! `cargo test --release -p adhesim-scenario --test integration fuzz::`.
 
 mod fuzz;
+mod house;
 mod roughness;
 mod roughness_files;

@@ -45,7 +45,7 @@ pub struct IndentCheckpoint {
     /// The configuration after the last step (the next step's warm start).
     pub state: ContactState,
     /// The contact set at the start of the last step.
-    #[cfg_attr(feature = "serde", serde(with = "super::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     pub previous: Vec<bool>,
     /// The run's totals so far.
     pub summary: ProtocolSummary,

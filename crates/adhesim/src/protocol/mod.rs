@@ -2,8 +2,6 @@
 //! and reports every step to an [`Observer`] (writing files is an observer's job, not the
 //! library's).
 
-#[cfg(feature = "serde")]
-pub mod bit_string;
 mod checkpoint;
 mod indentation;
 mod shear;

@@ -9,7 +9,7 @@ pub struct ContactState {
     /// Normal surface displacement per element (> 0 into the body), u = K p.
     pub displacement: Vec<f64>,
     /// Contact set C.
-    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     pub contact: Vec<bool>,
 }
 

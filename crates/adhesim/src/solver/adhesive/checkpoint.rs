@@ -18,7 +18,7 @@ use crate::solver::ContactState;
 pub(super) struct HistoryEntry {
     depth: f64,
     pressure: Vec<f64>,
-    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     contact: Vec<bool>,
 }
 
@@ -30,7 +30,7 @@ pub struct AdhesiveCheckpoint {
     history: Vec<HistoryEntry>,
     ring_history: Vec<RingAttempt>,
     current_ring: Option<RingAttempt>,
-    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     banned: Vec<bool>,
     random_state: u64,
     pressure_error_bound: f64,

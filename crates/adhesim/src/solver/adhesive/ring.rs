@@ -12,7 +12,7 @@ use crate::solver::ContactState;
 pub(super) struct RingRound {
     members: Vec<usize>,
     pressures: Vec<f64>,
-    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     failed: Vec<bool>,
     /// Bound on the error of `pressures` (the solve may have stopped on a certificate).
     error_bound: f64,
@@ -23,7 +23,7 @@ pub(super) struct RingRound {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(super) struct RingAttempt {
     depth: f64,
-    #[cfg_attr(feature = "serde", serde(with = "crate::protocol::bit_string"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::bit_string"))]
     contact: Vec<bool>,
     rounds: Vec<RingRound>,
 }

@@ -1,6 +1,6 @@
 //! Serde form of a `Vec<bool>` as a string of `0` and `1` (one byte per element instead of
 //! a JSON array of `true`/`false`): the contact sets of a checkpoint, in the library's
-//! and in the output layer's (`#[serde(with = "adhesim::protocol::bit_string")]`).
+//! and in the output layer's (`#[serde(with = "adhesim::bit_string")]`).
 
 use serde::{Deserialize, Deserializer, Serializer};
 
