@@ -145,19 +145,46 @@ impl LocalPeel {
     /// Prepares the window of the element released at `centre` (row, column) of an n×n
     /// grid and lists in [`Self::rises`] the rise at every element within ±`REACH` that
     /// `in_contact(k)`, row by row: what a release spreads over the contact near it.
+    ///
+    /// A row's rises are summed together, the window's elements outermost: each rise is the
+    /// sum of `rise` (the single-element form, kept for the tests) in the same order from
+    /// the same start, so the same bits, while the table's entries for one row of elements
+    /// lie side by side and the products vectorise.
     pub(crate) fn contact_rises(&mut self, n: usize, centre: (i64, i64), in_contact: impl Fn(usize) -> bool) {
+        const SPAN: usize = (2 * REACH + 1) as usize;
         self.prepare(n, centre, |k| !in_contact(k));
         self.rises.clear();
+        // The start of `Iterator::sum` for f64, as `rise` sums.
+        let start: f64 = std::iter::empty::<f64>().sum();
+        let side = 2 * TABLE + 1;
         for a in -REACH..=REACH {
-            for b in -REACH..=REACH {
-                let (row, column) = (centre.0 + a, centre.1 + b);
-                if row < 0 || column < 0 || row as usize >= n || column as usize >= n {
-                    continue;
+            let row = centre.0 + a;
+            if row < 0 || row as usize >= n {
+                continue;
+            }
+            let mut contact = [None; SPAN];
+            for (b, slot) in (-REACH..=REACH).zip(contact.iter_mut()) {
+                let column = centre.1 + b;
+                if column >= 0 && (column as usize) < n {
+                    let k = row as usize * n + column as usize;
+                    *slot = in_contact(k).then_some(k);
                 }
-                let k = row as usize * n + column as usize;
-                if in_contact(k) {
-                    let rise = self.rise((row, column));
-                    self.rises.push((k, rise));
+            }
+            if contact.iter().all(Option::is_none) {
+                continue;
+            }
+            let mut sums = [start; SPAN];
+            for (&(r, c), &y) in self.window.iter().zip(&self.solution) {
+                // Offsets (row − r, centre.1 + b − c) for b = −REACH..=REACH: |row − r| and
+                // |centre.1 + b − c| ≤ REACH + WINDOW = TABLE, inside the table.
+                let first = ((row - r + TABLE) * side + centre.1 - REACH - c + TABLE) as usize;
+                for (sum, &entry) in sums.iter_mut().zip(&self.inverse.table[first..first + SPAN]) {
+                    *sum += entry * y;
+                }
+            }
+            for (slot, sum) in contact.iter().zip(sums) {
+                if let Some(k) = *slot {
+                    self.rises.push((k, (-sum * SAFETY).max(0.0)));
                 }
             }
         }
@@ -165,6 +192,7 @@ impl LocalPeel {
 
     /// Lower bound on the tension rise at `element` (row, column) per unit of tension
     /// released at the window's centre (≥ 0).
+    #[cfg(test)]
     pub(crate) fn rise(&self, element: (i64, i64)) -> f64 {
         let sum: f64 = self
             .window
@@ -252,6 +280,30 @@ mod tests {
         peel.prepare(64, (32, 32), |k| k % 64 < 32);
         let half_free = peel.rise((32, 33));
         assert!(half_free > clamped, "{half_free} ≤ {clamped}");
+    }
+
+    /// `contact_rises` sums a row of rises at once; each must be the single-element `rise`
+    /// to the bit, on a contact with holes and cut by the grid's edge.
+    #[test]
+    fn row_sums_are_the_single_element_rises_to_the_bit() {
+        let n = 40usize;
+        let in_contact = |k: usize| {
+            let (row, column) = ((k / n) as i64, (k % n) as i64);
+            (row - 20).pow(2) + (column - 3).pow(2) <= 144 && (row * 7 + column * 3) % 11 != 0
+        };
+        for centre in [(20i64, 3i64), (14, 9), (25, 0), (9, 6)] {
+            let mut peel = LocalPeel::new(n * n);
+            peel.contact_rises(n, centre, in_contact);
+            assert!(peel.rises.len() > 20, "{} rises at {centre:?}", peel.rises.len());
+            for &(k, rise) in &peel.rises {
+                let single = peel.rise(((k / n) as i64, (k % n) as i64));
+                assert_eq!(
+                    rise.to_bits(),
+                    single.to_bits(),
+                    "element {k} at {centre:?}: {rise:e} vs {single:e}"
+                );
+            }
+        }
     }
 
     /// The rises a release spreads (`contact_rises`, the warm start and the local rounds'
