@@ -10,6 +10,7 @@
 use crate::elastic::influence::love_coefficient;
 use crate::elastic::planner;
 use num_complex::Complex;
+use std::collections::HashMap;
 
 /// Free elements within this distance (in elements) of a released one are free in the bound.
 pub(crate) const WINDOW: i64 = 4;
@@ -94,7 +95,18 @@ pub(crate) struct LocalPeel {
     window: Vec<(i64, i64)>,
     matrix: Vec<f64>,
     solution: Vec<f64>,
+    /// Window solutions by shape ([`WindowShape`]): the solution depends only on the
+    /// window's offsets from its centre, so a shape solved before gives the same bits.
+    solved: HashMap<WindowShape, Vec<f64>>,
+    /// The shape of the last window (reused: no allocation on a hit).
+    shape: WindowShape,
 }
+
+/// A window's offsets (row, column) from its centre, in window order (within ±`WINDOW`).
+type WindowShape = Vec<(i8, i8)>;
+
+/// Window shapes kept at most (each ≤ 49 offsets and values, under 1 KiB); emptied when full.
+const SOLVED_CAPACITY: usize = 1 << 14;
 
 impl LocalPeel {
     pub(crate) fn new(len: usize) -> Self {
@@ -107,6 +119,8 @@ impl LocalPeel {
             window: Vec::new(),
             matrix: Vec::new(),
             solution: Vec::new(),
+            solved: HashMap::new(),
+            shape: Vec::new(),
         }
     }
 
@@ -128,6 +142,17 @@ impl LocalPeel {
                 }
             }
         }
+        self.shape.clear();
+        self.shape.extend(
+            self.window
+                .iter()
+                .map(|&(r, c)| ((r - centre.0) as i8, (c - centre.1) as i8)),
+        );
+        if let Some(stored) = self.solved.get(self.shape.as_slice()) {
+            self.solution.clear();
+            self.solution.extend_from_slice(stored);
+            return;
+        }
         let size = self.window.len();
         self.matrix.clear();
         for &(ri, ci) in &self.window {
@@ -140,6 +165,10 @@ impl LocalPeel {
         self.solution.resize(size, 0.0);
         self.solution[0] = 1.0;
         cholesky_solve(&self.matrix, size, &mut self.solution);
+        if self.solved.len() >= SOLVED_CAPACITY {
+            self.solved.clear();
+        }
+        self.solved.insert(self.shape.clone(), self.solution.clone());
     }
 
     /// Prepares the window of the element released at `centre` (row, column) of an n×n
@@ -280,6 +309,29 @@ mod tests {
         peel.prepare(64, (32, 32), |k| k % 64 < 32);
         let half_free = peel.rise((32, 33));
         assert!(half_free > clamped, "{half_free} ≤ {clamped}");
+    }
+
+    /// A window of a shape met before takes the stored solution: the bits of a fresh solve.
+    #[test]
+    fn a_window_shape_met_before_gives_the_fresh_solution() {
+        let n = 48usize;
+        // Free: a half-plane to the left of each centre, cut by a slanted line.
+        let free_about = |centre: (i64, i64)| {
+            move |k: usize| {
+                let (row, column) = ((k / n) as i64 - centre.0, (k % n) as i64 - centre.1);
+                column < 0 && row + 2 * column < 3
+            }
+        };
+        let (first, second) = ((20i64, 20i64), (30i64, 12i64));
+        let mut cached = LocalPeel::new(n * n);
+        cached.prepare(n, first, free_about(first));
+        cached.prepare(n, second, free_about(second));
+        assert_eq!(cached.solved.len(), 1, "the second window was not a hit");
+        assert!(cached.window.len() > 10, "window of {} elements", cached.window.len());
+        let mut fresh = LocalPeel::new(n * n);
+        fresh.prepare(n, second, free_about(second));
+        let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&cached.solution), bits(&fresh.solution));
     }
 
     /// `contact_rises` sums a row of rises at once; each must be the single-element `rise`
