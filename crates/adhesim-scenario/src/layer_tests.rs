@@ -93,11 +93,11 @@ fn combinations_not_implemented_on_a_layer_are_refused() {
 fn without_thickness_nothing_is_echoed_and_the_body_is_the_half_space() {
     let half_space = LAYER.replace("thickness = 0.01\n", "");
     let scenario = load(&half_space, "test", std::path::Path::new("."), &[]).unwrap();
-    assert!(scenario.layer().is_none());
+    assert!(scenario.layer.is_none());
     let echo = serde_json::to_string(&scenario.file.material).unwrap();
     assert!(!echo.contains("thickness") && !echo.contains("base"), "{echo}");
     let layered = load(LAYER, "test", std::path::Path::new("."), &[]).unwrap();
-    let layer = layered.layer().unwrap();
+    let layer = layered.layer.unwrap();
     assert_eq!((layer.thickness(), layer.base()), (0.01, adhesim::LayerBase::Bonded));
     let echo = serde_json::to_string(&layered.file.material).unwrap();
     assert!(echo.contains("\"thickness\":0.01") && !echo.contains("base"), "{echo}");
@@ -115,8 +115,7 @@ fn a_layer_run_is_the_library_solve() {
         .iter()
         .max_by(|a, b| a.depth.total_cmp(&b.depth))
         .unwrap();
-    let mut operator =
-        adhesim::LayerOperator::new(scenario.grid, scenario.material, scenario.layer().unwrap()).unwrap();
+    let mut operator = adhesim::LayerOperator::new(scenario.grid, scenario.material, scenario.layer.unwrap()).unwrap();
     let mut state = adhesim::ContactState::new(&scenario.grid);
     let report = adhesim::Ccg::new(adhesim::CcgParams::default())
         .solve(
@@ -148,7 +147,7 @@ fn the_layer_scenario_file_loads() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/layer/thin_sphere.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     let scenario = load(&text, "thin_sphere", path.parent().unwrap(), &[]).unwrap();
-    let layer = scenario.layer().unwrap();
+    let layer = scenario.layer.unwrap();
     assert_eq!(layer.thickness(), 0.01);
     assert!((scenario.material.contact_modulus() - 4.0).abs() < 1e-15);
 }

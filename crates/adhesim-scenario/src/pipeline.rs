@@ -7,9 +7,9 @@ use crate::results::{fit_results, Results, RunResults};
 use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticLayer, ElasticOperator, FrictionLaw, HalfSpace,
-    IndentPulloff, LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary,
-    ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticOperator, FrictionLaw, HalfSpace, IndentPulloff,
+    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearSummary,
+    StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -25,12 +25,6 @@ pub enum ProtocolSetup<'a> {
 }
 
 impl ValidScenario {
-    /// The elastic layer of `material.thickness` (checked when the scenario was
-    /// validated), or `None` for the half-space.
-    pub fn layer(&self) -> Option<ElasticLayer> {
-        self.layer
-    }
-
     /// The scenario's protocol.
     pub fn protocol_setup(&self) -> ProtocolSetup<'_> {
         if let Some(setup) = &self.shear {
@@ -57,7 +51,7 @@ impl ValidScenario {
         } else if self.gamma0 > 0.0 {
             // On a layer the reference rule: the certified stops and local replays are
             // derived for the half-space's kernel.
-            let params = match self.layer() {
+            let params = match self.layer {
                 Some(_) => AdhesiveParams {
                     reference_rule: true,
                     predicted_growth: adhesim::solver::PredictedGrowth::Off,
@@ -74,7 +68,7 @@ impl ValidScenario {
                 self.gamma.clone(),
                 params,
             )))
-        } else if self.layer().is_some() {
+        } else if self.layer.is_some() {
             // The nested active set's coarse levels and windows are half-space operators:
             // on a layer, CCG on the layer's own operator.
             NormalSolver::NonAdhesive(Ccg::new(CcgParams::default()))
@@ -279,7 +273,7 @@ pub fn run_from(
     observer: &mut dyn Observer,
     resume: Option<Resume>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut operator: Box<dyn ElasticOperator> = match scenario.layer() {
+    let mut operator: Box<dyn ElasticOperator> = match scenario.layer {
         Some(layer) => Box::new(
             LayerOperator::new(scenario.grid, scenario.material, layer)
                 .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?,

@@ -92,6 +92,7 @@ impl ScenarioFile {
         let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let mode_mixity = mode_mixity(friction, gamma0)?;
+        let coupled = coupled(friction, force_control.is_some(), mode_mixity)?;
         let drive_stiffness = drive_stiffness(p)?;
         let protocol = Shear {
             start_depth,
@@ -109,6 +110,7 @@ impl ScenarioFile {
             incline: incline(p.incline)?,
             mode_mixity,
             force_control,
+            coupled,
         };
         if protocol.shift_steps() > MAX_STEPS {
             bail!(ScenarioError::invalid_as(
@@ -167,6 +169,17 @@ impl ScenarioFile {
                 "absent with a roll, slide or translate",
                 format!(
                     "friction.mode_mixity weakens the adhesive edge under protocol.kind = \"shear\" only, got {mixity} with \"{}\"",
+                    self.protocol.kind().name()
+                )
+            ));
+        }
+        if friction.coupling == Some(CouplingName::Full) {
+            bail!(ScenarioError::invalid_as(
+                "friction.coupling",
+                "\"full\"",
+                "\"none\" with a roll, slide or translate",
+                format!(
+                    "friction.coupling = \"full\" (the coupled normal–tangential operator) is offered under protocol.kind = \"shear\" only, got \"{}\"; use \"none\" (Goodman's approximation, exact at material.poisson_ratio = 0.5)",
                     self.protocol.kind().name()
                 )
             ));
@@ -271,14 +284,6 @@ fn friction_law(section: &FrictionSection) -> Result<FrictionLaw> {
             Err(ScenarioError::invalid(&format!("friction.{key}"), value, "finite and >= 0").into())
         }
     };
-    if section.coupling == Some(CouplingName::Full) {
-        bail!(ScenarioError::invalid_as(
-            "friction.coupling",
-            "\"full\"",
-            "\"none\"",
-            "friction.coupling = \"full\" (the coupled normal–tangential operator) is not implemented; use \"none\" (Goodman's approximation, exact at material.poisson_ratio = 0.5)"
-        ));
-    }
     let (coefficient, shear_strength) = (section.coefficient, section.shear_strength);
     let built = match law {
         FrictionLawName::Coulomb => {
@@ -407,6 +412,32 @@ fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> 
         ));
     }
     Ok(value)
+}
+
+/// `friction.coupling = "full"` (the coupled operator of a half-space), with what it does
+/// not combine with yet refused by name.
+fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: f64) -> Result<bool> {
+    if section.coupling != Some(CouplingName::Full) {
+        return Ok(false);
+    }
+    let refuse = |requirement: &str, message: &str| -> Result<bool> {
+        Err(ScenarioError::invalid_as("friction.coupling", "\"full\"", requirement, message.to_string()).into())
+    };
+    if force_control {
+        return refuse(
+            "\"none\" with protocol.tangential_force",
+            "friction.coupling = \"full\" changes the normal problem at every step, and an imposed tangential force (protocol.tangential_force) holds it fixed: impose protocol.distance, or use coupling = \"none\"",
+        );
+    }
+    if mode_mixity > 0.0 {
+        return refuse(
+            "\"none\" with friction.mode_mixity > 0",
+            "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",
+        );
+    }
+    // A layer (material.thickness) takes no shear protocol at all (validate.rs), so the
+    // coupling is always the half-space's.
+    Ok(true)
 }
 
 /// The `results` of a shear run in `summary.json`.

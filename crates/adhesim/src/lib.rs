@@ -97,8 +97,8 @@ pub mod surface;
 
 pub use elastic::cerruti::ShearMaterial;
 pub use elastic::{
-    ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError, LayerOperator, PeriodicKernel,
-    PeriodicOperator, TangentialOperator, TangentialOperatorError,
+    CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError, LayerOperator,
+    PeriodicKernel, PeriodicOperator, TangentialOperator, TangentialOperatorError,
 };
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use crate::common;
+mod coupled;
 mod force_control;
 mod shear;
 use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};

@@ -16,7 +16,7 @@ pub struct FrictionSection {
     /// τ0 of `shear_strength` and `coulomb_shear`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shear_strength: Option<f64>,
-    /// Normal–tangential coupling; only `"none"` (Goodman's approximation).
+    /// Normal–tangential coupling: `"none"` (Goodman's approximation) or `"full"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coupling: Option<CouplingName>,
     /// Static μs ≥ μ of `coulomb` and `coulomb_shear` (default μ: no static peak).
@@ -59,7 +59,8 @@ pub enum CouplingName {
     /// not move it tangentially (exact at ν = 1/2).
     #[default]
     None,
-    /// The coupled operator (ν < 1/2): not available yet, refused with its reason.
+    /// The coupled operator (ν < 1/2; under protocol.kind = "shear"): shear moves the surface
+    /// normally and pressure moves it tangentially.
     Full,
 }
 

@@ -1,11 +1,13 @@
 //! Linear elastic half-space: pressure → normal surface displacement; shear traction →
-//! tangential surface displacement ([`TangentialOperator`]).
+//! tangential surface displacement ([`TangentialOperator`]); the coupling of the two at
+//! ν < 1/2 ([`CouplingOperator`]).
 //!
 //! Sign convention: pressure p > 0 is compressive, displacement u > 0 points into the
 //! body. Both operators discretise Boussinesq's solution with uniform pressure on square
 //! elements and collocation at element centres.
 
 pub mod cerruti;
+mod coupling;
 mod free;
 pub mod influence;
 mod layer;
@@ -16,6 +18,7 @@ mod spectral;
 mod tangential;
 mod tangential_periodic;
 
+pub use coupling::{coupling_rectangle, CouplingOperator};
 pub use free::FreeOperator;
 pub use layer::{layer_compliance_factor, ElasticLayer, LayerBase, LayerError, LayerOperator};
 pub use periodic::{PeriodicKernel, PeriodicOperator};

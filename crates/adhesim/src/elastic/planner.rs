@@ -1,5 +1,5 @@
 //! The library's one spectral planner service: every transform of the operators (normal,
-//! periodic, tangential, layer), the preconditioner, the local peel's lattice inverse and
+//! periodic, tangential, coupling, layer), the preconditioner, the local peel's lattice inverse and
 //! the surfaces is planned here. A plan is made once per length, precision and thread and
 //! then shared (`Arc`): rustfft's planners cache what they make, and their choice of
 //! algorithm depends only on the length and the CPU, so a shared plan gives the bits of a

@@ -40,16 +40,34 @@ pub struct TangentialOperator {
     transforms: u64,
 }
 
+/// G finite and positive, ν in (−1, 1/2]: what the tangential and coupling operators take.
+pub(super) fn check_material(material: ShearMaterial) -> Result<(), TangentialOperatorError> {
+    let (g, nu) = (material.shear_modulus, material.poisson_ratio);
+    if g.is_finite() && g > 0.0 && nu > -1.0 && nu <= 0.5 {
+        Ok(())
+    } else {
+        Err(TangentialOperatorError::InvalidMaterial {
+            shear_modulus: g,
+            poisson_ratio: nu,
+        })
+    }
+}
+
+/// The signed offset in elements of index `i` of a 2n-periodic padded axis (DC-FFT); the
+/// index n, which no offset of the data window reaches, is None.
+pub(super) fn padded_offset(i: usize, n: usize) -> Option<f64> {
+    match i {
+        i if i < n => Some(i as f64),
+        i if i == n => None,
+        i => Some(-((2 * n - i) as f64)),
+    }
+}
+
 impl TangentialOperator {
     /// Plans the transforms and computes the three kernel spectra.
     pub fn new(grid: Grid, material: ShearMaterial) -> Result<Self, TangentialOperatorError> {
-        let (g, nu) = (material.shear_modulus, material.poisson_ratio);
-        if !(g.is_finite() && g > 0.0 && nu > -1.0 && nu <= 0.5) {
-            return Err(TangentialOperatorError::InvalidMaterial {
-                shear_modulus: g,
-                poisson_ratio: nu,
-            });
-        }
+        check_material(material)?;
+        let nu = material.poisson_ratio;
         if grid.boundary() == Boundary::Periodic {
             let (xx, yy, xy) = periodic_spectra(&grid, material);
             let mut operator = Self {
@@ -75,15 +93,7 @@ impl TangentialOperator {
         }
         let (nx, ny) = (grid.nx(), grid.ny());
         let (dx, dy) = (grid.dx(), grid.dy());
-        // Signed offset in elements of a wrapped index of a 2n-periodic padded axis; the
-        // index n (no offset of the data window reaches it) is None.
-        let wrap = |i: usize, n: usize| -> Option<f64> {
-            match i {
-                i if i < n => Some(i as f64),
-                i if i == n => None,
-                i => Some(-((2 * n - i) as f64)),
-            }
-        };
+        let wrap = padded_offset;
         let engine = |component: fn(CerrutiCoefficients) -> f64| {
             SpectralConvolution::new((nx, ny), (2 * nx, 2 * ny), |i, row: &mut [f64]| {
                 let eta = wrap(i, ny);

@@ -7,6 +7,38 @@ use super::spectral::SpectralConvolution;
 use crate::grid::Grid;
 use std::f64::consts::TAU;
 
+/// The signed shifted wavenumbers q + 2πm/Δ (|m| ≤ `ALIASES`) of wave `index` of an axis of
+/// `n` elements of width `delta` (length `size`), each with its element's form factor
+/// sinc(qΔ/2).
+fn alias_table(index: usize, n: usize, delta: f64, size: f64) -> Vec<(f64, f64)> {
+    let k = if index <= n / 2 {
+        index as f64
+    } else {
+        index as f64 - n as f64
+    };
+    let q = TAU * k / size;
+    (-ALIASES..=ALIASES)
+        .map(|m| {
+            let shifted = q + TAU * m as f64 / delta;
+            (shifted, sinc(0.5 * shifted * delta))
+        })
+        .collect()
+}
+
+/// The alias tables of a periodic grid's real-transform columns (x, Nx/2 + 1 waves) or
+/// rows (y, Ny waves).
+pub(super) type AliasTables = Vec<Vec<(f64, f64)>>;
+
+/// [`alias_table`] of every column wave (x) and row wave (y) of `grid`.
+pub(super) fn alias_tables(grid: &Grid) -> (AliasTables, AliasTables) {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let x_tables = (0..nx / 2 + 1)
+        .map(|i| alias_table(i, nx, grid.dx(), grid.size_x()))
+        .collect();
+    let y_tables = (0..ny).map(|i| alias_table(i, ny, grid.dy(), grid.size_y())).collect();
+    (x_tables, y_tables)
+}
+
 /// The three spectra of a periodic grid: K̂_xx, K̂_yy and K̂_xy (None at ν = 0), laid out
 /// for [`SpectralConvolution`] with no padding.
 ///
@@ -25,24 +57,8 @@ pub(super) fn periodic_spectra(
 ) -> (SpectralConvolution, SpectralConvolution, Option<Vec<f64>>) {
     let (nx, ny) = (grid.nx(), grid.ny());
     let (g, nu) = (material.shear_modulus, material.poisson_ratio);
-    // Signed shifted wavenumbers q + 2πm/Δ and their form factors, per wave index.
-    let table = |index: usize, n: usize, delta: f64, size: f64| -> Vec<(f64, f64)> {
-        let k = if index <= n / 2 {
-            index as f64
-        } else {
-            index as f64 - n as f64
-        };
-        let q = TAU * k / size;
-        (-ALIASES..=ALIASES)
-            .map(|m| {
-                let shifted = q + TAU * m as f64 / delta;
-                (shifted, sinc(0.5 * shifted * delta))
-            })
-            .collect()
-    };
     let columns = nx / 2 + 1;
-    let x_tables: Vec<_> = (0..columns).map(|i| table(i, nx, grid.dx(), grid.size_x())).collect();
-    let y_tables: Vec<_> = (0..ny).map(|i| table(i, ny, grid.dy(), grid.size_y())).collect();
+    let (x_tables, y_tables) = alias_tables(grid);
     let normalisation = 1.0 / (nx as f64 * ny as f64 * g);
     // [xx, yy, xy] at (row, column).
     let entry = |row: usize, column: usize| -> [f64; 3] {

@@ -239,6 +239,22 @@ pub enum ProtocolError {
         /// Rounds done.
         rounds: usize,
     },
+    /// The rounds of normal and tangential solves of the coupled operator did not meet.
+    #[error("step {step} (shift {shift:e}): the coupled normal and tangential solves did not converge in {rounds} rounds (last change {change:.3e} of the normal displacement the shear gives, tolerance {tolerance:.1e}{}); use friction.coupling = \"none\"", if *alternating { "; the contact set alternates between two sets" } else { "" })]
+    CouplingNotConverged {
+        /// Step at which it failed.
+        step: usize,
+        /// The indenter's shift at that step.
+        shift: f64,
+        /// Rounds done.
+        rounds: usize,
+        /// The last round's largest change of K_zt q, relative to its largest value.
+        change: f64,
+        /// The tolerance on that change.
+        tolerance: f64,
+        /// The contact set returned to the one of two rounds before.
+        alternating: bool,
+    },
     /// The observer asked to stop.
     #[error("stopped by the observer at step {0}")]
     Interrupted(usize),

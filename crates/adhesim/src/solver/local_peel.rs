@@ -7,10 +7,10 @@
 //! Ŝ_GG y = e_v, Ŝ the lattice inverse of the discrete Love operator (scale free: only
 //! ratios of Ŝ enter, so Δ = E* = 1 here).
 
+use super::shape_cache::ShapeCache;
 use crate::elastic::influence::love_coefficient;
 use crate::elastic::planner;
 use num_complex::Complex;
-use std::collections::HashMap;
 
 /// Free elements within this distance (in elements) of a released one are free in the bound.
 pub(crate) const WINDOW: i64 = 4;
@@ -95,18 +95,10 @@ pub(crate) struct LocalPeel {
     window: Vec<(i64, i64)>,
     matrix: Vec<f64>,
     solution: Vec<f64>,
-    /// Window solutions by shape ([`WindowShape`]): the solution depends only on the
-    /// window's offsets from its centre, so a shape solved before gives the same bits.
-    solved: HashMap<WindowShape, Vec<f64>>,
-    /// The shape of the last window (reused: no allocation on a hit).
-    shape: WindowShape,
+    /// Window solutions by shape: the solution depends only on the window's offsets from
+    /// its centre, so a shape solved before gives the same bits.
+    solved: ShapeCache,
 }
-
-/// A window's offsets (row, column) from its centre, in window order (within ±`WINDOW`).
-type WindowShape = Vec<(i8, i8)>;
-
-/// Window shapes kept at most (each ≤ 49 offsets and values, under 1 KiB); emptied when full.
-const SOLVED_CAPACITY: usize = 1 << 14;
 
 impl LocalPeel {
     pub(crate) fn new(len: usize) -> Self {
@@ -119,8 +111,7 @@ impl LocalPeel {
             window: Vec::new(),
             matrix: Vec::new(),
             solution: Vec::new(),
-            solved: HashMap::new(),
-            shape: Vec::new(),
+            solved: ShapeCache::default(),
         }
     }
 
@@ -142,13 +133,7 @@ impl LocalPeel {
                 }
             }
         }
-        self.shape.clear();
-        self.shape.extend(
-            self.window
-                .iter()
-                .map(|&(r, c)| ((r - centre.0) as i8, (c - centre.1) as i8)),
-        );
-        if let Some(stored) = self.solved.get(self.shape.as_slice()) {
+        if let Some(stored) = self.solved.look_up(&self.window, centre) {
             self.solution.clear();
             self.solution.extend_from_slice(stored);
             return;
@@ -165,10 +150,7 @@ impl LocalPeel {
         self.solution.resize(size, 0.0);
         self.solution[0] = 1.0;
         cholesky_solve(&self.matrix, size, &mut self.solution);
-        if self.solved.len() >= SOLVED_CAPACITY {
-            self.solved.clear();
-        }
-        self.solved.insert(self.shape.clone(), self.solution.clone());
+        self.solved.store(&self.solution);
     }
 
     /// Prepares the window of the element released at `centre` (row, column) of an n×n

@@ -13,6 +13,7 @@ mod contact_window;
 mod local_peel;
 mod nested;
 mod peel_predictor;
+mod shape_cache;
 mod state;
 mod tangential;
 mod workspace;

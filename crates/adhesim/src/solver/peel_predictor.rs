@@ -10,9 +10,9 @@
 //! a solve, so the window's size and shape decide the work, never the result.
 
 use super::dot;
+use super::shape_cache::{window_shape, Shape, ShapeCache};
 use crate::elastic::influence::love_coefficient;
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// Contact elements within this distance (in elements) of a released one respond to it.
 /// The tension of a peeling front is shed far along the front: 8, 12 and 16 give 113, 101
@@ -51,69 +51,8 @@ pub(crate) struct PeelPredictor {
     batch_rank: Vec<u32>,
     /// One dense matrix and one shape key per thread for the planned windows.
     matrices: Vec<(Vec<f64>, Shape)>,
-    /// Rises already solved, by window shape.
-    solved: RiseCache,
-}
-
-/// Rises already solved, by the window's shape: its elements' offsets from the released
-/// element, in window order. The dense system K_AA δt_A = K_Av has entries K(offset
-/// differences) only, so two windows of one shape have the same matrix and right-hand
-/// side, and the stored rises are the bits a new solve would give. A peeling front
-/// replays the same local configurations over and over (the verification solves of a
-/// ring, the rings of a step), so most windows have been met before.
-#[derive(Default)]
-struct RiseCache {
-    rises: HashMap<Shape, Vec<f64>>,
-    /// The shape of the last lookup (reused: no allocation on a hit).
-    key: Shape,
-}
-
-/// A window's offsets (row, column) from its released element, in window order.
-type Shape = Vec<(i8, i8)>;
-
-/// Shapes kept at most (each at most `MAX_WINDOW` offsets and rises, ≈ 1 KiB); the cache
-/// is emptied when full.
-const CACHE_CAPACITY: usize = 1 << 14;
-
-/// Writes the shape of `window` about `centre` into `key`.
-fn window_shape(window: &[(i64, i64)], centre: (i64, i64), key: &mut Shape) {
-    key.clear();
-    // Offsets lie within ±RADIUS (the disk), so they fit an i8.
-    key.extend(
-        window
-            .iter()
-            .map(|&(r, c)| ((r - centre.0) as i8, (c - centre.1) as i8)),
-    );
-}
-
-impl RiseCache {
-    /// The rises of `window` released at `centre` into `rises`: the stored ones if its
-    /// shape was solved before, else solved (and stored).
-    fn rises_of(
-        &mut self,
-        kernel: &[f64],
-        window: &[(i64, i64)],
-        centre: (i64, i64),
-        matrix: &mut Vec<f64>,
-        rises: &mut Vec<f64>,
-    ) {
-        window_shape(window, centre, &mut self.key);
-        if let Some(stored) = self.rises.get(self.key.as_slice()) {
-            rises.clear();
-            rises.extend_from_slice(stored);
-            return;
-        }
-        solve_rises(kernel, window, centre, matrix, rises);
-        self.store(rises);
-    }
-
-    /// Stores `rises` under the shape of the last lookup.
-    fn store(&mut self, rises: &[f64]) {
-        if self.rises.len() >= CACHE_CAPACITY {
-            self.rises.clear();
-        }
-        self.rises.insert(self.key.clone(), rises.to_vec());
-    }
+    /// Rises already solved, by window shape about the released element.
+    solved: ShapeCache,
 }
 
 /// The window of one release, (row, column) of its elements, and their tension rises per
@@ -150,7 +89,7 @@ impl PeelPredictor {
             planned: Vec::new(),
             batch_rank: vec![0; len],
             matrices: vec![(Vec::new(), Vec::new()); rayon::current_num_threads().max(1)],
-            solved: RiseCache::default(),
+            solved: ShapeCache::default(),
         }
     }
 
@@ -187,7 +126,13 @@ impl PeelPredictor {
             }
             cache[k] == 1
         });
-        solved.rises_of(kernel, &last.window, centre, matrix, &mut last.rises);
+        if let Some(stored) = solved.look_up(&last.window, centre) {
+            last.rises.clear();
+            last.rises.extend_from_slice(stored);
+            return;
+        }
+        solve_rises(kernel, &last.window, centre, matrix, &mut last.rises);
+        solved.store(&last.rises);
     }
 
     /// Computes, on all threads, the windows of releasing `batch` one after the other from
@@ -207,7 +152,7 @@ impl PeelPredictor {
             self.planned.resize_with(batch.len(), Released::default);
         }
         let per_thread = batch.len().div_ceil(self.matrices.len());
-        let (kernel, disk, rank, stored) = (&self.kernel, &self.disk, &self.batch_rank, &self.solved.rises);
+        let (kernel, disk, rank, stored) = (&self.kernel, &self.disk, &self.batch_rank, &self.solved);
         self.planned[..batch.len()]
             .par_chunks_mut(per_thread)
             .zip(batch.par_chunks(per_thread))
@@ -239,8 +184,8 @@ impl PeelPredictor {
         for (slot, &k) in self.planned[..batch.len()].iter().zip(batch) {
             self.batch_rank[k] = 0;
             if slot.solved {
-                window_shape(&slot.window, ((k / n) as i64, (k % n) as i64), &mut self.solved.key);
-                self.solved.store(&slot.rises);
+                self.solved
+                    .insert(&slot.window, ((k / n) as i64, (k % n) as i64), &slot.rises);
             }
         }
         true
@@ -410,9 +355,9 @@ mod tests {
         let mut predictor = PeelPredictor::new(n * n);
         predictor.release(n, (20, 39), |k| contact(k) && k != 20 * n + 39);
         predictor.finish();
-        assert_eq!(predictor.solved.rises.len(), 1);
+        assert_eq!(predictor.solved.len(), 1);
         predictor.release(n, (44, 39), |k| contact(k) && k != 44 * n + 39);
-        assert_eq!(predictor.solved.rises.len(), 1, "the second release is a hit");
+        assert_eq!(predictor.solved.len(), 1, "the second release is a hit");
         let cached: Vec<((i64, i64), u64)> = predictor.window(None).map(|(w, r)| (w, r.to_bits())).collect();
         let (mut matrix, mut fresh) = (Vec::new(), Vec::new());
         solve_rises(
@@ -434,7 +379,7 @@ mod tests {
         // A different shape (a release near the grid's side) is solved and stored.
         predictor.finish();
         predictor.release(n, (2, 39), |k| contact(k) && k != 2 * n + 39);
-        assert_eq!(predictor.solved.rises.len(), 2);
+        assert_eq!(predictor.solved.len(), 2);
     }
 
     /// A planned batch gives every release the window and rises, to the bit, that the

@@ -304,7 +304,7 @@ fn adhesive_sphere_sheared_without_slip_shrinks_as_savkoor_briggs() {
 #[test]
 fn friction_errors_name_their_keys() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, String, &[&str]); 10] = [
+    let cases: [(&str, String, &[&str]); 9] = [
         (
             "incline.toml",
             shear_text("law = \"coulomb\"\ncoefficient = 0.3", 0.0).replace("steps = 24", "steps = 24\nincline = 90.0"),
@@ -329,11 +329,6 @@ fn friction_errors_name_their_keys() {
             "glued.toml",
             shear_text("law = \"no_slip\"\ncoefficient = 0.3", 0.0),
             &["friction.coefficient", "no_slip"],
-        ),
-        (
-            "full.toml",
-            shear_text("law = \"coulomb\"\ncoefficient = 0.3\ncoupling = \"full\"", 0.0),
-            &["friction.coupling", "not implemented"],
         ),
         (
             "missing.toml",

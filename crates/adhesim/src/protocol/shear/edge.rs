@@ -197,7 +197,7 @@ impl EdgeWeakening {
 }
 
 /// The last round's fields with the counters of all rounds.
-fn add_tangential(total: &mut TangentialReport, round: TangentialReport) {
+pub(super) fn add_tangential(total: &mut TangentialReport, round: TangentialReport) {
     let (rounds, iterations, pairs) = (total.rounds, total.cg_iterations, total.transform_pairs);
     *total = round;
     total.rounds += rounds;
@@ -206,7 +206,7 @@ fn add_tangential(total: &mut TangentialReport, round: TangentialReport) {
 }
 
 /// The last normal step's forces and energies with the counters and releases of all.
-fn add_normal(total: &mut StepReport, round: StepReport) {
+pub(super) fn add_normal(total: &mut StepReport, round: StepReport) {
     let first = total.solves == 0;
     let mut sum = round;
     sum.solves += total.solves;

@@ -1,6 +1,8 @@
 //! Shear at fixed indentation: indent, then shift the indenter tangentially with friction
 //! at the interface (Cattaneo 1938, Mindlin 1949; docs/physics.md §8).
 
+mod approach;
+mod coupled;
 mod edge;
 mod shift;
 mod sliding;
@@ -28,6 +30,8 @@ use std::ops::ControlFlow;
 /// only the tangential problem is solved per shift step. With a `mode_mixity` m > 0 the
 /// shear weakens the adhesive edge (docs/physics.md §8.5): each shift step then alternates
 /// tangential solves and normal steps at the held depth until the contact set settles.
+/// With the coupled operator (`coupled`, docs/physics.md §8.1a) friction acts from first
+/// contact and every step, of the approach too, solves the two problems in turn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shear {
     /// Depth of first contact (the approach starts there).
@@ -59,6 +63,11 @@ pub struct Shear {
     /// Force control: the tangential force along `direction` is imposed, and `distance` is
     /// not used. None: the shift is imposed.
     pub force_control: Option<TangentialForce>,
+    /// The coupled operator (ν < 1/2, `friction.coupling = "full"`): a shear traction moves
+    /// the surface normally and a pressure moves it tangentially, so the approach already
+    /// meets friction (Spence's problem) and every step solves both problems in turn.
+    /// False: Goodman's approximation.
+    pub coupled: bool,
 }
 
 /// The imposed tangential force of a force-controlled shear: the forward stroke ramps it
@@ -148,15 +157,34 @@ impl Shear {
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
         let mut summary = ShearSummary::default();
-        self.approach(
-            operator,
-            heights,
-            solver,
-            (&mut state, &mut previous),
-            &mut summary,
-            observer,
-        )?;
         let inclined = self.incline != 0.0;
+        let mut coupled = None;
+        if self.coupled {
+            let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, true, solver)?;
+            self.approach_coupled(
+                NormalSide {
+                    operator: &mut *operator,
+                    heights,
+                    depth: self.depth,
+                    solver: &mut *solver,
+                    state: &mut state,
+                },
+                (&mut stepper, friction),
+                &mut previous,
+                &mut summary,
+                observer,
+            )?;
+            coupled = Some(stepper);
+        } else {
+            self.approach(
+                operator,
+                heights,
+                solver,
+                (&mut state, &mut previous),
+                &mut summary,
+                observer,
+            )?;
+        }
         let compliant = friction.drive_stiffness().is_some();
         if inclined && compliant {
             return Err(ProtocolError::InvalidParameter(
@@ -168,7 +196,10 @@ impl Shear {
             Some(TangentialForce::Absolute(force)) => force,
             Some(TangentialForce::OfCapacity(share)) => share * friction.capacity(&state, grid.element_area()),
         };
-        let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, solver)?;
+        let mut stepper = match coupled {
+            Some(stepper) => stepper,
+            None => ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, false, solver)?,
+        };
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
         let slope = self.incline.tan();
@@ -219,19 +250,13 @@ impl Shear {
                 &grid,
                 summary.dissipated_energy,
             );
-            let along = report.force[0] * unit[0] + report.force[1] * unit[1];
+            let along = self.add_tangential_columns(&mut record, &report, &summary, &state.contact, &grid);
             // The indenter's shift (under a compliant drive it lags the drive's; under force
             // control it is found).
             let indenter = report.shift[0] * unit[0] + report.shift[1] * unit[1];
             let controlled_force = self.force_control.is_some();
             record.offset = if compliant || controlled_force { indenter } else { shift };
             record.drive_offset = if controlled_force { indenter } else { shift };
-            record.force_tangential = along;
-            record.force_tangential_before_change = along;
-            record.stick_elements = report.stick_elements;
-            record.slip_elements = report.slip_elements;
-            record.cumulative_frictional_dissipation = summary.frictional_dissipation;
-            (_, record.area_front, record.area_rear) = contact_split(&grid, &state.contact, self.direction);
             if forward {
                 summary.peak_tangential_force = summary.peak_tangential_force.max(along);
                 summary.final_tangential_force = along;
@@ -249,47 +274,6 @@ impl Shear {
         }
         stepper.finish(solver);
         Ok(summary)
-    }
-
-    /// The approach to `depth` in `approach_steps` displacement steps; `contact` is the
-    /// normal state and the contact set at each step's start.
-    fn approach(
-        &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
-        solver: &mut NormalSolver,
-        contact: (&mut ContactState, &mut Vec<bool>),
-        summary: &mut ShearSummary,
-        observer: &mut dyn Observer,
-    ) -> Result<(), ProtocolError> {
-        let (state, previous) = contact;
-        let grid = *operator.grid();
-        let depth_step = (self.depth - self.start_depth) / self.approach_steps as f64;
-        for step in 0..self.approach_steps {
-            let depth = if step + 1 == self.approach_steps {
-                self.depth
-            } else {
-                self.start_depth + (step + 1) as f64 * depth_step
-            };
-            previous.copy_from_slice(&state.contact);
-            let report = solver
-                .step(operator, heights, depth, state)
-                .map_err(|source| ProtocolError::Solve { step, depth, source })?;
-            add_normal_counters(summary, &report);
-            let mut record = self.record(
-                step,
-                Phase::Approach,
-                depth,
-                report,
-                state,
-                &grid,
-                summary.dissipated_energy,
-            );
-            let (stick, front, rear) = contact_split(&grid, &state.contact, self.direction);
-            (record.stick_elements, record.area_front, record.area_rear) = (stick, front, rear);
-            self.report(summary, &record, (state, previous, None), observer)?;
-        }
-        Ok(())
     }
 
     /// Steps of the shift: the forward stroke, the cycles and the return.
@@ -347,10 +331,10 @@ impl Shear {
                     "the imposed tangential force ({force:?}) must be finite, and as a share of what the interface holds below 1"
                 ));
             }
-            if self.incline != 0.0 || self.mode_mixity > 0.0 {
+            if self.incline != 0.0 || self.mode_mixity > 0.0 || self.coupled {
                 return invalid(format!(
-                    "an imposed tangential force holds the normal problem fixed: it takes incline = 0 and mode_mixity = 0 (got {} rad and {})",
-                    self.incline, self.mode_mixity
+                    "an imposed tangential force holds the normal problem fixed: it takes incline = 0, mode_mixity = 0 and no coupling (got {} rad, {} and coupled = {})",
+                    self.incline, self.mode_mixity, self.coupled
                 ));
             }
         }
@@ -386,6 +370,28 @@ impl Shear {
             dissipated,
             self.jump_force_threshold,
         )
+    }
+
+    /// The tangential columns of a step's record: the force along the shift (returned),
+    /// the stick and slip counts, friction's dissipation so far, and the front and rear
+    /// areas about the indenter's axis.
+    fn add_tangential_columns(
+        &self,
+        record: &mut StepRecord,
+        report: &TangentialReport,
+        summary: &ShearSummary,
+        contact: &[bool],
+        grid: &Grid,
+    ) -> f64 {
+        let unit = [self.direction.cos(), self.direction.sin()];
+        let along = report.force[0] * unit[0] + report.force[1] * unit[1];
+        record.force_tangential = along;
+        record.force_tangential_before_change = along;
+        record.stick_elements = report.stick_elements;
+        record.slip_elements = report.slip_elements;
+        record.cumulative_frictional_dissipation = summary.frictional_dissipation;
+        (_, record.area_front, record.area_rear) = contact_split(grid, contact, self.direction);
+        along
     }
 
     /// Totals, then the observer; `view` is the normal state, the contact at the step's

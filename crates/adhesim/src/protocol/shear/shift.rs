@@ -1,7 +1,9 @@
 //! One shift step of the shear protocol: the normal problem held (Cattaneo–Mindlin),
-//! moved along an inclined path, or weakened at its edge by the shear, and the tangential
-//! problem solved on the contact's room.
+//! moved along an inclined path, weakened at its edge by the shear or solved in turn with
+//! the tangential problem (the coupled operator), and the tangential problem solved on the
+//! contact's room.
 
+use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide};
 use super::window::TangentialRoom;
 use crate::elastic::cerruti::ShearMaterial;
@@ -21,6 +23,8 @@ enum NormalMode {
     Moving,
     /// Solved again with the shear-weakened detachment rule, in rounds.
     Weakened(Box<EdgeWeakening>),
+    /// Solved in turn with the tangential problem through the coupled operator.
+    Coupled(Box<Coupling>),
 }
 
 /// What a shift step imposes.
@@ -57,8 +61,23 @@ impl ShiftStepper {
         material: ShearMaterial,
         mode_mixity: f64,
         inclined: bool,
+        coupled: bool,
         solver: &mut NormalSolver,
     ) -> Result<Self, ProtocolError> {
+        if coupled {
+            if mode_mixity > 0.0 {
+                return Err(ProtocolError::InvalidParameter(format!(
+                    "the coupled operator is not combined with a shear-weakened edge yet (mode_mixity = {mode_mixity}): use mode_mixity = 0 or coupling = \"none\""
+                )));
+            }
+            // The tractions' normal displacement reaches every gap: the room is the grid.
+            let room = TangentialRoom::new(grid, &vec![true; grid.len()], 0, material)?;
+            return Ok(Self {
+                window_state: room.window.gather(state),
+                room,
+                mode: NormalMode::Coupled(Box::new(Coupling::new(grid, material)?)),
+            });
+        }
         let changes = mode_mixity > 0.0 || inclined;
         let margin = if changes { MOVING_WINDOW_MARGIN } else { 0 };
         let room = TangentialRoom::new(grid, &state.contact, margin, material)?;
@@ -125,6 +144,13 @@ impl ShiftStepper {
             ));
         }
         match &mut self.mode {
+            NormalMode::Coupled(coupling) => {
+                let coupled = coupling.step(normal, &mut self.room, friction, shift, step)?;
+                Ok(ShiftOutcome {
+                    tangential: coupled.tangential,
+                    normal: coupled.normal,
+                })
+            }
             NormalMode::Weakened(edge) => {
                 let weakened = edge.step(normal, &mut self.room, friction, shift, step)?;
                 Ok(ShiftOutcome {

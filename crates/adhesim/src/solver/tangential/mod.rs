@@ -2,9 +2,10 @@
 //!
 //! The normal problem decides the contact set C and the pressure p (Goodman's
 //! approximation: a shear traction does not move the surface normally, docs/physics.md
-//! §9.1); on C a [`FrictionLaw`] bounds each traction, |q_i| ≤ g_i. The indenter is shifted
-//! tangentially by δ. An element sticks when its relative tangential displacement is that
-//! of the last step: u_i = u_i⁻ + Δδ =: w_i. An element slips when |q_i| = g_i, with q_i
+//! §8.1; the coupled operator of §8.1a adds the pressure's tangential displacement,
+//! [`TangentialSolver::set_pressure_displacement`]); on C a [`FrictionLaw`] bounds each
+//! traction, |q_i| ≤ g_i. The indenter is shifted tangentially by δ. An element sticks when
+//! its relative tangential displacement is that of the last step: u_i = u_i⁻ + Δδ =: w_i. An element slips when |q_i| = g_i, with q_i
 //! along its slip increment Δs_i = w_i − u_i (friction drags the body along). These are the
 //! optimality conditions of min ½qᵀKq − qᵀw over the discs |q_i| ≤ g_i (Kalker 1990, *Three-
 //! Dimensional Elastic Bodies in Rolling Contact*, §5), a strictly convex problem with one
@@ -320,6 +321,9 @@ pub struct TangentialSolver {
     /// The secant stiffness dF/dδ of the last force-controlled step: its successor's
     /// first trial.
     force_stiffness: Option<f64>,
+    /// The tangential displacement of the step's pressure, per component (empty: none,
+    /// Goodman's approximation; [`set_pressure_displacement`](Self::set_pressure_displacement)).
+    pressure_displacement: [Vec<f64>; 2],
 }
 
 impl TangentialSolver {
@@ -343,6 +347,7 @@ impl TangentialSolver {
             drive_offset: [0.0; 2],
             broke_loose: 0,
             force_stiffness: None,
+            pressure_displacement: [Vec::new(), Vec::new()],
         }
     }
 
@@ -399,6 +404,7 @@ impl TangentialSolver {
                 got: normal.contact.len().min(state.status.len()),
             });
         }
+        self.check_pressure_displacement(n)?;
         let pairs_before = operator.transform_pairs();
         let before = state.traction.clone();
         // The drive's increment (the shift's under a rigid drive).
@@ -445,6 +451,7 @@ impl TangentialSolver {
         }
         self.refresh_drive_offset(state);
         self.finish(operator, normal, shift, state, scale, &mut report);
+        self.add_pressure_displacement(state);
         self.note_slip_event(&before, increment, state, &mut report);
         self.history = Some((before, increment));
         report.transform_pairs = operator.transform_pairs() - pairs_before;
@@ -488,6 +495,11 @@ impl TangentialSolver {
                     state.displacement[c][i] + advance[c]
                 };
             }
+            if let Some(coupled) = self.pressure_displacement[0].get(i) {
+                // The solve works on K q: the pressure's share is off the target.
+                self.target[0][i] -= coupled;
+                self.target[1][i] -= self.pressure_displacement[1][i];
+            }
             if !normal.contact[i] {
                 state.status[i] = SlipStatus::Open;
                 state.traction[0][i] = 0.0;
@@ -521,61 +533,6 @@ impl TangentialSolver {
         }
     }
 
-    /// The start of a step that continues the last one in the same direction: the last
-    /// step's traction change, scaled to this step's shift increment, added to each
-    /// contact element's traction and put back in its disc (on the circle: slipping along
-    /// it). Only the starting point of the Newton rounds changes, not their solution.
-    /// (Not after a slip event: its change is no guide to the next step's.)
-    fn predict(&mut self, normal: &ContactState, increment: [f64; 2], state: &mut TangentialState) {
-        if state.at_rest {
-            return;
-        }
-        let Some(history) = self.history.take() else {
-            return;
-        };
-        self.extrapolate(&history, normal, increment, state);
-        self.history = Some(history);
-    }
-
-    /// [`predict`](Self::predict) from the last step's tractions `before` and increment.
-    fn extrapolate(
-        &mut self,
-        (before, last): &([Vec<f64>; 2], [f64; 2]),
-        normal: &ContactState,
-        increment: [f64; 2],
-        state: &mut TangentialState,
-    ) {
-        let last_squared = last[0] * last[0] + last[1] * last[1];
-        let along = increment[0] * last[0] + increment[1] * last[1];
-        if before[0].len() != state.status.len() || !(last_squared > 0.0 && along > 0.0) {
-            return;
-        }
-        let ratio = along / last_squared;
-        for i in 0..state.status.len() {
-            let bound = self.bound[i];
-            if !normal.contact[i] || bound == 0.0 {
-                continue;
-            }
-            let qx = state.traction[0][i] + ratio * (state.traction[0][i] - before[0][i]);
-            let qy = state.traction[1][i] + ratio * (state.traction[1][i] - before[1][i]);
-            let magnitude = qx.hypot(qy);
-            if magnitude >= bound {
-                if state.status[i] != SlipStatus::Slip {
-                    self.break_loose(i);
-                }
-                let bound = self.bound[i];
-                state.status[i] = SlipStatus::Slip;
-                self.unit[i] = (qx / magnitude, qy / magnitude);
-                state.traction[0][i] = bound * self.unit[i].0;
-                state.traction[1][i] = bound * self.unit[i].1;
-            } else {
-                state.status[i] = SlipStatus::Stick;
-                state.traction[0][i] = qx;
-                state.traction[1][i] = qy;
-            }
-        }
-    }
-
     /// max|w| over the contact set (1 where it vanishes: nothing moves).
     fn target_scale(&self, normal: &ContactState) -> f64 {
         let scale = (0..normal.contact.len())
@@ -590,9 +547,11 @@ impl TangentialSolver {
     }
 }
 
+mod coupled;
 mod drive;
 mod force;
 mod iterate;
+mod predict;
 
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,208 @@
+//! A shear step with the coupled operator (`friction.coupling = "full"`, ν < 1/2): the
+//! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
+
+use super::edge::{add_normal, add_tangential, NormalSide};
+use super::window::TangentialRoom;
+use crate::elastic::cerruti::ShearMaterial;
+use crate::elastic::CouplingOperator;
+use crate::grid::Grid;
+use crate::protocol::ProtocolError;
+use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
+
+/// The rounds stop when the normal displacement of the shear tractions, K_zt q, differs
+/// from the lift the normal step saw by at most this share of its largest value (and the
+/// contact set no longer changes).
+const COUPLING_TOLERANCE: f64 = 1e-8;
+/// Rounds allowed per step.
+const MAX_COUPLING_ROUNDS: usize = 100;
+
+/// What a coupled step did: the final tangential solve and the normal steps, with the
+/// counters of all rounds.
+pub(super) struct CoupledStep {
+    pub tangential: TangentialReport,
+    pub normal: StepReport,
+}
+
+/// The coupled steps of a run: the coupling operator on the whole grid and the fields it
+/// carries from round to round.
+pub(super) struct Coupling {
+    operator: CouplingOperator,
+    /// The profile plus the lift: what the normal solver sees.
+    heights: Vec<f64>,
+    /// The lift v of the profile in the round's normal solve: K_zt q of the tractions,
+    /// relaxed (v ← v + ω r).
+    lift: Vec<f64>,
+    /// K_zt q of the round's tractions.
+    image: Vec<f64>,
+    /// The residual r = K_zt q − v of this round and of the last.
+    residual: [Vec<f64>; 2],
+    /// Aitken's relaxation factor ω of the last round.
+    relaxation: f64,
+    /// K_tz p, per component.
+    pressure_shift: [Vec<f64>; 2],
+    /// The tangential state at the step's start: each round restarts from it.
+    saved: TangentialState,
+    /// The last round's tractions: the next round's starting guess.
+    warm: [Vec<f64>; 2],
+    window_state: ContactState,
+}
+
+impl Coupling {
+    /// The coupling of `grid` (the room's window is the whole grid: the normal
+    /// displacement of the tractions reaches every gap).
+    pub(super) fn new(grid: &Grid, material: ShearMaterial) -> Result<Self, ProtocolError> {
+        let operator = CouplingOperator::new(*grid, material)
+            .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
+        let n = grid.len();
+        Ok(Self {
+            operator,
+            heights: vec![0.0; n],
+            lift: vec![0.0; n],
+            image: vec![0.0; n],
+            residual: [vec![0.0; n], vec![0.0; n]],
+            relaxation: 1.0,
+            pressure_shift: [vec![0.0; n], vec![0.0; n]],
+            saved: TangentialState::new(n),
+            warm: [vec![0.0; n], vec![0.0; n]],
+            window_state: ContactState::new(grid),
+        })
+    }
+
+    /// One step to `shift` at `normal.depth` (a block Gauss–Seidel of the coupled problem,
+    /// Kalker 1990 §5 / Panagiotopoulos' process): the normal step on the profile raised by
+    /// the lift v, the tangential step with the pressure's pull K_tz p, and again, each
+    /// round from the step's starting tangential state and v relaxed towards K_zt q
+    /// ([`relax`](Self::relax)), until K_zt q meets v and the contact set no longer changes.
+    pub(super) fn step(
+        &mut self,
+        normal: NormalSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
+        shift: [f64; 2],
+        step: usize,
+    ) -> Result<CoupledStep, ProtocolError> {
+        let along = shift[0].hypot(shift[1]);
+        let mut total = CoupledStep {
+            tangential: TangentialReport::default(),
+            normal: StepReport::default(),
+        };
+        self.saved.clone_from(&room.state);
+        let mut before = normal.state.contact.clone();
+        // The contact set two rounds back: a set that returns to it alternates.
+        let mut two_back = before.clone();
+        let mut rounds = 0;
+        loop {
+            rounds += 1;
+            for ((raised, height), lift) in self.heights.iter_mut().zip(normal.heights).zip(&self.lift) {
+                *raised = height + lift;
+            }
+            two_back.copy_from_slice(&before);
+            before.copy_from_slice(&normal.state.contact);
+            let report = normal
+                .solver
+                .step(normal.operator, &self.heights, normal.depth, normal.state)
+                .map_err(|source| ProtocolError::Solve {
+                    step,
+                    depth: normal.depth,
+                    source,
+                })?;
+            add_normal(&mut total.normal, report);
+            total.tangential.transform_pairs += self.pull(normal.state);
+            if rounds > 1 {
+                // The step's memory, from the last round's tractions (the solution is
+                // unique: only the start of its rounds changes).
+                room.state.clone_from(&self.saved);
+                room.state.traction.clone_from(&self.warm);
+                friction.forget_predictor();
+            }
+            friction.set_pressure_displacement(Some([&self.pressure_shift[0], &self.pressure_shift[1]]));
+            room.window.gather_into(normal.state, &mut self.window_state);
+            let tangential = friction.step(&mut room.operator, &self.window_state, shift, &mut room.state);
+            friction.set_pressure_displacement(None);
+            let tangential = tangential.map_err(|source| ProtocolError::Tangential {
+                step,
+                shift: along,
+                source,
+            })?;
+            add_tangential(&mut total.tangential, tangential);
+            self.warm.clone_from(&room.state.traction);
+            let change = self.residual_of(&room.state);
+            total.tangential.transform_pairs += 2;
+            if change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0) && normal.state.contact == before {
+                let increment = [0, 1].map(|c| shift[c] - self.saved.drive[c]);
+                friction.remember_step(&self.saved.traction, increment);
+                return Ok(total);
+            }
+            // An adhesive edge can flip a ring of elements back and forth with the
+            // tractions' lift: the rounds then never settle.
+            let alternating = rounds > 2 && normal.state.contact != before && normal.state.contact == two_back;
+            if rounds >= MAX_COUPLING_ROUNDS || alternating {
+                return Err(ProtocolError::CouplingNotConverged {
+                    step,
+                    shift: along,
+                    rounds,
+                    change,
+                    tolerance: COUPLING_TOLERANCE,
+                    alternating,
+                });
+            }
+            self.relax(rounds == 1);
+        }
+    }
+
+    /// The next round's lift, v ← v + ω r, with Aitken's ω from the last two residuals
+    /// (Irons & Tuck 1969; Küttler & Wall 2008 for coupled problems): for a linear
+    /// contraction by ρ it is 1/(1 − ρ), which lands on the fixed point. The first round
+    /// of a step takes ω = 1 (a plain Gauss–Seidel round).
+    fn relax(&mut self, first: bool) {
+        let [current, last] = &self.residual;
+        self.relaxation = if first {
+            1.0
+        } else {
+            let (mut along, mut squared) = (0.0, 0.0);
+            for (now, then) in current.iter().zip(last) {
+                let difference = now - then;
+                along += then * difference;
+                squared += difference * difference;
+            }
+            let omega = -self.relaxation * along / squared;
+            // Kept within a safe range (a set change can make two residuals unrelated).
+            if omega.is_finite() {
+                omega.clamp(0.1, 2.0)
+            } else {
+                1.0
+            }
+        };
+        for (lift, residual) in self.lift.iter_mut().zip(current) {
+            *lift += self.relaxation * residual;
+        }
+    }
+
+    /// K_tz p of the normal state into `pressure_shift`; returns the FFT pairs.
+    fn pull(&mut self, state: &ContactState) -> u64 {
+        let [x, y] = &mut self.pressure_shift;
+        self.operator.shear_from_normal(&state.pressure, [x, y]);
+        2
+    }
+
+    /// K_zt q of the tangential state into `image` and the residual r = K_zt q − v into
+    /// `residual[0]` (the last one into `residual[1]`); returns max|r| relative to
+    /// max|K_zt q| (max|r| when that vanishes).
+    fn residual_of(&mut self, state: &TangentialState) -> f64 {
+        self.operator
+            .normal_from_shear([&state.traction[0], &state.traction[1]], &mut self.image);
+        let [current, last] = &mut self.residual;
+        std::mem::swap(current, last);
+        let (mut change, mut largest) = (0.0f64, 0.0f64);
+        for ((residual, image), lift) in current.iter_mut().zip(&self.image).zip(&self.lift) {
+            *residual = image - lift;
+            change = change.max(residual.abs());
+            largest = largest.max(image.abs());
+        }
+        if largest > 0.0 {
+            change / largest
+        } else {
+            change
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! The predictor of a step's starting tractions from the last step's change.
+
+use super::{SlipStatus, TangentialSolver, TangentialState};
+use crate::solver::ContactState;
+
+impl TangentialSolver {
+    /// The start of a step that continues the last one in the same direction: the last
+    /// step's traction change, scaled to this step's shift increment, added to each
+    /// contact element's traction and put back in its disc (on the circle: slipping along
+    /// it). Only the starting point of the Newton rounds changes, not their solution.
+    /// (Not after a slip event: its change is no guide to the next step's.)
+    pub(super) fn predict(&mut self, normal: &ContactState, increment: [f64; 2], state: &mut TangentialState) {
+        if state.at_rest {
+            return;
+        }
+        let Some(history) = self.history.take() else {
+            return;
+        };
+        self.extrapolate(&history, normal, increment, state);
+        self.history = Some(history);
+    }
+
+    /// [`predict`](Self::predict) from the last step's tractions `before` and increment.
+    fn extrapolate(
+        &mut self,
+        (before, last): &([Vec<f64>; 2], [f64; 2]),
+        normal: &ContactState,
+        increment: [f64; 2],
+        state: &mut TangentialState,
+    ) {
+        let last_squared = last[0] * last[0] + last[1] * last[1];
+        let along = increment[0] * last[0] + increment[1] * last[1];
+        if before[0].len() != state.status.len() || !(last_squared > 0.0 && along > 0.0) {
+            return;
+        }
+        let ratio = along / last_squared;
+        for i in 0..state.status.len() {
+            let bound = self.bound[i];
+            if !normal.contact[i] || bound == 0.0 {
+                continue;
+            }
+            let qx = state.traction[0][i] + ratio * (state.traction[0][i] - before[0][i]);
+            let qy = state.traction[1][i] + ratio * (state.traction[1][i] - before[1][i]);
+            let magnitude = qx.hypot(qy);
+            if magnitude >= bound {
+                if state.status[i] != SlipStatus::Slip {
+                    self.break_loose(i);
+                }
+                let bound = self.bound[i];
+                state.status[i] = SlipStatus::Slip;
+                self.unit[i] = (qx / magnitude, qy / magnitude);
+                state.traction[0][i] = bound * self.unit[i].0;
+                state.traction[1][i] = bound * self.unit[i].1;
+            } else {
+                state.status[i] = SlipStatus::Stick;
+                state.traction[0][i] = qx;
+                state.traction[1][i] = qy;
+            }
+        }
+    }
+}
