@@ -38,18 +38,25 @@ pub(super) struct Coupling {
     residual: [Vec<f64>; 2],
     /// Aitken's relaxation factor ω of the last round.
     relaxation: f64,
-    /// K_tz p, per component.
+    /// K_tz p, per component, of the round's pressure on the whole grid.
     pressure_shift: [Vec<f64>; 2],
+    /// K_tz p at the step's start: the pressure's share of the memory's displacement.
+    start_shift: [Vec<f64>; 2],
+    /// K_tz p on the room's window.
+    window_shift: [Vec<f64>; 2],
+    /// The shear tractions on the whole grid (zero outside the window).
+    traction: [Vec<f64>; 2],
     /// The tangential state at the step's start: each round restarts from it.
     saved: TangentialState,
-    /// The last round's tractions: the next round's starting guess.
-    warm: [Vec<f64>; 2],
+    /// The last round's tractions on the window: the next round's starting guess (None
+    /// once the window has moved).
+    warm: Option<[Vec<f64>; 2]>,
     window_state: ContactState,
 }
 
 impl Coupling {
-    /// The coupling of `grid` (the room's window is the whole grid: the normal
-    /// displacement of the tractions reaches every gap).
+    /// The coupling of `grid`: its operator acts on the whole grid (the normal displacement
+    /// of the tractions reaches every gap), the tangential problem on the room's window.
     pub(super) fn new(grid: &Grid, material: ShearMaterial) -> Result<Self, ProtocolError> {
         let operator = CouplingOperator::new(*grid, material)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
@@ -62,8 +69,11 @@ impl Coupling {
             residual: [vec![0.0; n], vec![0.0; n]],
             relaxation: 1.0,
             pressure_shift: [vec![0.0; n], vec![0.0; n]],
-            saved: TangentialState::new(n),
-            warm: [vec![0.0; n], vec![0.0; n]],
+            start_shift: [vec![0.0; n], vec![0.0; n]],
+            window_shift: [Vec::new(), Vec::new()],
+            traction: [vec![0.0; n], vec![0.0; n]],
+            saved: TangentialState::new(0),
+            warm: None,
             window_state: ContactState::new(grid),
         })
     }
@@ -87,6 +97,10 @@ impl Coupling {
             normal: StepReport::default(),
         };
         self.saved.clone_from(&room.state);
+        self.warm = None;
+        for c in 0..2 {
+            self.start_shift[c].copy_from_slice(&self.pressure_shift[c]);
+        }
         let mut before = normal.state.contact.clone();
         // The contact set two rounds back: a set that returns to it alternates.
         let mut two_back = before.clone();
@@ -109,13 +123,16 @@ impl Coupling {
             add_normal(&mut total.normal, report);
             total.tangential.transform_pairs += self.pull(normal.state);
             if rounds > 1 {
-                // The step's memory, from the last round's tractions (the solution is
-                // unique: only the start of its rounds changes).
                 room.state.clone_from(&self.saved);
-                room.state.traction.clone_from(&self.warm);
                 friction.forget_predictor();
             }
-            friction.set_pressure_displacement(Some([&self.pressure_shift[0], &self.pressure_shift[1]]));
+            total.tangential.transform_pairs += self.follow(room, &normal.state.contact)?;
+            if let Some(warm) = &self.warm {
+                // The step's memory, from the last round's tractions (the solution is
+                // unique: only the start of its rounds changes).
+                room.state.traction.clone_from(warm);
+            }
+            friction.set_pressure_displacement(Some([&self.window_shift[0], &self.window_shift[1]]));
             room.window.gather_into(normal.state, &mut self.window_state);
             let tangential = friction.step(&mut room.operator, &self.window_state, shift, &mut room.state);
             friction.set_pressure_displacement(None);
@@ -125,8 +142,8 @@ impl Coupling {
                 source,
             })?;
             add_tangential(&mut total.tangential, tangential);
-            self.warm.clone_from(&room.state.traction);
-            let change = self.residual_of(&room.state);
+            self.warm = Some(room.state.traction.clone());
+            let change = self.residual_of(room);
             total.tangential.transform_pairs += 2;
             if change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0) && normal.state.contact == before {
                 let increment = [0, 1].map(|c| shift[c] - self.saved.drive[c]);
@@ -178,6 +195,36 @@ impl Coupling {
         }
     }
 
+    /// Moves the room's window onto the contact where it has left it (the approach's
+    /// growing contact; `TangentialRoom::follow`), then gathers K_tz p onto the window.
+    /// A moved window recomputes the memory's displacement as K q alone, so the pressure's
+    /// share at the step's start is added back, and the rounds restart from there. Returns
+    /// the FFT pairs.
+    fn follow(&mut self, room: &mut TangentialRoom, contact: &[bool]) -> Result<u64, ProtocolError> {
+        let pairs = room.follow(contact)?;
+        let window_len = room.window.grid.len();
+        if pairs > 0 || self.window_shift[0].len() != window_len {
+            for (w, k) in room.window.elements() {
+                for c in 0..2 {
+                    room.state.displacement[c][w] += self.start_shift[c][k];
+                }
+            }
+            self.saved.clone_from(&room.state);
+            self.warm = None;
+            self.window_state = ContactState::new(&room.window.grid);
+            for shift in &mut self.window_shift {
+                shift.clear();
+                shift.resize(window_len, 0.0);
+            }
+        }
+        for (w, k) in room.window.elements() {
+            for c in 0..2 {
+                self.window_shift[c][w] = self.pressure_shift[c][k];
+            }
+        }
+        Ok(pairs)
+    }
+
     /// K_tz p of the normal state into `pressure_shift`; returns the FFT pairs.
     fn pull(&mut self, state: &ContactState) -> u64 {
         let [x, y] = &mut self.pressure_shift;
@@ -185,12 +232,18 @@ impl Coupling {
         2
     }
 
-    /// K_zt q of the tangential state into `image` and the residual r = K_zt q − v into
+    /// K_zt q of the room's tractions into `image` and the residual r = K_zt q − v into
     /// `residual[0]` (the last one into `residual[1]`); returns max|r| relative to
     /// max|K_zt q| (max|r| when that vanishes).
-    fn residual_of(&mut self, state: &TangentialState) -> f64 {
+    fn residual_of(&mut self, room: &TangentialRoom) -> f64 {
+        for (c, traction) in self.traction.iter_mut().enumerate() {
+            traction.fill(0.0);
+            for (w, k) in room.window.elements() {
+                traction[k] = room.state.traction[c][w];
+            }
+        }
         self.operator
-            .normal_from_shear([&state.traction[0], &state.traction[1]], &mut self.image);
+            .normal_from_shear([&self.traction[0], &self.traction[1]], &mut self.image);
         let [current, last] = &mut self.residual;
         std::mem::swap(current, last);
         let (mut change, mut largest) = (0.0f64, 0.0f64);

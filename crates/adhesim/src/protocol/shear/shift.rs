@@ -70,8 +70,8 @@ impl ShiftStepper {
                     "the coupled operator is not combined with a shear-weakened edge yet (mode_mixity = {mode_mixity}): use mode_mixity = 0 or coupling = \"none\""
                 )));
             }
-            // The tractions' normal displacement reaches every gap: the room is the grid.
-            let room = TangentialRoom::new(grid, &vec![true; grid.len()], 0, material)?;
+            // The room follows the contact as it grows from nothing in the approach.
+            let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, material)?;
             return Ok(Self {
                 window_state: room.window.gather(state),
                 room,
