@@ -5,11 +5,52 @@
 use super::edge::NormalSide;
 use super::shift::{ShiftStepper, ShiftTarget};
 use super::{add_normal_counters, add_shift_counters, contact_split, Shear, ShearSummary};
+use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::ElasticOperator;
 use crate::protocol::{NormalSolver, Observer, Phase, ProtocolError};
 use crate::solver::{ContactState, TangentialSolver};
 
 impl Shear {
+    /// The approach of a run: Goodman's, or with the coupled operator the coupled one,
+    /// which returns the shift stepper it made (the shift goes on with its room).
+    pub(super) fn approach_either(
+        &self,
+        normal: NormalSide<'_>,
+        (material, friction): (ShearMaterial, &mut TangentialSolver),
+        previous: &mut Vec<bool>,
+        summary: &mut ShearSummary,
+        observer: &mut dyn Observer,
+    ) -> Result<Option<ShiftStepper>, ProtocolError> {
+        let NormalSide {
+            operator,
+            heights,
+            depth,
+            solver,
+            state,
+        } = normal;
+        if !self.coupled {
+            self.approach(operator, heights, solver, (state, previous), summary, observer)?;
+            return Ok(None);
+        }
+        let grid = *operator.grid();
+        let inclined = self.incline != 0.0;
+        let mut stepper = ShiftStepper::new(&grid, state, material, self.mode_mixity, inclined, true, solver)?;
+        self.approach_coupled(
+            NormalSide {
+                operator,
+                heights,
+                depth,
+                solver,
+                state,
+            },
+            (&mut stepper, friction),
+            previous,
+            summary,
+            observer,
+        )?;
+        Ok(Some(stepper))
+    }
+
     /// The approach to `depth` in `approach_steps` displacement steps; `contact` is the
     /// normal state and the contact set at each step's start.
     pub(super) fn approach(

@@ -158,33 +158,19 @@ impl Shear {
         let mut previous = state.contact.clone();
         let mut summary = ShearSummary::default();
         let inclined = self.incline != 0.0;
-        let mut coupled = None;
-        if self.coupled {
-            let mut stepper = ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, true, solver)?;
-            self.approach_coupled(
-                NormalSide {
-                    operator: &mut *operator,
-                    heights,
-                    depth: self.depth,
-                    solver: &mut *solver,
-                    state: &mut state,
-                },
-                (&mut stepper, friction),
-                &mut previous,
-                &mut summary,
-                observer,
-            )?;
-            coupled = Some(stepper);
-        } else {
-            self.approach(
-                operator,
+        let coupled = self.approach_either(
+            NormalSide {
+                operator: &mut *operator,
                 heights,
-                solver,
-                (&mut state, &mut previous),
-                &mut summary,
-                observer,
-            )?;
-        }
+                depth: self.depth,
+                solver: &mut *solver,
+                state: &mut state,
+            },
+            (material, &mut *friction),
+            &mut previous,
+            &mut summary,
+            observer,
+        )?;
         let compliant = friction.drive_stiffness().is_some();
         if inclined && compliant {
             return Err(ProtocolError::InvalidParameter(
