@@ -8,8 +8,8 @@ use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticOperator, FrictionLaw, HalfSpace, IndentPulloff,
-    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearSummary,
-    StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
+    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearBody,
+    ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
 };
 use std::ops::ControlFlow;
 
@@ -374,7 +374,10 @@ fn run_shear(
         operator,
         &scenario.heights,
         solver,
-        setup.material,
+        ShearBody {
+            material: setup.material,
+            layer: scenario.layer,
+        },
         &mut friction,
         &mut recording,
     )?;

@@ -6,7 +6,7 @@ use crate::error::ScenarioError;
 use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
 use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
-use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
+use adhesim::{Complementarity, ElasticLayer, FrictionLaw, LayerBase, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;
 
@@ -93,6 +93,9 @@ impl ScenarioFile {
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let mode_mixity = mode_mixity(friction, gamma0)?;
         let coupled = coupled(friction, force_control.is_some(), mode_mixity)?;
+        if let Some(layer) = &layer {
+            layer_shear(layer, mode_mixity)?;
+        }
         let drive_stiffness = drive_stiffness(p)?;
         let protocol = Shear {
             start_depth,
@@ -435,9 +438,29 @@ fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: f64) -> 
             "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",
         );
     }
-    // A layer (material.thickness) takes no shear protocol at all (validate.rs), so the
-    // coupling is always the half-space's.
     Ok(true)
+}
+
+/// A shear on a layer: bonded to its base (a frictionless base lets it slide), with a
+/// sharp edge, each refused by its key.
+fn layer_shear(layer: &ElasticLayer, mode_mixity: f64) -> Result<()> {
+    if layer.base() == LayerBase::Frictionless {
+        bail!(ScenarioError::invalid_as(
+            "material.base",
+            "\"frictionless\"",
+            "\"bonded\" with protocol.kind = \"shear\"",
+            "a layer on a frictionless base slides on it under a tangential load: use material.base = \"bonded\""
+        ));
+    }
+    if mode_mixity > 0.0 {
+        bail!(ScenarioError::invalid_as(
+            "friction.mode_mixity",
+            mode_mixity,
+            "0 with material.thickness",
+            "friction.mode_mixity weakens the edge with the half-space's element energy ratio; on a layer use mode_mixity = 0"
+        ));
+    }
+    Ok(())
 }
 
 /// The `results` of a shear run in `summary.json`.

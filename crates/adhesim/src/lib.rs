@@ -98,7 +98,7 @@ pub mod surface;
 pub use elastic::cerruti::ShearMaterial;
 pub use elastic::{
     CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError, LayerOperator,
-    PeriodicKernel, PeriodicOperator, TangentialOperator, TangentialOperatorError,
+    PeriodicKernel, PeriodicOperator, ShearBody, TangentialOperator, TangentialOperatorError,
 };
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,

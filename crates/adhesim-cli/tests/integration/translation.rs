@@ -8,6 +8,7 @@ use std::process::Output;
 use crate::common;
 mod coupled;
 mod force_control;
+mod layer;
 mod shear;
 use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
 

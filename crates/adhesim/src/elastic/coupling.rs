@@ -14,8 +14,10 @@
 mod transform;
 
 use super::cerruti::ShearMaterial;
-use super::tangential::{check_material, padded_offset, TangentialOperatorError};
+use super::layer_coupling::{layer_coupling_coefficients, layer_coupling_compliance};
+use super::tangential::{check_material, padded_offset, ShearBody, TangentialOperatorError};
 use super::tangential_periodic::alias_tables;
+use super::ElasticLayer;
 use crate::grid::{Boundary, Grid};
 use num_complex::Complex;
 use rayon::prelude::*;
@@ -48,7 +50,8 @@ pub fn coupling_rectangle(xi: f64, eta: f64, element_x: f64, element_y: f64, mat
 /// pressure). On a free grid by DC-FFT with [`coupling_rectangle`]'s exact element
 /// coefficients; on a periodic grid as the Fourier multiplier
 /// K̂_zx(Q) = −i(1 − 2ν)Q_x/(2GQ²) summed over the element's aliases with its form factor,
-/// as the periodic tangential operator's, with K̂(0) = 0.
+/// as the periodic tangential operator's, with K̂(0) = 0. [`for_body`](Self::for_body)
+/// builds a bonded layer's instead (`layer_coupling`), which couples at ν = 1/2 too.
 pub struct CouplingOperator {
     grid: Grid,
     transform: Transform2d,
@@ -63,6 +66,23 @@ impl CouplingOperator {
     /// Plans the transforms and computes the two kernel spectra.
     pub fn new(grid: Grid, material: ShearMaterial) -> Result<Self, TangentialOperatorError> {
         check_material(material)?;
+        Ok(Self::build(grid, material.into()))
+    }
+
+    /// The coupling of `body`: the half-space's, or a bonded layer's (checked as
+    /// [`super::TangentialOperator::on_layer`] checks it), which does not vanish at ν = 1/2.
+    pub fn for_body(grid: Grid, body: ShearBody) -> Result<Self, TangentialOperatorError> {
+        // The tangential operator's checks of the layer, without its spectra.
+        if let Some(layer) = body.layer {
+            super::tangential::check_layer(&grid, body.material, &layer)?;
+        } else {
+            check_material(body.material)?;
+        }
+        Ok(Self::build(grid, body))
+    }
+
+    fn build(grid: Grid, body: ShearBody) -> Self {
+        let ShearBody { material, layer } = body;
         let (nx, ny) = (grid.nx(), grid.ny());
         let padded = match grid.boundary() {
             Boundary::Free => (2 * nx, 2 * ny),
@@ -70,17 +90,17 @@ impl CouplingOperator {
         };
         let transform = Transform2d::new((nx, ny), padded);
         let spectra = match grid.boundary() {
-            Boundary::Free => free_spectra(&grid, material),
-            Boundary::Periodic => periodic_spectra(&grid, material),
+            Boundary::Free => free_spectra(&grid, material, layer.as_ref()),
+            Boundary::Periodic => periodic_spectra(&grid, material, layer.as_ref()),
         };
         let len = transform.spectrum_len();
-        Ok(Self {
+        Self {
             grid,
             transform,
             spectra,
             work: [vec![Complex::default(); len], vec![Complex::default(); len]],
             transforms: 0,
-        })
+        }
     }
 
     /// The grid the operator acts on.
@@ -130,17 +150,26 @@ impl CouplingOperator {
 }
 
 /// The spectra of the free grid's element coefficients on the 2N-periodic padded grid
-/// (the offset N, which no pair of data elements has, set to zero).
-fn free_spectra(grid: &Grid, material: ShearMaterial) -> [Vec<Complex<f64>>; 2] {
+/// (the offset N, which no pair of data elements has, set to zero); on a layer its
+/// coefficients (`layer_coupling`), K_zx odd in x and K_zy odd in y.
+fn free_spectra(grid: &Grid, material: ShearMaterial, layer: Option<&ElasticLayer>) -> [Vec<Complex<f64>>; 2] {
     let (nx, ny) = (grid.nx(), grid.ny());
     let (dx, dy) = (grid.dx(), grid.dy());
     let (px, py) = (2 * nx, 2 * ny);
     let wrap = padded_offset;
+    let layer_table = layer.map(|layer| layer_coupling_coefficients(grid, material, layer));
+    let coefficient = |xi: f64, eta: f64| match &layer_table {
+        None => coupling_rectangle(xi * dx, eta * dy, dx, dy, material),
+        Some(table) => {
+            let (zx, zy) = table[eta.abs() as usize * nx + xi.abs() as usize];
+            (xi.signum() * zx, eta.signum() * zy)
+        }
+    };
     let mut kernels = [vec![0.0; px * py], vec![0.0; px * py]];
     for row in 0..py {
         for column in 0..px {
             if let (Some(eta), Some(xi)) = (wrap(row, ny), wrap(column, nx)) {
-                let (zx, zy) = coupling_rectangle(xi * dx, eta * dy, dx, dy, material);
+                let (zx, zy) = coefficient(xi, eta);
                 kernels[0][row * px + column] = zx;
                 kernels[1][row * px + column] = zy;
             }
@@ -158,13 +187,17 @@ fn free_spectra(grid: &Grid, material: ShearMaterial) -> [Vec<Complex<f64>>; 2] 
 
 /// K̂_zx and K̂_zy of a periodic grid (see [`CouplingOperator`]), normalised by 1/(NxNy).
 /// Each is odd in its own wavenumber, so zero on its Nyquist line of an even grid, where
-/// the wave and its alias coincide.
-fn periodic_spectra(grid: &Grid, material: ShearMaterial) -> [Vec<Complex<f64>>; 2] {
+/// the wave and its alias coincide. On a layer each alias carries 2h(Qt)/(1 − 2ν) of the
+/// half-space's term, written as h(Qt)/G over the scale 1/G.
+fn periodic_spectra(grid: &Grid, material: ShearMaterial, layer: Option<&ElasticLayer>) -> [Vec<Complex<f64>>; 2] {
     let (nx, ny) = (grid.nx(), grid.ny());
     let (g, nu) = (material.shear_modulus, material.poisson_ratio);
     let columns = nx / 2 + 1;
     let (x_tables, y_tables) = alias_tables(grid);
-    let scale = (1.0 - 2.0 * nu) / (2.0 * g * nx as f64 * ny as f64);
+    let scale = match layer {
+        None => (1.0 - 2.0 * nu) / (2.0 * g * nx as f64 * ny as f64),
+        Some(_) => 1.0 / (g * nx as f64 * ny as f64),
+    };
     let entry = |column: usize, row: usize| -> [Complex<f64>; 2] {
         if row == 0 && column == 0 {
             return [Complex::default(); 2];
@@ -172,7 +205,13 @@ fn periodic_spectra(grid: &Grid, material: ShearMaterial) -> [Vec<Complex<f64>>;
         let mut sums = [0.0; 2];
         for &(qx, sx) in &x_tables[column] {
             for &(qy, sy) in &y_tables[row] {
-                let weight = sx * sy / (qx * qx + qy * qy);
+                let squared = qx * qx + qy * qy;
+                let weight = match layer {
+                    None => sx * sy / squared,
+                    Some(layer) => {
+                        sx * sy / squared * layer_coupling_compliance(squared.sqrt() * layer.thickness(), nu)
+                    }
+                };
                 sums[0] += weight * qx;
                 sums[1] += weight * qy;
             }

@@ -97,7 +97,7 @@ impl ElasticLayer {
 
 /// Beyond this kt the factor is 1 in double precision: 1 − f < 1e-18 for both bases and
 /// every ν in (−1, 0.5] (1 − f ≈ 2(2s² + (1 + κ²)/2)e^{−2s}/κ, s = kt).
-const SCREENED_KT: f64 = 25.0;
+pub(super) const SCREENED_KT: f64 = 25.0;
 
 /// C_layer(k)/C_halfspace(k): the surface compliance of an elastic layer of thickness t on
 /// a rigid base under a normal pressure wave of wavenumber k (zero shear traction on the
@@ -153,7 +153,7 @@ pub fn layer_compliance_factor(kt: f64, poisson_ratio: f64, base: LayerBase) -> 
 }
 
 /// sinh x − x without cancellation: its Taylor series below |x| = 1.
-fn sinh_minus_argument(x: f64) -> f64 {
+pub(super) fn sinh_minus_argument(x: f64) -> f64 {
     if x.abs() >= 1.0 {
         return x.sinh() - x;
     }
@@ -172,7 +172,7 @@ fn sinh_minus_argument(x: f64) -> f64 {
 /// Bessel J0: its power series below x = 13 (largest term ≈ 4e3, rounding ≈ 1e-12) and
 /// Hankel's asymptotic expansion above, truncated at its smallest term (≈ e^{−2x} < 1e-11);
 /// Abramowitz & Stegun (1964) 9.1.12 and 9.2.5.
-fn bessel_j0(x: f64) -> f64 {
+pub(super) fn bessel_j0(x: f64) -> f64 {
     let x = x.abs();
     if x < 13.0 {
         let step = -0.25 * x * x;
@@ -236,13 +236,29 @@ const PANEL: f64 = 0.05;
 /// The layer's point-load kernel minus Boussinesq's, D(r) = d(r/t)/(πE*t), with
 /// d(ρ) = ∫0^∞ (f(s) − 1) J0(sρ) ds (the 2-D inverse transform of the radial compliance
 /// difference (2/(E*k))(f(kt) − 1)), tabulated on ρ = jh. The integrand decays as e^{−2s}
-/// and is cut at s = 25 (below 1e-18); 8-point Gauss–Legendre on panels of 0.05.
-struct PointCorrection {
+/// and is cut at s = 25 (below 1e-18); 8-point Gauss–Legendre on panels of 0.05. The
+/// tangential kernels ([`super::layer_shear`]) tabulate their own integrands the same way.
+pub(super) struct PointCorrection {
     values: Vec<f64>,
+    /// d(ρ)·ρ^`far_power` beyond the table, where the layer carries nothing and D is minus
+    /// the half-space's point kernel.
+    far: f64,
+    far_power: i32,
 }
 
 impl PointCorrection {
     fn new(layer: &ElasticLayer) -> Self {
+        let (poisson_ratio, base) = (layer.poisson_ratio, layer.base);
+        Self::tabulate(
+            |s| layer_compliance_factor(s, poisson_ratio, base) - 1.0,
+            bessel_j0,
+            (-1.0, 1),
+        )
+    }
+
+    /// d(ρ) = ∫0^25 `integrand`(s)·`bessel`(sρ) ds on the table, and c/ρ^n beyond it,
+    /// (c, n) = `far`; `bessel` must be even (the table reflects at 0).
+    pub(super) fn tabulate(integrand: impl Fn(f64) -> f64, bessel: fn(f64) -> f64, far: (f64, i32)) -> Self {
         let panels = (SCREENED_KT / PANEL).round() as usize;
         let mut nodes = Vec::with_capacity(panels * 8);
         for panel in 0..panels {
@@ -250,8 +266,7 @@ impl PointCorrection {
             for (&node, &weight) in GAUSS8_NODES.iter().zip(&GAUSS8_WEIGHTS) {
                 for sign in [-1.0, 1.0] {
                     let s = centre + sign * node * 0.5 * PANEL;
-                    let f = layer_compliance_factor(s, layer.poisson_ratio, layer.base);
-                    nodes.push((s, 0.5 * PANEL * weight * (f - 1.0)));
+                    nodes.push((s, 0.5 * PANEL * weight * integrand(s)));
                 }
             }
         }
@@ -260,17 +275,21 @@ impl PointCorrection {
             .into_par_iter()
             .map(|j| {
                 let rho = j as f64 * TABLE_STEP;
-                nodes.iter().map(|&(s, w)| w * bessel_j0(s * rho)).sum()
+                nodes.iter().map(|&(s, w)| w * bessel(s * rho)).sum()
             })
             .collect();
-        Self { values }
+        Self {
+            values,
+            far: far.0,
+            far_power: far.1,
+        }
     }
 
-    /// d(ρ): cubic Lagrange interpolation (d is even: the stencil reflects at 0), −1/ρ
+    /// d(ρ): cubic Lagrange interpolation (d is even: the stencil reflects at 0), c/ρ^n
     /// beyond the table.
-    fn value(&self, rho: f64) -> f64 {
+    pub(super) fn value(&self, rho: f64) -> f64 {
         if rho >= TABLE_RANGE {
-            return -1.0 / rho;
+            return self.far / rho.powi(self.far_power);
         }
         let last = self.values.len() - 1;
         let position = rho / TABLE_STEP;
@@ -285,23 +304,46 @@ impl PointCorrection {
 }
 
 /// K_layer at offset (lΔx, mΔy) for 0 ≤ l < Nx, 0 ≤ m < Ny (`[m * Nx + l]`): Love's
-/// coefficient plus D integrated over the element (Gauss–Legendre 4×4 on sub-squares of
-/// side ≤ t/2 near the element, on the whole element from 8 elements on, where D is smooth
-/// on the scale of the distance). Zero where the whole element lies beyond 60t: the exact
-/// value there is below 2e-20 of the kernel's scale. K is even in l and in m.
+/// coefficient plus D integrated over the element ([`element_integrals`]). Zero where the
+/// whole element lies beyond 60t: the exact value there is below 2e-20 of the kernel's
+/// scale. K is even in l and in m.
 fn layer_coefficients(grid: &Grid, modulus: f64, layer: &ElasticLayer) -> Vec<f64> {
-    let (nx, ny, dx, dy) = (grid.nx(), grid.ny(), grid.dx(), grid.dy());
+    let (nx, dx, dy) = (grid.nx(), grid.dx(), grid.dy());
     let t = layer.thickness;
     let correction = PointCorrection::new(layer);
     let scale = 1.0 / (PI * modulus * t);
+    let sums = element_integrals(grid, t, |x, y| [correction.value(x.hypot(y) / t)]);
+    let mut table = vec![0.0; sums.len()];
+    table.par_chunks_mut(nx).enumerate().for_each(|(m, row)| {
+        for (l, value) in row.iter_mut().enumerate() {
+            if let Some([sum]) = sums[m * nx + l] {
+                let (xi, eta) = (l as f64 * dx, m as f64 * dy);
+                *value = love_rectangle(xi, eta, dx, dy, modulus) + scale * sum;
+            }
+        }
+    });
+    table
+}
+
+/// ∫∫ `point`(x, y) over the element at offset (lΔx, mΔy) from the source element, for
+/// 0 ≤ l < Nx, 0 ≤ m < Ny (`[m * Nx + l]`): Gauss–Legendre 4×4 on sub-squares of side
+/// ≤ t/2 near the element, on the whole element from 8 elements on, where a layer's
+/// correction is smooth on the scale of the distance. None where the whole element lies
+/// beyond 60t, where the layer's kernel is below 2e-20 of its scale.
+pub(super) fn element_integrals<const C: usize>(
+    grid: &Grid,
+    thickness: f64,
+    point: impl Fn(f64, f64) -> [f64; C] + Sync,
+) -> Vec<Option<[f64; C]>> {
+    let (nx, ny, dx, dy) = (grid.nx(), grid.ny(), grid.dx(), grid.dy());
     let element = dx.max(dy);
-    let near_divisions = ((2.0 * element / t).ceil() as usize).clamp(1, 32);
-    let mut table = vec![0.0; nx * ny];
+    let near_divisions = ((2.0 * element / thickness).ceil() as usize).clamp(1, 32);
+    let mut table = vec![None; nx * ny];
     table.par_chunks_mut(nx).enumerate().for_each(|(m, row)| {
         for (l, value) in row.iter_mut().enumerate() {
             let (xi, eta) = (l as f64 * dx, m as f64 * dy);
             let nearest = (xi - 0.5 * dx).max(0.0).hypot((eta - 0.5 * dy).max(0.0));
-            if nearest > TABLE_RANGE * t {
+            if nearest > TABLE_RANGE * thickness {
                 continue;
             }
             let divisions = if xi.hypot(eta) < 8.0 * element {
@@ -310,7 +352,7 @@ fn layer_coefficients(grid: &Grid, modulus: f64, layer: &ElasticLayer) -> Vec<f6
                 1
             };
             let (hx, hy) = (dx / divisions as f64, dy / divisions as f64);
-            let mut sum = 0.0;
+            let mut sum = [0.0; C];
             for a in 0..divisions {
                 for b in 0..divisions {
                     let cx = -0.5 * dx + (a as f64 + 0.5) * hx;
@@ -322,14 +364,17 @@ fn layer_coefficients(grid: &Grid, modulus: f64, layer: &ElasticLayer) -> Vec<f6
                                     let x = xi - (cx + 0.5 * si * ni * hx);
                                     let y = eta - (cy + 0.5 * sj * nj * hy);
                                     let weight = GAUSS4_WEIGHTS[i] * GAUSS4_WEIGHTS[j] * 0.25 * hx * hy;
-                                    sum += weight * correction.value(x.hypot(y) / t);
+                                    let values = point(x, y);
+                                    for (total, value) in sum.iter_mut().zip(values) {
+                                        *total += weight * value;
+                                    }
                                 }
                             }
                         }
                     }
                 }
             }
-            *value = love_rectangle(xi, eta, dx, dy, modulus) + scale * sum;
+            *value = Some(sum);
         }
     });
     table
@@ -500,5 +545,7 @@ impl ElasticOperator for LayerOperator {
     }
 }
 
+#[cfg(test)]
+pub(super) mod navier;
 #[cfg(test)]
 mod tests;

@@ -1,8 +1,11 @@
-//! The tangential half-space operator: shear tractions → tangential surface displacements.
+//! The tangential operator of a half-space or a bonded layer: shear tractions →
+//! tangential surface displacements.
 
 use super::cerruti::{cerruti_rectangle, CerrutiCoefficients, ShearMaterial};
+use super::layer_shear::layer_shear_coefficients;
 use super::spectral::SpectralConvolution;
 use super::tangential_periodic::periodic_spectra;
+use super::{ElasticLayer, LayerBase, LayerError};
 use crate::grid::{Boundary, Grid};
 use thiserror::Error;
 
@@ -17,6 +20,20 @@ pub enum TangentialOperatorError {
         /// ν.
         poisson_ratio: f64,
     },
+    /// A layer on a frictionless base slides on it under a tangential load.
+    #[error("a layer on a frictionless base carries no tangential load (it slides on its base): use a bonded base")]
+    LayerSlidesOnBase,
+    /// The layer's ν must be the material's.
+    #[error("the layer's Poisson's ratio {layer} differs from the material's {material}")]
+    LayerPoissonRatio {
+        /// ν of the layer.
+        layer: f64,
+        /// ν of the material.
+        material: f64,
+    },
+    /// The layer cannot be resolved on the grid.
+    #[error(transparent)]
+    Layer(#[from] LayerError),
 }
 
 /// The tangential half-space: u_x = K_xx∗q_x + K_xy∗q_y, u_y = K_xy∗q_x + K_yy∗q_y. On a
@@ -29,15 +46,37 @@ pub enum TangentialOperatorError {
 /// Goodman's approximation: the normal displacement of a shear traction and the
 /// tangential displacement of a pressure, both ∝ (1 − 2ν), are left out (exact at
 /// ν = 1/2, docs/physics.md §8.1).
+///
+/// [`on_layer`](Self::on_layer) builds the same operator for an elastic layer bonded to a
+/// rigid base: Cerruti's coefficients plus the layer's correction on free grids, the
+/// layer's Fourier compliance in the alias sum on periodic ones (`layer_shear`).
 pub struct TangentialOperator {
     grid: Grid,
     material: ShearMaterial,
+    layer: Option<ElasticLayer>,
     xx: SpectralConvolution,
     yy: SpectralConvolution,
-    /// The spectrum of K_xy; None at ν = 0, where the cross coefficient vanishes.
+    /// The spectrum of K_xy; None on a half-space at ν = 0, where the cross coefficient
+    /// vanishes.
     xy: Option<Vec<f64>>,
     self_compliance: f64,
     transforms: u64,
+}
+
+/// The body a tangential operator is built for: its G and ν, as a half-space or as an
+/// elastic layer bonded to a rigid base.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShearBody {
+    /// G and ν.
+    pub material: ShearMaterial,
+    /// The layer (None: the half-space).
+    pub layer: Option<ElasticLayer>,
+}
+
+impl From<ShearMaterial> for ShearBody {
+    fn from(material: ShearMaterial) -> Self {
+        Self { material, layer: None }
+    }
 }
 
 /// G finite and positive, ν in (−1, 1/2]: what the tangential and coupling operators take.
@@ -51,6 +90,34 @@ pub(super) fn check_material(material: ShearMaterial) -> Result<(), TangentialOp
             poisson_ratio: nu,
         })
     }
+}
+
+/// What the tangential and coupling operators of a layer take: a valid material, a bonded
+/// base, the material's ν, and on a free grid at least 1/16 of an element of thickness.
+pub(super) fn check_layer(
+    grid: &Grid,
+    material: ShearMaterial,
+    layer: &ElasticLayer,
+) -> Result<(), TangentialOperatorError> {
+    check_material(material)?;
+    if layer.base() != LayerBase::Bonded {
+        return Err(TangentialOperatorError::LayerSlidesOnBase);
+    }
+    if layer.poisson_ratio() != material.poisson_ratio {
+        return Err(TangentialOperatorError::LayerPoissonRatio {
+            layer: layer.poisson_ratio(),
+            material: material.poisson_ratio,
+        });
+    }
+    let element = grid.dx().max(grid.dy());
+    if grid.boundary() == Boundary::Free && layer.thickness() < element / 16.0 {
+        return Err(LayerError::ThinnerThanElements {
+            thickness: layer.thickness(),
+            element,
+        }
+        .into());
+    }
+    Ok(())
 }
 
 /// The signed offset in elements of index `i` of a 2n-periodic padded axis (DC-FFT); the
@@ -67,12 +134,55 @@ impl TangentialOperator {
     /// Plans the transforms and computes the three kernel spectra.
     pub fn new(grid: Grid, material: ShearMaterial) -> Result<Self, TangentialOperatorError> {
         check_material(material)?;
+        Self::build(grid, material, None)
+    }
+
+    /// The operator of `layer` (bonded to its base; its ν must be `material`'s) instead of
+    /// the half-space. On a free grid the layer must be at least 1/16 of an element thick.
+    ///
+    /// # Example
+    /// ```
+    /// use adhesim::{Boundary, ElasticLayer, Grid, LayerBase, ShearMaterial, TangentialOperator};
+    ///
+    /// // A uniform traction over a patch much wider than a thin layer shears it simply:
+    /// // u = q·t/G in the middle of the patch (32t from its edges).
+    /// let grid = Grid::new(64, 1.0, Boundary::Free)?;
+    /// let material = ShearMaterial::from_contact_modulus(4.0, 0.5); // G = 1
+    /// let layer = ElasticLayer::new(grid.dx(), 0.5, LayerBase::Bonded)?;
+    /// let mut operator = TangentialOperator::on_layer(grid, material, layer)?;
+    /// let qx = vec![1.0; grid.len()];
+    /// let qy = vec![0.0; grid.len()];
+    /// let (mut ux, mut uy) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+    /// operator.apply([&qx, &qy], [&mut ux, &mut uy]);
+    /// let centre = 32 * 64 + 32;
+    /// assert!((ux[centre] / layer.thickness() - 1.0).abs() < 1e-6);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn on_layer(grid: Grid, material: ShearMaterial, layer: ElasticLayer) -> Result<Self, TangentialOperatorError> {
+        check_layer(&grid, material, &layer)?;
+        Self::build(grid, material, Some(layer))
+    }
+
+    /// [`new`](Self::new) or [`on_layer`](Self::on_layer), as `body` says.
+    pub fn for_body(grid: Grid, body: ShearBody) -> Result<Self, TangentialOperatorError> {
+        match body.layer {
+            None => Self::new(grid, body.material),
+            Some(layer) => Self::on_layer(grid, body.material, layer),
+        }
+    }
+
+    fn build(
+        grid: Grid,
+        material: ShearMaterial,
+        layer: Option<ElasticLayer>,
+    ) -> Result<Self, TangentialOperatorError> {
         let nu = material.poisson_ratio;
         if grid.boundary() == Boundary::Periodic {
-            let (xx, yy, xy) = periodic_spectra(&grid, material);
+            let (xx, yy, xy) = periodic_spectra(&grid, material, layer.as_ref());
             let mut operator = Self {
                 grid,
                 material,
+                layer,
                 xx,
                 yy,
                 xy,
@@ -94,12 +204,25 @@ impl TangentialOperator {
         let (nx, ny) = (grid.nx(), grid.ny());
         let (dx, dy) = (grid.dx(), grid.dy());
         let wrap = padded_offset;
+        let layer_table = layer.map(|layer| layer_shear_coefficients(&grid, material, &layer));
+        // The coefficients at a signed offset in elements: K_xx, K_yy even, K_xy odd.
+        let coefficient = |xi: f64, eta: f64| match &layer_table {
+            None => cerruti_rectangle(xi * dx, eta * dy, dx, dy, material),
+            Some(table) => {
+                let entry = table[eta.abs() as usize * nx + xi.abs() as usize];
+                let sign = xi.signum() * eta.signum();
+                CerrutiCoefficients {
+                    xy: sign * entry.xy,
+                    ..entry
+                }
+            }
+        };
         let engine = |component: fn(CerrutiCoefficients) -> f64| {
             SpectralConvolution::new((nx, ny), (2 * nx, 2 * ny), |i, row: &mut [f64]| {
                 let eta = wrap(i, ny);
                 for (j, entry) in row.iter_mut().enumerate() {
                     *entry = match (eta, wrap(j, nx)) {
-                        (Some(eta), Some(xi)) => component(cerruti_rectangle(xi * dx, eta * dy, dx, dy, material)),
+                        (Some(eta), Some(xi)) => component(coefficient(xi, eta)),
                         _ => 0.0,
                     };
                 }
@@ -107,14 +230,16 @@ impl TangentialOperator {
         };
         let xx = engine(|c| c.xx);
         let yy = engine(|c| c.yy);
-        let xy = (nu != 0.0).then(|| engine(|c| c.xy).into_kernel());
+        // On a layer K_xy is not zero at ν = 0: the longitudinal and transverse factors differ.
+        let xy = (nu != 0.0 || layer.is_some()).then(|| engine(|c| c.xy).into_kernel());
         Ok(Self {
             grid,
             material,
+            layer,
             xx,
             yy,
             xy,
-            self_compliance: cerruti_rectangle(0.0, 0.0, dx, dy, material).xx,
+            self_compliance: coefficient(0.0, 0.0).xx,
             transforms: 0,
         })
     }
@@ -127,6 +252,11 @@ impl TangentialOperator {
     /// G and ν of the half-space.
     pub fn material(&self) -> ShearMaterial {
         self.material
+    }
+
+    /// The layer the operator is built for (None: the half-space).
+    pub fn layer(&self) -> Option<&ElasticLayer> {
+        self.layer.as_ref()
     }
 
     /// K_xx(0,0): the tangential displacement of an element under its own unit traction

@@ -2,8 +2,10 @@
 //! multiplier, element-consistent as the periodic normal operator's.
 
 use super::cerruti::ShearMaterial;
+use super::layer_shear::layer_shear_multiplier;
 use super::periodic::{sinc, ALIASES};
 use super::spectral::SpectralConvolution;
+use super::ElasticLayer;
 use crate::grid::Grid;
 use std::f64::consts::TAU;
 
@@ -51,9 +53,15 @@ pub(super) fn alias_tables(grid: &Grid) -> (AliasTables, AliasTables) {
 /// tangential displacement of a periodic half-space is undefined, so a shift here is
 /// the indenter's relative to the surface's mean displacement. K̂_xy is odd in each
 /// wavenumber and so zero on the Nyquist row and column of an even grid.
+///
+/// On a bonded `layer` each alias carries the layer's compliance tensor at its own
+/// wavenumber instead (`layer_shear`); K̂(0) = 0 as on the half-space, which leaves out the
+/// layer's uniform simple shear t·q̄/G (as the periodic normal operators leave out the
+/// uniform compression), and K̂_xy is there at every ν.
 pub(super) fn periodic_spectra(
     grid: &Grid,
     material: ShearMaterial,
+    layer: Option<&ElasticLayer>,
 ) -> (SpectralConvolution, SpectralConvolution, Option<Vec<f64>>) {
     let (nx, ny) = (grid.nx(), grid.ny());
     let (g, nu) = (material.shear_modulus, material.poisson_ratio);
@@ -68,12 +76,22 @@ pub(super) fn periodic_spectra(
         let mut sums = [0.0; 3];
         for &(qx, sx) in &x_tables[column] {
             for &(qy, sy) in &y_tables[row] {
-                let squared = qx * qx + qy * qy;
-                let wavenumber = squared.sqrt();
-                let weight = sx * sy / wavenumber;
-                sums[0] += weight * (1.0 - nu * qx * qx / squared);
-                sums[1] += weight * (1.0 - nu * qy * qy / squared);
-                sums[2] -= weight * nu * qx * qy / squared;
+                match layer {
+                    None => {
+                        let squared = qx * qx + qy * qy;
+                        let wavenumber = squared.sqrt();
+                        let weight = sx * sy / wavenumber;
+                        sums[0] += weight * (1.0 - nu * qx * qx / squared);
+                        sums[1] += weight * (1.0 - nu * qy * qy / squared);
+                        sums[2] -= weight * nu * qx * qy / squared;
+                    }
+                    Some(layer) => {
+                        let multiplier = layer_shear_multiplier(qx, qy, layer.thickness(), nu);
+                        for (sum, value) in sums.iter_mut().zip(multiplier) {
+                            *sum += sx * sy * value;
+                        }
+                    }
+                }
             }
         }
         let nyquist = (nx % 2 == 0 && column == nx / 2) || (ny % 2 == 0 && row == ny / 2);
@@ -94,6 +112,6 @@ pub(super) fn periodic_spectra(
         engine.set_kernel_spectrum(|row, column| values[row * columns + column][component]);
         engine
     };
-    let cross = (nu != 0.0).then(|| engine(2).into_kernel());
+    let cross = (nu != 0.0 || layer.is_some()).then(|| engine(2).into_kernel());
     (engine(0), engine(1), cross)
 }

@@ -1,51 +1,12 @@
 use super::*;
 use crate::elastic::FreeOperator;
 
-/// C_layer/C_halfspace by integrating Navier's equations across the layer, independently
-/// of the closed form: a pressure wave p cos(kx) on z = 0 (z into the layer), G = k = 1,
-/// plane strain. With u_x = −U(z) sin kx, u_z = W(z) cos kx:
-///   G U'' − (λ + 2G) k² U + (λ + G) k W' = 0,   (λ + 2G) W'' − G k² W − (λ + G) k U' = 0,
-/// σ_zz = λ(W' − kU) + 2G W', σ_xz ∝ U' + kW. Shooting from the base (bonded: U = W = 0;
-/// frictionless: W = 0, U' = 0) with RK4 in `steps` steps, then σ_zz(0) = −1, σ_xz(0) = 0.
+/// C_layer/C_halfspace from Navier's equations integrated across the layer
+/// ([`super::navier`]), independently of the closed form; C_halfspace = 2/(E*k) with
+/// E* = 2G/(1 − ν) and G = k = 1.
 fn shooting_factor(kt: f64, poisson_ratio: f64, base: LayerBase, steps: usize) -> f64 {
-    let lambda = 2.0 * poisson_ratio / (1.0 - 2.0 * poisson_ratio);
-    let derivative = |y: [f64; 4]| -> [f64; 4] {
-        let [u, du, w, dw] = y;
-        [
-            du,
-            (lambda + 2.0) * u - (lambda + 1.0) * dw,
-            dw,
-            (w + (lambda + 1.0) * du) / (lambda + 2.0),
-        ]
-    };
-    let integrate = |mut y: [f64; 4]| -> [f64; 4] {
-        let h = -kt / steps as f64;
-        let add =
-            |a: [f64; 4], b: [f64; 4], s: f64| [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2], a[3] + s * b[3]];
-        for _ in 0..steps {
-            let k1 = derivative(y);
-            let k2 = derivative(add(y, k1, 0.5 * h));
-            let k3 = derivative(add(y, k2, 0.5 * h));
-            let k4 = derivative(add(y, k3, h));
-            for i in 0..4 {
-                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-            }
-        }
-        y
-    };
-    let (first, second) = match base {
-        LayerBase::Bonded => ([0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]),
-        LayerBase::Frictionless => ([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]),
-    };
-    let (a, b) = (integrate(first), integrate(second));
-    let normal = |y: [f64; 4]| lambda * (y[3] - y[0]) + 2.0 * y[3];
-    let shear = |y: [f64; 4]| y[1] + y[2];
-    // α·normal(a) + β·normal(b) = −1, α·shear(a) + β·shear(b) = 0.
-    let det = normal(a) * shear(b) - normal(b) * shear(a);
-    let (alpha, beta) = (-shear(b) / det, shear(a) / det);
-    let surface = alpha * a[2] + beta * b[2];
-    // C_halfspace = 2/(E*k), E* = 2G/(1 − ν).
-    surface * (1.0 / (1.0 - poisson_ratio))
+    let [_, normal] = navier::surface_displacement(kt, poisson_ratio, base, steps, navier::Load::Pressure);
+    normal * (1.0 / (1.0 - poisson_ratio))
 }
 
 #[test]

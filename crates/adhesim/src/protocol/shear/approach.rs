@@ -5,8 +5,7 @@
 use super::edge::NormalSide;
 use super::shift::{ShiftStepper, ShiftTarget};
 use super::{add_normal_counters, add_shift_counters, contact_split, Shear, ShearSummary};
-use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::ElasticOperator;
+use crate::elastic::{ElasticOperator, ShearBody};
 use crate::protocol::{NormalSolver, Observer, Phase, ProtocolError};
 use crate::solver::{ContactState, TangentialSolver};
 
@@ -16,7 +15,7 @@ impl Shear {
     pub(super) fn approach_either(
         &self,
         normal: NormalSide<'_>,
-        (material, friction): (ShearMaterial, &mut TangentialSolver),
+        (body, friction): (ShearBody, &mut TangentialSolver),
         previous: &mut Vec<bool>,
         summary: &mut ShearSummary,
         observer: &mut dyn Observer,
@@ -34,7 +33,7 @@ impl Shear {
         }
         let grid = *operator.grid();
         let inclined = self.incline != 0.0;
-        let mut stepper = ShiftStepper::new(&grid, state, material, self.mode_mixity, inclined, true, solver)?;
+        let mut stepper = ShiftStepper::new(&grid, state, body, self.mode_mixity, inclined, true, solver)?;
         self.approach_coupled(
             NormalSide {
                 operator,

@@ -1,10 +1,10 @@
-//! A shear step with the coupled operator (`friction.coupling = "full"`, ν < 1/2): the
+//! A shear step with the coupled operator (`friction.coupling = "full"`; ν < 1/2, or a
+//! layer): the
 //! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
 
 use super::edge::{add_normal, add_tangential, NormalSide};
 use super::window::TangentialRoom;
-use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::CouplingOperator;
+use crate::elastic::{CouplingOperator, ShearBody};
 use crate::grid::Grid;
 use crate::protocol::ProtocolError;
 use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
@@ -57,8 +57,8 @@ pub(super) struct Coupling {
 impl Coupling {
     /// The coupling of `grid`: its operator acts on the whole grid (the normal displacement
     /// of the tractions reaches every gap), the tangential problem on the room's window.
-    pub(super) fn new(grid: &Grid, material: ShearMaterial) -> Result<Self, ProtocolError> {
-        let operator = CouplingOperator::new(*grid, material)
+    pub(super) fn new(grid: &Grid, body: ShearBody) -> Result<Self, ProtocolError> {
+        let operator = CouplingOperator::for_body(*grid, body)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         let n = grid.len();
         Ok(Self {

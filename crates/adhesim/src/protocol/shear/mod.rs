@@ -12,8 +12,7 @@ pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
 pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
-use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::ElasticOperator;
+use crate::elastic::{ElasticOperator, ShearBody};
 use crate::grid::Grid;
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialReport, TangentialSolver};
 use edge::NormalSide;
@@ -63,7 +62,8 @@ pub struct Shear {
     /// Force control: the tangential force along `direction` is imposed, and `distance` is
     /// not used. None: the shift is imposed.
     pub force_control: Option<TangentialForce>,
-    /// The coupled operator (ν < 1/2, `friction.coupling = "full"`): a shear traction moves
+    /// The coupled operator (`friction.coupling = "full"`; ν < 1/2 on a half-space, any ν on
+    /// a layer): a shear traction moves
     /// the surface normally and a pressure moves it tangentially, so the approach already
     /// meets friction (Spence's problem) and every step solves both problems in turn.
     /// False: Goodman's approximation.
@@ -147,11 +147,12 @@ impl Shear {
         operator: &mut dyn ElasticOperator,
         heights: &[f64],
         solver: &mut NormalSolver,
-        material: ShearMaterial,
+        body: impl Into<ShearBody>,
         friction: &mut TangentialSolver,
         observer: &mut dyn Observer,
     ) -> Result<ShearSummary, ProtocolError> {
         self.check()?;
+        let body = body.into();
         let grid = *operator.grid();
         solver.reset();
         let mut state = ContactState::new(&grid);
@@ -166,7 +167,7 @@ impl Shear {
                 solver: &mut *solver,
                 state: &mut state,
             },
-            (material, &mut *friction),
+            (body, &mut *friction),
             &mut previous,
             &mut summary,
             observer,
@@ -184,7 +185,7 @@ impl Shear {
         };
         let mut stepper = match coupled {
             Some(stepper) => stepper,
-            None => ShiftStepper::new(&grid, &state, material, self.mode_mixity, inclined, false, solver)?,
+            None => ShiftStepper::new(&grid, &state, body, self.mode_mixity, inclined, false, solver)?,
         };
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];

@@ -6,7 +6,7 @@
 use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide};
 use super::window::TangentialRoom;
-use crate::elastic::cerruti::ShearMaterial;
+use crate::elastic::ShearBody;
 use crate::grid::Grid;
 use crate::protocol::{NormalSolver, ProtocolError};
 use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver};
@@ -58,12 +58,18 @@ impl ShiftStepper {
     pub(super) fn new(
         grid: &Grid,
         state: &ContactState,
-        material: ShearMaterial,
+        body: ShearBody,
         mode_mixity: f64,
         inclined: bool,
         coupled: bool,
         solver: &mut NormalSolver,
     ) -> Result<Self, ProtocolError> {
+        if body.layer.is_some() && mode_mixity > 0.0 {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "on a layer the edge stays sharp: the shear-weakened edge's energy ratio (mode_mixity = {mode_mixity}) is the half-space's"
+            )));
+        }
+        let material = body.material;
         if coupled {
             if mode_mixity > 0.0 {
                 return Err(ProtocolError::InvalidParameter(format!(
@@ -71,16 +77,16 @@ impl ShiftStepper {
                 )));
             }
             // The room follows the contact as it grows from nothing in the approach.
-            let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, material)?;
+            let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, body)?;
             return Ok(Self {
                 window_state: room.window.gather(state),
                 room,
-                mode: NormalMode::Coupled(Box::new(Coupling::new(grid, material)?)),
+                mode: NormalMode::Coupled(Box::new(Coupling::new(grid, body)?)),
             });
         }
         let changes = mode_mixity > 0.0 || inclined;
         let margin = if changes { MOVING_WINDOW_MARGIN } else { 0 };
-        let room = TangentialRoom::new(grid, &state.contact, margin, material)?;
+        let room = TangentialRoom::new(grid, &state.contact, margin, body)?;
         let mode = match (mode_mixity > 0.0, solver.as_adhesive_mut()) {
             (true, Some(adhesive)) => NormalMode::Weakened(Box::new(EdgeWeakening::new(
                 adhesive,

@@ -57,7 +57,7 @@ impl Interface<'_> {
                     &self.grid,
                     &state.contact,
                     TRAVEL_MARGIN,
-                    self.material,
+                    self.material.into(),
                 )?);
                 0
             }

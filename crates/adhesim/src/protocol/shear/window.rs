@@ -1,7 +1,6 @@
 //! The window of the tangential problem: the contact's bounding box as a free grid.
 
-use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::TangentialOperator;
+use crate::elastic::{ShearBody, TangentialOperator};
 use crate::grid::{Boundary, Grid};
 use crate::protocol::ProtocolError;
 use crate::solver::{ContactState, SlipStatus, TangentialState};
@@ -143,27 +142,22 @@ pub(super) struct TangentialRoom {
     pub(super) operator: TangentialOperator,
     pub(super) state: TangentialState,
     grid: Grid,
-    material: ShearMaterial,
+    body: ShearBody,
     margin: usize,
 }
 
 impl TangentialRoom {
     /// The room of `contact` on `grid`, `margin` elements wider on each side.
-    pub(super) fn new(
-        grid: &Grid,
-        contact: &[bool],
-        margin: usize,
-        material: ShearMaterial,
-    ) -> Result<Self, ProtocolError> {
+    pub(super) fn new(grid: &Grid, contact: &[bool], margin: usize, body: ShearBody) -> Result<Self, ProtocolError> {
         let window = ContactWindow::around(grid, contact, margin)?;
-        let operator = TangentialOperator::new(window.grid, material)
+        let operator = TangentialOperator::for_body(window.grid, body)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         Ok(Self {
             state: TangentialState::new(window.grid.len()),
             window,
             operator,
             grid: *grid,
-            material,
+            body,
             margin,
         })
     }
@@ -180,7 +174,7 @@ impl TangentialRoom {
         for (_, k) in self.window.elements() {
             union[k] = true;
         }
-        let wider = Self::new(&self.grid, &union, self.margin, self.material)?;
+        let wider = Self::new(&self.grid, &union, self.margin, self.body)?;
         Ok(self.move_into(wider))
     }
 
@@ -199,7 +193,7 @@ impl TangentialRoom {
                 loaded[k] = true;
             }
         }
-        let moved = Self::new(&self.grid, &loaded, self.margin, self.material)?;
+        let moved = Self::new(&self.grid, &loaded, self.margin, self.body)?;
         Ok(self.move_into(moved))
     }
 
