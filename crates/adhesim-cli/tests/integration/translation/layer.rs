@@ -143,3 +143,44 @@ fn glued_punch_on_a_thin_rubber_layer_tends_to_four_times_the_frictionless_one()
         (4.0 - thick) / (4.0 - thin)
     );
 }
+
+#[test]
+fn rubber_layer_coupling_moves_the_sheared_contact_forward() {
+    // The paper's sliding experiment at d = 0.2 mm (scenarios/layer/paper_r22_shear.toml,
+    // at 64² here): a thin-ish rubber layer sheared forward carries material forward, which
+    // lifts its surface against the indenter ahead of the contact and lowers it behind
+    // (w = −(t²/(2G))∇·τ in the thin limit, docs/physics.md §9.5). With the layer's coupling
+    // the front area must grow and the rear shrink; without it (Goodman) both stay as they
+    // are, the normal problem being held. Both slide at τ = F_T/A = τ0 = 36 kPa, to the
+    // solver's tolerance (1e-6 asserted).
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/layer/paper_r22_shear.toml");
+    for coupling in ["full", "none"] {
+        let out = dir.path().join(coupling);
+        let set = format!("friction.coupling=\"{coupling}\"");
+        let output = run_quiet(&scenario, &out, &["--set", "grid.n=64", "--set", &set]);
+        assert!(output.status.success(), "{coupling}: {}", stderr(&output));
+        let (header, rows) = read_csv(&out.join("curve.csv"));
+        let phase = column(&header, &rows, "phase");
+        let front = column_values(&header, &rows, "area_front");
+        let rear = column_values(&header, &rows, "area_rear");
+        let tangential = column_values(&header, &rows, "force_tangential");
+        let area = column_values(&header, &rows, "area");
+        let start = phase.iter().rposition(|p| p == "approach").unwrap();
+        let last = rows.len() - 1;
+        let tau = tangential[last] / area[last];
+        assert!((tau / 0.036 - 1.0).abs() < 1e-6, "{coupling}: τ = {tau}");
+        if coupling == "full" {
+            assert!(
+                front[last] > front[start] && rear[last] < rear[start],
+                "front {} → {}, rear {} → {}",
+                front[start],
+                front[last],
+                rear[start],
+                rear[last]
+            );
+        } else {
+            assert_eq!((front[last], rear[last]), (front[start], rear[start]));
+        }
+    }
+}
