@@ -1,18 +1,20 @@
 //! Friction at the interface: `[friction]` and `[protocol] kind = "shear"` validated into
 //! a [`ShearSetup`], and the `results` of a shear run.
 
-use crate::checks::{finite, held_depth, positive};
+use crate::checks::{finite, positive};
 use crate::error::ScenarioError;
 use crate::guards::{step_count, MAX_STEPS};
 use crate::model::*;
-use crate::validated::{ValidatedSections, DEFAULT_APPROACH_STEPS};
-use adhesim::{Complementarity, ElasticLayer, FrictionLaw, LayerBase, Shear, ShearMaterial, ShearSummary, StepRecord};
+use crate::validated::ValidatedSections;
+use adhesim::{Complementarity, FrictionLaw, Shear, ShearMaterial, ShearSummary, StepRecord};
 use anyhow::{bail, Result};
 use serde::Serialize;
 
 mod force_control;
+mod protocol_keys;
 
 use force_control::shift_or_force;
+use protocol_keys::{approach_depths, approach_steps, coupled, incline, layer_shear, mode_mixity};
 
 impl ValidScenario {
     /// The interface carries friction: a shear, or a roll, slide or translate with
@@ -75,17 +77,17 @@ impl ScenarioFile {
             static_law,
             material: shear_material,
         } = self.interface_laws(friction, material.contact_modulus())?;
-        let depth = held_depth(p.depth, unit, start_depth)?;
+        let (depth, press_depth) = approach_depths(p, unit, start_depth)?;
+        let deepest = press_depth.unwrap_or(depth);
         let (distance, force_control) = shift_or_force(p, friction, law, static_law)?;
         let steps = step_count("protocol.steps", p.steps)?;
-        let approach_steps = step_count(
-            "protocol.approach_steps",
-            p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS),
-        )?;
-        let depth_step = (depth - start_depth) / approach_steps as f64;
+        let approach_steps = approach_steps(p, press_depth.is_some())?;
+        // The depth travelled per approach step: down to the deepest depth, and up again to
+        // the held one after a press.
+        let depth_step = (deepest - start_depth + (deepest - depth)) / approach_steps as f64;
         self.check_step(
             start_depth,
-            depth,
+            deepest,
             depth_step,
             "protocol.approach_steps, protocol.depth",
         )?;
@@ -94,12 +96,13 @@ impl ScenarioFile {
         let mode_mixity = mode_mixity(friction, gamma0)?;
         let coupled = coupled(friction, force_control.is_some(), mode_mixity)?;
         if let Some(layer) = &layer {
-            layer_shear(layer, mode_mixity)?;
+            layer_shear(layer)?;
         }
         let drive_stiffness = drive_stiffness(p)?;
         let protocol = Shear {
             start_depth,
             depth,
+            press_depth,
             approach_steps,
             distance,
             steps,
@@ -138,7 +141,7 @@ impl ScenarioFile {
             indenter,
             heights,
             start_depth,
-            max_depth: depth,
+            max_depth: deepest,
             depth_step,
             approach_steps,
             max_retract_steps: 0,
@@ -382,85 +385,6 @@ fn static_friction_law(section: &FrictionSection) -> Result<Option<FrictionLaw>>
         _ => return Ok(None),
     };
     Ok(Some(built?))
-}
-
-/// `protocol.incline` in radians (default 0): strictly between −90 and 90 degrees.
-fn incline(degrees: Option<f64>) -> Result<f64> {
-    let degrees = degrees.unwrap_or(0.0);
-    if !(degrees.is_finite() && degrees.abs() < 90.0) {
-        bail!(ScenarioError::invalid(
-            "protocol.incline",
-            degrees,
-            "strictly between -90 and 90 (degrees from the surface; > 0 into the body)"
-        ));
-    }
-    Ok(degrees.to_radians())
-}
-
-/// `friction.mode_mixity` (default 0): in [0, 1], and above 0 only where there is an
-/// adhesive edge to weaken.
-fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> {
-    let Some(value) = section.mode_mixity else {
-        return Ok(0.0);
-    };
-    if !(0.0..=1.0).contains(&value) {
-        bail!(ScenarioError::invalid("friction.mode_mixity", value, "in [0, 1]"));
-    }
-    if value > 0.0 && work_of_adhesion <= 0.0 {
-        bail!(ScenarioError::invalid_as(
-            "friction.mode_mixity",
-            value,
-            "0 without adhesion",
-            format!("friction.mode_mixity = {value} weakens an adhesive edge, but adhesion.work_of_adhesion is 0: give a work of adhesion or drop friction.mode_mixity")
-        ));
-    }
-    Ok(value)
-}
-
-/// `friction.coupling = "full"` (the coupled operator of a half-space), with what it does
-/// not combine with yet refused by name.
-fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: f64) -> Result<bool> {
-    if section.coupling != Some(CouplingName::Full) {
-        return Ok(false);
-    }
-    let refuse = |requirement: &str, message: &str| -> Result<bool> {
-        Err(ScenarioError::invalid_as("friction.coupling", "\"full\"", requirement, message.to_string()).into())
-    };
-    if force_control {
-        return refuse(
-            "\"none\" with protocol.tangential_force",
-            "friction.coupling = \"full\" changes the normal problem at every step, and an imposed tangential force (protocol.tangential_force) holds it fixed: impose protocol.distance, or use coupling = \"none\"",
-        );
-    }
-    if mode_mixity > 0.0 {
-        return refuse(
-            "\"none\" with friction.mode_mixity > 0",
-            "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",
-        );
-    }
-    Ok(true)
-}
-
-/// A shear on a layer: bonded to its base (a frictionless base lets it slide), with a
-/// sharp edge, each refused by its key.
-fn layer_shear(layer: &ElasticLayer, mode_mixity: f64) -> Result<()> {
-    if layer.base() == LayerBase::Frictionless {
-        bail!(ScenarioError::invalid_as(
-            "material.base",
-            "\"frictionless\"",
-            "\"bonded\" with protocol.kind = \"shear\"",
-            "a layer on a frictionless base slides on it under a tangential load: use material.base = \"bonded\""
-        ));
-    }
-    if mode_mixity > 0.0 {
-        bail!(ScenarioError::invalid_as(
-            "friction.mode_mixity",
-            mode_mixity,
-            "0 with material.thickness",
-            "friction.mode_mixity weakens the edge with the half-space's element energy ratio; on a layer use mode_mixity = 0"
-        ));
-    }
-    Ok(())
 }
 
 /// The `results` of a shear run in `summary.json`.

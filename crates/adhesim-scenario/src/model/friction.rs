@@ -73,6 +73,10 @@ pub struct ShearProtocol {
     pub depth_unit: DepthUnit,
     /// Indentation held during the shift (in `depth_unit`).
     pub depth: f64,
+    /// A depth the approach presses to before lifting the indenter to `depth` (in
+    /// `depth_unit`; absent: straight to `depth`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub press_depth: Option<f64>,
     /// Steps of the approach to `depth` (default 50).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub approach_steps: Option<i64>,

@@ -29,7 +29,7 @@ impl Shear {
         } = normal;
         if !self.coupled {
             self.approach(operator, heights, solver, (state, previous), summary, observer)?;
-            return Ok(None);
+            return self.contact_held(state).map(|_| None);
         }
         let grid = *operator.grid();
         let inclined = self.incline != 0.0;
@@ -47,7 +47,18 @@ impl Shear {
             summary,
             observer,
         )?;
-        Ok(Some(stepper))
+        self.contact_held(state).map(|_| Some(stepper))
+    }
+
+    /// The contact left at the end of the approach: a lift after a press may pull it off.
+    fn contact_held(&self, state: &ContactState) -> Result<(), ProtocolError> {
+        if state.contact_elements() == 0 {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "no contact is left at depth {} after the lift from press_depth {:?}: the indenter was pulled off before the shift",
+                self.depth, self.press_depth
+            )));
+        }
+        Ok(())
     }
 
     /// The approach to `depth` in `approach_steps` displacement steps; `contact` is the
@@ -72,7 +83,7 @@ impl Shear {
             add_normal_counters(summary, &report);
             let mut record = self.record(
                 step,
-                Phase::Approach,
+                self.approach_phase(step),
                 depth,
                 report,
                 state,
@@ -86,9 +97,39 @@ impl Shear {
         Ok(())
     }
 
+    /// The steps of the press and of the lift: the approach's steps shared in proportion
+    /// to the distances, at least one each (None without a press).
+    fn press_and_lift(&self) -> Option<(f64, usize, usize)> {
+        let press = self.press_depth?;
+        let (down, up) = (press - self.start_depth, press - self.depth);
+        let pressing =
+            ((self.approach_steps as f64 * down / (down + up)).round() as usize).clamp(1, self.approach_steps - 1);
+        Some((press, pressing, self.approach_steps - pressing))
+    }
+
+    /// The phase of approach step `step`: the lift after a press retracts.
+    fn approach_phase(&self, step: usize) -> Phase {
+        match self.press_and_lift() {
+            Some((_, pressing, _)) if step >= pressing => Phase::Retract,
+            _ => Phase::Approach,
+        }
+    }
+
     /// The depth of approach step `step` (from 0): even steps from the first contact to
-    /// `depth`, which the last one meets exactly.
+    /// `depth`, which the last one meets exactly; with a press, even steps down to it and
+    /// then even steps up to `depth`.
     pub(super) fn approach_depth(&self, step: usize) -> f64 {
+        if let Some((press, pressing, lifting)) = self.press_and_lift() {
+            return if step + 1 == self.approach_steps {
+                self.depth
+            } else if step + 1 == pressing {
+                press
+            } else if step < pressing {
+                self.start_depth + (step + 1) as f64 * (press - self.start_depth) / pressing as f64
+            } else {
+                press - (step + 1 - pressing) as f64 * (press - self.depth) / lifting as f64
+            };
+        }
         let depth_step = (self.depth - self.start_depth) / self.approach_steps as f64;
         if step + 1 == self.approach_steps {
             self.depth
@@ -136,7 +177,7 @@ impl Shear {
             add_shift_counters(summary, &mut normal, &report, false);
             let mut record = self.record(
                 step,
-                Phase::Approach,
+                self.approach_phase(step),
                 depth,
                 normal,
                 state,

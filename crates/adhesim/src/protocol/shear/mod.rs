@@ -37,7 +37,11 @@ pub struct Shear {
     pub start_depth: f64,
     /// Indentation held during the shift.
     pub depth: f64,
-    /// Steps of the approach to `depth`.
+    /// A depth the approach presses to before it lifts the indenter to `depth`, as the
+    /// paper's sliding experiments do (Sect. 6); `depth` may then lie at or above the first
+    /// contact, the contact held by adhesion. None: the approach goes straight to `depth`.
+    pub press_depth: Option<f64>,
+    /// Steps of the approach to `depth` (the press and the lift together).
     pub approach_steps: usize,
     /// Shift of the indenter (length units).
     pub distance: f64,
@@ -152,8 +156,7 @@ impl Shear {
         observer: &mut dyn Observer,
     ) -> Result<ShearSummary, ProtocolError> {
         self.check()?;
-        let body = body.into();
-        let grid = *operator.grid();
+        let (body, grid): (ShearBody, _) = (body.into(), *operator.grid());
         solver.reset();
         let mut state = ContactState::new(&grid);
         let mut previous = state.contact.clone();
@@ -296,11 +299,28 @@ impl Shear {
                 self.approach_steps, self.steps
             ));
         }
-        if !(self.depth.is_finite() && self.depth > self.start_depth) {
-            return invalid(format!(
-                "depth ({}) must exceed the depth of first contact ({})",
-                self.depth, self.start_depth
-            ));
+        match self.press_depth {
+            None if !(self.depth.is_finite() && self.depth > self.start_depth) => {
+                return invalid(format!(
+                    "depth ({}) must exceed the depth of first contact ({})",
+                    self.depth, self.start_depth
+                ));
+            }
+            Some(press)
+                if !(press.is_finite() && press > self.start_depth && self.depth.is_finite() && self.depth < press) =>
+            {
+                return invalid(format!(
+                    "press_depth ({press}) must exceed the depth of first contact ({}) and depth ({})",
+                    self.start_depth, self.depth
+                ));
+            }
+            Some(_) if self.approach_steps < 2 => {
+                return invalid(format!(
+                    "a press and a lift take at least 2 approach steps, got {}",
+                    self.approach_steps
+                ));
+            }
+            _ => {}
         }
         if !(self.incline.is_finite() && self.incline.abs() < std::f64::consts::FRAC_PI_2) {
             return invalid(format!(

@@ -64,11 +64,6 @@ impl ShiftStepper {
         coupled: bool,
         solver: &mut NormalSolver,
     ) -> Result<Self, ProtocolError> {
-        if body.layer.is_some() && mode_mixity > 0.0 {
-            return Err(ProtocolError::InvalidParameter(format!(
-                "on a layer the edge stays sharp: the shear-weakened edge's energy ratio (mode_mixity = {mode_mixity}) is the half-space's"
-            )));
-        }
         let material = body.material;
         if coupled {
             if mode_mixity > 0.0 {

@@ -1,0 +1,134 @@
+//! The `[protocol]` and `[friction]` keys of a shear that shape its approach and its
+//! operators: the incline, the mode mixity, the coupling, the press and the layer.
+
+use crate::checks::{finite, held_depth};
+use crate::error::ScenarioError;
+use crate::guards::step_count;
+use crate::model::*;
+use crate::validated::DEFAULT_APPROACH_STEPS;
+use adhesim::{ElasticLayer, LayerBase};
+use anyhow::{bail, Result};
+
+/// `protocol.incline` in radians (default 0): strictly between −90 and 90 degrees.
+pub(super) fn incline(degrees: Option<f64>) -> Result<f64> {
+    let degrees = degrees.unwrap_or(0.0);
+    if !(degrees.is_finite() && degrees.abs() < 90.0) {
+        bail!(ScenarioError::invalid(
+            "protocol.incline",
+            degrees,
+            "strictly between -90 and 90 (degrees from the surface; > 0 into the body)"
+        ));
+    }
+    Ok(degrees.to_radians())
+}
+
+/// `friction.mode_mixity` (default 0): in [0, 1], and above 0 only where there is an
+/// adhesive edge to weaken.
+pub(super) fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> {
+    let Some(value) = section.mode_mixity else {
+        return Ok(0.0);
+    };
+    if !(0.0..=1.0).contains(&value) {
+        bail!(ScenarioError::invalid("friction.mode_mixity", value, "in [0, 1]"));
+    }
+    if value > 0.0 && work_of_adhesion <= 0.0 {
+        bail!(ScenarioError::invalid_as(
+            "friction.mode_mixity",
+            value,
+            "0 without adhesion",
+            format!("friction.mode_mixity = {value} weakens an adhesive edge, but adhesion.work_of_adhesion is 0: give a work of adhesion or drop friction.mode_mixity")
+        ));
+    }
+    Ok(value)
+}
+
+/// `friction.coupling = "full"` (the coupled operator of a half-space or a layer), with
+/// what it does not combine with yet refused by name.
+pub(super) fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: f64) -> Result<bool> {
+    if section.coupling != Some(CouplingName::Full) {
+        return Ok(false);
+    }
+    let refuse = |requirement: &str, message: &str| -> Result<bool> {
+        Err(ScenarioError::invalid_as("friction.coupling", "\"full\"", requirement, message.to_string()).into())
+    };
+    if force_control {
+        return refuse(
+            "\"none\" with protocol.tangential_force",
+            "friction.coupling = \"full\" changes the normal problem at every step, and an imposed tangential force (protocol.tangential_force) holds it fixed: impose protocol.distance, or use coupling = \"none\"",
+        );
+    }
+    if mode_mixity > 0.0 {
+        return refuse(
+            "\"none\" with friction.mode_mixity > 0",
+            "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",
+        );
+    }
+    Ok(true)
+}
+
+/// `protocol.depth` and `protocol.press_depth` in length units. Without a press the held
+/// depth must exceed the first contact's; with one the press must, and the held depth lies
+/// below the press (at, or above, the first contact too: the contact then holds by
+/// adhesion).
+pub(super) fn approach_depths(p: &ShearProtocol, unit: f64, start_depth: f64) -> Result<(f64, Option<f64>)> {
+    let Some(raw_press) = p.press_depth else {
+        return Ok((held_depth(p.depth, unit, start_depth)?, None));
+    };
+    let press = finite("protocol.press_depth", raw_press)? * unit;
+    if press <= start_depth {
+        bail!(ScenarioError::invalid_as(
+            "protocol.press_depth",
+            raw_press,
+            format!("> {:.6e} (the depth of first contact)", start_depth / unit),
+            format!(
+                "protocol.press_depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_press}",
+                start_depth / unit
+            )
+        ));
+    }
+    let depth = finite("protocol.depth", p.depth)? * unit;
+    if depth >= press {
+        bail!(ScenarioError::invalid_as(
+            "protocol.depth",
+            p.depth,
+            format!("< {raw_press} (protocol.press_depth)"),
+            format!(
+                "protocol.depth ({}) must lie below protocol.press_depth ({raw_press}): the indenter is lifted to it after the press",
+                p.depth
+            )
+        ));
+    }
+    Ok((depth, Some(press)))
+}
+
+/// `protocol.approach_steps` (default 50): at least 2 with a press, one down and one up.
+pub(super) fn approach_steps(p: &ShearProtocol, pressed: bool) -> Result<usize> {
+    let approach_steps = step_count(
+        "protocol.approach_steps",
+        p.approach_steps.unwrap_or(DEFAULT_APPROACH_STEPS),
+    )?;
+    if pressed && approach_steps < 2 {
+        bail!(ScenarioError::invalid_as(
+            "protocol.approach_steps",
+            approach_steps,
+            ">= 2 with protocol.press_depth",
+            format!("protocol.approach_steps = {approach_steps}: a press and a lift take at least 2 approach steps")
+        ));
+    }
+    Ok(approach_steps)
+}
+
+/// A shear on a layer: bonded to its base (a frictionless base lets it slide). A
+/// shear-weakened edge uses the half-space element's energy ratio, as the JKR-type rule uses
+/// its detachment stress: the layer's near field is the half-space's to O(Δ/t).
+pub(super) fn layer_shear(layer: &ElasticLayer) -> Result<()> {
+    if layer.base() == LayerBase::Frictionless {
+        bail!(ScenarioError::invalid_as(
+            "material.base",
+            "\"frictionless\"",
+            "\"bonded\" with protocol.kind = \"shear\"",
+            "a layer on a frictionless base slides on it under a tangential load: use material.base = \"bonded\""
+        ));
+    }
+    Ok(())
+}
