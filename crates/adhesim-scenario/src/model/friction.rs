@@ -59,8 +59,8 @@ pub enum CouplingName {
     /// not move it tangentially (exact at ν = 1/2).
     #[default]
     None,
-    /// The coupled operator (ν < 1/2; under protocol.kind = "shear"): shear moves the surface
-    /// normally and pressure moves it tangentially.
+    /// The coupled operator (ν < 1/2, or a layer; under protocol.kind = "shear"): shear
+    /// moves the surface normally and pressure moves it tangentially.
     Full,
 }
 

@@ -185,17 +185,21 @@ pub(super) fn bessel_j0(x: f64) -> f64 {
         }
         return sum;
     }
-    // a_k/x^k with a_{k+1} = −a_k (2k + 1)²/(8(k + 1)); P takes the even k with signs
-    // + − + …, Q the odd k with signs + − + …
+    hankel_expansion(0.0, x, x - 0.25 * PI)
+}
+
+/// Hankel's asymptotic expansion of J_n(x), μ = 4n², at the phase x − (n/2 + 1/4)π,
+/// truncated at its smallest term (Abramowitz & Stegun 9.2.5): a_{k+1} =
+/// a_k (μ − (2k + 1)²)/(8(k + 1)x); P takes the even k with signs + − + …, Q the odd k.
+pub(super) fn hankel_expansion(mu: f64, x: f64, phase: f64) -> f64 {
     let (mut p, mut q) = (1.0, 0.0);
     let mut term = 1.0f64;
     for k in 0..64u32 {
-        let next = -term * f64::from(2 * k + 1).powi(2) / (8.0 * f64::from(k + 1) * x);
+        let next = term * (mu - f64::from(2 * k + 1).powi(2)) / (8.0 * f64::from(k + 1) * x);
         if next.abs() >= term.abs() || next.abs() < 1e-18 {
             break;
         }
         term = next;
-        // Index k + 1: the sign alternates every second term, within P and within Q.
         let index = k + 1;
         let sign = if (index / 2).is_multiple_of(2) { 1.0 } else { -1.0 };
         if index.is_multiple_of(2) {
@@ -204,7 +208,6 @@ pub(super) fn bessel_j0(x: f64) -> f64 {
             q += sign * term;
         }
     }
-    let phase = x - 0.25 * PI;
     (2.0 / (PI * x)).sqrt() * (p * phase.cos() - q * phase.sin())
 }
 

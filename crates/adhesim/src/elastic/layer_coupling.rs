@@ -11,8 +11,7 @@
 
 use super::cerruti::ShearMaterial;
 use super::coupling::coupling_rectangle;
-use super::layer::{element_integrals, PointCorrection, SCREENED_KT};
-use super::layer_shear::hankel_expansion;
+use super::layer::{element_integrals, hankel_expansion, PointCorrection, SCREENED_KT};
 use super::ElasticLayer;
 use crate::grid::Grid;
 use std::f64::consts::PI;

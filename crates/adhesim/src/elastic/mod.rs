@@ -19,6 +19,8 @@ mod preconditioner;
 mod spectral;
 mod tangential;
 mod tangential_periodic;
+#[cfg(test)]
+pub(crate) mod test_fields;
 
 pub use coupling::{coupling_rectangle, CouplingOperator};
 pub use free::FreeOperator;

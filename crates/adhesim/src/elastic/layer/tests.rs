@@ -1,4 +1,5 @@
 use super::*;
+use crate::elastic::test_fields::{lcg_field, xorshift_field};
 use crate::elastic::FreeOperator;
 
 /// C_layer/C_halfspace from Navier's equations integrated across the layer
@@ -205,15 +206,7 @@ fn thick_layer_is_the_half_space() {
     let n = 32;
     let material = ElasticMaterial::new(2.0).unwrap();
     let layer = ElasticLayer::new(1e6, 0.5, LayerBase::Bonded).unwrap();
-    let mut random = 0x2545_f491_4f6c_dd1du64;
-    let pressure: Vec<f64> = (0..n * n)
-        .map(|_| {
-            random ^= random << 13;
-            random ^= random >> 7;
-            random ^= random << 17;
-            (random >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect();
+    let pressure = xorshift_field(&mut 0x2545_f491_4f6c_dd1du64, n * n);
     let (mut expected, mut got) = (vec![0.0; n * n], vec![0.0; n * n]);
     FreeOperator::new(grid(n, Boundary::Free), material).apply(&pressure, &mut expected);
     LayerOperator::new(grid(n, Boundary::Free), material, layer)
@@ -251,16 +244,7 @@ fn free_operator_is_the_direct_sum_symmetric_and_positive() {
         let table = layer_coefficients(&grid, 1.0, &layer);
         let mut operator = LayerOperator::new(grid, material, layer).unwrap();
         let mut random = 0x9e37_79b9_7f4a_7c15u64;
-        let mut field = || -> Vec<f64> {
-            (0..nx * ny)
-                .map(|_| {
-                    random = random
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-                })
-                .collect()
-        };
+        let mut field = || lcg_field(&mut random, nx * ny);
         let (a, b) = (field(), field());
         let (mut ka, mut kb) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
         operator.apply(&a, &mut ka);

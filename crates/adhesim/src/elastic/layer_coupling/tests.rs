@@ -1,5 +1,6 @@
 use super::*;
 use crate::elastic::layer::navier::{surface_displacement, Load};
+use crate::elastic::test_fields::{lcg_field, xorshift_field};
 use crate::elastic::{CouplingOperator, LayerBase, ShearBody};
 use crate::grid::Boundary;
 
@@ -116,16 +117,7 @@ fn thick_layer_couples_as_the_half_space() {
     // max|u|); on a periodic grid h is the half-space's at every alias (to rounding).
     let n = 32;
     let mut random = 0x2545_f491_4f6c_dd1du64;
-    let mut field = || -> Vec<f64> {
-        (0..n * n)
-            .map(|_| {
-                random ^= random << 13;
-                random ^= random >> 7;
-                random ^= random << 17;
-                (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .collect()
-    };
+    let mut field = || -> Vec<f64> { xorshift_field(&mut random, n * n).iter().map(|v| v - 0.5).collect() };
     let (qx, qy) = (field(), field());
     for (boundary, tolerance) in [(Boundary::Free, 1e-3), (Boundary::Periodic, 1e-12)] {
         let grid = Grid::new(n, 1.0, boundary).unwrap();
@@ -152,16 +144,7 @@ fn layer_coupling_is_reciprocal() {
     let (nx, ny) = (12, 9);
     let grid = Grid::rectangular(nx, ny, 1.2, 0.63, Boundary::Free).unwrap();
     let mut random = 0x9e37_79b9_7f4a_7c15u64;
-    let mut field = || -> Vec<f64> {
-        (0..nx * ny)
-            .map(|_| {
-                random = random
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .collect()
-    };
+    let mut field = || lcg_field(&mut random, nx * ny);
     let (pressure, qx, qy) = (field(), field(), field());
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     for poisson_ratio in [0.5, 0.2] {

@@ -1,5 +1,6 @@
 use super::*;
 use crate::elastic::layer::navier::{surface_displacement, Load};
+use crate::elastic::test_fields::{lcg_field, xorshift_field};
 use crate::elastic::{LayerError, TangentialOperator, TangentialOperatorError};
 use crate::grid::Boundary;
 
@@ -170,16 +171,7 @@ fn thick_layer_is_the_half_space() {
     // factors are 1, so the spectra agree to rounding. Tolerances 1e-3 and 1e-12.
     let n = 32;
     let mut random = 0x2545_f491_4f6c_dd1du64;
-    let mut field = || -> Vec<f64> {
-        (0..n * n)
-            .map(|_| {
-                random ^= random << 13;
-                random ^= random >> 7;
-                random ^= random << 17;
-                (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .collect()
-    };
+    let mut field = || -> Vec<f64> { xorshift_field(&mut random, n * n).iter().map(|v| v - 0.5).collect() };
     let (qx, qy) = (field(), field());
     let layer = ElasticLayer::new(1e6, 0.3, LayerBase::Bonded).unwrap();
     for (boundary, tolerance) in [(Boundary::Free, 1e-3), (Boundary::Periodic, 1e-12)] {
@@ -219,16 +211,7 @@ fn layer_operator_is_symmetric_and_positive() {
         let layer = ElasticLayer::new(thickness, poisson_ratio, LayerBase::Bonded).unwrap();
         let mut operator = TangentialOperator::on_layer(grid, material(poisson_ratio), layer).unwrap();
         let mut random = 0x9e37_79b9_7f4a_7c15u64;
-        let mut field = || -> Vec<f64> {
-            (0..nx * ny)
-                .map(|_| {
-                    random = random
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    (random >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-                })
-                .collect()
-        };
+        let mut field = || lcg_field(&mut random, nx * ny);
         let mut apply = |q: &[Vec<f64>; 2]| {
             let (mut ux, mut uy) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
             operator.apply([&q[0], &q[1]], [&mut ux, &mut uy]);
