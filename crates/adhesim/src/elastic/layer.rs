@@ -89,6 +89,19 @@ impl ElasticLayer {
         self.base
     }
 
+    /// On a free grid the element quadrature resolves the layer down to a sixteenth of an
+    /// element; periodic grids take any thickness.
+    pub(super) fn check_resolved(&self, grid: &Grid) -> Result<(), LayerError> {
+        let element = grid.dx().max(grid.dy());
+        if grid.boundary() == Boundary::Free && self.thickness < element / 16.0 {
+            return Err(LayerError::ThinnerThanElements {
+                thickness: self.thickness,
+                element,
+            });
+        }
+        Ok(())
+    }
+
     /// C_layer(k)/C_halfspace(k) at wavenumber k.
     pub fn compliance_factor(&self, wavenumber: f64) -> f64 {
         layer_compliance_factor(wavenumber * self.thickness, self.poisson_ratio, self.base)
@@ -142,8 +155,7 @@ pub fn layer_compliance_factor(kt: f64, poisson_ratio: f64, base: LayerBase) -> 
         LayerBase::Bonded => {
             let kappa = 3.0 - 4.0 * poisson_ratio;
             let numerator = (kappa - 1.0) * double.sinh() + sinh_minus_argument(double);
-            let denominator = kappa * double.cosh() + 2.0 * kt * kt + 0.5 * (1.0 + kappa * kappa);
-            numerator / denominator
+            numerator / bonded_denominator(kt, kappa)
         }
         LayerBase::Frictionless => {
             // cosh 2s − 1 = 2 sinh² s, without cancellation.
@@ -175,17 +187,30 @@ pub(super) fn sinh_minus_argument(x: f64) -> f64 {
 pub(super) fn bessel_j0(x: f64) -> f64 {
     let x = x.abs();
     if x < 13.0 {
-        let step = -0.25 * x * x;
-        let (mut term, mut sum) = (1.0f64, 1.0);
-        let mut m = 1.0f64;
-        while term.abs() > 1e-18 {
-            term *= step / (m * m);
-            sum += term;
-            m += 1.0;
-        }
-        return sum;
+        return bessel_power_series(x, 0.0, 1.0);
     }
     hankel_expansion(0.0, x, x - 0.25 * PI)
+}
+
+/// Σ_m a_m with a_0 = `first` and a_{m+1} = −a_m (x/2)²/((m + 1)(m + 1 + n)), n = `order`,
+/// summed until a term falls below 1e-18: J_n(x)/(x/2)^n·(first·n!) — J₀ with first = 1,
+/// J₁/x with ½, J₂ with x²/8 (Abramowitz & Stegun 9.1.10).
+pub(super) fn bessel_power_series(x: f64, order: f64, first: f64) -> f64 {
+    let step = -0.25 * x * x;
+    let (mut term, mut sum) = (first, first);
+    let mut m = 0.0f64;
+    while term.abs() > 1e-18 {
+        term *= step / ((m + 1.0) * (m + 1.0 + order));
+        sum += term;
+        m += 1.0;
+    }
+    sum
+}
+
+/// The denominator κ cosh 2s + 2s² + (1 + κ²)/2 (s = kt, κ = 3 − 4ν) shared by the bonded
+/// layer's normal, tangential and coupling compliances.
+pub(super) fn bonded_denominator(kt: f64, kappa: f64) -> f64 {
+    kappa * (2.0 * kt).cosh() + 2.0 * kt * kt + 0.5 * (1.0 + kappa * kappa)
 }
 
 /// Hankel's asymptotic expansion of J_n(x), μ = 4n², at the phase x − (n/2 + 1/4)π,
@@ -427,13 +452,7 @@ impl LayerOperator {
                 |wavenumber| layer.compliance_factor(wavenumber),
             )),
             Boundary::Free => {
-                let element = grid.dx().max(grid.dy());
-                if layer.thickness < element / 16.0 {
-                    return Err(LayerError::ThinnerThanElements {
-                        thickness: layer.thickness,
-                        element,
-                    });
-                }
+                layer.check_resolved(&grid)?;
                 let (nx, ny) = (grid.nx(), grid.ny());
                 let table = layer_coefficients(&grid, modulus, &layer);
                 // Row i of the 2Ny × 2Nx padded kernel: offsets m = i (i < Ny), −(2Ny − i)

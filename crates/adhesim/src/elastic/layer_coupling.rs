@@ -11,7 +11,9 @@
 
 use super::cerruti::ShearMaterial;
 use super::coupling::coupling_rectangle;
-use super::layer::{element_integrals, hankel_expansion, PointCorrection, SCREENED_KT};
+use super::layer::{
+    bessel_power_series, bonded_denominator, element_integrals, hankel_expansion, PointCorrection, SCREENED_KT,
+};
 use super::ElasticLayer;
 use crate::grid::Grid;
 use std::f64::consts::PI;
@@ -31,24 +33,14 @@ pub(super) fn layer_coupling_compliance(kt: f64, poisson_ratio: f64) -> f64 {
         return 0.0;
     }
     let kappa = 3.0 - 4.0 * poisson_ratio;
-    let denominator = kappa * (2.0 * kt).cosh() + 2.0 * kt * kt + 0.5 * (1.0 + kappa * kappa);
-    -(kt * kt - (1.0 - 2.0 * poisson_ratio) * kappa * kt.sinh().powi(2)) / denominator
+    -(kt * kt - (1.0 - 2.0 * poisson_ratio) * kappa * kt.sinh().powi(2)) / bonded_denominator(kt, kappa)
 }
 
 /// J₁(x)/x, even in x: its power series below x = 13 and Hankel's expansion (μ = 4) above.
 fn bessel_j1_over_x(x: f64) -> f64 {
     let x = x.abs();
     if x < 13.0 {
-        let step = -0.25 * x * x;
-        let mut term = 0.5f64;
-        let mut sum = term;
-        let mut m = 0.0f64;
-        while term.abs() > 1e-18 {
-            term *= step / ((m + 1.0) * (m + 2.0));
-            sum += term;
-            m += 1.0;
-        }
-        return sum;
+        return bessel_power_series(x, 1.0, 0.5);
     }
     hankel_expansion(4.0, x, x - 0.75 * PI) / x
 }

@@ -14,15 +14,13 @@
 //! a bonded base is taken.
 
 use super::cerruti::{cerruti_rectangle, CerrutiCoefficients, ShearMaterial};
-use super::layer::{bessel_j0, element_integrals, hankel_expansion, sinh_minus_argument, PointCorrection, SCREENED_KT};
+use super::layer::{
+    bessel_j0, bessel_power_series, bonded_denominator, element_integrals, hankel_expansion, sinh_minus_argument,
+    PointCorrection, SCREENED_KT,
+};
 use super::{ElasticLayer, LayerBase};
 use crate::grid::Grid;
 use std::f64::consts::PI;
-
-/// The layer's denominator κ cosh 2s + 2s² + (1 + κ²)/2, shared by all three factors.
-fn denominator(kt: f64, kappa: f64) -> f64 {
-    kappa * (2.0 * kt).cosh() + 2.0 * kt * kt + 0.5 * (1.0 + kappa * kappa)
-}
 
 /// The longitudinal tangential compliance of a layer of thickness t bonded to a rigid
 /// base over the half-space's (1 − ν)/(Gk), at s = kt (κ = 3 − 4ν):
@@ -53,7 +51,7 @@ pub fn layer_longitudinal_factor(kt: f64, poisson_ratio: f64) -> f64 {
     }
     let kappa = 3.0 - 4.0 * poisson_ratio;
     let double = 2.0 * kt;
-    (kappa * double.sinh() + double) / denominator(kt, kappa)
+    (kappa * double.sinh() + double) / bonded_denominator(kt, kappa)
 }
 
 /// The transverse (antiplane) tangential compliance of a layer of thickness t bonded to a
@@ -117,16 +115,7 @@ pub(super) fn layer_shear_multiplier(qx: f64, qy: f64, thickness: f64, poisson_r
 pub(super) fn bessel_j2(x: f64) -> f64 {
     let x = x.abs();
     if x < 13.0 {
-        let step = -0.25 * x * x;
-        let mut term = 0.125 * x * x;
-        let mut sum = term;
-        let mut m = 0.0f64;
-        while term.abs() > 1e-18 {
-            term *= step / ((m + 1.0) * (m + 3.0));
-            sum += term;
-            m += 1.0;
-        }
-        return sum;
+        return bessel_power_series(x, 2.0, 0.125 * x * x);
     }
     hankel_expansion(16.0, x, x - 1.25 * PI)
 }

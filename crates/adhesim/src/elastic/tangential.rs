@@ -109,15 +109,7 @@ pub(super) fn check_layer(
             material: material.poisson_ratio,
         });
     }
-    let element = grid.dx().max(grid.dy());
-    if grid.boundary() == Boundary::Free && layer.thickness() < element / 16.0 {
-        return Err(LayerError::ThinnerThanElements {
-            thickness: layer.thickness(),
-            element,
-        }
-        .into());
-    }
-    Ok(())
+    Ok(layer.check_resolved(grid)?)
 }
 
 /// The signed offset in elements of index `i` of a 2n-periodic padded axis (DC-FFT); the
