@@ -14,6 +14,7 @@ mod force_control;
 mod protocol_keys;
 
 use force_control::shift_or_force;
+pub(crate) use protocol_keys::mixity_keys;
 use protocol_keys::{approach_depths, approach_steps, coupled, incline, layer_shear, mode_mixity};
 
 impl ValidScenario {
@@ -168,13 +169,13 @@ impl ScenarioFile {
         let Some(friction) = &self.friction else {
             return Ok(None);
         };
-        if let Some(mixity) = friction.mode_mixity.filter(|&m| m != 0.0) {
+        if let Some((key, mixity)) = mixity_keys(friction).find(|&(_, m)| m != 0.0) {
             bail!(ScenarioError::invalid_as(
-                "friction.mode_mixity",
+                key,
                 mixity,
                 "absent with a roll, slide or translate",
                 format!(
-                    "friction.mode_mixity weakens the adhesive edge under protocol.kind = \"shear\" only, got {mixity} with \"{}\"",
+                    "{key} weakens the adhesive edge under protocol.kind = \"shear\" only, got {mixity} with \"{}\"",
                     self.protocol.kind().name()
                 )
             ));

@@ -9,6 +9,7 @@ use crate::common;
 mod coupled;
 mod force_control;
 mod layer;
+mod mixity;
 mod press;
 mod shear;
 use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};

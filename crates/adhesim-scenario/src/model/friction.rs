@@ -28,6 +28,14 @@ pub struct FrictionSection {
     /// Share m ∈ [0, 1] of the shear energy that weakens the adhesive edge (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode_mixity: Option<f64>,
+    /// m of the shear across the edge where it points out of the contact (the front of a
+    /// slide; default `mode_mixity`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_mixity_front: Option<f64>,
+    /// m of the shear across the edge where it points into the contact (the rear; default
+    /// `mode_mixity`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_mixity_rear: Option<f64>,
 }
 
 /// `friction.law`.

@@ -63,9 +63,9 @@ pub(super) fn shift_or_force(
             "force control holds the normal problem fixed, which an inclined path changes at each step",
         )?;
     }
-    if friction.mode_mixity.is_some_and(|m| m != 0.0) {
+    if let Some((key, _)) = super::mixity_keys(friction).find(|&(_, m)| m != 0.0) {
         refuse(
-            "friction.mode_mixity",
+            key,
             "force control holds the normal problem fixed, which a weakened edge changes at each step",
         )?;
     }

@@ -6,6 +6,7 @@ use crate::error::ScenarioError;
 use crate::guards::step_count;
 use crate::model::*;
 use crate::validated::DEFAULT_APPROACH_STEPS;
+use adhesim::protocol::ModeMixity;
 use adhesim::{ElasticLayer, LayerBase};
 use anyhow::{bail, Result};
 
@@ -22,29 +23,46 @@ pub(super) fn incline(degrees: Option<f64>) -> Result<f64> {
     Ok(degrees.to_radians())
 }
 
-/// `friction.mode_mixity` (default 0): in [0, 1], and above 0 only where there is an
-/// adhesive edge to weaken.
-pub(super) fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<f64> {
-    let Some(value) = section.mode_mixity else {
-        return Ok(0.0);
+/// `friction.mode_mixity` (default 0) and its front and rear values
+/// (`friction.mode_mixity_front`, `friction.mode_mixity_rear`, default `mode_mixity`): each
+/// in [0, 1], and above 0 only where there is an adhesive edge to weaken.
+pub(super) fn mode_mixity(section: &FrictionSection, work_of_adhesion: f64) -> Result<ModeMixity> {
+    let along = section.mode_mixity.unwrap_or(0.0);
+    let mixity = ModeMixity {
+        along,
+        front: section.mode_mixity_front.unwrap_or(along),
+        rear: section.mode_mixity_rear.unwrap_or(along),
     };
-    if !(0.0..=1.0).contains(&value) {
-        bail!(ScenarioError::invalid("friction.mode_mixity", value, "in [0, 1]"));
+    for (key, value) in mixity_keys(section) {
+        if !(0.0..=1.0).contains(&value) {
+            bail!(ScenarioError::invalid(key, value, "in [0, 1]"));
+        }
+        if value > 0.0 && work_of_adhesion <= 0.0 {
+            bail!(ScenarioError::invalid_as(
+                key,
+                value,
+                "0 without adhesion",
+                format!("{key} = {value} weakens an adhesive edge, but adhesion.work_of_adhesion is 0: give a work of adhesion or drop {key}")
+            ));
+        }
     }
-    if value > 0.0 && work_of_adhesion <= 0.0 {
-        bail!(ScenarioError::invalid_as(
-            "friction.mode_mixity",
-            value,
-            "0 without adhesion",
-            format!("friction.mode_mixity = {value} weakens an adhesive edge, but adhesion.work_of_adhesion is 0: give a work of adhesion or drop friction.mode_mixity")
-        ));
-    }
-    Ok(value)
+    Ok(mixity)
+}
+
+/// The mode mixity keys given, with their values.
+pub(crate) fn mixity_keys(section: &FrictionSection) -> impl Iterator<Item = (&'static str, f64)> {
+    [
+        ("friction.mode_mixity", section.mode_mixity),
+        ("friction.mode_mixity_front", section.mode_mixity_front),
+        ("friction.mode_mixity_rear", section.mode_mixity_rear),
+    ]
+    .into_iter()
+    .filter_map(|(key, value)| value.map(|value| (key, value)))
 }
 
 /// `friction.coupling = "full"` (the coupled operator of a half-space or a layer), with
 /// what it does not combine with yet refused by name.
-pub(super) fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: f64) -> Result<bool> {
+pub(super) fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: ModeMixity) -> Result<bool> {
     if section.coupling != Some(CouplingName::Full) {
         return Ok(false);
     }
@@ -57,7 +75,7 @@ pub(super) fn coupled(section: &FrictionSection, force_control: bool, mode_mixit
             "friction.coupling = \"full\" changes the normal problem at every step, and an imposed tangential force (protocol.tangential_force) holds it fixed: impose protocol.distance, or use coupling = \"none\"",
         );
     }
-    if mode_mixity > 0.0 {
+    if mode_mixity.weakens() {
         return refuse(
             "\"none\" with friction.mode_mixity > 0",
             "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",

@@ -11,7 +11,7 @@ mod translation;
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{AgingLaw, Hold, IndentPulloff, ProtocolSummary};
 pub use shear::{
-    contact_split, element_energy_ratio, shear_weakened_critical_stress, Shear, ShearFields, ShearSummary,
+    contact_split, element_energy_ratio, shear_weakened_critical_stress, ModeMixity, Shear, ShearFields, ShearSummary,
     TangentialForce,
 };
 pub use stepper::NormalStepper;

@@ -7,6 +7,7 @@
 //! Ŝ_GG y = e_v, Ŝ the lattice inverse of the discrete Love operator (scale free: only
 //! ratios of Ŝ enter, so Δ = E* = 1 here).
 
+use super::dense::{cholesky_factorise, cholesky_solve, Summation};
 use super::shape_cache::ShapeCache;
 use crate::elastic::influence::love_coefficient;
 use crate::elastic::planner;
@@ -145,11 +146,14 @@ impl LocalPeel {
                 self.matrix.push(self.inverse.at(ri - rj, ci - cj));
             }
         }
-        cholesky_in_place(&mut self.matrix, size);
         self.solution.clear();
         self.solution.resize(size, 0.0);
-        self.solution[0] = 1.0;
-        cholesky_solve(&self.matrix, size, &mut self.solution);
+        // Ŝ_GG is a principal block of the SPD lattice inverse; should rounding make it
+        // indefinite, the solution stays 0, whose rises (none) are still lower bounds.
+        if cholesky_factorise(&mut self.matrix, size, Summation::InOrder).is_ok() {
+            self.solution[0] = 1.0;
+            cholesky_solve(&self.matrix, size, &mut self.solution, Summation::InOrder);
+        }
         self.solved.store(&self.solution);
     }
 
@@ -212,43 +216,6 @@ impl LocalPeel {
             .map(|(&(r, c), y)| self.inverse.at(element.0 - r, element.1 - c) * y)
             .sum();
         (-sum * SAFETY).max(0.0)
-    }
-}
-
-/// Lower-triangular Cholesky factor of the SPD size×size row-major `a`, in place.
-fn cholesky_in_place(a: &mut [f64], size: usize) {
-    for j in 0..size {
-        let mut diagonal = a[j * size + j];
-        for k in 0..j {
-            diagonal -= a[j * size + k] * a[j * size + k];
-        }
-        let diagonal = diagonal.sqrt();
-        a[j * size + j] = diagonal;
-        for i in j + 1..size {
-            let mut value = a[i * size + j];
-            for k in 0..j {
-                value -= a[i * size + k] * a[j * size + k];
-            }
-            a[i * size + j] = value / diagonal;
-        }
-    }
-}
-
-/// Solves L Lᵀ x = b for the factor from [`cholesky_in_place`]; `x` holds b on entry.
-fn cholesky_solve(factor: &[f64], size: usize, x: &mut [f64]) {
-    for i in 0..size {
-        let mut value = x[i];
-        for k in 0..i {
-            value -= factor[i * size + k] * x[k];
-        }
-        x[i] = value / factor[i * size + i];
-    }
-    for i in (0..size).rev() {
-        let mut value = x[i];
-        for k in i + 1..size {
-            value -= factor[k * size + i] * x[k];
-        }
-        x[i] = value / factor[i * size + i];
     }
 }
 
@@ -369,10 +336,10 @@ mod tests {
                 matrix.push(love_coefficient(ci - cj, ri - rj, 1.0, 1.0));
             }
         }
-        cholesky_in_place(&mut matrix, size);
+        cholesky_factorise(&mut matrix, size, Summation::InOrder).unwrap();
         let mut column = vec![0.0; size];
         column[position] = 1.0;
-        cholesky_solve(&matrix, size, &mut column);
+        cholesky_solve(&matrix, size, &mut column, Summation::InOrder);
         let exact = |k: usize| -column[set.iter().position(|&j| j == k).unwrap()] / column[position];
 
         let mut peel = LocalPeel::new(n * n);

@@ -10,6 +10,7 @@ mod ccg;
 mod certificate;
 mod cohesive;
 mod contact_window;
+mod dense;
 mod local_peel;
 mod nested;
 mod peel_predictor;

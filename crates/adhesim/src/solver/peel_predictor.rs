@@ -9,7 +9,7 @@
 //! enter). It is a prediction, not a bound: the solver verifies every predicted subset with
 //! a solve, so the window's size and shape decide the work, never the result.
 
-use super::dot;
+use super::dense::{cholesky_factorise, cholesky_solve, Summation};
 use super::shape_cache::{window_shape, Shape, ShapeCache};
 use crate::elastic::influence::love_coefficient;
 use rayon::prelude::*;
@@ -281,37 +281,11 @@ fn solve_rises(kernel: &[f64], window: &[(i64, i64)], centre: (i64, i64), matrix
         }
         rises.push(kernel_at(kernel, ri - centre.0, ci - centre.1));
     }
-    if size > 0 {
-        factorise(matrix, size);
-        substitute(matrix, size, rises);
-    }
-}
-
-/// Cholesky factor L (lower triangle, row-major, in place) of the SPD size×size `a`, whose
-/// lower triangle is read. Rows are contiguous, so every inner product is a slice `dot`.
-fn factorise(a: &mut [f64], size: usize) {
-    for j in 0..size {
-        let (row_j, below) = a[j * size..].split_at_mut(size);
-        let diagonal = (row_j[j] - dot(&row_j[..j], &row_j[..j])).sqrt();
-        row_j[j] = diagonal;
-        for row_i in below.chunks_exact_mut(size) {
-            row_i[j] = (row_i[j] - dot(&row_i[..j], &row_j[..j])) / diagonal;
-        }
-    }
-}
-
-/// Solves L Lᵀ x = b for the factor of [`factorise`]; `x` holds b on entry.
-fn substitute(factor: &[f64], size: usize, x: &mut [f64]) {
-    for i in 0..size {
-        let row = &factor[i * size..i * size + i];
-        x[i] = (x[i] - dot(row, &x[..i])) / factor[i * size + i];
-    }
-    for i in (0..size).rev() {
-        let mut value = x[i];
-        for k in i + 1..size {
-            value -= factor[k * size + i] * x[k];
-        }
-        x[i] = value / factor[i * size + i];
+    // K_AA is a principal block of the SPD influence matrix; should rounding make it
+    // indefinite, the window predicts no rises (a prediction is a guess, checked later).
+    match cholesky_factorise(matrix, size, Summation::FourLanes) {
+        Ok(()) => cholesky_solve(matrix, size, rises, Summation::FourLanes),
+        Err(_) => rises.iter_mut().for_each(|rise| *rise = 0.0),
     }
 }
 

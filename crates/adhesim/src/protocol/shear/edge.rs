@@ -10,8 +10,10 @@
 //! (an element whose σ_c,eff reaches 0 detaches at any tension). Averaged over the edge of
 //! a circular contact the tangential term is Savkoor & Briggs' mean mode II + III energy
 //! release rate (1977, Proc. R. Soc. A 356, 103), so m = 1 is their brittle criterion and
-//! m = 0 leaves the edge as it is (Johnson 1997, Proc. R. Soc. A 453, 163).
+//! m = 0 leaves the edge as it is (Johnson 1997, Proc. R. Soc. A 453, 163). m may differ
+//! with the side of the edge an element is on ([`ModeMixity`]).
 
+use super::mixity::{edge_normal, ModeMixity};
 use super::window::{ContactWindow, TangentialRoom};
 use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::ElasticOperator;
@@ -76,7 +78,7 @@ pub(super) struct WeakenedStep {
 
 /// The shear-weakened detachment rule across the shift steps of a run.
 pub(super) struct EdgeWeakening {
-    mode_mixity: f64,
+    mode_mixity: ModeMixity,
     energy_ratio: f64,
     /// σ_c per element without shear.
     base: Vec<f64>,
@@ -92,7 +94,7 @@ impl EdgeWeakening {
     pub(super) fn new(
         solver: &AdhesiveSolver,
         material: ShearMaterial,
-        mode_mixity: f64,
+        mode_mixity: ModeMixity,
         window: &ContactWindow,
     ) -> Self {
         let base = solver.critical_stresses().to_vec();
@@ -184,8 +186,17 @@ impl EdgeWeakening {
             if !self.window_state.contact[w] {
                 continue;
             }
-            let traction = state.traction[0][w].hypot(state.traction[1][w]);
-            let sigma = shear_weakened_critical_stress(self.base[k], traction, self.mode_mixity, self.energy_ratio);
+            let traction = [state.traction[0][w], state.traction[1][w]];
+            let sigma = if self.mode_mixity.is_uniform() {
+                let magnitude = traction[0].hypot(traction[1]);
+                shear_weakened_critical_stress(self.base[k], magnitude, self.mode_mixity.along, self.energy_ratio)
+            } else {
+                let normal = edge_normal(&window.grid, &self.window_state.contact, w);
+                let counted = self.mode_mixity.counted_square(traction, normal);
+                (self.base[k] * self.base[k] - self.energy_ratio * counted)
+                    .max(0.0)
+                    .sqrt()
+            };
             self.weakened[k] = self.weakened[k].min(sigma);
         }
     }

@@ -4,11 +4,13 @@
 mod approach;
 mod coupled;
 mod edge;
+mod mixity;
 mod shift;
 mod sliding;
 mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
+pub use mixity::ModeMixity;
 pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
@@ -60,9 +62,9 @@ pub struct Shear {
     /// `tan(incline)` into the body per unit of shift (out of it below 0; 0 keeps the depth).
     pub incline: f64,
     /// Share m ∈ [0, 1] of an element's shear energy that counts toward its detachment
-    /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion). Above 0
-    /// it needs the JKR-type adhesive solver.
-    pub mode_mixity: f64,
+    /// (0: the edge does not feel the shear; 1: Savkoor–Briggs' brittle criterion), by the
+    /// side of the edge the element is on. Above 0 it needs the JKR-type adhesive solver.
+    pub mode_mixity: ModeMixity,
     /// Force control: the tangential force along `direction` is imposed, and `distance` is
     /// not used. None: the shift is imposed.
     pub force_control: Option<TangentialForce>,
@@ -328,8 +330,10 @@ impl Shear {
                 self.incline
             ));
         }
-        if !(0.0..=1.0).contains(&self.mode_mixity) {
-            return invalid(format!("mode_mixity ({}) must lie in [0, 1]", self.mode_mixity));
+        for (side, mixity) in self.mode_mixity.named() {
+            if !(0.0..=1.0).contains(&mixity) {
+                return invalid(format!("mode_mixity ({side}: {mixity}) must lie in [0, 1]"));
+            }
         }
         if let Some(force) = self.force_control {
             let (TangentialForce::Absolute(value) | TangentialForce::OfCapacity(value)) = force;
@@ -338,9 +342,9 @@ impl Shear {
                     "the imposed tangential force ({force:?}) must be finite, and as a share of what the interface holds below 1"
                 ));
             }
-            if self.incline != 0.0 || self.mode_mixity > 0.0 || self.coupled {
+            if self.incline != 0.0 || self.mode_mixity.weakens() || self.coupled {
                 return invalid(format!(
-                    "an imposed tangential force holds the normal problem fixed: it takes incline = 0, mode_mixity = 0 and no coupling (got {} rad, {} and coupled = {})",
+                    "an imposed tangential force holds the normal problem fixed: it takes incline = 0, mode_mixity = 0 and no coupling (got {} rad, {:?} and coupled = {})",
                     self.incline, self.mode_mixity, self.coupled
                 ));
             }

@@ -5,6 +5,7 @@
 
 use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide};
+use super::mixity::ModeMixity;
 use super::window::TangentialRoom;
 use crate::elastic::ShearBody;
 use crate::grid::Grid;
@@ -59,16 +60,16 @@ impl ShiftStepper {
         grid: &Grid,
         state: &ContactState,
         body: ShearBody,
-        mode_mixity: f64,
+        mode_mixity: ModeMixity,
         inclined: bool,
         coupled: bool,
         solver: &mut NormalSolver,
     ) -> Result<Self, ProtocolError> {
         let material = body.material;
         if coupled {
-            if mode_mixity > 0.0 {
+            if mode_mixity.weakens() {
                 return Err(ProtocolError::InvalidParameter(format!(
-                    "the coupled operator is not combined with a shear-weakened edge yet (mode_mixity = {mode_mixity}): use mode_mixity = 0 or coupling = \"none\""
+                    "the coupled operator is not combined with a shear-weakened edge yet (mode_mixity = {mode_mixity:?}): use mode_mixity = 0 or coupling = \"none\""
                 )));
             }
             // The room follows the contact as it grows from nothing in the approach.
@@ -79,10 +80,10 @@ impl ShiftStepper {
                 mode: NormalMode::Coupled(Box::new(Coupling::new(grid, body)?)),
             });
         }
-        let changes = mode_mixity > 0.0 || inclined;
+        let changes = mode_mixity.weakens() || inclined;
         let margin = if changes { MOVING_WINDOW_MARGIN } else { 0 };
         let room = TangentialRoom::new(grid, &state.contact, margin, body)?;
-        let mode = match (mode_mixity > 0.0, solver.as_adhesive_mut()) {
+        let mode = match (mode_mixity.weakens(), solver.as_adhesive_mut()) {
             (true, Some(adhesive)) => NormalMode::Weakened(Box::new(EdgeWeakening::new(
                 adhesive,
                 material,
@@ -91,7 +92,7 @@ impl ShiftStepper {
             ))),
             (true, None) => {
                 return Err(ProtocolError::InvalidParameter(format!(
-                    "mode_mixity ({mode_mixity}) weakens an adhesive edge: it needs the JKR-type adhesive solver"
+                    "mode_mixity ({mode_mixity:?}) weakens an adhesive edge: it needs the JKR-type adhesive solver"
                 )))
             }
             (false, _) if inclined => NormalMode::Moving,

@@ -26,6 +26,7 @@
 
 use super::{CohesiveSolver, Interface};
 use crate::elastic::ElasticOperator;
+use crate::solver::dense::{cholesky_factorise, cholesky_solve, Summation};
 use crate::solver::{ContactState, SolveError, StepReport};
 use std::collections::VecDeque;
 
@@ -91,53 +92,16 @@ impl History {
         for i in 0..m {
             matrix[i * m + i] += shift;
         }
-        let Some(coefficients) = solve_symmetric(&mut matrix, &mut rhs, m) else {
+        if cholesky_factorise(&mut matrix, m, Summation::InOrder).is_err() {
             return;
-        };
-        for (c, change) in coefficients.iter().zip(&self.image_changes) {
+        }
+        cholesky_solve(&matrix, m, &mut rhs, Summation::InOrder);
+        for (c, change) in rhs.iter().zip(&self.image_changes) {
             for (o, d) in out.iter_mut().zip(change) {
                 *o -= c * d;
             }
         }
     }
-}
-
-/// Solves the symmetric positive definite m×m system in place by Cholesky; None if it is not
-/// numerically positive definite.
-fn solve_symmetric(matrix: &mut [f64], rhs: &mut [f64], m: usize) -> Option<Vec<f64>> {
-    for j in 0..m {
-        let mut d = matrix[j * m + j];
-        for k in 0..j {
-            d -= matrix[j * m + k] * matrix[j * m + k];
-        }
-        if d.is_nan() || d <= 0.0 {
-            return None;
-        }
-        let d = d.sqrt();
-        matrix[j * m + j] = d;
-        for i in j + 1..m {
-            let mut s = matrix[i * m + j];
-            for k in 0..j {
-                s -= matrix[i * m + k] * matrix[j * m + k];
-            }
-            matrix[i * m + j] = s / d;
-        }
-    }
-    for i in 0..m {
-        let mut s = rhs[i];
-        for k in 0..i {
-            s -= matrix[i * m + k] * rhs[k];
-        }
-        rhs[i] = s / matrix[i * m + i];
-    }
-    for i in (0..m).rev() {
-        let mut s = rhs[i];
-        for k in i + 1..m {
-            s -= matrix[k * m + i] * rhs[k];
-        }
-        rhs[i] = s / matrix[i * m + i];
-    }
-    Some(rhs.to_vec())
 }
 
 /// The Euclidean norm.
