@@ -82,11 +82,13 @@ fn combinations_not_implemented_on_a_layer_are_refused() {
         "{}[protocol]\nkind = \"roll\"\ndepth = 0.01\ndepth_unit = \"length\"\ndistance = 0.1\nsteps = 4\n",
         &LAYER[..protocol]
     );
-    let error = error_of(&roll, &[]);
-    assert!(
-        error.contains("is not implemented on a layer (material.thickness)"),
-        "{error}"
-    );
+    // A roll on a layer validates; with friction, a frictionless base is refused (the
+    // layer would slide on it).
+    load(&roll, "roll", std::path::Path::new("."), &[]).unwrap();
+    let frictional = format!("{roll}[friction]\nlaw = \"coulomb\"\ncoefficient = 0.3\n");
+    load(&frictional, "roll", std::path::Path::new("."), &[]).unwrap();
+    let error = error_of(&frictional, &["material.base=\"frictionless\""]);
+    assert!(error.contains("material.base") && error.contains("slides"), "{error}");
 }
 
 #[test]

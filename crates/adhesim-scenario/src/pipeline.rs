@@ -334,7 +334,10 @@ pub fn run_from(
                     &setup.contact,
                     &mut solver,
                     (
-                        friction.material,
+                        ShearBody {
+                            material: friction.material,
+                            layer: scenario.layer,
+                        },
                         &mut tangential_solver(friction.law, friction.static_law, None)?,
                     ),
                     &mut recording,

@@ -14,8 +14,8 @@ mod force_control;
 mod protocol_keys;
 
 use force_control::shift_or_force;
-pub(crate) use protocol_keys::mixity_keys;
-use protocol_keys::{approach_depths, approach_steps, coupled, incline, layer_shear, mode_mixity};
+use protocol_keys::{approach_depths, approach_steps, coupled, incline, mode_mixity};
+pub(crate) use protocol_keys::{layer_shear, mixity_keys};
 
 impl ValidScenario {
     /// The interface carries friction: a shear, or a roll, slide or translate with

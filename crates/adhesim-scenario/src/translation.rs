@@ -84,6 +84,9 @@ impl ScenarioFile {
         }
         let (gammas, tau0) = analysis_inputs(&self.analysis)?;
         let friction = self.interface_friction(material.contact_modulus())?;
+        if let (Some(_), Some(layer)) = (&friction, &layer) {
+            crate::shear::layer_shear(layer)?;
+        }
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let protocol = Translation {
             start_depth,

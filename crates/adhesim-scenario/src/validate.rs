@@ -20,24 +20,13 @@ use anyhow::{bail, Result};
 use std::path::Path;
 
 impl ScenarioFile {
-    /// A layer (`material.thickness`) runs an indentation or a shear, without adhesion or
-    /// with the JKR-type rule: a cohesive law's tractions across gaps are the half-space's
-    /// (docs/physics.md §9); the shear's limits on a layer are checked with `[friction]`. The JKR-type solver runs its reference
-    /// rule there (full solves, no local replays: the certificates and local rules are
-    /// derived for the half-space's kernel), so `solver.predicted_growth` does not apply.
+    /// A layer (`material.thickness`) runs every protocol, without adhesion or with the
+    /// JKR-type rule: a cohesive law's tractions across gaps are the half-space's
+    /// (docs/physics.md §9); friction's limits on a layer are checked with `[friction]`. The
+    /// JKR-type solver runs its reference rule there (full solves, no local replays: the
+    /// certificates and local rules are derived for the half-space's kernel), so
+    /// `solver.predicted_growth` does not apply.
     fn check_layer_pairing(&self) -> Result<()> {
-        let kind = self.protocol.kind();
-        if !matches!(kind, ProtocolKind::IndentPulloff | ProtocolKind::Shear) {
-            bail!(ScenarioError::invalid_as(
-                "protocol.kind",
-                format!("\"{}\"", kind.name()),
-                "\"indent_pulloff\" or \"shear\" with material.thickness",
-                format!(
-                    "protocol.kind = \"{}\" is not implemented on a layer (material.thickness): only \"indent_pulloff\" and \"shear\" are",
-                    kind.name()
-                )
-            ));
-        }
         let law = self.adhesion.law.unwrap_or_default();
         if law != LawName::Jkr {
             bail!(ScenarioError::invalid_as(

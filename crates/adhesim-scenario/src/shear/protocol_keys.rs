@@ -136,15 +136,16 @@ pub(super) fn approach_steps(p: &ShearProtocol, pressed: bool) -> Result<usize> 
     Ok(approach_steps)
 }
 
-/// A shear on a layer: bonded to its base (a frictionless base lets it slide). A
-/// shear-weakened edge uses the half-space element's energy ratio, as the JKR-type rule uses
-/// its detachment stress: the layer's near field is the half-space's to O(Δ/t).
-pub(super) fn layer_shear(layer: &ElasticLayer) -> Result<()> {
+/// Friction on a layer (a shear, or `[friction]` with a roll, slide or translate): bonded to
+/// its base (a frictionless base lets it slide). A shear-weakened edge uses the half-space
+/// element's energy ratio, as the JKR-type rule uses its detachment stress: the layer's near
+/// field is the half-space's to O(Δ/t).
+pub(crate) fn layer_shear(layer: &ElasticLayer) -> Result<()> {
     if layer.base() == LayerBase::Frictionless {
         bail!(ScenarioError::invalid_as(
             "material.base",
             "\"frictionless\"",
-            "\"bonded\" with protocol.kind = \"shear\"",
+            "\"bonded\" with [friction]",
             "a layer on a frictionless base slides on it under a tangential load: use material.base = \"bonded\""
         ));
     }

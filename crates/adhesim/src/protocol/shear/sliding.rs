@@ -3,8 +3,7 @@
 
 use super::window::TangentialRoom;
 use super::{contact_split_about, worst, ShearFields};
-use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::ElasticOperator;
+use crate::elastic::{ElasticOperator, ShearBody};
 use crate::geometry::{Kinematics, TranslatingContact};
 use crate::grid::Grid;
 use crate::protocol::translation::stationary_means;
@@ -23,7 +22,7 @@ const TRAVEL_MARGIN: usize = 8;
 /// run has summed.
 struct Interface<'a> {
     grid: Grid,
-    material: ShearMaterial,
+    body: ShearBody,
     friction: &'a mut TangentialSolver,
     room: Option<TangentialRoom>,
     window_state: ContactState,
@@ -57,7 +56,7 @@ impl Interface<'_> {
                     &self.grid,
                     &state.contact,
                     TRAVEL_MARGIN,
-                    self.material.into(),
+                    self.body,
                 )?);
                 0
             }
@@ -92,13 +91,14 @@ impl Translation {
     /// sticks where it touches. The step's tangential force is the boundary force of the
     /// normal problem plus the interface's Δ²Σq_x; the energy balance counts friction's
     /// dissipation. Offers no checkpoints. The normal problem does not see the shear
-    /// (Goodman's approximation).
+    /// (Goodman's approximation). The tangential operator is `body`'s: a half-space, or the
+    /// layer whose normal operator `operator` is.
     pub fn run_with_friction(
         &self,
         operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
         solver: &mut NormalSolver,
-        (material, friction): (ShearMaterial, &mut TangentialSolver),
+        (body, friction): (ShearBody, &mut TangentialSolver),
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
@@ -119,7 +119,7 @@ impl Translation {
         };
         let mut interface = Interface {
             grid,
-            material,
+            body,
             friction,
             room: None,
             window_state: ContactState::new(&grid),
