@@ -14,7 +14,8 @@ mod roughness;
 mod solver;
 pub use adhesion::{AdhesionSection, AgingLawName, AgingSection, LawName};
 pub use friction::{
-    CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, ShearProtocol, ShearSetup, TangentialForceUnit,
+    CouplingName, FrictionLawName, FrictionSection, InterfaceFriction, NormalControl, ShearProtocol, ShearSetup,
+    TangentialForceUnit,
 };
 pub use law::AdhesionLaw;
 pub use layer::LayerBaseName;

@@ -14,7 +14,7 @@ mod force_control;
 mod protocol_keys;
 
 use force_control::shift_or_force;
-use protocol_keys::{approach_depths, approach_steps, coupled, incline, mode_mixity};
+use protocol_keys::{approach_depths, approach_steps, coupled, incline, mode_mixity, normal_control};
 pub(crate) use protocol_keys::{layer_shear, mixity_keys};
 
 impl ValidScenario {
@@ -118,6 +118,7 @@ impl ScenarioFile {
             mode_mixity,
             force_control,
             coupled,
+            hold_normal_force: normal_control(p, coupled)?,
         };
         if protocol.shift_steps() > MAX_STEPS {
             bail!(ScenarioError::invalid_as(

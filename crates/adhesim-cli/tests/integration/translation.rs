@@ -12,25 +12,12 @@ mod layer;
 mod mixity;
 mod press;
 mod shear;
-use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, stderr, write};
+use common::{adhesim, assert_fails_with, column, read_csv, read_json, repo, run_with_sets, stderr, write};
 
 /// Runs a scenario file of the repository with overrides; returns (out dir, summary).
 fn run_scenario(dir: &Path, name: &str, sets: &[&str]) -> (PathBuf, serde_json::Value) {
     let out = dir.join(name.replace(".toml", ""));
-    let scenario = repo().join("scenarios").join(name);
-    let mut args = vec![
-        "run".to_string(),
-        scenario.display().to_string(),
-        "--out".into(),
-        out.display().to_string(),
-        "--quiet".into(),
-    ];
-    for s in sets {
-        args.push("--set".into());
-        args.push(s.to_string());
-    }
-    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-    let output = adhesim(&refs);
+    let output = run_with_sets(&repo().join("scenarios").join(name), &out, sets);
     assert!(output.status.success(), "{name}: {}", stderr(&output));
     let summary = read_json(&out.join("summary.json"));
     (out, summary)
@@ -128,16 +115,8 @@ fn slide_run_evaluates_the_friction_law() {
 }
 
 fn fails(sets: &[&str], base: &str) -> Output {
-    let scenario = repo().join("scenarios").join(base);
-    let mut args = vec!["run".to_string(), scenario.display().to_string(), "--quiet".into()];
     let dir = tempfile::tempdir().unwrap();
-    args.extend(["--out".into(), dir.path().join("x").display().to_string()]);
-    for s in sets {
-        args.push("--set".into());
-        args.push(s.to_string());
-    }
-    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-    adhesim(&refs)
+    run_with_sets(&repo().join("scenarios").join(base), &dir.path().join("x"), sets)
 }
 
 #[test]

@@ -117,6 +117,21 @@ pub struct ShearProtocol {
     /// the end of the approach (μP, τ0·A).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential_force_unit: Option<TangentialForceUnit>,
+    /// What the shift holds: `"depth"` (default) or `"force"`, the normal force of the end
+    /// of the approach.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_control: Option<NormalControl>,
+}
+
+/// `protocol.normal_control` of a shear.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalControl {
+    /// The depth is held.
+    #[default]
+    Depth,
+    /// The normal force is held, the depth found at each step.
+    Force,
 }
 
 /// The unit of `protocol.tangential_force`.

@@ -239,6 +239,16 @@ pub enum ProtocolError {
         /// Rounds done.
         rounds: usize,
     },
+    /// No depth held the normal force under normal-force control.
+    #[error("step {step}: no depth held the normal force {force:e} after {trials} trial depths (protocol.normal_control = \"force\"); use protocol.normal_control = \"depth\" or smaller steps")]
+    NormalForceNotHeld {
+        /// Step at which it failed.
+        step: usize,
+        /// The force held.
+        force: f64,
+        /// Trials done.
+        trials: usize,
+    },
     /// The rounds of normal and tangential solves of the coupled operator did not meet.
     #[error("step {step} (shift {shift:e}): the coupled normal and tangential solves did not converge in {rounds} rounds (last change {change:.3e} of the normal displacement the shear gives, tolerance {tolerance:.1e}{}); use friction.coupling = \"none\"", if *alternating { "; the contact set alternates between two sets" } else { "" })]
     CouplingNotConverged {

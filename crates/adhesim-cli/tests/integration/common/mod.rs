@@ -44,6 +44,28 @@ pub fn run_quiet(scenario: &Path, out: &Path, extra: &[&str]) -> Output {
     adhesim(&args)
 }
 
+/// Runs `adhesim run SCENARIO --out OUT --quiet --set S…`, one `--set` per override in
+/// `sets`, to the end.
+pub fn run_with_sets(scenario: &Path, out: &Path, sets: &[&str]) -> Output {
+    let mut extra = Vec::with_capacity(2 * sets.len());
+    for set in sets {
+        extra.extend(["--set", set]);
+    }
+    run_quiet(scenario, out, &extra)
+}
+
+/// [`run_with_sets`], which must succeed: curve.csv's header and rows.
+pub fn curve_with_sets(scenario: &Path, out: &Path, sets: &[&str]) -> (Vec<String>, Vec<Vec<String>>) {
+    let output = run_with_sets(scenario, out, sets);
+    assert!(
+        output.status.success(),
+        "{} {sets:?}: {}",
+        scenario.display(),
+        stderr(&output)
+    );
+    read_csv(&out.join("curve.csv"))
+}
+
 /// The command's stderr as text.
 pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()

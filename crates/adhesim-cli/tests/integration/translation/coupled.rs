@@ -2,19 +2,13 @@
 //! docs/tangential.md): the bonded punch against Mossakovskii's closed form, and the
 //! combinations refused by name. A module of the translation tests.
 
-use super::common::{assert_fails_with, column_values, read_csv, repo, run_quiet, stderr};
+use super::common::{assert_fails_with, column_values, curve_with_sets, repo, run_with_sets};
 
 /// The normal force at the end of the approach of scenarios/friction/bonded_punch.toml
 /// with the overrides `sets`.
 fn punch_force(dir: &std::path::Path, name: &str, sets: &[&str]) -> f64 {
     let out = dir.join(name);
-    let mut extra = Vec::new();
-    for set in sets {
-        extra.extend(["--set", set]);
-    }
-    let output = run_quiet(&repo().join("scenarios/friction/bonded_punch.toml"), &out, &extra);
-    assert!(output.status.success(), "{name}: {}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let (header, rows) = curve_with_sets(&repo().join("scenarios/friction/bonded_punch.toml"), &out, sets);
     let normal = column_values(&header, &rows, "force_normal");
     let approach = 4;
     assert!(rows.len() > approach, "{name}: {} rows", rows.len());
@@ -61,10 +55,10 @@ fn coupling_refuses_what_it_does_not_combine_with() {
         ("friction/slide_shear_strength.toml", "protocol.kind = \"shear\" only"),
     ] {
         let out = dir.path().join(scenario.replace(['/', '.'], "_"));
-        let output = run_quiet(
+        let output = run_with_sets(
             &repo().join("scenarios").join(scenario),
             &out,
-            &["--set", "friction.coupling=\"full\""],
+            &["friction.coupling=\"full\""],
         );
         assert_fails_with(&output, &["friction.coupling", meets]);
     }
@@ -78,15 +72,12 @@ fn an_alternating_contact_set_stops_the_run_with_its_reason() {
     // rather than the round limit, and keeps the steps done.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("alternating");
-    let output = run_quiet(
+    let output = run_with_sets(
         &repo().join("scenarios/friction/shear_strength.toml"),
         &out,
         &[
-            "--set",
             "material.poisson_ratio=0.3",
-            "--set",
             "material.youngs_modulus=2.6",
-            "--set",
             "friction.coupling=\"full\"",
         ],
     );

@@ -3,7 +3,7 @@
 //! layer, and what a layer does not combine with, refused by name. A module of the
 //! translation tests.
 
-use super::common::{assert_fails_with, column, column_values, read_csv, repo, run_quiet, stderr};
+use super::common::{assert_fails_with, column, column_values, curve_with_sets, repo, run_with_sets};
 use std::f64::consts::PI;
 
 /// The run's tangential force over the thin-layer (local) limit at the first shift step,
@@ -16,13 +16,8 @@ fn over_local_limit(dir: &std::path::Path, thickness: f64, distance: f64) -> (f6
         format!("material.thickness={thickness}"),
         format!("protocol.distance={distance}"),
     ];
-    let mut extra = Vec::new();
-    for set in &sets {
-        extra.extend(["--set", set.as_str()]);
-    }
-    let output = run_quiet(&repo().join("scenarios/layer/thin_sphere_shear.toml"), &out, &extra);
-    assert!(output.status.success(), "t = {thickness}: {}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let (header, rows) = curve_with_sets(&repo().join("scenarios/layer/thin_sphere_shear.toml"), &out, &sets);
     let phase = column(&header, &rows, "phase");
     let shift = column_values(&header, &rows, "x");
     let normal = column_values(&header, &rows, "force_normal");
@@ -78,10 +73,10 @@ fn thin_layer_under_shear_tends_to_local_shear() {
 fn a_layer_on_a_frictionless_base_refuses_a_shear() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = repo().join("scenarios/layer/thin_sphere_shear.toml");
-    let output = run_quiet(
+    let output = run_with_sets(
         &scenario,
         &dir.path().join("refused"),
-        &["--set", "material.base=\"frictionless\""],
+        &["material.base=\"frictionless\""],
     );
     assert_fails_with(&output, &["material.base", "slides"]);
 }
@@ -96,17 +91,8 @@ fn punch_on_layer(dir: &std::path::Path, thickness: f64, coupling: &str) -> f64 
         format!("material.thickness={thickness}"),
         format!("friction.coupling=\"{coupling}\""),
     ];
-    let mut extra = Vec::new();
-    for set in &sets {
-        extra.extend(["--set", set.as_str()]);
-    }
-    let output = run_quiet(&repo().join("scenarios/friction/bonded_punch.toml"), &out, &extra);
-    assert!(
-        output.status.success(),
-        "{coupling}, t = {thickness}: {}",
-        stderr(&output)
-    );
-    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let (header, rows) = curve_with_sets(&repo().join("scenarios/friction/bonded_punch.toml"), &out, &sets);
     let phase = column(&header, &rows, "phase");
     let normal = column_values(&header, &rows, "force_normal");
     let last_approach = phase.iter().rposition(|p| p == "approach").unwrap();
@@ -151,9 +137,7 @@ fn rubber_layer_coupling_moves_the_sheared_contact_forward() {
     for coupling in ["full", "none"] {
         let out = dir.path().join(coupling);
         let set = format!("friction.coupling=\"{coupling}\"");
-        let output = run_quiet(&scenario, &out, &["--set", "grid.n=64", "--set", &set]);
-        assert!(output.status.success(), "{coupling}: {}", stderr(&output));
-        let (header, rows) = read_csv(&out.join("curve.csv"));
+        let (header, rows) = curve_with_sets(&scenario, &out, &["grid.n=64", &set]);
         let phase = column(&header, &rows, "phase");
         let front = column_values(&header, &rows, "area_front");
         let rear = column_values(&header, &rows, "area_rear");
@@ -200,13 +184,8 @@ fn a_shear_weakened_edge_shrinks_the_contact_held_by_adhesion_on_the_layer() {
             "protocol.approach_steps=40".to_string(),
             format!("friction.mode_mixity={mixity}"),
         ];
-        let mut extra = Vec::new();
-        for set in &sets {
-            extra.extend(["--set", set.as_str()]);
-        }
-        let output = run_quiet(&scenario, &out, &extra);
-        assert!(output.status.success(), "mode mixity {mixity}: {}", stderr(&output));
-        let (header, rows) = read_csv(&out.join("curve.csv"));
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        let (header, rows) = curve_with_sets(&scenario, &out, &sets);
         let phase = column(&header, &rows, "phase");
         let area = column_values(&header, &rows, "area");
         let tangential = column_values(&header, &rows, "force_tangential");
@@ -228,17 +207,13 @@ fn a_shear_weakened_edge_shrinks_the_contact_held_by_adhesion_on_the_layer() {
 /// at 64² with `extra` overrides.
 fn slide_rows(dir: &std::path::Path, name: &str, extra: &[&str]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let out = dir.join(name);
-    let mut args = vec!["--set", "grid.n=64", "--set", "protocol.steps=30"];
-    for set in extra {
-        args.extend(["--set", set]);
-    }
-    let output = run_quiet(
+    let mut sets = vec!["grid.n=64", "protocol.steps=30"];
+    sets.extend_from_slice(extra);
+    let (header, rows) = curve_with_sets(
         &repo().join("scenarios/friction/slide_shear_strength.toml"),
         &out,
-        &args,
+        &sets,
     );
-    assert!(output.status.success(), "{name}: {}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("curve.csv"));
     let values = |name| column_values(&header, &rows, name);
     (values("n_contact"), values("force_tangential"), values("area"))
 }

@@ -2,7 +2,7 @@
 //! (`friction.mode_mixity_front`, `friction.mode_mixity_rear`; docs/physics.md §8.5). A
 //! module of the translation tests.
 
-use super::common::{assert_fails_with, column_values, read_csv, repo};
+use super::common::{assert_fails_with, column_values, read_csv, repo, run_with_sets};
 use super::run_scenario;
 
 /// (n_contact, area_front, area_rear) per row of a run of the glued adhesive sphere.
@@ -55,18 +55,7 @@ fn a_front_weakened_edge_loses_the_front_and_its_mirror_the_rear() {
 fn mode_mixity_sides_name_their_keys() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = repo().join("scenarios/friction/adhesive_shear.toml");
-    let run = |sets: &[&str]| {
-        let mut args = vec!["run", scenario.to_str().unwrap(), "--out"];
-        let out = dir.path().join("out");
-        let out = out.to_str().unwrap().to_string();
-        let mut owned = vec![out];
-        for set in sets {
-            owned.push("--set".into());
-            owned.push(set.to_string());
-        }
-        args.extend(owned.iter().map(String::as_str));
-        super::common::adhesim(&args)
-    };
+    let run = |sets: &[&str]| run_with_sets(&scenario, &dir.path().join("out"), sets);
     assert_fails_with(
         &run(&["friction.mode_mixity_front=1.5"]),
         &["friction.mode_mixity_front", "1.5", "[0, 1]"],
@@ -86,5 +75,21 @@ fn mode_mixity_sides_name_their_keys() {
             "friction.coupling=\"full\"",
         ]),
         &["friction.coupling", "mode_mixity"],
+    );
+}
+
+#[test]
+fn normal_control_names_its_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/friction/adhesive_shear.toml");
+    let run = |sets: &[&str]| run_with_sets(&scenario, &dir.path().join("out"), sets);
+    let force = "protocol.normal_control=\"force\"";
+    assert_fails_with(
+        &run(&[force, "protocol.incline=5"]),
+        &["protocol.normal_control", "protocol.incline"],
+    );
+    assert_fails_with(
+        &run(&["protocol.normal_control=\"sideways\""]),
+        &["normal_control", "sideways"],
     );
 }

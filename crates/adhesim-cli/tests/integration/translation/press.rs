@@ -3,7 +3,7 @@
 //! follows JKR's unloading branch, and the keys at fault are named. A module of the
 //! translation tests.
 
-use super::common::{assert_fails_with, column, column_values, read_csv, repo, run_quiet, stderr};
+use super::common::{assert_fails_with, column, column_values, curve_with_sets, repo, run_with_sets};
 use std::f64::consts::PI;
 
 #[test]
@@ -25,13 +25,7 @@ fn a_lift_after_a_press_follows_the_jkr_unloading_branch() {
         "protocol.distance=0.001",
         "protocol.steps=2",
     ];
-    let mut extra = Vec::new();
-    for set in sets {
-        extra.extend(["--set", set]);
-    }
-    let output = run_quiet(&repo().join("scenarios/shear.toml"), &out, &extra);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("curve.csv"));
+    let (header, rows) = curve_with_sets(&repo().join("scenarios/shear.toml"), &out, &sets);
     let phase = column(&header, &rows, "phase");
     let depth = column_values(&header, &rows, "d");
     let normal = column_values(&header, &rows, "force_normal");
@@ -85,11 +79,7 @@ fn press_depth_errors_name_their_keys() {
             vec!["no contact is left", "pulled off"],
         ),
     ] {
-        let mut extra = Vec::new();
-        for set in &sets {
-            extra.extend(["--set", *set]);
-        }
-        let output = run_quiet(&scenario, &dir.path().join("refused"), &extra);
+        let output = run_with_sets(&scenario, &dir.path().join("refused"), &sets);
         assert_fails_with(&output, &fragments);
     }
 }

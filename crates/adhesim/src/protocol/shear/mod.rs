@@ -4,6 +4,7 @@
 mod approach;
 mod coupled;
 mod edge;
+mod held_force;
 mod mixity;
 mod shift;
 mod sliding;
@@ -74,6 +75,11 @@ pub struct Shear {
     /// meets friction (Spence's problem) and every step solves both problems in turn.
     /// False: Goodman's approximation.
     pub coupled: bool,
+    /// Normal-force control: the shift holds the normal force of the end of the approach,
+    /// each step finding its depth, instead of the depth (Savkoor & Briggs' experiments at
+    /// constant load). It changes what a weakened edge does; a held normal problem keeps
+    /// its force anyway; refused with an incline or the coupled operator.
+    pub hold_normal_force: bool,
 }
 
 /// The imposed tangential force of a force-controlled shear: the forward stroke ramps it
@@ -177,21 +183,17 @@ impl Shear {
             &mut summary,
             observer,
         )?;
-        let compliant = friction.drive_stiffness().is_some();
-        if inclined && compliant {
-            return Err(ProtocolError::InvalidParameter(
-                "a compliant drive moves the indenter along the surface only: an inclined path (incline ≠ 0) takes a rigid drive".into(),
-            ));
-        }
+        let compliant = compliant_drive(inclined, friction)?;
         let amplitude = match self.force_control {
             None => self.distance,
             Some(TangentialForce::Absolute(force)) => force,
             Some(TangentialForce::OfCapacity(share)) => share * friction.capacity(&state, grid.element_area()),
         };
-        let mut stepper = match coupled {
-            Some(stepper) => stepper,
-            None => ShiftStepper::new(&grid, &state, body, self.mode_mixity, inclined, false, solver)?,
-        };
+        let mut stepper = coupled.map_or_else(
+            || ShiftStepper::new(&grid, &state, body, self.mode_mixity, inclined, false, solver),
+            Ok,
+        )?;
+        stepper.hold_normal_force(self.hold_normal_force)?;
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
         let slope = self.incline.tan();
@@ -236,7 +238,7 @@ impl Shear {
             let mut record = self.record(
                 step,
                 Phase::Shear,
-                depth,
+                outcome.depth.unwrap_or(depth),
                 normal,
                 &state,
                 &grid,
@@ -510,4 +512,15 @@ pub(super) fn contact_split_about(grid: &Grid, contact: &[bool], direction: f64,
         }
     }
     (count, front, rear)
+}
+
+/// Whether `friction` pulls the indenter through a spring; an error on an inclined path.
+fn compliant_drive(inclined: bool, friction: &TangentialSolver) -> Result<bool, ProtocolError> {
+    let compliant = friction.drive_stiffness().is_some();
+    if inclined && compliant {
+        return Err(ProtocolError::InvalidParameter(
+            "a compliant drive moves the indenter along the surface only: an inclined path (incline ≠ 0) takes a rigid drive".into(),
+        ));
+    }
+    Ok(compliant)
 }

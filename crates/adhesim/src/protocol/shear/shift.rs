@@ -5,6 +5,7 @@
 
 use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide};
+use super::held_force::HeldForce;
 use super::mixity::ModeMixity;
 use super::window::TangentialRoom;
 use crate::elastic::ShearBody;
@@ -43,12 +44,16 @@ pub(super) struct ShiftOutcome {
     pub tangential: TangentialReport,
     /// The normal steps of the shift step (the held force alone when held).
     pub normal: StepReport,
+    /// The depth found under normal-force control (None: the step's depth).
+    pub depth: Option<f64>,
 }
 
 /// The state of the shift steps of a run.
 pub(super) struct ShiftStepper {
     pub(super) room: TangentialRoom,
     mode: NormalMode,
+    /// Normal-force control of a weakened edge (None: the depth is held).
+    held: Option<HeldForce>,
     /// The normal state on the room's window.
     window_state: ContactState,
 }
@@ -78,6 +83,7 @@ impl ShiftStepper {
                 window_state: room.window.gather(state),
                 room,
                 mode: NormalMode::Coupled(Box::new(Coupling::new(grid, body)?)),
+                held: None,
             });
         }
         let changes = mode_mixity.weakens() || inclined;
@@ -102,6 +108,7 @@ impl ShiftStepper {
             window_state: room.window.gather(state),
             room,
             mode,
+            held: None,
         })
     }
 
@@ -138,6 +145,7 @@ impl ShiftStepper {
             return Ok(ShiftOutcome {
                 tangential,
                 normal: held(held_force),
+                depth: None,
             });
         }
         if let ShiftTarget::Force { .. } = target {
@@ -151,13 +159,21 @@ impl ShiftStepper {
                 Ok(ShiftOutcome {
                     tangential: coupled.tangential,
                     normal: coupled.normal,
+                    depth: None,
                 })
             }
             NormalMode::Weakened(edge) => {
-                let weakened = edge.step(normal, &mut self.room, friction, shift, step)?;
+                let (weakened, depth) = match &mut self.held {
+                    Some(held) => {
+                        let (weakened, depth) = held.step(edge, normal, (&mut self.room, friction), (shift, step))?;
+                        (weakened, Some(depth))
+                    }
+                    None => (edge.step(normal, &mut self.room, friction, shift, step)?, None),
+                };
                 Ok(ShiftOutcome {
                     tangential: weakened.tangential,
                     normal: weakened.normal,
+                    depth,
                 })
             }
             NormalMode::Moving => {
@@ -181,6 +197,7 @@ impl ShiftStepper {
                 Ok(ShiftOutcome {
                     tangential,
                     normal: report,
+                    depth: None,
                 })
             }
             NormalMode::Held => {
@@ -190,8 +207,32 @@ impl ShiftStepper {
                 Ok(ShiftOutcome {
                     tangential,
                     normal: held(held_force),
+                    depth: None,
                 })
             }
+        }
+    }
+
+    /// Holds the normal force instead of the depth during the shift (`hold`; else nothing).
+    /// Only a weakened edge changes the normal problem at a held depth; a held one keeps its
+    /// force anyway, and an inclined or coupled one is refused.
+    pub(super) fn hold_normal_force(&mut self, hold: bool) -> Result<(), ProtocolError> {
+        if !hold {
+            return Ok(());
+        }
+        match self.mode {
+            NormalMode::Weakened(_) => {
+                self.held = Some(HeldForce {
+                    target: None,
+                    depth: None,
+                    stiffness: None,
+                });
+                Ok(())
+            }
+            NormalMode::Held => Ok(()),
+            NormalMode::Moving | NormalMode::Coupled(_) => Err(ProtocolError::InvalidParameter(
+                "normal-force control holds the force of a shear at fixed height: not with an inclined path (incline ≠ 0) or the coupled operator".into(),
+            )),
         }
     }
 

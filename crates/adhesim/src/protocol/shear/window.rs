@@ -35,6 +35,7 @@ impl ShearFields {
 /// the DC-FFT convolution on this window is the full grid's, restricted (the same
 /// coefficients; only the transforms' sizes, and so their rounding, differ), at a fraction
 /// of its cost.
+#[derive(Clone, PartialEq)]
 pub(super) struct ContactWindow {
     pub(super) grid: Grid,
     rows: std::ops::Range<usize>,
@@ -195,6 +196,44 @@ impl TangentialRoom {
         }
         let moved = Self::new(&self.grid, &loaded, self.margin, self.body)?;
         Ok(self.move_into(moved))
+    }
+
+    /// The window and the fields, to go back to with [`restore`](Self::restore).
+    pub(super) fn snapshot(&self) -> (ContactWindow, TangentialState) {
+        (self.window.clone(), self.state.clone())
+    }
+
+    /// Goes back to the fields of `snapshot` after a trial: in place where the window is
+    /// the same, else carried into the trial's (wider) window as [`cover`](Self::cover)
+    /// carries them. Returns the FFT pairs this spent.
+    pub(super) fn restore(&mut self, (window, state): &(ContactWindow, TangentialState)) -> u64 {
+        if *window == self.window {
+            self.state.clone_from(state);
+            return 0;
+        }
+        let mut at = vec![usize::MAX; self.grid.len()];
+        for (w, k) in window.elements() {
+            at[k] = w;
+        }
+        let mut next = TangentialState::new(self.window.grid.len());
+        for (w, k) in self.window.elements() {
+            let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
+                continue;
+            };
+            for c in 0..2 {
+                next.traction[c][w] = state.traction[c][from];
+                next.slip[c][w] = state.slip[c][from];
+            }
+            next.status[w] = state.status[from];
+        }
+        (next.shift, next.drive, next.at_rest) = (state.shift, state.drive, state.at_rest);
+        let before = self.operator.transform_pairs();
+        {
+            let [ux, uy] = &mut next.displacement;
+            self.operator.apply([&next.traction[0], &next.traction[1]], [ux, uy]);
+        }
+        self.state = next;
+        self.operator.transform_pairs() - before
     }
 
     /// Some element of `contact` lies outside the window.
