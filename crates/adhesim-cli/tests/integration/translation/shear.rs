@@ -235,7 +235,11 @@ fn savkoor_briggs_radius(depth: f64, shift: f64, work: f64, contact_modulus: f64
         let energy = (2.0 * std::f64::consts::PI * a * work - 4.0 * mindlin_modulus * shift * shift).max(0.0);
         a * a - (energy / contact_modulus).sqrt() - depth
     };
-    let (mut low, mut high) = (1e-9, 1.0);
+    bisect(1e-9, 1.0, excess)
+}
+
+/// The root of `excess` between `low` (excess ≤ 0) and `high` (> 0), by 200 bisections.
+fn bisect(mut low: f64, mut high: f64, excess: impl Fn(f64) -> f64) -> f64 {
     for _ in 0..200 {
         let middle = 0.5 * (low + high);
         if excess(middle) > 0.0 {
@@ -322,16 +326,7 @@ fn savkoor_briggs_radius_at_load(
     while excess(high - step) > 0.0 {
         high -= step;
     }
-    let mut low = high - step;
-    for _ in 0..100 {
-        let middle = 0.5 * (low + high);
-        if excess(middle) > 0.0 {
-            high = middle;
-        } else {
-            low = middle;
-        }
-    }
-    0.5 * (low + high)
+    bisect(high - step, high, excess)
 }
 
 #[test]

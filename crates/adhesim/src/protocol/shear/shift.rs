@@ -231,7 +231,7 @@ impl ShiftStepper {
             }
             NormalMode::Held => Ok(()),
             NormalMode::Moving | NormalMode::Coupled(_) => Err(ProtocolError::InvalidParameter(
-                "normal-force control holds the force of a shear at fixed height: not with an inclined path (incline ≠ 0) or the coupled operator".into(),
+                "normal-force control finds each shift step's depth, which an inclined path (incline ≠ 0) prescribes and the coupled operator's rounds hold fixed: hold the depth instead".into(),
             )),
         }
     }
