@@ -276,3 +276,79 @@ impl TangentialRoom {
         pairs
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::elastic::cerruti::ShearMaterial;
+    use crate::solver::SlipStatus;
+
+    /// A disc of radius² `r2` elements about the centre of a 32² grid.
+    fn disc(r2: i64) -> Vec<bool> {
+        (0..32 * 32)
+            .map(|k| {
+                let (i, j) = (k / 32 - 16, k % 32 - 16);
+                i * i + j * j <= r2
+            })
+            .collect()
+    }
+
+    /// A snapshot restored after a trial widened the window keeps every element's traction,
+    /// slip and state, now in the wider window, and its displacements are K q there: those
+    /// of the narrow window where both hold the element, to the rounding of transforms of
+    /// other sizes (1e-12 of the largest asserted).
+    #[test]
+    fn a_restore_into_a_wider_window_keeps_the_fields() {
+        let grid = Grid::new(32, 1.0, Boundary::Free).unwrap();
+        let material = ShearMaterial::from_contact_modulus(4.0, 0.5);
+        let contact = disc(16);
+        let mut room = TangentialRoom::new(&grid, &contact, 2, material.into()).unwrap();
+        let window = room.window.clone();
+        for (w, k) in window.elements() {
+            if contact[k] {
+                room.state.traction[0][w] = 1.0 + (k % 7) as f64;
+                room.state.traction[1][w] = 0.5 - (k % 3) as f64;
+                room.state.slip[0][w] = 1e-3 * (k % 5) as f64;
+                room.state.status[w] = if k % 2 == 0 {
+                    SlipStatus::Stick
+                } else {
+                    SlipStatus::Slip
+                };
+            }
+        }
+        {
+            let [ux, uy] = &mut room.state.displacement;
+            room.operator
+                .apply([&room.state.traction[0], &room.state.traction[1]], [ux, uy]);
+        }
+        room.state.shift = [0.25, -0.125];
+        let narrow = room.state.clone();
+        let snapshot = room.snapshot();
+        assert_eq!(room.restore(&snapshot), 0, "the same window: no transform");
+        assert_eq!(room.state, narrow);
+        room.cover(&disc(100)).unwrap();
+        assert!(room.window != window, "the trial widened the window");
+        room.state.traction[0].iter_mut().for_each(|t| *t = 0.0);
+        assert!(room.restore(&snapshot) > 0);
+        let largest = narrow.displacement[0].iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        let mut at = vec![usize::MAX; grid.len()];
+        for (w, k) in window.elements() {
+            at[k] = w;
+        }
+        for (w, k) in room.window.elements() {
+            let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
+                assert_eq!(room.state.traction[0][w], 0.0, "outside the snapshot: no traction");
+                continue;
+            };
+            assert_eq!(room.state.traction[0][w], narrow.traction[0][from]);
+            assert_eq!(room.state.traction[1][w], narrow.traction[1][from]);
+            assert_eq!(room.state.slip[0][w], narrow.slip[0][from]);
+            assert_eq!(room.state.status[w], narrow.status[from]);
+            for c in 0..2 {
+                let difference = (room.state.displacement[c][w] - narrow.displacement[c][from]).abs();
+                assert!(difference <= 1e-12 * largest, "element {k}: {difference:e}");
+            }
+        }
+        assert_eq!(room.state.shift, narrow.shift);
+    }
+}
