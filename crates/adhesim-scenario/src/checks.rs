@@ -87,14 +87,20 @@ pub(crate) fn check_periodic_depth(grid: &Grid, heights: &[f64], key: &str, raw:
 /// deeper than the first contact at `start_depth`: the indentation held by a roll, slide,
 /// translate or shear.
 pub(crate) fn held_depth(raw_depth: f64, unit: f64, start_depth: f64) -> Result<f64> {
-    let depth = finite("protocol.depth", raw_depth)? * unit;
+    beyond_first_contact("protocol.depth", raw_depth, unit, start_depth)
+}
+
+/// The depth `raw_depth` of `key` (in depth units of `unit` length) as a length, refused
+/// unless it goes deeper than the first contact at `start_depth`.
+pub(crate) fn beyond_first_contact(key: &str, raw_depth: f64, unit: f64, start_depth: f64) -> Result<f64> {
+    let depth = finite(key, raw_depth)? * unit;
     if depth <= start_depth {
         bail!(ScenarioError::invalid_as(
-            "protocol.depth",
+            key,
             raw_depth,
             format!("> {:.6e} (the depth of first contact)", start_depth / unit),
             format!(
-                "protocol.depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
+                "{key} must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_depth}",
                 start_depth / unit
             )
         ));

@@ -1,7 +1,7 @@
 //! The `[protocol]` and `[friction]` keys of a shear that shape its approach and its
 //! operators: the incline, the mode mixity, the coupling, the press and the layer.
 
-use crate::checks::{finite, held_depth};
+use crate::checks::{beyond_first_contact, finite, held_depth};
 use crate::error::ScenarioError;
 use crate::guards::step_count;
 use crate::model::*;
@@ -92,18 +92,7 @@ pub(super) fn approach_depths(p: &ShearProtocol, unit: f64, start_depth: f64) ->
     let Some(raw_press) = p.press_depth else {
         return Ok((held_depth(p.depth, unit, start_depth)?, None));
     };
-    let press = finite("protocol.press_depth", raw_press)? * unit;
-    if press <= start_depth {
-        bail!(ScenarioError::invalid_as(
-            "protocol.press_depth",
-            raw_press,
-            format!("> {:.6e} (the depth of first contact)", start_depth / unit),
-            format!(
-                "protocol.press_depth must exceed the depth of first contact ({:.6e} in depth_unit), got {raw_press}",
-                start_depth / unit
-            )
-        ));
-    }
+    let press = beyond_first_contact("protocol.press_depth", raw_press, unit, start_depth)?;
     let depth = finite("protocol.depth", p.depth)? * unit;
     if depth >= press {
         bail!(ScenarioError::invalid_as(

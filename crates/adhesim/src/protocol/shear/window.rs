@@ -211,27 +211,10 @@ impl TangentialRoom {
             self.state.clone_from(state);
             return 0;
         }
-        let mut at = vec![usize::MAX; self.grid.len()];
-        for (w, k) in window.elements() {
-            at[k] = w;
-        }
         let mut next = TangentialState::new(self.window.grid.len());
-        for (w, k) in self.window.elements() {
-            let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
-                continue;
-            };
-            for c in 0..2 {
-                next.traction[c][w] = state.traction[c][from];
-                next.slip[c][w] = state.slip[c][from];
-            }
-            next.status[w] = state.status[from];
-        }
-        (next.shift, next.drive, next.at_rest) = (state.shift, state.drive, state.at_rest);
+        carry_fields((window, state), (&self.window, &mut next), self.grid.len());
         let before = self.operator.transform_pairs();
-        {
-            let [ux, uy] = &mut next.displacement;
-            self.operator.apply([&next.traction[0], &next.traction[1]], [ux, uy]);
-        }
+        recompute_displacements(&mut self.operator, &mut next);
         self.state = next;
         self.operator.transform_pairs() - before
     }
@@ -248,33 +231,47 @@ impl TangentialRoom {
     /// Carries the fields into the room `next` and takes its place; returns the FFT pairs
     /// of recomputing the displacements there.
     fn move_into(&mut self, mut next: Self) -> u64 {
-        let old = &self.state;
-        let mut at = vec![usize::MAX; self.grid.len()];
-        for (w, k) in self.window.elements() {
-            at[k] = w;
-        }
-        for (w, k) in next.window.elements() {
-            let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
-                continue;
-            };
-            for c in 0..2 {
-                next.state.traction[c][w] = old.traction[c][from];
-                next.state.slip[c][w] = old.slip[c][from];
-            }
-            next.state.status[w] = old.status[from];
-        }
-        next.state.shift = old.shift;
-        next.state.drive = old.drive;
-        next.state.at_rest = old.at_rest;
-        {
-            let [ux, uy] = &mut next.state.displacement;
-            next.operator
-                .apply([&next.state.traction[0], &next.state.traction[1]], [ux, uy]);
-        }
+        carry_fields(
+            (&self.window, &self.state),
+            (&next.window, &mut next.state),
+            self.grid.len(),
+        );
+        recompute_displacements(&mut next.operator, &mut next.state);
         let pairs = next.operator.transform_pairs();
         *self = next;
         pairs
     }
+}
+
+/// Copies the tractions, slips and states of the elements that both windows hold from
+/// `from` into the fresh state of `into` (the others stay open and unloaded), with the
+/// shift, the drive and the rest flag; `elements` is the whole grid's count.
+fn carry_fields(
+    (from_window, from): (&ContactWindow, &TangentialState),
+    (into_window, into): (&ContactWindow, &mut TangentialState),
+    elements: usize,
+) {
+    let mut at = vec![usize::MAX; elements];
+    for (w, k) in from_window.elements() {
+        at[k] = w;
+    }
+    for (w, k) in into_window.elements() {
+        let Some(&source) = at.get(k).filter(|&&source| source != usize::MAX) else {
+            continue;
+        };
+        for c in 0..2 {
+            into.traction[c][w] = from.traction[c][source];
+            into.slip[c][w] = from.slip[c][source];
+        }
+        into.status[w] = from.status[source];
+    }
+    (into.shift, into.drive, into.at_rest) = (from.shift, from.drive, from.at_rest);
+}
+
+/// u = K q of the state's tractions: the same field on whatever window holds them.
+fn recompute_displacements(operator: &mut TangentialOperator, state: &mut TangentialState) {
+    let [ux, uy] = &mut state.displacement;
+    operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
 }
 
 #[cfg(test)]
