@@ -170,7 +170,12 @@ impl CurveColumns {
         if scenario.has_interface_friction() {
             columns.columns.extend(FRICTION);
         }
-        if scenario.shear.is_some_and(|shear| shear.drive_stiffness.is_some()) {
+        let translation_drive = scenario
+            .translation
+            .as_ref()
+            .and_then(|translation| translation.friction)
+            .is_some_and(|friction| friction.drive_stiffness.is_some());
+        if translation_drive || scenario.shear.is_some_and(|shear| shear.drive_stiffness.is_some()) {
             columns.columns.push(DRIVE);
         }
         if scenario.hold.is_some() {

@@ -382,3 +382,102 @@ fn a_one_step_approach_is_warned_about_only_with_adhesion() {
         "{adhesive:?}"
     );
 }
+
+/// `protocol.drive_stiffness` on a translate: the spring balances the whole tangential
+/// force at every stroke step, F_T = k(X − x), to the rounds' tolerance (the profile stands
+/// within 1e-6Δ of the indenter: k·1e-6Δ, with 1e-9 of F for the solves). With a soft
+/// spring and a static strength three times τ0 the slide sticks and slips: the force falls
+/// in events where the indenter jumps ahead of the drive's step, to the kinetic τ0·A within
+/// 2 % (the contact that comes to rest after the jump gains or loses elements at the edges,
+/// a few of its ~265), and rises in the stick steps between, where the indenter lags.
+#[test]
+fn a_compliant_drive_lets_a_slide_stick_and_slip() {
+    let stiffness = 0.002;
+    let (_, records) = translation_run(
+        SLIDE,
+        &["friction.static_shear_strength=0.006", "protocol.drive_stiffness=0.002"],
+    );
+    let element = 0.5 / 64.0;
+    let drive_step = 0.1 / 20.0;
+    let strokes: Vec<_> = records
+        .iter()
+        .filter(|r| r.phase != Some(adhesim::Phase::Approach))
+        .collect();
+    let (mut events, mut sticks) = (0, 0);
+    for (k, r) in strokes.iter().enumerate() {
+        let spring = stiffness * (r.drive_offset - r.offset);
+        assert!(
+            (r.force_tangential - spring).abs() <= stiffness * 1e-6 * element + 1e-9 * r.force_tangential.abs(),
+            "step {}: F_T {} against k(X − x) {spring}",
+            r.step,
+            r.force_tangential
+        );
+        let Some(before) = k.checked_sub(1).map(|j| strokes[j]) else {
+            continue;
+        };
+        if r.force_tangential < before.force_tangential {
+            events += 1;
+            assert!(r.offset - before.offset > drive_step, "step {}: no jump", r.step);
+            let ratio = r.force_tangential / (0.002 * r.area);
+            assert!((ratio - 1.0).abs() < 0.02, "step {}: F/τ0A {ratio}", r.step);
+        } else {
+            sticks += 1;
+            assert!(r.offset - before.offset < drive_step, "step {}: no lag", r.step);
+        }
+    }
+    assert!(events >= 3 && sticks >= 3, "{events} events, {sticks} stick steps");
+}
+
+/// A stiff drive (k = 10⁴) is the rigid one in the limit of small steps: its step settles
+/// the contact at the drive's position after the tangential move, so the elements the
+/// contact gains at its front join stuck and unloaded, and its per-step force falls short
+/// of the rigid slide's by a first-order error of the step (3.7, 2.0, 1.1 % at 20, 40, 80
+/// steps: the shortfall at least 1.6 times smaller for each halving); friction's
+/// dissipation per distance is the rigid slide's within 2e-3 at every step size (1.7e-3 at
+/// 20 steps, 2e-4 at 40: the size of the rigid slide's own first-order error against τ0·A).
+#[test]
+fn a_stiff_drive_slides_as_the_rigid_one_as_the_step_shrinks() {
+    let mut shortfalls = Vec::new();
+    for steps in ["20", "40", "80"] {
+        let steps = format!("protocol.steps={steps}");
+        let (rigid, _) = translation_run(SLIDE, &[&steps]);
+        let (stiff, _) = translation_run(SLIDE, &[&steps, "protocol.drive_stiffness=1e4"]);
+        let force = |r: &TranslationResults| r.mean_tangential_force.expect("a mean force");
+        shortfalls.push(1.0 - force(&stiff) / force(&rigid));
+        let dissipation = |r: &TranslationResults| r.interface_friction_force.expect("with [friction]");
+        assert!(
+            (dissipation(&stiff) / dissipation(&rigid) - 1.0).abs() < 2e-3,
+            "{steps}: {} against {}",
+            dissipation(&stiff),
+            dissipation(&rigid)
+        );
+    }
+    assert!(shortfalls[0] > 0.0, "{shortfalls:?}");
+    for pair in shortfalls.windows(2) {
+        assert!(pair[1] > 0.0 && pair[0] / pair[1] > 1.6, "{shortfalls:?}");
+    }
+}
+
+/// The drive's spring belongs to a slide or translate with `[friction]`: refused on a
+/// roll and without `[friction]`, naming the key.
+#[test]
+fn a_translations_drive_stiffness_is_refused_where_it_cannot_pull() {
+    let roll = error_of(
+        &SLIDE.replace("kind = \"translate\"", "kind = \"roll\""),
+        &["protocol.drive_stiffness=1"],
+    );
+    assert!(
+        roll.contains("protocol.drive_stiffness") && roll.contains("roll"),
+        "{roll}"
+    );
+    let frictionless = error_of(
+        &SLIDE.replace("[friction]\nlaw = \"shear_strength\"\nshear_strength = 0.002\n", ""),
+        &["protocol.drive_stiffness=1"],
+    );
+    assert!(
+        frictionless.contains("protocol.drive_stiffness") && frictionless.contains("[friction]"),
+        "{frictionless}"
+    );
+    let zero = error_of(SLIDE, &["protocol.drive_stiffness=0"]);
+    assert!(zero.contains("protocol.drive_stiffness"), "{zero}");
+}

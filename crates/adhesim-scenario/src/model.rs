@@ -334,6 +334,7 @@ impl ProtocolSection {
                     approach_steps: p.approach_steps,
                     return_stroke: p.return_stroke,
                     stationary_from: p.stationary_from,
+                    drive_stiffness: p.drive_stiffness,
                     steps: p.steps,
                 },
                 p.substrate_angle,
@@ -389,6 +390,10 @@ pub struct MotionProtocol {
     /// Means are taken over x > stationary_from·distance (default 0.5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stationary_from: Option<f64>,
+    /// Stiffness of a spring between the drive and the indenter of a translate with
+    /// `[friction]` (force per length; absent: a rigid drive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive_stiffness: Option<f64>,
     /// Steps of the travel.
     pub steps: i64,
 }
@@ -414,6 +419,8 @@ pub struct SlideProtocol {
     /// Rotation of the substrate's waviness against the indenter's, degrees (default 30).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub substrate_angle: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drive_stiffness: Option<f64>,
     pub steps: i64,
 }
 

@@ -313,7 +313,8 @@ fn protocol_key_owner(field: &str) -> Option<&'static str> {
         "max_depth" => "a key of protocol.kind = \"indent_pulloff\"; a roll, slide or translate holds protocol.depth",
         "step" | "max_retract_steps" => "a key of protocol.kind = \"indent_pulloff\"",
         "substrate_angle" => "a key of protocol.kind = \"slide\"",
-        "direction" | "cycles" | "incline" | "drive_stiffness" => "a key of protocol.kind = \"shear\"",
+        "direction" | "cycles" | "incline" => "a key of protocol.kind = \"shear\"",
+        "drive_stiffness" => "a key of protocol.kind = \"shear\", \"slide\" or \"translate\"",
         "depth" | "distance" | "distance_unit" | "approach_steps" | "return_stroke" | "stationary_from" => {
             "a key of protocol.kind = \"roll\", \"slide\", \"translate\""
         }

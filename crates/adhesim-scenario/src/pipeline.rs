@@ -338,7 +338,7 @@ pub fn run_from(
                             material: friction.material,
                             layer: scenario.layer,
                         },
-                        &mut tangential_solver(friction.law, friction.static_law, None)?,
+                        &mut tangential_solver(friction.law, friction.static_law, friction.drive_stiffness)?,
                     ),
                     &mut recording,
                 )?,

@@ -77,6 +77,7 @@ impl ScenarioFile {
             law,
             static_law,
             material: shear_material,
+            ..
         } = self.interface_laws(friction, material.contact_modulus())?;
         let (depth, press_depth) = approach_depths(p, unit, start_depth)?;
         let deepest = press_depth.unwrap_or(depth);
@@ -206,6 +207,7 @@ impl ScenarioFile {
             law,
             static_law,
             material,
+            drive_stiffness: None,
         })
     }
 

@@ -84,6 +84,7 @@ impl ScenarioFile {
         }
         let (gammas, tau0) = analysis_inputs(&self.analysis)?;
         let friction = self.interface_friction(material.contact_modulus())?;
+        let friction = translation_drive(kind, p.drive_stiffness, friction)?;
         if let (Some(_), Some(layer)) = (&friction, &layer) {
             crate::shear::layer_shear(layer)?;
         }
@@ -260,4 +261,40 @@ fn analysis_inputs(a: &AnalysisSection) -> Result<(Option<(f64, f64)>, Option<f6
     };
     let tau0 = a.tau0.map(|t| non_negative("analysis.tau0", t)).transpose()?;
     Ok((gammas, tau0))
+}
+
+/// `protocol.drive_stiffness` of a slide or translate into `friction`: finite and > 0,
+/// with `[friction]` (the spring pulls against the interface's friction) and not with a
+/// roll (a rolling indenter does not carry its surface along).
+fn translation_drive(
+    kind: ProtocolKind,
+    drive_stiffness: Option<f64>,
+    friction: Option<InterfaceFriction>,
+) -> Result<Option<InterfaceFriction>> {
+    let Some(stiffness) = drive_stiffness else {
+        return Ok(friction);
+    };
+    let stiffness = positive("protocol.drive_stiffness", stiffness)?;
+    if kind == ProtocolKind::Roll {
+        bail!(ScenarioError::invalid_as(
+            "protocol.drive_stiffness",
+            stiffness,
+            "absent with protocol.kind = \"roll\"",
+            "protocol.drive_stiffness pulls a slide or a translate through a spring; a rolling indenter does not carry its surface along, so a roll takes a rigid drive"
+        ));
+    }
+    let Some(friction) = friction else {
+        bail!(ScenarioError::invalid_as(
+            "protocol.drive_stiffness",
+            stiffness,
+            "with [friction]",
+            format!(
+                "protocol.drive_stiffness = {stiffness} pulls the indenter through a spring against the interface's friction; give [friction] (law and its bound), or drop the key for a rigid drive"
+            )
+        ));
+    };
+    Ok(Some(InterfaceFriction {
+        drive_stiffness: Some(stiffness),
+        ..friction
+    }))
 }

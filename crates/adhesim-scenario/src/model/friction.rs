@@ -153,6 +153,8 @@ pub struct InterfaceFriction {
     /// The static law of elements at rest (None: `law` throughout).
     pub static_law: Option<FrictionLaw>,
     pub material: ShearMaterial,
+    /// The drive's spring of a slide or translate (None: a rigid drive).
+    pub drive_stiffness: Option<f64>,
 }
 
 /// A validated shear run: the library's protocol, the interface law and the half-space's

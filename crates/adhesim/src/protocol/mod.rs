@@ -249,6 +249,18 @@ pub enum ProtocolError {
         /// Trials done.
         trials: usize,
     },
+    /// The indenter's shift under a compliant drive of a translation did not settle.
+    #[error("step {step} (drive at {drive:e}): the indenter's shift still moved by {change:.3e} elements after {rounds} rounds of a normal step where the indenter is and a tangential step to the drive (protocol.drive_stiffness); use smaller steps or a stiffer drive")]
+    DriveNotSettled {
+        /// Step at which it failed.
+        step: usize,
+        /// The drive's position at that step.
+        drive: f64,
+        /// Rounds done.
+        rounds: usize,
+        /// The last round's move of the indenter's shift, in elements.
+        change: f64,
+    },
     /// The rounds of normal and tangential solves of the coupled operator did not meet.
     #[error("step {step} (shift {shift:e}): the coupled normal and tangential solves did not converge in {rounds} rounds (last change {change:.3e} of the normal displacement the shear gives, tolerance {tolerance:.1e}{}); use friction.coupling = \"none\"", if *alternating { "; the contact set alternates between two sets" } else { "" })]
     CouplingNotConverged {

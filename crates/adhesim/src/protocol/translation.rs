@@ -173,7 +173,7 @@ impl Translation {
             }
         }
         let mut summary = run.summary;
-        stationary_means(&mut summary, &run.stationary);
+        stationary_means(&mut summary, &run.stationary, |record| record.offset);
         Ok(summary)
     }
 
@@ -191,8 +191,25 @@ impl Translation {
         heights: &[f64],
         interface: &mut dyn FnMut(&ContactState, &mut StepRecord) -> Result<(), ProtocolError>,
     ) -> Result<StepRecord, ProtocolError> {
+        let mut record = self.solve_step(operator, contact, solver, run, (step, stage, depth, offset), heights)?;
+        interface(&run.state, &mut record)?;
+        self.count_step(run, &record, offset);
+        Ok(record)
+    }
+
+    /// The normal solve of a step on `heights` (the profile with its axis at `offset`) and
+    /// its record, with the boundary's tangential force while the indenter moves; the
+    /// step's released energy joins `run`'s cumulative count, nothing else is counted.
+    pub(super) fn solve_step(
+        &self,
+        operator: &mut dyn ElasticOperator,
+        contact: &TranslatingContact,
+        solver: &mut NormalSolver,
+        run: &mut TranslationCheckpoint,
+        (step, stage, depth, offset): (usize, Phase, f64, f64),
+        heights: &[f64],
+    ) -> Result<StepRecord, ProtocolError> {
         let grid = *operator.grid();
-        let forward_end = self.approach_steps + self.steps;
         let mut tangential_before = 0.0;
         let moving = stage != Phase::Approach;
         let report = solver
@@ -218,7 +235,13 @@ impl Translation {
             record.force_tangential = contact.tangential_force(&grid, &run.state.pressure, offset);
             record.force_tangential_before_change = tangential_before;
         }
-        interface(&run.state, &mut record)?;
+        Ok(record)
+    }
+
+    /// Counts a finished step into `run`'s totals; a stroke step whose drive stands at
+    /// `position` beyond the stationary fraction joins the stationary means.
+    pub(super) fn count_step(&self, run: &mut TranslationCheckpoint, record: &StepRecord, position: f64) {
+        let forward_end = self.approach_steps + self.steps;
         let report = record.report;
         let summary = &mut run.summary;
         summary.steps += 1;
@@ -227,13 +250,12 @@ impl Translation {
         summary.operator_applications += report.operator_applications;
         summary.jumps += record.jumped as usize;
         summary.touches_border |= record.touches_border;
-        if stage != Phase::Approach && step < forward_end {
+        if record.phase != Some(Phase::Approach) && record.step < forward_end {
             summary.dissipated_energy += report.dissipated_energy;
-            if offset > self.stationary_from * self.distance {
-                run.stationary.push(record);
+            if position > self.stationary_from * self.distance {
+                run.stationary.push(*record);
             }
         }
-        Ok(record)
     }
 
     /// The parameters a run needs, checked before anything is allocated.
@@ -277,8 +299,14 @@ impl Translation {
     }
 }
 
-/// Means over the stationary part of the forward stroke (paper Eqs. 12–18 read these).
-pub(super) fn stationary_means(summary: &mut TranslationSummary, stationary: &[StepRecord]) {
+/// Means over the stationary part of the forward stroke (paper Eqs. 12–18 read these);
+/// the work and the dissipation per distance are per distance the drive travels
+/// (`position`: the axis's offset, or the drive's under a compliant drive).
+pub(super) fn stationary_means(
+    summary: &mut TranslationSummary,
+    stationary: &[StepRecord],
+    position: impl Fn(&StepRecord) -> f64,
+) {
     if stationary.is_empty() {
         return;
     }
@@ -298,11 +326,14 @@ pub(super) fn stationary_means(summary: &mut TranslationSummary, stationary: &[S
             0.0
         }
     });
-    let travelled = stationary.last().map_or(0.0, |r| r.offset) - stationary[0].offset;
+    let travelled = stationary.last().map_or(0.0, &position) - position(&stationary[0]);
     if travelled > 0.0 {
         let work: f64 = stationary
             .windows(2)
-            .map(|w| 0.5 * (w[0].force_tangential + w[1].force_tangential_before_change) * (w[1].offset - w[0].offset))
+            .map(|w| {
+                0.5 * (w[0].force_tangential + w[1].force_tangential_before_change)
+                    * (position(&w[1]) - position(&w[0]))
+            })
             .sum();
         summary.mean_tangential_force_work = work / travelled;
         let mut released: f64 = stationary.iter().skip(1).map(|r| r.report.dissipated_energy).sum();

@@ -11,12 +11,18 @@ use crate::protocol::{
     NormalSolver, Observer, Phase, ProtocolError, SolverCheckpoint, StepRecord, StepView, Translation,
     TranslationCheckpoint, TranslationSummary,
 };
-use crate::solver::{Complementarity, ContactState, TangentialSolver};
+use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
 use std::ops::ControlFlow;
 
 /// Elements of margin around the contact in the window of a translation: room to travel
 /// before the window moves with the contact.
 const TRAVEL_MARGIN: usize = 8;
+/// Rounds of a step under a compliant drive (a normal step with the profile where the
+/// indenter is, then a tangential step to the drive) before the indenter's shift must have
+/// settled.
+const MAX_DRIVE_ROUNDS: usize = 60;
+/// The rounds end when the indenter's shift moves by no more than this share of an element.
+const DRIVE_TOLERANCE: f64 = 1e-6;
 
 /// The tangential side of a translation with friction: the room, the solver and what the
 /// run has summed.
@@ -31,23 +37,27 @@ struct Interface<'a> {
     slides: bool,
     frictional_dissipation: f64,
     complementarity: Complementarity,
+    /// The indenter's shift at the end of the last step (under a compliant drive it lags
+    /// the drive's position).
+    indenter: f64,
 }
 
 impl Interface<'_> {
     /// Completes a step's record: during the approach, every contact element sticks;
-    /// during the stroke, the tangential step to the indenter's shift at `offset`, its
-    /// force added to the boundary force, its work to the step's counters.
+    /// during the stroke, the tangential step to the indenter's shift at `offset` (or,
+    /// under a compliant drive, to the drive at `drive`), its force added to the boundary
+    /// force, its work to the step's counters. Returns the indenter's shift after the step.
     fn complete(
         &mut self,
-        (step, stage, offset): (usize, Phase, f64),
+        (step, stage, offset, drive): (usize, Phase, f64, Option<f64>),
         state: &ContactState,
         record: &mut StepRecord,
-    ) -> Result<(), ProtocolError> {
+    ) -> Result<f64, ProtocolError> {
         let (count, front, rear) = contact_split_about(&self.grid, &state.contact, 0.0, offset);
         (record.area_front, record.area_rear) = (front, rear);
         if stage == Phase::Approach {
             record.stick_elements = count;
-            return Ok(());
+            return Ok(offset);
         }
         let moved = match &mut self.room {
             Some(room) => room.follow(&state.contact)?,
@@ -66,7 +76,13 @@ impl Interface<'_> {
             self.window_state = ContactState::new(&room.window.grid);
         }
         room.window.gather_into(state, &mut self.window_state);
-        let shift = if self.slides { offset } else { 0.0 };
+        // The spring pulls against the tractions and the boundary's force alike: the
+        // solver's drive stands at X − F_B/k so that k(X − δ) = F_B + Δ²Σq_x.
+        let shift = match (drive, self.friction.drive_stiffness()) {
+            (Some(drive), Some(stiffness)) => drive - record.force_tangential / stiffness,
+            _ if self.slides => offset,
+            _ => 0.0,
+        };
         let report = self
             .friction
             .step(&mut room.operator, &self.window_state, [shift, 0.0], &mut room.state)
@@ -80,7 +96,71 @@ impl Interface<'_> {
         self.frictional_dissipation += report.dissipated_energy;
         record.cumulative_frictional_dissipation = self.frictional_dissipation;
         worst(&mut self.complementarity, report.complementarity);
-        Ok(())
+        Ok(report.shift[0])
+    }
+}
+
+impl Interface<'_> {
+    /// A stroke step under a compliant drive at `drive`: rounds of a normal step with the
+    /// profile's axis at the indenter's shift and a tangential step to the drive, until the
+    /// shift the tangential step returns is the one the profile stood at (a fixed point: the
+    /// contact goes where the indenter goes, the jump of a slip event included, in as many
+    /// quasi-static moves as rounds). The record is the last round's with every round's
+    /// counters, its configuration change counted from the step's start.
+    fn driven_step(
+        &mut self,
+        (protocol, operator, contact, solver): (
+            &Translation,
+            &mut (dyn ElasticOperator + '_),
+            &TranslatingContact,
+            &mut NormalSolver,
+        ),
+        run: &mut TranslationCheckpoint,
+        (step, stage, depth, drive): (usize, Phase, f64, f64),
+        heights: &mut [f64],
+    ) -> Result<StepRecord, ProtocolError> {
+        let grid = *operator.grid();
+        let element = grid.dx().max(grid.dy());
+        let mut spent: Option<StepReport> = None;
+        let mut change = f64::INFINITY;
+        let mut drive_history = None;
+        for round in 0..MAX_DRIVE_ROUNDS {
+            let offset = self.indenter;
+            contact.fill_heights(&grid, offset, heights);
+            let mut record =
+                protocol.solve_step(operator, contact, solver, run, (step, stage, depth, offset), heights)?;
+            self.indenter = self.complete((step, stage, offset, Some(drive)), &run.state, &mut record)?;
+            change = (self.indenter - offset).abs() / element;
+            if round == 0 {
+                drive_history = self.friction.take_step_history();
+            }
+            let report = &mut record.report;
+            if let Some(spent) = spent {
+                report.solves += spent.solves;
+                report.cg_iterations += spent.cg_iterations;
+                report.operator_applications += spent.operator_applications;
+                report.attachment_rounds += spent.attachment_rounds;
+                report.attached += spent.attached;
+                report.detached += spent.detached;
+                report.dissipated_energy += spent.dissipated_energy;
+                report.force_before_change = spent.force_before_change;
+                report.energy_before_change = spent.energy_before_change;
+            }
+            if change <= DRIVE_TOLERANCE {
+                self.friction.put_step_history(drive_history);
+                record.drive_offset = drive;
+                record.jumped = (report.attached + report.detached) > 0
+                    && (report.force - report.force_before_change).abs() > protocol.jump_force_threshold;
+                return Ok(record);
+            }
+            spent = Some(*report);
+        }
+        Err(ProtocolError::DriveNotSettled {
+            step,
+            drive,
+            rounds: MAX_DRIVE_ROUNDS,
+            change,
+        })
     }
 }
 
@@ -127,21 +207,39 @@ impl Translation {
             slides: phase != Phase::Roll,
             frictional_dissipation: 0.0,
             complementarity: Complementarity::default(),
+            indenter: 0.0,
         };
+        let compliant = interface.friction.drive_stiffness().is_some();
+        if compliant && phase == Phase::Roll {
+            return Err(ProtocolError::InvalidParameter(
+                "a compliant drive pulls a slide or a translation; a rolling indenter does not carry its surface along, so a roll takes a rigid drive".into(),
+            ));
+        }
         let mut previous = run.state.contact.clone();
         let mut heights = vec![0.0; grid.len()];
         for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
-            contact.fill_heights(&grid, offset, &mut heights);
             previous.copy_from_slice(&run.state.contact);
-            let record = self.run_step(
-                operator,
-                contact,
-                solver,
-                &mut run,
-                (step, stage, depth, offset),
-                &heights,
-                &mut |state, record| interface.complete((step, stage, offset), state, record),
-            )?;
+            let record = if compliant && stage != Phase::Approach {
+                let normal = (self, &mut *operator, contact, &mut *solver);
+                let record = interface.driven_step(normal, &mut run, (step, stage, depth, offset), &mut heights)?;
+                self.count_step(&mut run, &record, offset);
+                record
+            } else {
+                contact.fill_heights(&grid, offset, &mut heights);
+                self.run_step(
+                    operator,
+                    contact,
+                    solver,
+                    &mut run,
+                    (step, stage, depth, offset),
+                    &heights,
+                    &mut |state, record| {
+                        interface
+                            .complete((step, stage, offset, None), state, record)
+                            .map(|_| ())
+                    },
+                )?
+            };
             let view = StepView {
                 record: &record,
                 state: &run.state,
@@ -154,7 +252,8 @@ impl Translation {
             run.steps_done = step + 1;
         }
         let mut summary = run.summary;
-        stationary_means(&mut summary, &run.stationary);
+        let position = |record: &StepRecord| if compliant { record.drive_offset } else { record.offset };
+        stationary_means(&mut summary, &run.stationary, position);
         summary.frictional_dissipation = interface.frictional_dissipation;
         summary.complementarity = interface.complementarity;
         Ok(summary)

@@ -256,6 +256,9 @@ const LOOSE_TURN: f64 = 1e-3;
 /// At most this many loose rounds per step.
 const LOOSE_ROUNDS: usize = 4;
 
+/// The tractions before a step and the step's shift increment (the predictor's guide).
+pub(crate) type StepHistory = ([Vec<f64>; 2], [f64; 2]);
+
 /// The semismooth Newton active-set solver of the tangential problem (see the module).
 ///
 /// # Example
@@ -308,7 +311,7 @@ pub struct TangentialSolver {
     spring: Vec<f64>,
     /// The tractions before the last step and that step's shift increment: the predictor
     /// of the next step's start (None before a first step on this grid).
-    history: Option<([Vec<f64>; 2], [f64; 2])>,
+    history: Option<StepHistory>,
     /// Stiffness k of the spring between the drive and the indenter (None: a rigid drive).
     drive_stiffness: Option<f64>,
     /// Δ²/k of the step (0 under a rigid drive): the indenter lags the drive by this times
