@@ -32,7 +32,9 @@
 #![warn(missing_docs)]
 
 mod background;
+mod camera;
 mod changes;
+pub mod film;
 pub mod fit;
 mod image;
 mod mask;
@@ -41,6 +43,7 @@ mod phases;
 mod segment;
 pub mod synthetic;
 
+pub use camera::Camera;
 pub use changes::{change_map, Change, ChangeMap};
 pub use image::{GrayImage, Roi};
 pub use mask::ContactMask;

@@ -3,6 +3,7 @@
 //! independently (its noise stream is derived from the seed and the frame index), so frames
 //! can be produced in parallel.
 
+use crate::camera::Camera;
 use crate::{invalid, ContactMask, ExperimentError, GrayImage};
 use adhesim::rng::SplitMix64;
 use std::f64::consts::PI;
@@ -261,36 +262,24 @@ impl SyntheticSpec {
     /// Renders frame k: truth → blur → illumination → noise, clamped to 0..1.
     pub fn render(&self, k: usize) -> Result<SyntheticFrame, ExperimentError> {
         let truth = self.truth(k)?;
-        let (w, h) = (self.width, self.height);
-        let mut field = frame_buffer(w, h)?;
-        field.extend(truth.cells().iter().map(|&c| f32::from(c)));
-        if self.blur_sigma_px > 0.0 {
-            gaussian_blur(&mut field, w, h, self.blur_sigma_px)?;
-        }
-        let contrast = self.contact_level - self.background_level;
-        let sigma = if self.snr.is_finite() {
-            contrast.abs() / self.snr
-        } else {
-            0.0
-        };
-        let mut rng = SplitMix64::new(self.seed ^ (k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03).wrapping_add(1));
-        for y in 0..h {
-            let v = 2.0 * (y as f64 + 0.5) / h as f64 - 1.0;
-            for x in 0..w {
-                let u = 2.0 * (x as f64 + 0.5) / w as f64 - 1.0;
-                let light = 1.0 + self.illumination * (0.6 * u + 0.4 * v - 0.5 * (u * u + v * v));
-                let i = y * w + x;
-                let clean = light * (self.background_level + contrast * f64::from(field[i]));
-                let noise = if sigma > 0.0 { sigma * rng.gaussian() } else { 0.0 };
-                field[i] = (clean + noise).clamp(0.0, 1.0) as f32;
-            }
-        }
-        let image = GrayImage::new(w, h, field)?;
+        let image = self.camera().expose(&truth, k)?;
         Ok(SyntheticFrame {
             image,
             log: self.log_entry(k, truth.count()),
             truth,
         })
+    }
+
+    /// The camera of this sequence.
+    pub fn camera(&self) -> Camera {
+        Camera {
+            seed: self.seed,
+            snr: self.snr,
+            blur_sigma_px: self.blur_sigma_px,
+            illumination: self.illumination,
+            background_level: self.background_level,
+            contact_level: self.contact_level,
+        }
     }
 
     /// The log entry of frame k for a contact of `pixels` true pixels. F_x rises linearly from
@@ -314,56 +303,6 @@ impl SyntheticSpec {
             true_area: area,
         }
     }
-}
-
-/// An empty buffer with room for a frame of w × h values: an error naming the size where
-/// the memory is not there, not an abort (sizes up to 2^28 pixels pass `validate`).
-fn frame_buffer(w: usize, h: usize) -> Result<Vec<f32>, ExperimentError> {
-    let mut buffer = Vec::new();
-    buffer.try_reserve_exact(w * h).map_err(|_| {
-        invalid(
-            "synth.width×height",
-            "must fit in the memory available",
-            format!("{w}×{h}"),
-        )
-    })?;
-    Ok(buffer)
-}
-
-/// Separable Gaussian blur, kernel truncated at 3σ, edges clamped.
-fn gaussian_blur(field: &mut [f32], w: usize, h: usize, sigma: f64) -> Result<(), ExperimentError> {
-    let radius = (3.0 * sigma).ceil() as usize;
-    let kernel: Vec<f32> = {
-        let raw: Vec<f64> = (0..=2 * radius)
-            .map(|i| (-((i as f64 - radius as f64).powi(2)) / (2.0 * sigma * sigma)).exp())
-            .collect();
-        let sum: f64 = raw.iter().sum();
-        raw.iter().map(|v| (v / sum) as f32).collect()
-    };
-    let mut tmp = frame_buffer(w, h)?;
-    tmp.resize(w * h, 0.0);
-    for y in 0..h {
-        let row = &field[y * w..(y + 1) * w];
-        for x in 0..w {
-            let mut s = 0.0;
-            for (j, &k) in kernel.iter().enumerate() {
-                let xx = (x + j).saturating_sub(radius).min(w - 1);
-                s += k * row[xx];
-            }
-            tmp[y * w + x] = s;
-        }
-    }
-    for y in 0..h {
-        for x in 0..w {
-            let mut s = 0.0;
-            for (j, &k) in kernel.iter().enumerate() {
-                let yy = (y + j).saturating_sub(radius).min(h - 1);
-                s += k * tmp[yy * w + x];
-            }
-            field[y * w + x] = s;
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ mod common;
 mod cli;
 mod determinism;
 mod experiment_cli;
+mod experiment_film;
 mod experiment_inputs;
 mod experiment_speed;
 mod fields;

@@ -2,6 +2,7 @@
 //! to generate a synthetic one. Numerics live in `adhesim_experiment`; this module reads
 //! frames and logs, writes `frames.csv`, `changes/`, `plots/` and `summary.json`.
 
+mod film;
 mod inputs;
 mod plots;
 mod spec;
@@ -13,6 +14,7 @@ use adhesim_experiment::{
     IndenterTrack, Phase, SegmentationParams, Segmenter,
 };
 use anyhow::{bail, Context, Result};
+pub use film::{run_film, FilmArgs};
 use indicatif::ProgressBar;
 use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
 use rayon::prelude::*;
@@ -43,12 +45,15 @@ pub struct ExperimentArgs {
 pub enum ExperimentCommand {
     /// Generate a synthetic experiment (frames, force log, spec) with known contact.
     Synth(SynthArgs),
+    /// Film a simulated run as the camera films an experiment (frames, force log, truth, spec).
+    Film(FilmArgs),
 }
 
 /// Entry point of the `experiment` subcommand.
 pub fn main(args: ExperimentArgs) -> Result<()> {
     match (args.command, args.spec) {
         (Some(ExperimentCommand::Synth(synth)), _) => run_synth(&synth),
+        (Some(ExperimentCommand::Film(film)), _) => run_film(&film),
         (None, Some(spec)) => {
             check_not_a_misspelt_subcommand(&spec)?;
             run_experiment(&spec, args.out.as_deref(), args.quiet)
