@@ -36,6 +36,10 @@ pub struct PhaseParams {
     pub min_r2: f64,
     /// Minimum frames of a stick segment.
     pub min_frames: usize,
+    /// A frame whose logged F_x fell from the previous frame's by more than this share of
+    /// it is a slip too, at constant area (a slip event of the whole contact, paper Fig. 19);
+    /// 0 (the default) slips at area jumps only.
+    pub force_drop_threshold: f64,
 }
 
 impl Default for PhaseParams {
@@ -45,6 +49,7 @@ impl Default for PhaseParams {
             area_tolerance: 0.01,
             min_r2: 0.9,
             min_frames: 3,
+            force_drop_threshold: 0.0,
         }
     }
 }
@@ -64,10 +69,11 @@ pub fn detect_jumps(areas: &[f64], relative_threshold: f64) -> Result<Vec<bool>,
     Ok(jumps)
 }
 
-/// Classifies frames: jumps are [`Phase::Slip`]; the runs between jumps are [`Phase::Stick`]
-/// when long enough, of constant area, and, where `motion` = (stage_x, F_x) is given, with F_x
-/// linear in stage_x over a moving stage. Non-finite entries of `motion` mean "not logged";
-/// a segment with such entries is judged by its area alone.
+/// Classifies frames: jumps are [`Phase::Slip`], and so, with a `force_drop_threshold`, are
+/// drops of the logged F_x; the runs between slips are [`Phase::Stick`] when long enough, of
+/// constant area, and, where `motion` = (stage_x, F_x) is given, with F_x linear in stage_x
+/// over a moving stage. Non-finite entries of `motion` mean "not logged"; a segment with
+/// such entries is judged by its area alone.
 pub fn classify_phases(
     areas: &[f64],
     motion: Option<(&[f64], &[f64])>,
@@ -87,7 +93,21 @@ pub fn classify_phases(
             params.area_tolerance,
         ));
     }
-    let jumps = detect_jumps(areas, params.jump_threshold)?;
+    if !(params.force_drop_threshold.is_finite() && params.force_drop_threshold >= 0.0) {
+        return Err(invalid(
+            "analysis.force_drop_threshold",
+            "must be >= 0",
+            params.force_drop_threshold,
+        ));
+    }
+    let mut jumps = detect_jumps(areas, params.jump_threshold)?;
+    if let Some((_, force)) = motion.filter(|_| params.force_drop_threshold > 0.0) {
+        for i in 1..force.len() {
+            let (before, now) = (force[i - 1], force[i]);
+            jumps[i] |=
+                before.is_finite() && now.is_finite() && before - now > params.force_drop_threshold * before.abs();
+        }
+    }
     let mut phases: Vec<Phase> = jumps
         .iter()
         .map(|&j| if j { Phase::Slip } else { Phase::Undetermined })
@@ -161,6 +181,32 @@ mod tests {
         let erratic: Vec<f64> = (0..20).map(|k| ((k * 7919) % 13) as f64).collect();
         let phases = classify_phases(&[5.0; 20], Some((&x, &erratic)), &PhaseParams::default()).unwrap();
         assert!(phases.iter().all(|&p| p == Phase::Undetermined));
+    }
+
+    /// A sawtooth at constant area (the whole contact slipping, paper Fig. 19): with a force
+    /// drop threshold the drop frames are slip and the rises between them stick (exact: 20 %
+    /// drops against a 1 % threshold); without one nothing splits the run and nothing is
+    /// stick, as before.
+    #[test]
+    fn force_drops_at_constant_area_are_slips() {
+        let x: Vec<f64> = (0..20).map(|k| k as f64).collect();
+        let f: Vec<f64> = (0..20).map(|k| 1.0 + 0.05 * (k % 5) as f64).collect();
+        let drops = PhaseParams {
+            force_drop_threshold: 0.01,
+            ..PhaseParams::default()
+        };
+        let phases = classify_phases(&[5.0; 20], Some((&x, &f)), &drops).unwrap();
+        for (k, p) in phases.iter().enumerate() {
+            let expected = if k % 5 == 0 && k > 0 { Phase::Slip } else { Phase::Stick };
+            assert_eq!(*p, expected, "frame {k}");
+        }
+        let phases = classify_phases(&[5.0; 20], Some((&x, &f)), &PhaseParams::default()).unwrap();
+        assert!(phases.iter().all(|&p| p == Phase::Undetermined));
+        let bad = PhaseParams {
+            force_drop_threshold: -1.0,
+            ..PhaseParams::default()
+        };
+        assert!(classify_phases(&[5.0; 20], Some((&x, &f)), &bad).is_err());
     }
 
     /// Zero-area frames never produce NaN-driven jumps; bad thresholds are errors.

@@ -137,7 +137,8 @@ pub fn run_film(args: &FilmArgs) -> Result<()> {
          [forces]\npath = \"log.csv\"\ntime = \"t\"\nnormal = \"Fn\"\ntangential = \"Fx\"\nstage_x = \"x\"\nstage_z = \"z\"\n\n\
          [contact]\nthreshold = \"otsu\"\ncontact_is = \"dark\"\nbackground = \"fit\"\n\n\
          [indenter]\ncentre_px = [{column}, {row}]\nstage_x0 = {x0}\nmotion = \"+x\"\n\n\
-         [changes]\nreference = \"previous\"\nevery = 0\nat_jumps = true\nmax = 20\n",
+         [changes]\nreference = \"previous\"\nevery = 0\nat_jumps = true\nmax = 20\n\n\
+         [analysis]\nforce_drop_threshold = 0.01  # a slip event drops F_x at constant area\n",
         run = args.run.display(),
         seed = args.seed,
         snr = args.snr,

@@ -171,6 +171,8 @@ pub struct AnalysisSpec {
     pub min_r2: f64,
     #[serde(default = "default_min_frames")]
     pub min_stick_frames: usize,
+    #[serde(default)]
+    pub force_drop_threshold: f64,
 }
 
 impl Default for AnalysisSpec {
@@ -180,6 +182,7 @@ impl Default for AnalysisSpec {
             area_tolerance: default_area_tolerance(),
             min_r2: default_min_r2(),
             min_stick_frames: default_min_frames(),
+            force_drop_threshold: 0.0,
         }
     }
 }
@@ -349,11 +352,18 @@ fn phase_params(a: &AnalysisSpec) -> Result<PhaseParams> {
     if !(a.min_r2.is_finite() && (0.0..=1.0).contains(&a.min_r2)) {
         bail!("analysis.min_r2 must be in 0..1, got {}", a.min_r2);
     }
+    if !(a.force_drop_threshold.is_finite() && a.force_drop_threshold >= 0.0) {
+        bail!(
+            "analysis.force_drop_threshold must be >= 0 (0: off), got {}",
+            a.force_drop_threshold
+        );
+    }
     Ok(PhaseParams {
         jump_threshold: a.jump_threshold,
         area_tolerance: a.area_tolerance,
         min_r2: a.min_r2,
         min_frames: a.min_stick_frames,
+        force_drop_threshold: a.force_drop_threshold,
     })
 }
 
