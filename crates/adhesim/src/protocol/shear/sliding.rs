@@ -1,6 +1,7 @@
 //! Rolling and sliding with friction at the interface: the translation protocol with a
 //! tangential step on the contact's window after each normal step (docs/physics.md §8.4).
 
+use super::edge::add_normal;
 use super::window::TangentialRoom;
 use super::{contact_split_about, worst, ShearFields};
 use crate::elastic::{ElasticOperator, ShearBody};
@@ -121,7 +122,8 @@ impl Interface<'_> {
     ) -> Result<StepRecord, ProtocolError> {
         let grid = *operator.grid();
         let element = grid.dx().max(grid.dy());
-        let mut spent: Option<StepReport> = None;
+        // Every round's counters, the step's start as the configuration before its change.
+        let mut spent = StepReport::default();
         let mut change = f64::INFINITY;
         let mut drive_history = None;
         for round in 0..MAX_DRIVE_ROUNDS {
@@ -132,28 +134,21 @@ impl Interface<'_> {
             self.indenter = self.complete((step, stage, offset, Some(drive)), &run.state, &mut record)?;
             change = (self.indenter - offset).abs() / element;
             if round == 0 {
-                drive_history = self.friction.take_step_history();
+                drive_history = self.friction.forget_predictor();
             }
-            let report = &mut record.report;
-            if let Some(spent) = spent {
-                report.solves += spent.solves;
-                report.cg_iterations += spent.cg_iterations;
-                report.operator_applications += spent.operator_applications;
-                report.attachment_rounds += spent.attachment_rounds;
-                report.attached += spent.attached;
-                report.detached += spent.detached;
-                report.dissipated_energy += spent.dissipated_energy;
-                report.force_before_change = spent.force_before_change;
-                report.energy_before_change = spent.energy_before_change;
-            }
+            add_normal(&mut spent, record.report);
             if change <= DRIVE_TOLERANCE {
-                self.friction.put_step_history(drive_history);
+                match &drive_history {
+                    Some((before, increment)) => self.friction.remember_step(before, *increment),
+                    None => drop(self.friction.forget_predictor()),
+                }
+                record.report = spent;
+                let report = &record.report;
                 record.drive_offset = drive;
                 record.jumped = (report.attached + report.detached) > 0
                     && (report.force - report.force_before_change).abs() > protocol.jump_force_threshold;
                 return Ok(record);
             }
-            spent = Some(*report);
         }
         Err(ProtocolError::DriveNotSettled {
             step,

@@ -1,7 +1,7 @@
 //! The pressure's share of the tangential displacement (the coupled operator,
 //! `friction.coupling = "full"`; docs/physics.md §8.1).
 
-use super::{TangentialError, TangentialSolver, TangentialState};
+use super::{StepHistory, TangentialError, TangentialSolver, TangentialState};
 
 impl TangentialSolver {
     /// Sets the tangential displacement c = K_tz p that the step's pressure gives the
@@ -40,10 +40,13 @@ impl TangentialSolver {
         }
     }
 
-    /// Forgets the predictor's memory: a step restarted from a better guess than the
-    /// last step's (a coupled round after the first) must not be extrapolated.
-    pub(crate) fn forget_predictor(&mut self) {
-        self.history = None;
+    /// Forgets the predictor's memory, and returns it: a step restarted from a better
+    /// guess than the last step's (a coupled round after the first) must not be
+    /// extrapolated, and a step settled in rounds at one drive position (a translation's
+    /// profile following its indenter) keeps its first round's, the drive's move, not a
+    /// later round's tiny one.
+    pub(crate) fn forget_predictor(&mut self) -> Option<StepHistory> {
+        self.history.take()
     }
 
     /// The predictor's memory of a whole step from the tractions `before` at its start

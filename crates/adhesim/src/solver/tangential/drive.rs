@@ -2,7 +2,7 @@
 //! spring of stiffness k by a drive at X, so its shift δ = X − F/k follows from the
 //! tractions (docs/physics.md §8.2).
 
-use super::{FrictionLawError, StepHistory, TangentialReport, TangentialSolver, TangentialState};
+use super::{FrictionLawError, TangentialReport, TangentialSolver, TangentialState};
 
 impl TangentialSolver {
     /// The same solver pulling the indenter through a spring of `stiffness` k (force per
@@ -51,20 +51,6 @@ impl TangentialSolver {
     /// The drive's spring (None: a rigid drive, the shift is the indenter's).
     pub fn drive_stiffness(&self) -> Option<f64> {
         self.drive_stiffness
-    }
-
-    /// Takes the last step's traction change and increment, which the next step's
-    /// predictor scales ([`predict`](Self::predict)). A step that settles in rounds at one
-    /// drive position (a translation's profile following the indenter) keeps its first
-    /// round's, the drive's move: a later round's tiny increment would scale the change of
-    /// the contact's move into a wild prediction.
-    pub(crate) fn take_step_history(&mut self) -> Option<StepHistory> {
-        self.history.take()
-    }
-
-    /// Puts back what [`take_step_history`](Self::take_step_history) took.
-    pub(crate) fn put_step_history(&mut self, history: Option<StepHistory>) {
-        self.history = history;
     }
 
     /// The spring's stretch X − δ = (Δ²/k)·Σq of the current tractions.
