@@ -17,9 +17,15 @@ use std::path::{Path, PathBuf};
 /// Arguments of `adhesim experiment film`.
 #[derive(Debug, clap::Args)]
 pub struct FilmArgs {
-    /// The run's output folder (its `curve.csv` and `fields.npz`; a run with
-    /// `output.snapshot_every = 1` has a frame per step).
-    pub run: PathBuf,
+    /// The runs' output folders (each with its `curve.csv` and `fields.npz`; a run with
+    /// `output.snapshot_every = 1` has a frame per step), filmed one after the other on the
+    /// same grid (slides at several depths give Eq. 18's fit contacts of several sizes).
+    #[arg(required = true)]
+    pub runs: Vec<PathBuf>,
+    /// Film only the steps whose axis has travelled at least this far (length units; 0:
+    /// every step after the approach), to leave out a slide's first stick phase.
+    #[arg(long, default_value_t = 0.0)]
+    pub from_x: f64,
     /// Output folder (default: out/film/).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -66,8 +72,9 @@ struct CurveRow {
     areas: [f64; 3],
 }
 
-/// A filmed step: its curve.csv row and its contact.
+/// A filmed step: its run (counted from 0), its curve.csv row and its contact.
 struct Shot {
+    run: usize,
     row: CurveRow,
     contact: Vec<bool>,
 }
@@ -90,7 +97,10 @@ pub fn run_film(args: &FilmArgs) -> Result<()> {
     if !(args.rate.is_finite() && args.rate > 0.0) {
         bail!("--rate must be > 0, got {}", args.rate);
     }
-    let (grid, shots) = read_run(&args.run)?;
+    if !args.from_x.is_finite() {
+        bail!("--from-x must be finite, got {}", args.from_x);
+    }
+    let (grid, shots) = read_runs(&args.runs, args.from_x)?;
     let camera = Camera {
         seed: args.seed,
         snr: args.snr,
@@ -139,7 +149,7 @@ pub fn run_film(args: &FilmArgs) -> Result<()> {
          [indenter]\ncentre_px = [{column}, {row}]\nstage_x0 = {x0}\nmotion = \"+x\"\n\n\
          [changes]\nreference = \"previous\"\nevery = 0\nat_jumps = true\nmax = 20\n\n\
          [analysis]\nforce_drop_threshold = 0.01  # a slip event drops F_x at constant area\n",
-        run = args.run.display(),
+        run = args.runs.iter().map(|r| r.display().to_string()).collect::<Vec<_>>().join(", "),
         seed = args.seed,
         snr = args.snr,
         rate = args.rate,
@@ -193,9 +203,36 @@ fn check_camera(camera: &Camera) -> Result<()> {
     Ok(())
 }
 
-/// The grid and the filmed steps of a run: the snapshot steps of `fields.npz` after the
-/// approach, with their `curve.csv` rows.
-fn read_run(run: &Path) -> Result<(RunGrid, Vec<Shot>)> {
+/// The grid and the filmed steps of `runs`, one after the other, from an axis at `from_x`
+/// on; the runs must share their grid.
+fn read_runs(runs: &[PathBuf], from_x: f64) -> Result<(RunGrid, Vec<Shot>)> {
+    let mut all: Option<(RunGrid, Vec<Shot>)> = None;
+    for (index, run) in runs.iter().enumerate() {
+        let (grid, mut shots) = read_run(run, index)?;
+        shots.retain(|shot| shot.row.axis >= from_x);
+        match &mut all {
+            None => all = Some((grid, shots)),
+            Some((first, filmed)) => {
+                if (first.nx, first.ny) != (grid.nx, grid.ny) || first.dx != grid.dx || first.dy != grid.dy {
+                    bail!(
+                        "{}: its grid {}×{} of {:e}×{:e} is not the first run's, {}×{} of {:e}×{:e}; film runs of one grid together",
+                        run.display(), grid.nx, grid.ny, grid.dx, grid.dy, first.nx, first.ny, first.dx, first.dy
+                    );
+                }
+                filmed.append(&mut shots);
+            }
+        }
+    }
+    let (grid, shots) = all.expect("clap asks for one run at least");
+    if shots.is_empty() {
+        bail!("no step of the runs has its axis at --from-x = {from_x} or beyond");
+    }
+    Ok((grid, shots))
+}
+
+/// The grid and the filmed steps of a run (the `index`-th filmed): the snapshot steps of
+/// `fields.npz` after the approach, with their `curve.csv` rows.
+fn read_run(run: &Path, index: usize) -> Result<(RunGrid, Vec<Shot>)> {
     let path = run.join("fields.npz");
     let file = std::fs::File::open(&path)
         .with_context(|| format!("cannot read {}: RUN must be a run's output folder", path.display()))?;
@@ -229,6 +266,7 @@ fn read_run(run: &Path) -> Result<(RunGrid, Vec<Shot>)> {
         if !row.approach {
             let layer = contact.index_axis(ndarray::Axis(0), k);
             shots.push(Shot {
+                run: index,
                 row,
                 contact: layer.iter().copied().collect(),
             });
@@ -296,6 +334,7 @@ fn write_logs(out_dir: &Path, rate: f64, shots: &[Shot], seen: &[[f64; 3]]) -> R
     let mut truth = csv::Writer::from_path(out_dir.join("truth.csv"))?;
     truth.write_record([
         "frame",
+        "run",
         "step",
         "time",
         "run_area",
@@ -309,7 +348,12 @@ fn write_logs(out_dir: &Path, rate: f64, shots: &[Shot], seen: &[[f64; 3]]) -> R
         let row = &shot.row;
         let time = k as f64 / rate;
         log.write_record([time, row.force_normal, row.force_tangential, row.axis, row.depth].map(|v| v.to_string()))?;
-        let mut line = vec![k.to_string(), row.step.to_string(), time.to_string()];
+        let mut line = vec![
+            k.to_string(),
+            shot.run.to_string(),
+            row.step.to_string(),
+            time.to_string(),
+        ];
         line.extend(row.areas.iter().chain(seen).map(|v| v.to_string()));
         truth.write_record(line)?;
     }

@@ -99,9 +99,7 @@ impl Interface<'_> {
         worst(&mut self.complementarity, report.complementarity);
         Ok(report.shift[0])
     }
-}
 
-impl Interface<'_> {
     /// A stroke step under a compliant drive at `drive`: rounds of a normal step with the
     /// profile's axis at the indenter's shift and a tangential step to the drive, until the
     /// shift the tangential step returns is the one the profile stood at (a fixed point: the
