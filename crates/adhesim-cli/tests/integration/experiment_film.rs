@@ -3,6 +3,7 @@
 
 use crate::common;
 use common::{adhesim, assert_fails_with, assert_ok, column_values, read_csv, run_quiet, write};
+use std::path::{Path, PathBuf};
 
 /// A smooth sphere (R = 1, E = 3, ν = 1/2, no adhesion, a ≈ 9Δ on 64²) translated over
 /// 0.16 in 40 steps through a spring of k = 0.0005 with τ0 = 0.002 and a static 0.006: it
@@ -48,30 +49,7 @@ fn a_filmed_run_is_measured_back_by_the_analysis() {
     let scenario = write(dir.path(), "stick_slip.toml", STICK_SLIP);
     let run = dir.path().join("run");
     assert_ok(&run_quiet(&scenario, &run, &[]));
-    let film = dir.path().join("film");
-    let (run_arg, film_arg) = (run.to_str().unwrap(), film.to_str().unwrap());
-    let filmed = adhesim(&[
-        "experiment",
-        "film",
-        run_arg,
-        "--out",
-        film_arg,
-        "--width",
-        "400",
-        "--height",
-        "300",
-        "--quiet",
-    ]);
-    assert_ok(&filmed);
-    let analysis = dir.path().join("analysis");
-    let spec = film.join("experiment.toml");
-    assert_ok(&adhesim(&[
-        "experiment",
-        spec.to_str().unwrap(),
-        "--out",
-        analysis.to_str().unwrap(),
-        "--quiet",
-    ]));
+    let (film, analysis) = film_and_analyse(dir.path(), &[&run], &[]);
     let (truth_header, truth) = read_csv(&film.join("truth.csv"));
     let (header, frames) = read_csv(&analysis.join("frames.csv"));
     assert_eq!(frames.len(), 40, "one frame per stroke step");
@@ -175,12 +153,24 @@ fn films_of_slides_at_two_depths_give_back_the_shear_strength() {
             run
         })
         .collect();
-    let film = dir.path().join("film");
+    let runs: Vec<_> = runs.iter().map(|r| r.as_path()).collect();
+    let (film, analysis) = film_and_analyse(dir.path(), &runs, &["--from-x", "0.02"]);
+    let fit = &common::read_json(&analysis.join("summary.json"))["results"]["friction_law"];
+    let (tau0, q) = (fit["tau0"].as_f64().unwrap(), fit["q"].as_f64().unwrap());
+    assert!((tau0 / 0.002 - 1.0).abs() < 0.01, "τ0 {tau0}");
+    assert!(q.abs() < 0.01 * 0.002 * 0.063, "q {q}");
+    let (_, truth) = read_csv(&film.join("truth.csv"));
+    assert!(truth.iter().any(|row| row[1] == "0") && truth.iter().any(|row| row[1] == "1"));
+}
+
+/// Films `runs` into `dir`/film at 400 × 300 (with `extra` options) and analyses the film
+/// into `dir`/analysis; returns the two folders.
+fn film_and_analyse(dir: &Path, runs: &[&Path], extra: &[&str]) -> (PathBuf, PathBuf) {
+    let (film, analysis) = (dir.join("film"), dir.join("analysis"));
     let mut args = vec!["experiment", "film"];
     args.extend(runs.iter().map(|r| r.to_str().unwrap()));
+    args.extend(extra);
     args.extend([
-        "--from-x",
-        "0.02",
         "--width",
         "400",
         "--height",
@@ -190,7 +180,6 @@ fn films_of_slides_at_two_depths_give_back_the_shear_strength() {
         film.to_str().unwrap(),
     ]);
     assert_ok(&adhesim(&args));
-    let analysis = dir.path().join("analysis");
     let spec = film.join("experiment.toml");
     assert_ok(&adhesim(&[
         "experiment",
@@ -199,10 +188,5 @@ fn films_of_slides_at_two_depths_give_back_the_shear_strength() {
         analysis.to_str().unwrap(),
         "--quiet",
     ]));
-    let fit = &common::read_json(&analysis.join("summary.json"))["results"]["friction_law"];
-    let (tau0, q) = (fit["tau0"].as_f64().unwrap(), fit["q"].as_f64().unwrap());
-    assert!((tau0 / 0.002 - 1.0).abs() < 0.01, "τ0 {tau0}");
-    assert!(q.abs() < 0.01 * 0.002 * 0.063, "q {q}");
-    let (_, truth) = read_csv(&film.join("truth.csv"));
-    assert!(truth.iter().any(|row| row[1] == "0") && truth.iter().any(|row| row[1] == "1"));
+    (film, analysis)
 }
