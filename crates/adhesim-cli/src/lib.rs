@@ -29,20 +29,13 @@ fn write_stdout_line(line: std::fmt::Arguments) {
 }
 
 mod commands;
-mod figure;
-mod log_ticks;
-mod map_key;
-mod master_plots;
 mod output;
-mod plots;
 mod progress;
 mod resources;
-mod rough_sphere_plots;
-mod tangential_plots;
 
 use adhesim_scenario::error_text::error_line;
 use clap::{Parser, Subcommand};
-use commands::{experiment, reference, run, study, sweep, topography};
+use commands::{experiment, plot, reference, run, study, sweep, topography};
 
 /// Adhesive contacts of rough elastic bodies (FFT-accelerated BEM, Popov et al. 2021).
 ///
@@ -65,7 +58,7 @@ enum Command {
     /// its table and plots.
     Sweep(sweep::SweepArgs),
     /// Redraw figures, e.g. `plot master TABLE.csv... [--out DIR]` (master curves).
-    Plot(master_plots::PlotArgs),
+    Plot(plot::PlotArgs),
     /// Rolling / sliding friction study over the Johnson parameter (paper Figs. 7, 8, 10).
     Study(study::StudyArgs),
     /// Analyse a filmed contact experiment (`adhesim experiment SPEC.toml [--out DIR]`), or
@@ -110,7 +103,7 @@ where
         Some(Command::Run(args)) => run::command(&args),
         Some(Command::Reference(args)) => reference::print(&args),
         Some(Command::Sweep(args)) => sweep::command(&args),
-        Some(Command::Plot(args)) => master_plots::command(&args),
+        Some(Command::Plot(args)) => plot::command(&args),
         Some(Command::Study(args)) => study::run(&args),
         Some(Command::Experiment(args)) => experiment::main(args),
         Some(Command::Topography(args)) => topography::command(&args),
@@ -123,10 +116,3 @@ where
         }
     }
 }
-
-/// The runner of a sweep case (`adhesim run --quiet` into the case folder, figures
-/// included), for the Python package's `adhesim.sweep`: its case folders are the command
-/// line's.
-pub use commands::sweep::run_case as run_sweep_case;
-/// `table.csv` and the master-curve plots of a sweep folder, as `adhesim sweep merge`.
-pub use commands::sweep::table_and_plots as sweep_table_and_plots;

@@ -1,7 +1,8 @@
 //! `adhesim.sweep` on the scenario crate's sweep engine (`adhesim_scenario::sweep`,
 //! `adhesim_scenario::batch`): the same plan, case folders, `done` markers, resume and
-//! `table.csv` as `adhesim sweep`, with the command line's runner
-//! (`adhesim_cli::run_sweep_case`), so a case folder is the same whoever ran it.
+//! `table.csv` as `adhesim sweep`, with the command line's runner and figures
+//! (`adhesim_figures::run_figures::run_sweep_case`), so a case folder is the same whoever
+//! ran it.
 //!
 //! The parent process opens the folder ([`_sweep_open`]: plan, lock, `sweep.json`) and
 //! lists the cases to do; each case is then a picklable unit, the folder and the case
@@ -28,14 +29,14 @@ pub struct SweepFolder {
     batch: Option<Batch>,
 }
 
-/// The sweep's cases as batch cases run by the command line's runner.
+/// The sweep's cases as batch cases run by the figures crate's runner (the command line's).
 fn sweep_cases(plan: &Plan) -> Vec<SweepCase<'_>> {
     plan.cases
         .iter()
         .map(|case| SweepCase {
             plan,
             case,
-            runner: &adhesim_cli::run_sweep_case,
+            runner: &adhesim_figures::run_figures::run_sweep_case,
         })
         .collect()
 }
@@ -132,7 +133,7 @@ impl SweepFolder {
     fn finish(&self, py: Python<'_>) -> PyResult<(PathBuf, Vec<String>)> {
         self.batch()?;
         let (summary, _plots) = py
-            .detach(|| adhesim_cli::sweep_table_and_plots(&self.dir, &self.plan))
+            .detach(|| adhesim_figures::master_plots::sweep_table_and_plots(&self.dir, &self.plan))
             .map_err(value_error)?;
         let failed = self
             .plan
@@ -190,7 +191,7 @@ pub fn _sweep_run_case(
     let sweep_case = SweepCase {
         plan: &plan,
         case,
-        runner: &adhesim_cli::run_sweep_case,
+        runner: &adhesim_figures::run_figures::run_sweep_case,
     };
     // A pool of its own, not rayon's global one: a worker forked from a process whose
     // global pool was already running (a fork-started ProcessPoolExecutor) inherits that

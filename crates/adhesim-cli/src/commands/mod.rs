@@ -1,6 +1,7 @@
 //! One module per subcommand; `main.rs` parses the command line and calls them.
 
 pub mod experiment;
+pub mod plot;
 pub mod reference;
 pub mod run;
 pub mod study;

@@ -4,10 +4,11 @@
 
 use crate::{output, resources};
 use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
+use adhesim_figures::run_figures::RunFigures;
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
 use adhesim_scenario::output::observer::RunProgress;
-use adhesim_scenario::output::run::{run_into_folder, FolderRunOptions};
+use adhesim_scenario::output::run::{run_case, FolderRunOptions};
 use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -108,7 +109,7 @@ pub fn command(args: &RunArgs) -> Result<()> {
 }
 
 /// Runs a validated scenario into `out` through the scenario crate's pipeline
-/// ([`run_into_folder`]) with the command line's pictures and progress bar: curve.csv,
+/// ([`run_case`]) with the figures crate's pictures and the command line's progress bar: curve.csv,
 /// snapshots, plots, summary.json. `out` is new, or made ready by
 /// [`folder::prepare_run_folder`]; it gets the run marker.
 pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result<()> {
@@ -130,22 +131,13 @@ pub fn run_with_progress(
             .build_global()
             .context("cannot set up the thread pool")?;
     }
-    for warning in &scenario.warnings {
-        eprintln!("warning: {warning}");
-    }
     let folder_options = FolderRunOptions {
-        pictures: Some(&output::CliPictures),
+        pictures: Some(&RunFigures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
         checkpoint: options.checkpoint.as_ref(),
     };
-    let done = run_into_folder(scenario, out, folder_options, progress)?;
+    let done = run_case(scenario, out, folder_options, progress)?;
     let outcome = &done.outcome;
-    if let Some(warning) = adhesim_scenario::lost_contact_warning(&outcome.records) {
-        eprintln!("warning: {warning}");
-    }
-    if let Some(warning) = adhesim_scenario::unresolved_contact_warning(&outcome.records) {
-        eprintln!("warning: {warning}");
-    }
     if !options.quiet {
         let wall_seconds = done.wall_seconds;
         match &outcome.report {

@@ -7,9 +7,10 @@
 //! and redoes broken ones; `--shard I/N` runs the cases whose index modulo N is I. Every run (and `sweep merge DIR`) rebuilds
 //! `DIR/table.csv` and the master-curve plots from all finished case folders.
 
-use crate::commands::run::{run, run_with_progress, RunOptions};
+use crate::commands::run::{run_with_progress, RunOptions};
 use crate::resources;
 use adhesim::StepRecord;
+use adhesim_figures::master_plots::sweep_table_and_plots;
 use adhesim_scenario::batch::{self, Batch};
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder::{self, FolderLock, Shard};
@@ -181,7 +182,7 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
             return Err(error);
         }
     };
-    let (summary, plots) = table_and_plots(dir, plan)?;
+    let (summary, plots) = sweep_table_and_plots(dir, plan)?;
     if !quiet {
         outln!(
             "adhesim sweep: {} cases in the plan, shard {}/{}: {} run now, {} already finished, {} failed",
@@ -197,13 +198,8 @@ fn execute(plan: &Plan, dir: &Path, shard: Shard, resources: Resources, quiet: b
     outcome.failure_status(dir, "cases")
 }
 
-/// Runs one sweep case's scenario into its folder: `adhesim run --quiet`, figures
-/// included (the runner of the command line's sweeps and of Python's `adhesim.sweep`).
-pub fn run_case(scenario: &ValidScenario, folder: &Path, checkpoint: Option<&CheckpointPolicy>) -> Result<()> {
-    run(scenario, folder, &case_options(checkpoint))
-}
-
-/// [`run_case`] with its steps shown by `progress`.
+/// Runs one sweep case's scenario into its folder (`adhesim run --quiet`, figures
+/// included), its steps shown by `progress`.
 fn run_case_with(
     scenario: &ValidScenario,
     folder: &Path,
@@ -317,14 +313,6 @@ impl Drop for CaseSteps<'_> {
     }
 }
 
-/// Rebuilds `DIR/table.csv` of a sweep and its master-curve plots (after
-/// [`adhesim_scenario::sweep::table::rebuild`]).
-pub fn table_and_plots(dir: &Path, plan: &Plan) -> Result<(table::TableSummary, Vec<String>)> {
-    let summary = table::rebuild(dir, plan)?;
-    let plots = crate::master_plots::from_sweep(dir, &summary.path).context("master-curve plots")?;
-    Ok((summary, plots))
-}
-
 /// The report on the table and the plots of a sweep.
 fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary, plots: &[String]) {
     outln!(
@@ -341,7 +329,7 @@ fn print_table_and_plots(dir: &Path, plan: &Plan, summary: &table::TableSummary,
 pub fn merge(dir: &Path, quiet: bool) -> Result<()> {
     let plan = read_plan(dir)?;
     let _lock = FolderLock::acquire(dir, Shard::ALL)?;
-    let (summary, plots) = table_and_plots(dir, &plan)?;
+    let (summary, plots) = sweep_table_and_plots(dir, &plan)?;
     if !quiet {
         print_table_and_plots(dir, &plan, &summary, &plots);
     }

@@ -7,10 +7,10 @@
 //! doi:10.1088/2051-672X/aa51f8: C(q) ∝ q^(−2−2H)); writes `psd.csv`, the log–log PSD
 //! plot, a height-map picture and `statistics.json` into `--out`.
 
-use crate::figure::{Figure, Mark, Panel, Series, PALETTE};
 use adhesim::analysis::fit::fit_power_law;
 use adhesim::surface::{HeightMap, PsdBin};
 use adhesim::Boundary;
+use adhesim_figures::figure::{Figure, Mark, Panel, Series, PALETTE};
 use adhesim_scenario::RoughnessSection;
 use adhesim_topography::{length_unit_to_metres, read_topography, ReadOptions, TopographyError};
 use anyhow::{anyhow, bail, Context, Result};
@@ -550,7 +550,7 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
         };
         pixel.0 = diverging(t);
     }
-    let legend = crate::map_key::Legend::ColourBar {
+    let legend = adhesim_figures::map_key::Legend::ColourBar {
         low: mean - span,
         high: mean + span,
         label: if surface.unit == "m" {
@@ -561,7 +561,7 @@ fn write_height_map(path: &Path, surface: &Surface) -> Result<String> {
         colour: &diverging,
     };
     // The scale bar: the same pixels per length along both axes.
-    let keyed = crate::map_key::with_key(&image, pixels_per_length, legend)?;
-    crate::figure::files::save_image(&keyed, path)?;
+    let keyed = adhesim_figures::map_key::with_key(&image, pixels_per_length, legend)?;
+    adhesim_figures::figure::files::save_image(&keyed, path)?;
     Ok("heights.png".into())
 }

@@ -57,6 +57,16 @@ pub trait RunProgress {
 /// No progress shown.
 impl RunProgress for () {}
 
+/// No progress shown; warnings printed on stderr, one `warning: ...` line each (a sweep
+/// case run where no bar is drawn, as in Python's `adhesim.sweep`).
+pub struct WarningsOnStderr;
+
+impl RunProgress for WarningsOnStderr {
+    fn warning(&mut self, message: &str) {
+        eprintln!("warning: {message}");
+    }
+}
+
 /// Writes the outputs of each step.
 pub struct RunObserver<'a> {
     csv: CurveCsv,

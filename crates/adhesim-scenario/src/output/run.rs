@@ -136,6 +136,34 @@ pub fn run_into_folder(
     })
 }
 
+/// Runs one case into `out` as `adhesim run` does, before its report: the scenario's
+/// warnings, [`run_into_folder`], then the warnings on the finished run (contact lost, or
+/// never resolved), each handed to `progress` (`summary.json` keeps those the run itself
+/// raised). The runner of the command line's runs and sweep cases and, with
+/// [`WarningsOnStderr`](super::observer::WarningsOnStderr), of Python's `adhesim.sweep`.
+pub fn run_case(
+    scenario: &ValidScenario,
+    out: &Path,
+    options: FolderRunOptions<'_>,
+    progress: &mut dyn RunProgress,
+) -> Result<FolderRun> {
+    for warning in &scenario.warnings {
+        progress.warning(warning);
+    }
+    let done = run_into_folder(scenario, out, options, progress)?;
+    let records = &done.outcome.records;
+    for warning in [
+        crate::lost_contact_warning(records),
+        crate::unresolved_contact_warning(records),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        progress.warning(&warning);
+    }
+    Ok(done)
+}
+
 /// A failed run's error on one line, naming the key of a limit the run reached: "contact
 /// not lost …; raise the step limit" named no key.
 pub fn protocol_error_line(scenario: &ValidScenario, error: &ProtocolError) -> String {

@@ -5,9 +5,9 @@
 //! simulated run, filmed).
 
 use super::progress;
-use crate::figure::files::save_image;
 use adhesim_experiment::film::{FilmFrame, GridContact};
 use adhesim_experiment::{measure, Camera, Motion};
+use adhesim_figures::figure::files::save_image;
 use anyhow::{bail, Context, Result};
 use ndarray::{Array1, Array3};
 use ndarray_npy::ReadNpyExt;

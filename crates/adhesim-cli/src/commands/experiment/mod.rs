@@ -481,12 +481,12 @@ fn write_change_maps(
             // The key: new and vanished contact, and a scale bar in the length unit of
             // frames.pixel_size (one image pixel per camera pixel).
             let legend = [([255, 0, 0], "new contact"), ([0, 0, 255], "vanished contact")];
-            let keyed = crate::map_key::with_key(
+            let keyed = adhesim_figures::map_key::with_key(
                 &rgb,
                 1.0 / settings.pixel_size,
-                crate::map_key::Legend::Categories(&legend),
+                adhesim_figures::map_key::Legend::Categories(&legend),
             )?;
-            crate::figure::files::save_image(&keyed, &dir.join(&name))?;
+            adhesim_figures::figure::files::save_image(&keyed, &dir.join(&name))?;
             Ok(())
         })
         .collect();

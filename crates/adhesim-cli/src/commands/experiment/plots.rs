@@ -3,7 +3,7 @@
 //! unit; the axis labels name them so.
 
 use super::{ratio, FrameRow};
-use crate::figure::{padded_range, Figure, Mark, Panel, Series, PALETTE};
+use adhesim_figures::figure::{padded_range, Figure, Mark, Panel, Series, PALETTE};
 use anyhow::Result;
 use plotters::style::{RGBColor, BLACK};
 use std::path::Path;

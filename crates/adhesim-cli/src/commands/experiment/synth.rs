@@ -2,8 +2,8 @@
 //! known contact, from `adhesim_experiment::synthetic`.
 
 use super::progress;
-use crate::figure::files::save_image;
 use adhesim_experiment::synthetic::SyntheticSpec;
+use adhesim_figures::figure::files::save_image;
 use anyhow::{bail, Context, Result};
 use rayon::prelude::*;
 use std::path::PathBuf;

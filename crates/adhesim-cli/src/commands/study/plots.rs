@@ -1,8 +1,8 @@
 //! The figures of a study: Figs. 7 and 8 (rolling), Fig. 10 (sliding).
 
 use super::tables::{AlphaRow, Row};
-use crate::figure::{Mark, Panel, Series, INK, PALETTE};
-use crate::tangential_plots::write_panels;
+use adhesim_figures::figure::{Mark, Panel, Series, INK, PALETTE};
+use adhesim_figures::tangential_plots::write_panels;
 use anyhow::Result;
 use plotters::style::RGBColor;
 use std::path::Path;

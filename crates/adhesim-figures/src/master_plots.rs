@@ -9,37 +9,8 @@
 
 use crate::figure::{grey_first, plot_error, register_font, Figure, Mark, Panel, Series as Drawn};
 use anyhow::{anyhow, bail, Context, Result};
-use clap::{Args, Subcommand};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
-
-/// `adhesim plot ...`
-#[derive(Args)]
-pub struct PlotArgs {
-    #[command(subcommand)]
-    what: PlotKind,
-}
-
-#[derive(Subcommand)]
-enum PlotKind {
-    /// Master curves (Figs. 2, 3, 5) from one or more sweep tables; rows are grouped into
-    /// series by the table's `series` column.
-    Master {
-        /// table.csv files written by `adhesim sweep` (their case folders are used for the
-        /// force–radius plot when present).
-        #[arg(required = true)]
-        tables: Vec<PathBuf>,
-        /// Output folder [default: plots/ next to the first table].
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Join each series' points by a line in α order (a few series side by side).
-        #[arg(long)]
-        join: bool,
-        /// Leave out the γ fits with the area-equivalent radius √(A/π).
-        #[arg(long)]
-        no_area: bool,
-    },
-}
 
 /// How `fig3_master` and `fig5_master` are drawn (the defaults are a sweep's own plots).
 #[derive(Debug, Clone, Copy)]
@@ -59,41 +30,15 @@ impl Default for MasterStyle {
     }
 }
 
-/// Entry point of `adhesim plot`.
-pub fn command(args: &PlotArgs) -> Result<()> {
-    match &args.what {
-        PlotKind::Master {
-            tables,
-            out,
-            join,
-            no_area,
-        } => {
-            let out = match out {
-                Some(out) => out.clone(),
-                None => tables[0].parent().unwrap_or(Path::new(".")).join("plots"),
-            };
-            let style = MasterStyle {
-                join: *join,
-                area: !*no_area,
-            };
-            for table in tables {
-                check_rows(table)?;
-            }
-            let written = write(tables, &out, style)?;
-            if written.is_empty() {
-                bail!(
-                    "no finished row of {} has a johnson_parameter > 0: nothing to draw",
-                    tables
-                        .iter()
-                        .map(|t| t.display().to_string())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                );
-            }
-            outln!("plots in {}/: {}", out.display(), written.join(", "));
-            Ok(())
-        }
-    }
+/// Rebuilds `DIR/table.csv` of a sweep and its master-curve plots (after
+/// [`adhesim_scenario::sweep::table::rebuild`]), as `adhesim sweep merge` does.
+pub fn sweep_table_and_plots(
+    dir: &Path,
+    plan: &adhesim_scenario::sweep::Plan,
+) -> Result<(adhesim_scenario::sweep::table::TableSummary, Vec<String>)> {
+    let summary = adhesim_scenario::sweep::table::rebuild(dir, plan)?;
+    let plots = from_sweep(dir, &summary.path).context("master-curve plots")?;
+    Ok((summary, plots))
 }
 
 /// Plots of a sweep folder into `DIR/plots/`; returns the file names.
@@ -121,7 +66,7 @@ struct Row {
 /// (empty: no value), and `johnson_parameter` one > 0 (the log axis). `plot master` drew
 /// NaN, inf, text and α ≤ 0 rows without a word; now the first such cell is an error naming
 /// the table, the line, the case and the column.
-fn check_rows(path: &Path) -> Result<()> {
+pub fn check_rows(path: &Path) -> Result<()> {
     let mut reader = csv::Reader::from_path(path).with_context(|| format!("cannot read {}", path.display()))?;
     let header = reader.headers()?.clone();
     let find = |name: &str| header.iter().position(|h| h == name);
