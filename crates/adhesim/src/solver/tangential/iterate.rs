@@ -61,6 +61,11 @@ impl TangentialSolver {
             rz += (rx * rx + ry * ry) * inverse;
         }
         let goal = tolerance * target_norm.sqrt();
+        self.gap_floor = if self.moving {
+            self.params.tolerance * target_norm.sqrt()
+        } else {
+            0.0
+        };
         let mut iterations = 0;
         while rr.sqrt() > goal {
             if iterations >= self.params.max_iterations {
@@ -144,8 +149,13 @@ impl TangentialSolver {
     /// The semismooth Newton point of every contact element with a bound, from u = K q in
     /// `state.displacement`: z = q + ρ(w − u) with ρ = 1/K_ii (Alart & Curnier 1991). Inside
     /// its disc (|z| ≤ g) the element sticks; outside it slips with q = g·z/|z| and the
-    /// spring σ = (|z| − g)/(gρ) of the projection's tangent. Returns the number of status
-    /// changes and the largest turn of a slipping traction.
+    /// spring σ = (|z| − g)/(gρ) of the projection's tangent. In a step that moves the
+    /// drive, a slipping element whose slip w − u is below what a full-tolerance solve
+    /// resolves keeps slipping as it was: whether it sticks is then the solve's noise, and a
+    /// step of almost no slip with every element on its bound (a slide advanced by 10⁻¹² of
+    /// an element) let the noise flip hundreds of elements each round without end. (A step
+    /// that does not move is left to the disc: its elements stick.) Returns the number of
+    /// status changes and the largest turn of a slipping traction.
     pub(super) fn classify(&mut self, normal: &ContactState, state: &mut TangentialState, rho: f64) -> (usize, f64) {
         let mut changes = 0;
         let mut largest_turn = 0.0f64;
@@ -157,9 +167,12 @@ impl TangentialSolver {
             }
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
             let (gx, gy) = self.gap(state, i);
+            let was = state.status[i];
+            if was == SlipStatus::Slip && self.gap_floor > 0.0 && gx.hypot(gy) <= self.gap_floor {
+                continue;
+            }
             let (zx, zy) = (qx + rho * gx, qy + rho * gy);
             let magnitude = zx.hypot(zy);
-            let was = state.status[i];
             if magnitude <= bound {
                 if was != SlipStatus::Stick {
                     state.status[i] = SlipStatus::Stick;

@@ -327,6 +327,12 @@ pub struct TangentialSolver {
     /// The tangential displacement of the step's pressure, per component (empty: none,
     /// Goodman's approximation; [`set_pressure_displacement`](Self::set_pressure_displacement)).
     pressure_displacement: [Vec<f64>; 2],
+    /// The slip a solve to the full tolerance resolves, tolerance·‖w‖₂ over the face, in a
+    /// step that moves the drive (0 in one that does not): a slipping element whose slip is
+    /// below it keeps slipping (`classify`).
+    gap_floor: f64,
+    /// The step moves the drive.
+    moving: bool,
 }
 
 impl TangentialSolver {
@@ -351,6 +357,8 @@ impl TangentialSolver {
             broke_loose: 0,
             force_stiffness: None,
             pressure_displacement: [Vec::new(), Vec::new()],
+            gap_floor: 0.0,
+            moving: false,
         }
     }
 
@@ -416,6 +424,7 @@ impl TangentialSolver {
             .drive_stiffness
             .map_or(0.0, |stiffness| operator.grid().element_area() / stiffness);
         self.broke_loose = 0;
+        self.moving = increment != [0.0, 0.0];
         self.prepare(normal, shift, state, n);
         self.predict(normal, increment, state);
         let scale = self.target_scale(normal);

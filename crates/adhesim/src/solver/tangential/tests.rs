@@ -482,3 +482,60 @@ fn an_imposed_force_follows_cattaneo_mindlin_and_mindlin_deresiewicz() {
         );
     assert_eq!(with_static.unwrap_err(), TangentialError::ForceControlUnsupported);
 }
+
+#[test]
+fn a_slide_advanced_by_less_than_the_solve_resolves_keeps_sliding() {
+    // Gross sliding under a shear strength, kinetic alone and with a static value 1.5τ0,
+    // then twelve steps of 10⁻¹² and of 10⁻¹⁵ of an element: far below the slip a solve to
+    // 1e-10 resolves, so each element's stick-or-slip would be the CG's noise (before the
+    // rule of `classify`, the sixth step of 10⁻¹² flipped 323 elements a round for 200
+    // rounds and failed). Every element keeps slipping, in at most 3 rounds, at F = τ0·A
+    // (1e-12, the tractions' rounding). A step that does not move is a hold: every element
+    // sticks and the force stays.
+    let delta_x = 1.0 / 128.0;
+    let (grid, normal, mut operator) = pressed_sphere(48, 48.0 * delta_x, (16.0 * delta_x) * (16.0 * delta_x));
+    let tau0 = 0.01;
+    let sliding = tau0 * normal.contact_elements() as f64 * grid.element_area();
+    for static_law in [None, Some(FrictionLaw::shear_strength(1.5 * tau0).unwrap())] {
+        for advance in [1e-12, 1e-15, 0.0] {
+            let mut solver =
+                TangentialSolver::new(FrictionLaw::shear_strength(tau0).unwrap(), TangentialParams::default());
+            if let Some(law) = static_law {
+                solver = solver.with_static_law(law).unwrap();
+            }
+            let mut state = TangentialState::new(grid.len());
+            let mut shift = 0.0;
+            for _ in 0..8 {
+                shift += 0.002;
+                solver.step(&mut operator, &normal, [shift, 0.0], &mut state).unwrap();
+            }
+            for k in 0..12 {
+                shift += advance * delta_x;
+                let report = solver
+                    .step(&mut operator, &normal, [shift, 0.0], &mut state)
+                    .unwrap_or_else(|e| panic!("{static_law:?}, advance {advance:e}, step {k}: {e}"));
+                let moving = advance > 0.0;
+                let (stick, slip) = if moving {
+                    (0, normal.contact_elements())
+                } else {
+                    (normal.contact_elements(), 0)
+                };
+                assert_eq!(
+                    (report.stick_elements, report.slip_elements),
+                    (stick, slip),
+                    "{static_law:?} {advance:e} {k}"
+                );
+                assert!(
+                    report.rounds <= 3,
+                    "{static_law:?} {advance:e} {k}: {} rounds",
+                    report.rounds
+                );
+                assert!(
+                    (report.force[0] / sliding - 1.0).abs() < 1e-12,
+                    "{} vs {sliding}",
+                    report.force[0]
+                );
+            }
+        }
+    }
+}
