@@ -103,6 +103,57 @@ fn static_keys_are_refused_below_their_kinetic_keys_or_with_another_law() {
     assert!(glued.contains("friction.static_shear_strength"), "{glued}");
 }
 
+/// `friction.slip_weakening_distance` reaches the solver: over a D_c far below any step's
+/// slip (1e-15) the run is the static law's bit for bit; over one five times the slip
+/// distance τ0·a/G the broken elements keep most of τs, so the force is at least the static
+/// law's at every step and above it at some, never above τs·A.
+#[test]
+fn slip_weakening_reaches_the_solver() {
+    let static_key = "friction.static_shear_strength=0.004";
+    let (_, static_records) = shear_run(&[static_key]);
+    let (_, vanishing) = shear_run(&[static_key, "friction.slip_weakening_distance=1e-15"]);
+    let forces = |records: &[adhesim::StepRecord]| records.iter().map(|r| r.force_tangential).collect::<Vec<_>>();
+    assert_eq!(forces(&static_records), forces(&vanishing));
+    let (weakened, weakened_records) = shear_run(&[static_key, "friction.slip_weakening_distance=1e-3"]);
+    for (w, s) in weakened_records.iter().zip(&static_records) {
+        assert!(
+            w.force_tangential >= s.force_tangential * (1.0 - 1e-9),
+            "step {}: {} below the static law's {}",
+            w.step,
+            w.force_tangential,
+            s.force_tangential
+        );
+        assert!(w.force_tangential <= 0.004 * weakened.contact_area * (1.0 + 1e-9));
+    }
+    assert!(weakened_records
+        .iter()
+        .zip(&static_records)
+        .any(|(w, s)| w.force_tangential > s.force_tangential * 1.01));
+}
+
+#[test]
+fn slip_weakening_is_refused_without_a_static_law_or_a_positive_distance() {
+    let alone = error_of(TRESCA, &["friction.slip_weakening_distance=1e-3"]);
+    assert!(
+        alone.contains("friction.slip_weakening_distance = 0.001 weakens a static bound")
+            && alone.contains("friction.static_shear_strength"),
+        "{alone}"
+    );
+    for bad in ["0", "-1e-3", "inf"] {
+        let message = error_of(
+            TRESCA,
+            &[
+                "friction.static_shear_strength=0.004",
+                &format!("friction.slip_weakening_distance={bad}"),
+            ],
+        );
+        assert!(
+            message.contains("friction.slip_weakening_distance must be finite and > 0"),
+            "{bad}: {message}"
+        );
+    }
+}
+
 /// `protocol.drive_stiffness`: the indenter lags the drive by the spring's stretch F/k at
 /// every shift step (1e-9: the tractions' sum against the solver's stretch), and
 /// `curve.csv` gains `drive_x`. With a static shear strength three times the kinetic one

@@ -338,7 +338,12 @@ pub fn run_from(
                             material: friction.material,
                             layer: scenario.layer,
                         },
-                        &mut tangential_solver(friction.law, friction.static_law, friction.drive_stiffness)?,
+                        &mut tangential_solver(
+                            friction.law,
+                            friction.static_law,
+                            friction.slip_weakening_distance,
+                            friction.drive_stiffness,
+                        )?,
                     ),
                     &mut recording,
                 )?,
@@ -372,7 +377,12 @@ fn run_shear(
     solver: &mut NormalSolver,
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut friction = tangential_solver(setup.law, setup.static_law, setup.drive_stiffness)?;
+    let mut friction = tangential_solver(
+        setup.law,
+        setup.static_law,
+        setup.slip_weakening_distance,
+        setup.drive_stiffness,
+    )?;
     let summary = setup.protocol.run(
         operator,
         &scenario.heights,
@@ -392,16 +402,21 @@ fn run_shear(
     })
 }
 
-/// The tangential solver of a law, its static law and a compliant drive.
+/// The tangential solver of a law, its static law and its slip weakening, and a compliant
+/// drive.
 fn tangential_solver(
     law: FrictionLaw,
     static_law: Option<FrictionLaw>,
+    slip_weakening_distance: Option<f64>,
     drive_stiffness: Option<f64>,
 ) -> Result<TangentialSolver, ProtocolError> {
     let invalid = |e: adhesim::FrictionLawError| ProtocolError::InvalidParameter(e.to_string());
     let mut solver = TangentialSolver::new(law, TangentialParams::default());
     if let Some(static_law) = static_law {
         solver = solver.with_static_law(static_law).map_err(invalid)?;
+    }
+    if let Some(distance) = slip_weakening_distance {
+        solver = solver.with_slip_weakening(distance).map_err(invalid)?;
     }
     if let Some(stiffness) = drive_stiffness {
         solver = solver.with_drive_stiffness(stiffness).map_err(invalid)?;

@@ -76,6 +76,7 @@ impl ScenarioFile {
         let InterfaceFriction {
             law,
             static_law,
+            slip_weakening_distance,
             material: shear_material,
             ..
         } = self.interface_laws(friction, material.contact_modulus())?;
@@ -156,6 +157,7 @@ impl ScenarioFile {
                 protocol,
                 law,
                 static_law,
+                slip_weakening_distance,
                 drive_stiffness,
                 material: shear_material,
             }),
@@ -201,11 +203,13 @@ impl ScenarioFile {
     fn interface_laws(&self, friction: &FrictionSection, contact_modulus: f64) -> Result<InterfaceFriction> {
         let law = friction_law(friction)?;
         let static_law = static_friction_law(friction)?;
+        let slip_weakening_distance = slip_weakening(friction, static_law)?;
         let material = self.shear_material(contact_modulus)?;
         self.check_shear_combinations()?;
         Ok(InterfaceFriction {
             law,
             static_law,
+            slip_weakening_distance,
             material,
             drive_stiffness: None,
         })
@@ -389,6 +393,33 @@ fn static_friction_law(section: &FrictionSection) -> Result<Option<FrictionLaw>>
         _ => return Ok(None),
     };
     Ok(Some(built?))
+}
+
+/// `friction.slip_weakening_distance` D_c: finite and > 0, and only with a static law to
+/// weaken from (None without the key).
+fn slip_weakening(section: &FrictionSection, static_law: Option<FrictionLaw>) -> Result<Option<f64>> {
+    let Some(distance) = section.slip_weakening_distance else {
+        return Ok(None);
+    };
+    if static_law.is_none() {
+        bail!(ScenarioError::invalid_as(
+            "friction.slip_weakening_distance",
+            distance,
+            "with friction.static_shear_strength or friction.static_coefficient",
+            format!(
+                "friction.slip_weakening_distance = {distance} weakens a static bound to the kinetic one; give friction.static_shear_strength or friction.static_coefficient above the kinetic value, or drop the key"
+            )
+        ));
+    }
+    if !(distance.is_finite() && distance > 0.0) {
+        bail!(ScenarioError::invalid_as(
+            "friction.slip_weakening_distance",
+            distance,
+            "finite and > 0",
+            format!("friction.slip_weakening_distance must be finite and > 0, got {distance}")
+        ));
+    }
+    Ok(Some(distance))
 }
 
 /// The `results` of a shear run in `summary.json`.

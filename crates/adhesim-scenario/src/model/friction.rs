@@ -25,6 +25,11 @@ pub struct FrictionSection {
     /// Static τs ≥ τ0 of `shear_strength` and `coulomb_shear` (default τ0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub static_shear_strength: Option<f64>,
+    /// D_c of slip weakening: an element's bound falls from the static to the kinetic one
+    /// over this slip since it last stuck (needs a static key; default none: the bound
+    /// drops at the first slip).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slip_weakening_distance: Option<f64>,
     /// Share m ∈ [0, 1] of the shear energy that weakens the adhesive edge (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode_mixity: Option<f64>,
@@ -152,6 +157,8 @@ pub struct InterfaceFriction {
     pub law: FrictionLaw,
     /// The static law of elements at rest (None: `law` throughout).
     pub static_law: Option<FrictionLaw>,
+    /// D_c of slip weakening (None: the static bound drops at the first slip).
+    pub slip_weakening_distance: Option<f64>,
     pub material: ShearMaterial,
     /// The drive's spring of a slide or translate (None: a rigid drive).
     pub drive_stiffness: Option<f64>,
@@ -165,6 +172,8 @@ pub struct ShearSetup {
     pub law: FrictionLaw,
     /// The static law of elements stuck at the start of a step (None: `law` throughout).
     pub static_law: Option<FrictionLaw>,
+    /// D_c of slip weakening (None: the static bound drops at the first slip).
+    pub slip_weakening_distance: Option<f64>,
     /// The drive's spring (None: a rigid drive).
     pub drive_stiffness: Option<f64>,
     pub material: ShearMaterial,

@@ -243,9 +243,10 @@ impl TangentialRoom {
     }
 }
 
-/// Copies the tractions, slips and states of the elements that both windows hold from
-/// `from` into the fresh state of `into` (the others stay open and unloaded), with the
-/// shift, the drive and the rest flag; `elements` is the whole grid's count.
+/// Copies the tractions, slips, states (and slip weakening's slips since the elements last
+/// stuck) of the elements that both windows hold from `from` into the fresh state of
+/// `into` (the others stay open and unloaded), with the shift, the drive and the rest
+/// flag; `elements` is the whole grid's count.
 fn carry_fields(
     (from_window, from): (&ContactWindow, &TangentialState),
     (into_window, into): (&ContactWindow, &mut TangentialState),
@@ -264,6 +265,15 @@ fn carry_fields(
             into.slip[c][w] = from.slip[c][source];
         }
         into.status[w] = from.status[source];
+    }
+    if !from.slip_since_stuck.is_empty() {
+        // Slip weakening's memory, by grid element as the rest.
+        into.slip_since_stuck = vec![0.0; into.status.len()];
+        for (w, k) in into_window.elements() {
+            if let Some(&source) = at.get(k).filter(|&&source| source != usize::MAX) {
+                into.slip_since_stuck[w] = from.slip_since_stuck[source];
+            }
+        }
     }
     (into.shift, into.drive, into.at_rest) = (from.shift, from.drive, from.at_rest);
 }
@@ -291,7 +301,7 @@ mod tests {
     }
 
     /// A snapshot restored after a trial widened the window keeps every element's traction,
-    /// slip and state, now in the wider window, and its displacements are K q there: those
+    /// slip, state and slip since it last stuck (slip weakening's), now in the wider window, and its displacements are K q there: those
     /// of the narrow window where both hold the element, to the rounding of transforms of
     /// other sizes (1e-12 of the largest asserted).
     #[test]
@@ -301,11 +311,13 @@ mod tests {
         let contact = disc(16);
         let mut room = TangentialRoom::new(&grid, &contact, 2, material.into()).unwrap();
         let window = room.window.clone();
+        room.state.slip_since_stuck = vec![0.0; window.grid.len()];
         for (w, k) in window.elements() {
             if contact[k] {
                 room.state.traction[0][w] = 1.0 + (k % 7) as f64;
                 room.state.traction[1][w] = 0.5 - (k % 3) as f64;
                 room.state.slip[0][w] = 1e-3 * (k % 5) as f64;
+                room.state.slip_since_stuck[w] = 1e-4 * (k % 11) as f64;
                 room.state.status[w] = if k % 2 == 0 {
                     SlipStatus::Stick
                 } else {
@@ -335,12 +347,14 @@ mod tests {
         for (w, k) in room.window.elements() {
             let Some(&from) = at.get(k).filter(|&&from| from != usize::MAX) else {
                 assert_eq!(room.state.traction[0][w], 0.0, "outside the snapshot: no traction");
+                assert_eq!(room.state.slip_since_stuck[w], 0.0);
                 continue;
             };
             assert_eq!(room.state.traction[0][w], narrow.traction[0][from]);
             assert_eq!(room.state.traction[1][w], narrow.traction[1][from]);
             assert_eq!(room.state.slip[0][w], narrow.slip[0][from]);
             assert_eq!(room.state.status[w], narrow.status[from]);
+            assert_eq!(room.state.slip_since_stuck[w], narrow.slip_since_stuck[from]);
             for c in 0..2 {
                 let difference = (room.state.displacement[c][w] - narrow.displacement[c][from]).abs();
                 assert!(difference <= 1e-12 * largest, "element {k}: {difference:e}");

@@ -196,7 +196,15 @@ impl TangentialSolver {
                 changes += 1;
                 self.break_loose(i);
             }
-            // The bound after a break (the kinetic one) when a static law holds.
+            // Under slip weakening the bound falls with the slip the Newton point estimates;
+            // the fall of an element that was slipping counts as a turn (the rounds go on
+            // while bounds still move; a break is a change already).
+            let fall = self.weaken(i, (magnitude - self.bound[i]) / rho);
+            if was == SlipStatus::Slip {
+                largest_turn = largest_turn.max(fall);
+            }
+            // The bound after a break (the kinetic one, or the weakened one) when a static
+            // law holds.
             let bound = self.bound[i];
             self.unit[i] = (ex, ey);
             if bound == 0.0 {

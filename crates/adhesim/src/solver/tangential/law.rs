@@ -68,6 +68,12 @@ pub enum FrictionLawError {
     /// The drive's spring must be finite and > 0.
     #[error("drive stiffness must be finite and > 0, got {0}")]
     DriveStiffness(f64),
+    /// Slip weakening needs a static law to weaken from.
+    #[error("slip weakening (over a distance {0}) needs a static friction law above the kinetic one")]
+    WeakeningWithoutStaticLaw(f64),
+    /// The slip weakening distance must be finite and > 0.
+    #[error("slip weakening distance must be finite and > 0, got {0}")]
+    WeakeningDistance(f64),
 }
 
 fn check(value: f64, error: fn(f64) -> FrictionLawError) -> Result<f64, FrictionLawError> {

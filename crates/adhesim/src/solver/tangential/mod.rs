@@ -85,6 +85,10 @@ pub struct TangentialState {
     /// and every element starts the next step stuck under its static bound.
     #[cfg_attr(feature = "serde", serde(default))]
     pub at_rest: bool,
+    /// The slip |s| each element has made since it last stuck, under slip weakening
+    /// ([`TangentialSolver::with_slip_weakening`]; empty without it).
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Vec::is_empty"))]
+    pub slip_since_stuck: Vec<f64>,
 }
 
 impl TangentialState {
@@ -99,6 +103,7 @@ impl TangentialState {
             shift: [0.0; 2],
             drive: [0.0; 2],
             at_rest: false,
+            slip_since_stuck: Vec::new(),
         }
     }
 
@@ -294,6 +299,12 @@ pub struct TangentialSolver {
     /// The kinetic bound per element (0 off contact): an element that breaks loose in a
     /// step drops from its static bound to this one for the rest of the step.
     kinetic: Vec<f64>,
+    /// Slip weakening's distance D_c (None: the drop to the kinetic bound is at once).
+    weakening_distance: Option<f64>,
+    /// The static bound per element, and the slip since it last stuck at the step's start
+    /// (under slip weakening).
+    static_bound: Vec<f64>,
+    slip_before: Vec<f64>,
     params: TangentialParams,
     /// w = u⁻ + Δδ per component.
     target: [Vec<f64>; 2],
@@ -342,6 +353,9 @@ impl TangentialSolver {
             law,
             static_law: None,
             kinetic: Vec::new(),
+            weakening_distance: None,
+            static_bound: Vec::new(),
+            slip_before: Vec::new(),
             params,
             target: [Vec::new(), Vec::new()],
             residual: [Vec::new(), Vec::new()],
@@ -388,13 +402,16 @@ impl TangentialSolver {
         self.static_law
     }
 
-    /// Element `i` breaks loose: from its static bound to its kinetic one.
+    /// Element `i` breaks loose: from its static bound to its kinetic one (under slip
+    /// weakening, the bound falls with its slip instead: [`Self::weaken`]).
     #[inline]
     fn break_loose(&mut self, i: usize) {
         if self.bound[i] > self.kinetic[i] {
             self.broke_loose += 1;
         }
-        self.bound[i] = self.kinetic[i];
+        if self.weakening_distance.is_none() {
+            self.bound[i] = self.kinetic[i];
+        }
     }
 
     /// One quasi-static step to the shift `shift` = δ on the contact set and pressure of
@@ -426,9 +443,9 @@ impl TangentialSolver {
         self.broke_loose = 0;
         self.moving = increment != [0.0, 0.0];
         self.prepare(normal, shift, state, n);
-        self.predict(normal, increment, state);
-        let scale = self.target_scale(normal);
         let rho = 1.0 / operator.self_compliance();
+        self.predict(normal, increment, state, rho);
+        let scale = self.target_scale(normal);
         let mut report = TangentialReport::default();
         // Inexact Newton: while the sets still change, a loose solve decides them as well;
         // the rounds that may end the step solve to the full tolerance.
@@ -462,6 +479,7 @@ impl TangentialSolver {
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
         self.refresh_drive_offset(state);
+        self.record_weakening_slip(normal, state);
         self.finish(operator, normal, shift, state, scale, &mut report);
         self.add_pressure_displacement(state);
         self.note_slip_event(&before, increment, state, &mut report);
@@ -490,6 +508,10 @@ impl TangentialSolver {
         self.bound.resize(n, 0.0);
         self.kinetic.clear();
         self.kinetic.resize(n, 0.0);
+        for buffer in [&mut self.static_bound, &mut self.slip_before] {
+            buffer.clear();
+            buffer.resize(n, 0.0);
+        }
         self.unit.clear();
         self.unit.resize(n, (0.0, 0.0));
         self.spring.clear();
@@ -525,11 +547,14 @@ impl TangentialSolver {
             let slipping = !state.at_rest && state.status[i] == SlipStatus::Slip && magnitude > 0.0;
             // A slipping element keeps slipping at the kinetic bound; the others start stuck
             // under the static one.
+            self.kinetic[i] = kinetic;
             let bound = match self.static_law {
+                Some(law) if self.weakening_distance.is_some() => {
+                    self.start_weakening(i, law.bound(normal.pressure[i]), slipping, state)
+                }
                 Some(law) if !slipping => law.bound(normal.pressure[i]),
                 _ => kinetic,
             };
-            self.kinetic[i] = kinetic;
             self.bound[i] = bound;
             if bound == 0.0 {
                 state.status[i] = SlipStatus::Slip;
@@ -564,6 +589,7 @@ mod drive;
 mod force;
 mod iterate;
 mod predict;
+mod weakening;
 
 #[cfg(test)]
 mod tests;

@@ -8,15 +8,22 @@ impl TangentialSolver {
     /// step's traction change, scaled to this step's shift increment, added to each
     /// contact element's traction and put back in its disc (on the circle: slipping along
     /// it). Only the starting point of the Newton rounds changes, not their solution.
-    /// (Not after a slip event: its change is no guide to the next step's.)
-    pub(super) fn predict(&mut self, normal: &ContactState, increment: [f64; 2], state: &mut TangentialState) {
+    /// (Not after a slip event: its change is no guide to the next step's.) `rho` is the
+    /// Newton point's 1/K_ii, with which a predicted break estimates its slip.
+    pub(super) fn predict(
+        &mut self,
+        normal: &ContactState,
+        increment: [f64; 2],
+        state: &mut TangentialState,
+        rho: f64,
+    ) {
         if state.at_rest {
             return;
         }
         let Some(history) = self.history.take() else {
             return;
         };
-        self.extrapolate(&history, normal, increment, state);
+        self.extrapolate(&history, normal, increment, state, rho);
         self.history = Some(history);
     }
 
@@ -27,6 +34,7 @@ impl TangentialSolver {
         normal: &ContactState,
         increment: [f64; 2],
         state: &mut TangentialState,
+        rho: f64,
     ) {
         let last_squared = last[0] * last[0] + last[1] * last[1];
         let along = increment[0] * last[0] + increment[1] * last[1];
@@ -45,6 +53,8 @@ impl TangentialSolver {
             if magnitude >= bound {
                 if state.status[i] != SlipStatus::Slip {
                     self.break_loose(i);
+                    // Under slip weakening, by the slip its excess over the disc predicts.
+                    self.weaken(i, (magnitude - bound) / rho);
                 }
                 let bound = self.bound[i];
                 state.status[i] = SlipStatus::Slip;
