@@ -575,6 +575,7 @@ fn a_key_of_another_law_is_refused_by_name() {
         cohesive_stress: Some(0.25),
         softening_fraction: None,
         range: Some(0.002),
+        first_contact_factor: None,
         aging: None,
     };
     let error = crate::cohesive::adhesion_law(&section).unwrap_err();

@@ -44,6 +44,7 @@ mod curve;
 mod error;
 pub mod error_text;
 mod files;
+mod first_contact;
 mod guards;
 mod hash;
 mod hold;
@@ -244,6 +245,8 @@ mod aging_tests;
 mod cohesive_tests;
 #[cfg(test)]
 mod error_tests;
+#[cfg(test)]
+mod first_contact_tests;
 #[cfg(test)]
 mod friction_tests;
 #[cfg(test)]

@@ -485,6 +485,9 @@ pub struct ValidScenario {
     pub gamma: Vec<f64>,
     /// Reference γ0.
     pub gamma0: f64,
+    /// `adhesion.first_contact_factor` of an indentation: the factor by which a first
+    /// contact changes γ where it touched (`first_contact_map.npy` written after the run).
+    pub first_contact_factor: Option<f64>,
     /// `[adhesion]`'s law with its parameters, checked (the run reads this, not the
     /// file's keys).
     pub law: AdhesionLaw,

@@ -141,6 +141,7 @@ impl ScenarioFile {
             layer,
             gamma,
             gamma0,
+            first_contact_factor: None,
             law: adhesion_law,
             indenter,
             heights,

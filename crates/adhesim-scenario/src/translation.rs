@@ -106,6 +106,7 @@ impl ScenarioFile {
             layer,
             gamma,
             gamma0,
+            first_contact_factor: None,
             law,
             indenter,
             heights,

@@ -115,6 +115,7 @@ impl ScenarioFile {
         };
         self.check_friction_pairing()?;
         self.check_aging_pairing()?;
+        let first_contact_factor = self.first_contact_factor(inputs.gamma0)?;
         if let Some(solver) = &self.solver {
             solver.check(inputs.gamma0 > 0.0, inputs.law.name(), self.grid.boundary)?;
         }
@@ -127,6 +128,7 @@ impl ScenarioFile {
         warnings.extend(crate::guards::single_step_warning(&valid));
         valid.warnings = warnings;
         valid.roughness = roughness.map(|map| map.heights);
+        valid.first_contact_factor = first_contact_factor;
         Ok(valid)
     }
 
@@ -258,6 +260,7 @@ impl ScenarioFile {
             layer,
             gamma,
             gamma0,
+            first_contact_factor: None,
             law,
             indenter,
             heights,

@@ -403,6 +403,21 @@ fn a_killed_roll_resumes_from_its_checkpoint_byte_identically() {
     assert_killed_runs_resume(&case, &[10, 16, 33], &plain);
 }
 
+/// The wavy sphere with `adhesion.first_contact_factor`, killed in its approach and in its
+/// retraction: the elements touched before the kill come back from the checkpoint, so the
+/// resumed folder's `first_contact_map.npy` is the uninterrupted run's, byte for byte.
+#[test]
+fn a_killed_case_resumes_its_first_contact_map_byte_identically() {
+    let text = SCENARIO.replace(
+        "work_of_adhesion = 6.16850275068085e-4",
+        "work_of_adhesion = 6.16850275068085e-4\nfirst_contact_factor = 1.5",
+    );
+    let case = real_case(&text);
+    let (_plain_dir, plain) = uninterrupted(&case);
+    assert!(names(&plain).contains(&"first_contact_map.npy"), "{:?}", names(&plain));
+    assert_killed_runs_resume(&case, &[12, 40], &plain);
+}
+
 /// An indentation's checkpoint put into a roll's folder (under the roll's header) is
 /// warned about and the case restarts from scratch, with the uninterrupted run's files.
 #[test]

@@ -24,6 +24,11 @@ pub struct AdhesionSection {
     /// ρ of `law = "exponential"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
+    /// f: the surface energy changes by this factor where the indentation touched; the run
+    /// writes the γ map of the next impression (`first_contact_map.npy`; the paper's
+    /// Sect. 5.2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_contact_factor: Option<f64>,
     /// Aging bonds during a hold (`protocol.hold_time`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub aging: Option<AgingSection>,

@@ -97,6 +97,8 @@ pub struct RunObserver<'a> {
     pub written_fields: Option<SnapshotFields>,
     /// Mid-run checkpoints, when on ([`RunObserver::enable_checkpoints`]).
     checkpoints: Option<Checkpoints>,
+    /// Every element in contact at some step, when kept ([`RunObserver::track_touched`]).
+    touched: Option<Vec<bool>>,
 }
 
 /// Where and when checkpoints are written, and the records they need.
@@ -156,6 +158,7 @@ impl<'a> RunObserver<'a> {
             fields: None,
             written_fields: None,
             checkpoints: None,
+            touched: None,
         })
     }
 
@@ -169,6 +172,12 @@ impl<'a> RunObserver<'a> {
             records: Vec::new(),
             warned: false,
         });
+    }
+
+    /// Keeps the elements the run touches (in contact at some step), for the γ map of the
+    /// next impression (`adhesion.first_contact_factor`).
+    pub fn track_touched(&mut self) {
+        self.touched = Some(vec![false; self.grid.len()]);
     }
 
     /// The state a checkpoint keeps.
@@ -196,6 +205,7 @@ impl<'a> RunObserver<'a> {
                 .collect(),
             output_seconds: self.timings.output_seconds,
             fields: self.fields.as_ref().map(|f| f.recorder().clone()),
+            touched: self.touched.as_ref().map(bits),
         }
     }
 
@@ -219,6 +229,9 @@ impl<'a> RunObserver<'a> {
         self.timings.output_seconds = state.output_seconds;
         if let (Some(fields), Some(recorder)) = (&mut self.fields, state.fields) {
             fields.restore(recorder);
+        }
+        if let (Some(touched), Some(kept)) = (&mut self.touched, state.touched) {
+            *touched = kept.0;
         }
         Ok(())
     }
@@ -281,6 +294,11 @@ impl<'a> RunObserver<'a> {
             self.captured
                 .push((step, view.state.contact.clone(), view.previous_contact.to_vec()));
         }
+        if let Some(touched) = &mut self.touched {
+            for (t, &c) in touched.iter_mut().zip(&view.state.contact) {
+                *t |= c;
+            }
+        }
         if r.contact_elements > self.largest.0 {
             self.largest = (r.contact_elements, step, view.state.contact.clone());
         }
@@ -327,6 +345,13 @@ impl<'a> RunObserver<'a> {
         }
         if let (Some(fields), Some(out)) = (&mut self.fields, self.snapshots.parent()) {
             self.written_fields = Some(fields.write(scenario, out)?);
+        }
+        if let (Some(touched), Some(factor), Some(out)) =
+            (&self.touched, scenario.first_contact_factor, self.snapshots.parent())
+        {
+            let map = crate::first_contact::next_impression_map(&scenario.gamma, scenario.gamma0, factor, touched);
+            let shape = (self.grid.ny(), self.grid.nx());
+            write_field(&out.join(crate::first_contact::FIRST_CONTACT_MAP), shape, &map)?;
         }
         self.csv.commit()
     }

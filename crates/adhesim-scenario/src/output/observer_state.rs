@@ -26,6 +26,9 @@ pub(crate) struct ObserverState {
     pub(super) phase_steps: BTreeMap<String, usize>,
     pub(super) output_seconds: f64,
     pub(super) fields: Option<crate::SnapshotRecorder>,
+    /// The elements touched so far (`adhesion.first_contact_factor`; absent without).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(super) touched: Option<Bits>,
 }
 
 impl ObserverState {
@@ -37,5 +40,6 @@ impl ObserverState {
             && self.last_in_contact.iter().all(|(_, c, p)| set(c) && set(p))
             && self.captured.iter().all(|(_, c, p)| set(c) && set(p))
             && self.fields.as_ref().is_none_or(|f| f.fits(elements))
+            && self.touched.as_ref().is_none_or(set)
     }
 }

@@ -79,6 +79,9 @@ pub fn run_into_folder(
     if let Some(policy) = options.checkpoint {
         observer.enable_checkpoints(out, policy);
     }
+    if scenario.first_contact_factor.is_some() {
+        observer.track_touched();
+    }
     let resume = match resume {
         Some(body) => {
             observer.restore(body.observer, &body.records)?;
