@@ -2,28 +2,16 @@
 //! indentation, read back by the next run, and the key's refusals.
 
 use crate::output::run::{run_into_folder, FolderRunOptions};
-use crate::tests::error_of;
+use crate::tests::{error_of, MINIMAL};
 use crate::*;
 use std::path::Path;
 
-/// A JKR sphere on 64² (E* = 1, R = 1, γ0 = 1e-3; a_JKR ≈ 12Δ) pressed to 3|d_JKR|.
-const SPHERE: &str = r#"
-[grid]
-n = 64
-size = 1.0
-[material]
-contact_modulus = 1.0
-[adhesion]
-work_of_adhesion = 1e-3
-[indenter]
-shape = "sphere"
-radius = 1.0
-[protocol]
-kind = "indent_pulloff"
-max_depth = 3.0
-depth_unit = "jkr"
-steps = 30
-"#;
+/// scenarios/first_contact.toml: a JKR sphere on 64² (E* = 1, R = 1, γ0 = 1e-3; a_JKR ≈
+/// 12Δ) pressed to 3|d_JKR|, its first contact raising γ by 1.5.
+fn first_contact_scenario() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/first_contact.toml");
+    std::fs::read_to_string(path).unwrap()
+}
 
 /// Runs `text` with `overrides` into `out`; its pull-off force and largest contact.
 fn run_in(text: &str, overrides: &[String], out: &Path) -> (f64, usize) {
@@ -48,16 +36,17 @@ fn read_map(path: &Path) -> ndarray::Array2<f64> {
 
 #[test]
 fn the_next_impression_pulls_off_with_the_changed_surface_energy() {
-    // A first impression with f = 1.5 writes a map of 1.5 on every element it touched (a
-    // smooth sphere touches exactly its largest contact) and 1 elsewhere. The second
-    // impression reads it: its most tensile force comes at a radius inside the touched
+    // scenarios/first_contact.toml's first impression, f = 1.5, writes a map of 1.5 on
+    // every element it touched (a smooth sphere touches exactly its largest contact) and 1
+    // elsewhere. The second impression (f = 1: the surface has changed) reads it: its most tensile force comes at a radius inside the touched
     // disc (JKR's (9πγR²/8E*)^(1/3): 9.7 and 11.2Δ, the disc 16.4Δ), where γ = 1.5γ0, so
     // F = −(3/2)πγR gives 1.5 times the first's force. Tolerance 2 %: the two pull-offs
     // sit at other radii on the mesh, whose scatter of the JKR-type pull-off is about 1 %
     // there (measured: 1.5127).
     let dir = tempfile::tempdir().unwrap();
+    let text = first_contact_scenario();
     let first = dir.path().join("first");
-    let (first_force, touched) = run_in(SPHERE, &["adhesion.first_contact_factor=1.5".into()], &first);
+    let (first_force, touched) = run_in(&text, &[], &first);
     let map = read_map(&first.join("first_contact_map.npy"));
     assert_eq!(map.dim(), (64, 64));
     assert_eq!(map.iter().filter(|&&v| v == 1.5).count(), touched);
@@ -66,7 +55,8 @@ fn the_next_impression_pulls_off_with_the_changed_surface_energy() {
         "adhesion.field={{ kind = \"map\", file = \"{}\" }}",
         first.join("first_contact_map.npy").display()
     );
-    let (second_force, _) = run_in(SPHERE, &[field], &dir.path().join("second"));
+    let second_overrides = ["adhesion.first_contact_factor=1".to_string(), field];
+    let (second_force, _) = run_in(&text, &second_overrides, &dir.path().join("second"));
     let ratio = second_force / first_force;
     assert!(
         (ratio / 1.5 - 1.0).abs() < 0.02,
@@ -74,21 +64,21 @@ fn the_next_impression_pulls_off_with_the_changed_surface_energy() {
     );
     // Without the key no map is written.
     let plain = dir.path().join("plain");
-    run_in(SPHERE, &[], &plain);
+    run_in(MINIMAL, &[], &plain);
     assert!(!plain.join("first_contact_map.npy").exists());
 }
 
 #[test]
 fn first_contact_factor_is_refused_where_it_cannot_act() {
     for bad in ["0", "-1", "inf"] {
-        let message = error_of(SPHERE, &[&format!("adhesion.first_contact_factor={bad}")]);
+        let message = error_of(MINIMAL, &[&format!("adhesion.first_contact_factor={bad}")]);
         assert!(
             message.contains("adhesion.first_contact_factor must be > 0"),
             "{bad}: {message}"
         );
     }
     let no_adhesion = error_of(
-        &SPHERE.replace("max_depth = 3.0\ndepth_unit = \"jkr\"", "max_depth = 0.01"),
+        &MINIMAL.replace("max_depth = 3.0\ndepth_unit = \"jkr\"", "max_depth = 0.01"),
         &["adhesion.work_of_adhesion=0", "adhesion.first_contact_factor=1.5"],
     );
     assert!(

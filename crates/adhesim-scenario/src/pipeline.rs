@@ -402,6 +402,12 @@ fn run_shear(
     })
 }
 
+/// The round limit of a run's tangential steps (the library's default is 200): a slip
+/// event's avalanche under a static law, or the falling bounds of slip weakening, crosses a
+/// contact of a hundred elements and more a few elements a round (the paper's slide at
+/// Δ = 0.05 mm took more than 200). Only steps that would have failed take more.
+const TANGENTIAL_ROUNDS: usize = 2000;
+
 /// The tangential solver of a law, its static law and its slip weakening, and a compliant
 /// drive.
 fn tangential_solver(
@@ -411,7 +417,11 @@ fn tangential_solver(
     drive_stiffness: Option<f64>,
 ) -> Result<TangentialSolver, ProtocolError> {
     let invalid = |e: adhesim::FrictionLawError| ProtocolError::InvalidParameter(e.to_string());
-    let mut solver = TangentialSolver::new(law, TangentialParams::default());
+    let params = TangentialParams {
+        max_rounds: TANGENTIAL_ROUNDS,
+        ..TangentialParams::default()
+    };
+    let mut solver = TangentialSolver::new(law, params);
     if let Some(static_law) = static_law {
         solver = solver.with_static_law(static_law).map_err(invalid)?;
     }

@@ -21,6 +21,11 @@ fn project(status: SlipStatus, unit: (f64, f64), v: (f64, f64)) -> (f64, f64) {
     }
 }
 
+/// The round from which a step's sub-resolution slips keep their state whatever the step
+/// (`classify`): a cycle breaker, since a step whose noise flips elements never ends,
+/// while most steps end within ten rounds.
+const CYCLE_ROUNDS: usize = 50;
+
 impl TangentialSolver {
     /// The linear solve of one Newton round, CG on the face of the current sets: sticking
     /// tractions free (their slip must vanish), slipping ones free to turn along their
@@ -61,11 +66,7 @@ impl TangentialSolver {
             rz += (rx * rx + ry * ry) * inverse;
         }
         let goal = tolerance * target_norm.sqrt();
-        self.gap_floor = if self.moving {
-            self.params.tolerance * target_norm.sqrt()
-        } else {
-            0.0
-        };
+        self.gap_floor = self.params.tolerance * target_norm.sqrt();
         let mut iterations = 0;
         while rr.sqrt() > goal {
             if iterations >= self.params.max_iterations {
@@ -149,14 +150,26 @@ impl TangentialSolver {
     /// The semismooth Newton point of every contact element with a bound, from u = K q in
     /// `state.displacement`: z = q + ρ(w − u) with ρ = 1/K_ii (Alart & Curnier 1991). Inside
     /// its disc (|z| ≤ g) the element sticks; outside it slips with q = g·z/|z| and the
-    /// spring σ = (|z| − g)/(gρ) of the projection's tangent. In a step that moves the
-    /// drive, a slipping element whose slip w − u is below what a full-tolerance solve
-    /// resolves keeps slipping as it was: whether it sticks is then the solve's noise, and a
-    /// step of almost no slip with every element on its bound (a slide advanced by 10⁻¹² of
-    /// an element) let the noise flip hundreds of elements each round without end. (A step
-    /// that does not move is left to the disc: its elements stick.) Returns the number of
-    /// status changes and the largest turn of a slipping traction.
-    pub(super) fn classify(&mut self, normal: &ContactState, state: &mut TangentialState, rho: f64) -> (usize, f64) {
+    /// spring σ = (|z| − g)/(gρ) of the projection's tangent. In a step that moves a gross
+    /// slide on, and in any step from its `round` [`CYCLE_ROUNDS`] on, a slipping element
+    /// whose slip w − u is below what a full-tolerance solve resolves keeps slipping as it
+    /// was: whether it sticks is then the solve's noise, and a step of almost no slip with
+    /// every element on its bound (a slide advanced by 10⁻¹² of an element) let the noise
+    /// flip hundreds of elements each round without end. (Before, a step is left to the
+    /// disc: a hold's elements stick, and so does an element whose slip dies out.) Returns
+    /// the number of status changes and the largest turn of a slipping traction.
+    pub(super) fn classify(
+        &mut self,
+        normal: &ContactState,
+        state: &mut TangentialState,
+        rho: f64,
+        round: usize,
+    ) -> (usize, f64) {
+        let floor = if self.gross_slide || round >= CYCLE_ROUNDS {
+            self.gap_floor
+        } else {
+            0.0
+        };
         let mut changes = 0;
         let mut largest_turn = 0.0f64;
         for i in 0..state.status.len() {
@@ -168,7 +181,7 @@ impl TangentialSolver {
             let (qx, qy) = (state.traction[0][i], state.traction[1][i]);
             let (gx, gy) = self.gap(state, i);
             let was = state.status[i];
-            if was == SlipStatus::Slip && self.gap_floor > 0.0 && gx.hypot(gy) <= self.gap_floor {
+            if was == SlipStatus::Slip && floor > 0.0 && gx.hypot(gy) <= floor {
                 continue;
             }
             let (zx, zy) = (qx + rho * gx, qy + rho * gy);

@@ -210,7 +210,7 @@ pub enum TangentialError {
         tolerance: f64,
     },
     /// The stick and slip sets still changed after the round limit.
-    #[error("stick and slip sets still changing after {rounds} active-set rounds ({changes} changes in the last)")]
+    #[error("stick and slip sets still changing after {rounds} active-set rounds ({changes} changes in the last; with none, slip directions or slip-weakened bounds still moving)")]
     SetsNotSettled {
         /// Rounds done.
         rounds: usize,
@@ -338,12 +338,13 @@ pub struct TangentialSolver {
     /// The tangential displacement of the step's pressure, per component (empty: none,
     /// Goodman's approximation; [`set_pressure_displacement`](Self::set_pressure_displacement)).
     pressure_displacement: [Vec<f64>; 2],
-    /// The slip a solve to the full tolerance resolves, tolerance·‖w‖₂ over the face, in a
-    /// step that moves the drive (0 in one that does not): a slipping element whose slip is
-    /// below it keeps slipping (`classify`).
+    /// The slip a solve to the full tolerance resolves, tolerance·‖w‖₂ over the face: a
+    /// slipping element whose slip is below it keeps slipping in a gross slide or once the
+    /// rounds cycle (`classify`).
     gap_floor: f64,
-    /// The step moves the drive.
-    moving: bool,
+    /// The step moves the drive on from a gross slide: no element of the last step's
+    /// contact stuck, and the contact is not at rest.
+    gross_slide: bool,
 }
 
 impl TangentialSolver {
@@ -372,7 +373,7 @@ impl TangentialSolver {
             force_stiffness: None,
             pressure_displacement: [Vec::new(), Vec::new()],
             gap_floor: 0.0,
-            moving: false,
+            gross_slide: false,
         }
     }
 
@@ -441,7 +442,10 @@ impl TangentialSolver {
             .drive_stiffness
             .map_or(0.0, |stiffness| operator.grid().element_area() / stiffness);
         self.broke_loose = 0;
-        self.moving = increment != [0.0, 0.0];
+        self.gross_slide = increment != [0.0, 0.0]
+            && !state.at_rest
+            && state.status.contains(&SlipStatus::Slip)
+            && !state.status.contains(&SlipStatus::Stick);
         self.prepare(normal, shift, state, n);
         let rho = 1.0 / operator.self_compliance();
         self.predict(normal, increment, state, rho);
@@ -458,7 +462,7 @@ impl TangentialSolver {
             };
             report.cg_iterations += self.solve_face(operator, state, tolerance)?;
             report.rounds += 1;
-            let (changes, turn) = self.classify(normal, state, rho);
+            let (changes, turn) = self.classify(normal, state, rho, report.rounds);
             if !settling && changes == 0 && turn <= self.params.direction_tolerance {
                 break;
             }
