@@ -38,9 +38,10 @@ fn read_map(path: &Path) -> ndarray::Array2<f64> {
 fn the_next_impression_pulls_off_with_the_changed_surface_energy() {
     // scenarios/first_contact.toml's first impression, f = 1.5, writes a map of 1.5 on
     // every element it touched (a smooth sphere touches exactly its largest contact) and 1
-    // elsewhere. The second impression (f = 1: the surface has changed) reads it: its most tensile force comes at a radius inside the touched
-    // disc (JKR's (9πγR²/8E*)^(1/3): 9.7 and 11.2Δ, the disc 16.4Δ), where γ = 1.5γ0, so
-    // F = −(3/2)πγR gives 1.5 times the first's force. Tolerance 2 %: the two pull-offs
+    // elsewhere. The second impression (f = 1: the surface has changed) reads it: its most
+    // tensile force comes at a radius inside the touched disc (JKR's (9πγR²/8E*)^(1/3): 9.7
+    // and 11.2Δ, the disc 16.4Δ), where γ = 1.5γ0, so F = −(3/2)πγR gives 1.5 times the
+    // first's force. Tolerance 2 %: the two pull-offs
     // sit at other radii on the mesh, whose scatter of the JKR-type pull-off is about 1 %
     // there (measured: 1.5127).
     let dir = tempfile::tempdir().unwrap();
