@@ -59,6 +59,12 @@ impl ValidScenario {
                 },
                 None => AdhesiveParams {
                     predicted_growth: self.predicted_growth(),
+                    contact_window: self
+                        .file
+                        .solver
+                        .as_ref()
+                        .and_then(|solver| solver.contact_window)
+                        .unwrap_or(AdhesiveParams::default().contact_window),
                     ..AdhesiveParams::default()
                 },
             };
@@ -113,6 +119,8 @@ pub struct Counters {
     pub cg_iterations: usize,
     /// Forward + inverse FFT pairs.
     pub operator_applications: u64,
+    /// Of those, the pairs of the adhesive CG on contact windows.
+    pub window_applications: u64,
     /// Contact on the border of a free grid at some step.
     pub touches_border: bool,
 }
@@ -126,6 +134,7 @@ impl ProtocolReport {
                 solves: s.solves,
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
+                window_applications: s.window_applications,
                 touches_border: s.touches_border,
             },
             Self::Translation(s) => Counters {
@@ -133,6 +142,7 @@ impl ProtocolReport {
                 solves: s.solves,
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
+                window_applications: s.window_applications,
                 touches_border: s.touches_border,
             },
             Self::Shear(s) => Counters {
@@ -140,6 +150,7 @@ impl ProtocolReport {
                 solves: s.solves,
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
+                window_applications: s.window_applications,
                 touches_border: s.touches_border,
             },
         }

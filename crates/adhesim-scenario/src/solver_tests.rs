@@ -26,7 +26,11 @@ steps = 30
 "#;
 
 fn records_with(rule: &str) -> Vec<adhesim::StepRecord> {
-    let overrides = [format!("solver.predicted_growth={rule}")];
+    records_set(&format!("solver.predicted_growth={rule}"))
+}
+
+fn records_set(setting: &str) -> Vec<adhesim::StepRecord> {
+    let overrides = [setting.to_string()];
     let scenario = load(WAVY, "wavy.toml", Path::new("."), &overrides).unwrap();
     run(&scenario, &mut ()).unwrap().records
 }
@@ -56,6 +60,39 @@ fn predicted_growth_rules_keep_the_contact_sets_and_reach_the_solver() {
     }
 }
 
+/// The fixed-set CG on the contact's bounding box solves the same K_CC (transforms of
+/// another size round differently): the same contact set size at every step, forces equal
+/// to 1e-6 of the largest (the solves' relative tolerance is 1e-6, the reported state is
+/// converged to a tenth of it). The key reaches the solver: `false` gives other bits, and
+/// the default is `true` bit for bit.
+#[test]
+fn the_contact_window_keeps_the_contact_sets_and_reaches_the_solver() {
+    let (on, off, default) = (
+        records_set("solver.contact_window=true"),
+        records_set("solver.contact_window=false"),
+        records_set("solver.predicted_growth=auto"),
+    );
+    assert_eq!(on.len(), off.len());
+    let largest = off.iter().map(|r| r.force_normal.abs()).fold(0.0, f64::max);
+    for (a, b) in on.iter().zip(&off) {
+        assert_eq!(a.contact_elements, b.contact_elements, "step {}", a.step);
+        assert!(
+            (a.force_normal - b.force_normal).abs() <= 1e-6 * largest,
+            "step {}: {} against {}",
+            a.step,
+            a.force_normal,
+            b.force_normal
+        );
+    }
+    assert!(on
+        .iter()
+        .zip(&off)
+        .any(|(a, b)| a.force_normal.to_bits() != b.force_normal.to_bits()));
+    for (a, b) in default.iter().zip(&on) {
+        assert_eq!(a.force_normal.to_bits(), b.force_normal.to_bits(), "step {}", a.step);
+    }
+}
+
 #[test]
 fn a_rule_the_solver_would_not_use_is_refused_naming_the_key() {
     let without_adhesion = WAVY
@@ -68,6 +105,11 @@ fn a_rule_the_solver_would_not_use_is_refused_naming_the_key() {
     );
     let error = error_of(WAVY, &["solver.predicted_growth=on", "grid.boundary=periodic"]);
     assert!(error.contains("grid.boundary = \"periodic\""), "{error}");
+    let error = error_of(WAVY, &["solver.contact_window=false", "grid.boundary=periodic"]);
+    assert!(
+        error.contains("solver.contact_window = false") && error.contains("grid.boundary = \"periodic\""),
+        "{error}"
+    );
     let error = error_of(WAVY, &["solver.predicted_growth=sometimes"]);
     assert!(
         error.contains("solver.predicted_growth") && error.contains("`auto`, `on`, `off`"),

@@ -19,6 +19,9 @@ pub struct Performance {
     pub solver_iterations: usize,
     /// Forward + inverse FFT pairs (elastic operator applications).
     pub fft_pairs: u64,
+    /// Of those, the adhesive CG's pairs on contact windows (transforms of twice a
+    /// window's side instead of twice the grid's; docs/physics.md §3.2).
+    pub window_fft_pairs: u64,
     pub solves: usize,
     pub steps: usize,
     pub threads: usize,
@@ -53,6 +56,7 @@ impl Performance {
             solves,
             cg_iterations: solver_iterations,
             operator_applications: fft_pairs,
+            window_applications: window_fft_pairs,
             ..
         } = *counters;
         let per = |value: f64, count: usize| if count > 0 { value / count as f64 } else { 0.0 };
@@ -60,6 +64,7 @@ impl Performance {
             wall_seconds,
             solver_iterations,
             fft_pairs,
+            window_fft_pairs,
             solves,
             steps,
             threads: rayon::current_num_threads(),

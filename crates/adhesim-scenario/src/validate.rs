@@ -39,12 +39,16 @@ impl ScenarioFile {
                 )
             ));
         }
-        if let Some(rule) = self.solver.as_ref().and_then(|solver| solver.predicted_growth) {
+        if let Some((key, value)) = self
+            .solver
+            .as_ref()
+            .and_then(|solver| solver.given().into_iter().next())
+        {
             bail!(ScenarioError::invalid_as(
-                "solver.predicted_growth",
-                format!("\"{}\"", rule.name()),
+                key,
+                value,
                 "absent with material.thickness",
-                "solver.predicted_growth replays the half-space's kernel; on a layer the adhesive solver runs its reference rule: remove the key"
+                format!("{key} acts on the half-space's kernel; on a layer the adhesive solver runs its reference rule: remove the key")
             ));
         }
         Ok(())

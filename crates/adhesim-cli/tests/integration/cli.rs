@@ -65,7 +65,10 @@ fn unknown_keys_are_named() {
     let (_dir, output) = run_text(&format!("{HERTZ}\n[numerics]\nfoo = 1\n"), &[]);
     assert_fails_with(&output, &["unknown key `numerics`"]);
     let (_dir, output) = run_text(&format!("{HERTZ}\n[solver]\nfoo = 1\n"), &[]);
-    assert_fails_with(&output, &["unknown key `solver.foo` (expected `predicted_growth`)"]);
+    assert_fails_with(
+        &output,
+        &["unknown key `solver.foo` (expected `predicted_growth` or `contact_window`)"],
+    );
     let (_dir, output) = run_text(
         HERTZ,
         &[

@@ -14,6 +14,10 @@ pub struct SolverSection {
     /// Predicted-subset growth of the adhesive step (docs/fast-step.md §3); default `auto`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub predicted_growth: Option<PredictedGrowthName>,
+    /// The fixed-set CG on the contact's bounding box (the library's
+    /// `AdhesiveParams::contact_window`); default `true`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_window: Option<bool>,
 }
 
 /// `solver.predicted_growth`.
@@ -49,18 +53,30 @@ impl PredictedGrowthName {
 }
 
 impl SolverSection {
-    /// Refuses a rule the run's solver would not use (a silent default otherwise): predicted
-    /// growth acts in the sharp adhesive solver (γ0 > 0, `adhesion.law` absent or `"jkr"`)
-    /// on free grids.
+    /// The keys given, each with its value as written in a scenario file.
+    pub(crate) fn given(&self) -> Vec<(&'static str, String)> {
+        let mut keys = Vec::new();
+        if let Some(rule) = self.predicted_growth {
+            keys.push(("solver.predicted_growth", format!("\"{}\"", rule.name())));
+        }
+        if let Some(window) = self.contact_window {
+            keys.push(("solver.contact_window", window.to_string()));
+        }
+        keys
+    }
+
+    /// Refuses a rule the run's solver would not use (a silent default otherwise): the
+    /// rules of `[solver]` act in the sharp adhesive solver (γ0 > 0, `adhesion.law` absent
+    /// or `"jkr"`) on free grids.
     pub(crate) fn check(&self, adhesive: bool, law: LawName, boundary: BoundaryName) -> Result<(), ScenarioError> {
-        let Some(rule) = self.predicted_growth else {
+        let Some((key, value)) = self.given().into_iter().next() else {
             return Ok(());
         };
         let reason = if !adhesive {
             "a run without adhesion (adhesion.work_of_adhesion = 0)".to_string()
         } else if law != LawName::Jkr {
             format!(
-                "adhesion.law = \"{}\" (a cohesive law has no rings to predict)",
+                "adhesion.law = \"{}\" (a cohesive law has no rings to predict nor a fixed-set CG)",
                 law.name()
             )
         } else if boundary == BoundaryName::Periodic {
@@ -69,12 +85,11 @@ impl SolverSection {
             return Ok(());
         };
         Err(ScenarioError::invalid_as(
-            "solver.predicted_growth",
-            format!("\"{}\"", rule.name()),
+            key,
+            value.clone(),
             "the sharp adhesive solver on a free grid",
             format!(
-                "solver.predicted_growth = \"{}\" acts in the sharp adhesive solver on a free grid only; this scenario has {reason}: remove the key",
-                rule.name()
+                "{key} = {value} acts in the sharp adhesive solver on a free grid only; this scenario has {reason}: remove the key"
             ),
         ))
     }

@@ -1,7 +1,7 @@
 use super::influence::{love_primitive, love_rectangle};
 use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
-use crate::grid::Grid;
+use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -251,6 +251,16 @@ impl ElasticOperator for FreeOperator {
     fn applications(&self) -> u64 {
         self.applications
     }
+    fn window_operator(&self, side: usize) -> Option<Box<dyn ElasticOperator + Sync>> {
+        let grid = &self.grid;
+        if side == 0 || side > grid.nx().min(grid.ny()) {
+            return None;
+        }
+        let size = (side as f64 * grid.dx(), side as f64 * grid.dy());
+        let window = Grid::rectangular(side, side, size.0, size.1, Boundary::Free).ok()?;
+        let material = ElasticMaterial::new(self.contact_modulus).ok()?;
+        Some(Box::new(FreeOperator::new(window, material)))
+    }
 }
 
 #[cfg(test)]
@@ -349,6 +359,39 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_window_operator_is_the_restriction_of_the_full_one() {
+        // A field inside a side × side window (placed off the grid's corner): the window's
+        // own operator gives the full operator's displacement on the window. Tolerance
+        // 1e-12 of max|u|: the same Love coefficients (a window's element size is side·Δ/side,
+        // equal to Δ up to one rounding) through transforms of another length.
+        let mut random = Lcg(0x5eed_0044);
+        let (n, side, (row, column)) = (48, 20, (9, 23));
+        let grid = Grid::rectangular(n, n, 1.3, 1.3, Boundary::Free).unwrap();
+        let mut full = FreeOperator::new(grid, ElasticMaterial::new(2.1).unwrap());
+        let mut window = full.window_operator(side).expect("a free operator has windows");
+        assert!(full.window_operator(n + 1).is_none(), "no window larger than the grid");
+        let local: Vec<f64> = (0..side * side).map(|_| random.next() - 0.4).collect();
+        let mut field = vec![0.0; n * n];
+        for i in 0..side {
+            for j in 0..side {
+                field[(row + i) * n + column + j] = local[i * side + j];
+            }
+        }
+        let (mut expected, mut windowed) = (vec![0.0; n * n], vec![0.0; side * side]);
+        full.apply(&field, &mut expected);
+        window.apply(&local, &mut windowed);
+        let scale = expected.iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        for i in 0..side {
+            for j in 0..side {
+                let (a, b) = (windowed[i * side + j], expected[(row + i) * n + column + j]);
+                assert!((a - b).abs() <= 1e-12 * scale, "({i}, {j}): {a} against {b}");
+            }
+        }
+        let (own, whole) = (window.self_compliance(), full.self_compliance());
+        assert!((own - whole).abs() <= 1e-14 * whole, "{own} against {whole}");
     }
 
     #[test]

@@ -81,6 +81,16 @@ pub trait ElasticOperator: Send {
     /// Diagonal entry K(0,0): displacement of an element under its own unit pressure.
     fn self_compliance(&self) -> f64;
 
+    /// The same operator on a free grid of `side` × `side` elements of this grid's size:
+    /// where the kernel depends on the offset between two elements only and has no images
+    /// (a free half-space), its restriction to any window of that side. A fixed-set CG on
+    /// a contact inside such a window then transforms twice the window's side instead of
+    /// twice the grid's. None (the default) where the operator has no such restriction.
+    fn window_operator(&self, side: usize) -> Option<Box<dyn ElasticOperator + Sync>> {
+        let _ = side;
+        None
+    }
+
     /// Number of applications so far (each is one forward+inverse FFT pair, in double or
     /// single precision).
     fn applications(&self) -> u64;
@@ -147,6 +157,9 @@ impl ElasticOperator for HalfSpace {
     }
     fn self_compliance(&self) -> f64 {
         self.inner().self_compliance()
+    }
+    fn window_operator(&self, side: usize) -> Option<Box<dyn ElasticOperator + Sync>> {
+        self.inner().window_operator(side)
     }
     fn applications(&self) -> u64 {
         self.inner().applications()

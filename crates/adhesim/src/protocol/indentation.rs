@@ -46,6 +46,9 @@ pub struct ProtocolSummary {
     pub cg_iterations: usize,
     /// Operator applications (FFT pairs).
     pub operator_applications: u64,
+    /// Of those, the adhesive CG's applications on contact windows.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub window_applications: u64,
     /// Largest contact (elements) and the step where it occurred.
     pub largest_contact: (usize, usize),
     /// Some step had contact on the border of a free grid.
@@ -203,6 +206,7 @@ impl IndentPulloff {
         summary.solves += report.solves;
         summary.cg_iterations += report.cg_iterations;
         summary.operator_applications += report.operator_applications;
+        summary.window_applications += report.window_applications;
         summary.jumps += record.jumped as usize;
         summary.touches_border |= record.touches_border;
         if -record.force_normal > summary.max_adhesive_force {

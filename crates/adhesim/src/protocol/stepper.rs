@@ -109,6 +109,8 @@ fn non_adhesive_step(
         solves: 1,
         cg_iterations: solve.iterations,
         operator_applications: solve.operator_applications,
+        // The non-adhesive solvers' windows are counted in their applications only.
+        window_applications: 0,
         attachment_rounds: 0,
         attached,
         detached,

@@ -70,6 +70,9 @@ pub struct TranslationSummary {
     pub cg_iterations: usize,
     /// Operator applications.
     pub operator_applications: u64,
+    /// Of those, the adhesive CG's applications on contact windows.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub window_applications: u64,
     /// Some step had contact on the border of a free grid.
     pub touches_border: bool,
     /// Energy dissipated by friction at the interface over the run (0 without).
@@ -248,6 +251,7 @@ impl Translation {
         summary.solves += report.solves;
         summary.cg_iterations += report.cg_iterations;
         summary.operator_applications += report.operator_applications;
+        summary.window_applications += report.window_applications;
         summary.jumps += record.jumped as usize;
         summary.touches_border |= record.touches_border;
         if record.phase != Some(Phase::Approach) && record.step < forward_end {

@@ -33,7 +33,7 @@ pub fn pressure_error_bound_of(largest: f64, contact_modulus: f64, element_size:
 }
 
 /// max |r| (0 for an empty field), on the pool: a maximum is exact in any order.
-fn largest_magnitude(residual: &[f64]) -> f64 {
+pub(crate) fn largest_magnitude(residual: &[f64]) -> f64 {
     residual
         .par_chunks(super::PARALLEL_CHUNK)
         .map(|chunk| chunk.iter().fold(0.0f64, |m, r| m.max(r.abs())))

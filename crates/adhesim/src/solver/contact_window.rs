@@ -52,14 +52,14 @@ impl Bounds {
         })
     }
 
-    fn extent(&self) -> usize {
+    pub(super) fn extent(&self) -> usize {
         (self.rows.1 - self.rows.0).max(self.columns.1 - self.columns.0) + 1
     }
 }
 
 /// The smallest side ≥ `side` whose only prime factors are 2, 3 and 5 (fast transforms of
 /// twice that length).
-fn smooth_side(side: usize) -> usize {
+pub(super) fn smooth_side(side: usize) -> usize {
     (side.max(1)..)
         .find(|&candidate| {
             let mut rest = candidate;
@@ -77,14 +77,14 @@ fn smooth_side(side: usize) -> usize {
 /// elements, each of the grid's Δx × Δy) of an nx × ny grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Window {
-    row: usize,
-    column: usize,
-    side: usize,
+    pub(super) row: usize,
+    pub(super) column: usize,
+    pub(super) side: usize,
 }
 
 impl Window {
     /// The window of side `side` centred on `bounds`, moved inside the nx × ny grid.
-    fn place(bounds: &Bounds, side: usize, (nx, ny): (usize, usize)) -> Self {
+    pub(super) fn place(bounds: &Bounds, side: usize, (nx, ny): (usize, usize)) -> Self {
         let start =
             |(low, high): (usize, usize), n: usize| (low + high).div_ceil(2).saturating_sub(side / 2).min(n - side);
         Self {

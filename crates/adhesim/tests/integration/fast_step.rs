@@ -2,7 +2,8 @@
 //! stops of the fixed-set CG and certified local release rounds must leave every step's
 //! contact set unchanged, and so must a different release order (random half of the
 //! violators per round), the independent oracle of the order-independence argument
-//! (docs/physics.md §2.4a). The full case list runs with
+//! (docs/physics.md §2.4a), and so must the fixed-set CG on the contact's bounding box
+//! (`AdhesiveParams::contact_window`). The full case list runs with
 //! `cargo run --release -p adhesim --example step_equivalence`.
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
@@ -19,6 +20,8 @@ struct Cycle {
     fft_pairs: u64,
     /// Rings grown through a predicted subset, and predictions that fell back.
     predicted_growth: (u64, u64),
+    /// Transform pairs of the fixed-set CGs on contact windows.
+    window_pairs: u64,
 }
 
 impl adhesim::Observer for Cycle {
@@ -53,10 +56,12 @@ fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, 
         forces: Vec::new(),
         fft_pairs: 0,
         predicted_growth: (0, 0),
+        window_pairs: 0,
     };
     protocol.run(&mut operator, heights, &mut solver, &mut record).unwrap();
     if let NormalSolver::Adhesive(adhesive) = &solver {
         record.predicted_growth = adhesive.predicted_growth();
+        record.window_pairs = adhesive.window_applications();
     }
     record
 }
@@ -103,8 +108,18 @@ fn all_modes(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usi
         ..AdhesiveParams::default()
     });
     assert_same(&reference, &fast, "fast");
-    // Predicted-subset growth (docs/fast-step.md §3) took part in the fast run.
+    // Predicted-subset growth (docs/fast-step.md §3) and the CG's contact windows took
+    // part in the fast run; without windows, every CG on the whole grid, the same sets.
     assert!(fast.predicted_growth.0 > 0, "{:?}", fast.predicted_growth);
+    assert!(fast.window_pairs > 0, "no CG ran on a window");
+    let whole_grid = run(AdhesiveParams {
+        check_certificates: true,
+        predicted_growth: PredictedGrowth::On,
+        contact_window: false,
+        ..AdhesiveParams::default()
+    });
+    assert_same(&reference, &whole_grid, "whole grid");
+    assert_eq!(whole_grid.window_pairs, 0);
     let plain = run(AdhesiveParams::default());
     assert!(
         plain.fft_pairs < reference.fft_pairs,

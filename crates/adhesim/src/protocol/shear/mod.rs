@@ -118,6 +118,9 @@ pub struct ShearSummary {
     pub operator_applications: u64,
     /// FFT pairs of the tangential solves alone.
     pub tangential_transform_pairs: u64,
+    /// FFT pairs of the adhesive CG on contact windows.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub window_applications: u64,
     /// Active-set rounds of the tangential solves.
     pub tangential_rounds: usize,
     /// Largest tangential force along the shift during the forward stroke (the static
@@ -437,6 +440,7 @@ fn add_normal_counters(summary: &mut ShearSummary, report: &StepReport) {
     summary.solves += report.solves;
     summary.cg_iterations += report.cg_iterations;
     summary.operator_applications += report.operator_applications;
+    summary.window_applications += report.window_applications;
 }
 
 /// A shift step's normal and tangential counters into the totals, and the tangential ones

@@ -1,15 +1,16 @@
 //! The fixed-set solve of the adhesive step (docs/physics.md §3.2) with certified early
 //! stops (docs/fast-step.md).
 
+use super::set_cg::{solve_on_set, Convergence, SetFields, SetRule};
 use super::{AdhesiveSolver, Attachment, Detachment, StopRule};
 use crate::elastic::influence::SELF_COMPLIANCE_FACTOR;
 use crate::elastic::ElasticOperator;
 use crate::grid::Boundary;
 use crate::solver::certificate::{
-    attachments_certain, count_releases, gap_error_bound, gap_error_bound_of, pressure_error_bound,
+    count_releases, gap_error_bound, gap_error_bound_of, largest_magnitude, pressure_error_bound,
     pressure_error_bound_of,
 };
-use crate::solver::{contact_span, masked_pcg, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
+use crate::solver::{contact_span, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -104,15 +105,8 @@ impl AdhesiveSolver {
             self.make_displacement_exact(operator, state);
         } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
         {
-            // Only the rows where p changed are transformed forward (the same bits).
-            let n = self.grid.nx();
-            let rows = changed.start / n..changed.end.div_ceil(n);
-            operator.apply_single_rows(&self.direction, &mut self.response, rows, 0..self.grid.ny());
-            state
-                .displacement
-                .par_chunks_mut(PARALLEL_CHUNK)
-                .zip(self.response.par_chunks(PARALLEL_CHUNK))
-                .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
+            // Applied by the CG's start: on its window when the change lies in it.
+            self.pending_change = Some(changed);
             self.displacement_drifted = true;
         }
         let mut iterations = self.iterate_fixed_set(operator, heights, depth, state, stop)?;
@@ -306,6 +300,8 @@ impl AdhesiveSolver {
         };
         let (contact_modulus, element_size) = (operator.contact_modulus(), self.bound_element_size());
         self.last_solve_certified = false;
+        let pending = self.pending_change.take();
+        let windowed = self.enter_window(operator, state, pending);
         let span = contact_span(&state.contact, self.grid.nx());
         let (target_norm, residual_norm) = self.set_residual(heights, depth, state, span.clone());
         if target_norm == 0.0 {
@@ -318,109 +314,159 @@ impl AdhesiveSolver {
             return Ok(0);
         }
         let convergence = self.convergence(target_norm, contact_modulus);
-        let converged =
-            |scale, norm2, residual: &[f64], contact: &[bool]| convergence.met(scale, norm2, residual, contact);
-        if converged(tolerance_scale, residual_norm, &self.residual, &state.contact) {
+        let rule = SetRule {
+            stop,
+            tolerance_scale,
+            convergence,
+            contact_modulus,
+            element_size,
+            max_iterations,
+        };
+        if convergence.met(tolerance_scale, residual_norm, &self.residual, &state.contact) {
             self.pressure_error_bound =
                 pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
             self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
+            if windowed {
+                self.leave_window(operator, state);
+            }
             return Ok(0);
         }
         self.fill_mask(&state.contact, span.clone());
-        let contact = &state.contact;
-        let critical_stress = &self.critical_stress;
-        let n = self.grid.nx();
-        let mut certified = false;
-        let mut preconditioner = self.preconditioner.as_mut();
         let applications = &mut self.preconditioner_applications;
-        let buffers = PcgBuffers {
-            residual: &mut self.residual,
-            preconditioned: &mut self.preconditioned_residual,
-            direction: &mut self.direction,
-            response: &mut self.response,
-            mask: &self.mask,
+        let (outcome, certified, largest) = match self.windows.current().filter(|_| windowed) {
+            Some(window) => {
+                window.load_set(&self.residual, &self.mask, &self.critical_stress, &state.contact);
+                let before = window.operator.applications();
+                let workspace = &mut window.workspace;
+                let buffers = PcgBuffers {
+                    residual: &mut workspace.residual,
+                    preconditioned: &mut workspace.preconditioned,
+                    direction: &mut workspace.direction,
+                    response: &mut workspace.response,
+                    mask: &workspace.mask,
+                };
+                let sets = SetFields {
+                    contact: &window.contact,
+                    critical_stress: &window.critical_stress,
+                    attachments: None,
+                };
+                let (outcome, certified) = solve_on_set(
+                    window.operator.as_mut(),
+                    (&mut window.pressure, &mut window.displacement),
+                    buffers,
+                    (
+                        window.preconditioned.then_some(&mut workspace.preconditioner),
+                        applications,
+                    ),
+                    sets,
+                    rule,
+                );
+                self.window_applications += window.operator.applications() - before;
+                let largest = largest_magnitude(&window.workspace.residual);
+                self.leave_window(operator, state);
+                (outcome, certified, largest)
+            }
+            None => {
+                let buffers = PcgBuffers {
+                    residual: &mut self.residual,
+                    preconditioned: &mut self.preconditioned_residual,
+                    direction: &mut self.direction,
+                    response: &mut self.response,
+                    mask: &self.mask,
+                };
+                let sets = SetFields {
+                    contact: &state.contact,
+                    critical_stress: &self.critical_stress,
+                    attachments: Some((heights, depth)),
+                };
+                let (outcome, certified) = solve_on_set(
+                    operator,
+                    (&mut state.pressure, &mut state.displacement),
+                    buffers,
+                    (self.preconditioner.as_mut(), applications),
+                    sets,
+                    rule,
+                );
+                (outcome, certified, largest_magnitude(&self.residual[span]))
+            }
         };
-        let outcome = masked_pcg(
-            operator,
-            &mut state.pressure,
-            &mut state.displacement,
-            buffers,
-            |residual, preconditioned, rows| match preconditioner.as_mut() {
-                Some(preconditioner) => {
-                    preconditioner.apply_rows(residual, preconditioned, rows);
-                    *applications += 1;
-                }
-                None => {
-                    let set = rows.start * n..rows.end * n;
-                    preconditioned[set.clone()].copy_from_slice(&residual[set]);
-                }
-            },
-            |measured, residual, pressure, displacement, set| {
-                let norm2 = measured.norm2;
-                // r and the set lie in `set`: the scans there see every element that counts.
-                let (residual, contact_rows) = (&residual[set.clone()], &contact[set.clone()]);
-                if converged(tolerance_scale, norm2, residual, contact_rows) {
-                    return Some(true);
-                }
-                // Stop once the release decisions cannot change (docs/fast-step.md).
-                if stop != StopRule::Converge && stop != StopRule::Output {
-                    let band = pressure_error_bound_of(measured.largest, contact_modulus, element_size);
-                    let critical_stress = &critical_stress[set.clone()];
-                    let (certain, uncertain) = count_releases(&pressure[set], contact_rows, critical_stress, band);
-                    certified = if stop == StopRule::Decided {
-                        // Certain decisions on a state converged at least as the plain solve
-                        // (its u is exact now, so the plain criterion may not hold yet).
-                        uncertain == 0 && converged(1.0, norm2, residual, contact_rows)
-                    } else if certain > 0 {
-                        uncertain <= certain
-                    } else if uncertain == 0 && stop == StopRule::ReleasesOrAttachments {
-                        attachments_certain(
-                            heights,
-                            depth,
-                            displacement,
-                            contact,
-                            gap_error_bound_of(measured.largest),
-                        )
-                    } else {
-                        false
-                    };
-                }
-                Some(certified)
-            },
-            max_iterations,
-        );
         self.last_solve_certified = certified;
-        self.pressure_error_bound = pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
-        self.gap_error_bound = gap_error_bound(&self.residual[span]);
+        self.pressure_error_bound = pressure_error_bound_of(largest, contact_modulus, element_size);
+        self.gap_error_bound = gap_error_bound_of(largest);
         outcome.map(|info| info.iterations).map_err(|error| {
             error.into_solve_error(target_norm.sqrt(), tolerance_scale * self.params.relative_tolerance)
         })
     }
-}
 
-/// The plain convergence test of a fixed-set solve: ‖r‖ ≤ ε‖b‖ (`relative` = ε‖b‖) and,
-/// with σ_c > 0, |r_k| ≤ `pointwise` on C.
-#[derive(Debug, Clone, Copy)]
-struct Convergence {
-    relative: f64,
-    pointwise: f64,
-}
-
-impl Convergence {
-    /// Whether the residual (squared norm `norm2`) meets `scale` times the tolerances.
-    fn met(&self, scale: f64, norm2: f64, residual: &[f64], contact: &[bool]) -> bool {
-        if norm2.sqrt() > scale * self.relative {
-            return false;
+    /// Chooses the CG's window (`window`) for the contact in `state` and loads it, after
+    /// bringing u up to the pressure change `pending` (in `direction`, from the solve's
+    /// start): on the window when the change lies inside it, else on the whole grid.
+    /// Returns whether the CG runs on a window.
+    fn enter_window<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        state: &mut ContactState,
+        pending: Option<Range<usize>>,
+    ) -> bool {
+        let windowed = self.grid.boundary() == Boundary::Free
+            && self.params.contact_window
+            && self
+                .windows
+                .enter(operator, &state.contact, self.preconditioner.is_some());
+        let on_window = match (&pending, self.windows.current().filter(|_| windowed)) {
+            (Some(changed), Some(window)) => window.holds(&self.direction, changed.clone()),
+            _ => false,
+        };
+        if let Some(changed) = pending.filter(|_| !on_window) {
+            apply_change(
+                operator,
+                &self.direction,
+                &mut self.response,
+                &mut state.displacement,
+                changed,
+            );
         }
-        if self.pointwise.is_finite() {
-            residual
-                .iter()
-                .zip(contact)
-                .all(|(r, &c)| !c || r.abs() <= scale * self.pointwise)
-        } else {
-            true
+        if let Some(window) = self.windows.current().filter(|_| windowed) {
+            let base = if on_window {
+                &self.displacement_pressure
+            } else {
+                &state.pressure
+            };
+            self.window_applications += window.load_state(&state.pressure, &mut state.displacement, base);
+        }
+        windowed
+    }
+
+    /// Writes the current window's pressure and displacement back into `state` (u outside
+    /// the window from one application of the pressure change on the whole grid).
+    fn leave_window<O: ElasticOperator + ?Sized>(&mut self, operator: &mut O, state: &mut ContactState) {
+        if let Some(window) = self.windows.current() {
+            window.copy_out(
+                operator,
+                &mut state.pressure,
+                &mut state.displacement,
+                (&mut self.direction, &mut self.response),
+            );
         }
     }
+}
+
+/// u += K·change in single precision on the whole grid, for a change that vanishes outside
+/// the elements `changed` (only their rows are transformed forward: the same bits).
+fn apply_change<O: ElasticOperator + ?Sized>(
+    operator: &mut O,
+    change: &[f64],
+    response: &mut [f64],
+    displacement: &mut [f64],
+    changed: Range<usize>,
+) {
+    let (n, rows) = (operator.grid().nx(), operator.grid().ny());
+    let input_rows = changed.start / n..changed.end.div_ceil(n);
+    operator.apply_single_rows(change, response, input_rows, 0..rows);
+    displacement
+        .par_chunks_mut(PARALLEL_CHUNK)
+        .zip(response.par_chunks(PARALLEL_CHUNK))
+        .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
 }
 
 /// Tolerances of a tie refinement relative to the solver's (relative residual 1e-6 →

@@ -10,6 +10,8 @@ mod growth;
 mod params;
 mod release;
 mod ring;
+mod set_cg;
+mod window;
 
 pub use checkpoint::AdhesiveCheckpoint;
 pub use params::{
@@ -23,6 +25,8 @@ use super::{ContactState, SolveError};
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::grid::{Boundary, Grid};
 use ring::{RingAttempt, RingPool};
+use set_cg::StopRule;
+use window::SetWindows;
 
 /// Solves per step after which u is recomputed in double precision (besides the first).
 const EXACT_DISPLACEMENT_PERIOD: usize = 32;
@@ -116,23 +120,13 @@ pub struct AdhesiveSolver {
     prediction_fallbacks: u64,
     /// Time spent in the local replays of predicted-subset growth, over the solver's life.
     prediction_seconds: f64,
-}
-
-/// When a fixed-set solve may stop (docs/fast-step.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum StopRule {
-    /// Converge fully (outputs, reference rule, oracle).
-    Converge,
-    /// Stop once the release decisions are certain and release something.
-    Releases,
-    /// As `Releases`, or once there is certainly no release and the attachment decisions
-    /// are certain (the step goes on to attach: trial neighbours exist).
-    ReleasesOrAttachments,
-    /// Tie refinement: stop once no release decision lies inside the error band.
-    Decided,
-    /// The state that ends a step: converge at `OUTPUT_TOLERANCE_SCALE` times the
-    /// tolerances, for the reported force and energy.
-    Output,
+    /// The fixed-set CG's windows on the contact's bounding box (`window`).
+    windows: SetWindows,
+    /// Applications of the windows' operators over the solver's life.
+    window_applications: u64,
+    /// The change of p since u was consistent (in `direction`, nonzero on these elements),
+    /// left by a solve's start for its CG to apply.
+    pending_change: Option<std::ops::Range<usize>>,
 }
 
 impl AdhesiveSolver {
@@ -209,7 +203,16 @@ impl AdhesiveSolver {
             predicted_rings: 0,
             prediction_fallbacks: 0,
             prediction_seconds: 0.0,
+            windows: SetWindows::default(),
+            window_applications: 0,
+            pending_change: None,
         }
+    }
+
+    /// Operator applications of the fixed-set CGs on contact windows over the solver's life
+    /// (each a DC-FFT pair of twice a window's side; counted in the steps' applications too).
+    pub fn window_applications(&self) -> u64 {
+        self.window_applications
     }
 
     /// Trial rings grown through a predicted held subset (docs/fast-step.md §3), and how
@@ -366,7 +369,7 @@ impl AdhesiveSolver {
                 got: heights.len(),
             });
         }
-        let applications_before = operator.applications();
+        let applications_before = (operator.applications(), self.window_applications);
         let mut round = Round {
             report: StepReport::default(),
             retry_high_water: self.begin_step(heights, depth, state),
@@ -508,7 +511,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &ContactState,
         mut report: StepReport,
-        applications_before: u64,
+        applications_before: (u64, u64),
     ) -> StepReport {
         (report.attached, report.detached) = state.changes_from(&self.start_contact);
         if self.history.len() == 2 {
@@ -524,7 +527,10 @@ impl AdhesiveSolver {
         report.force = state.force(self.grid.element_area());
         report.energy = self.solved_energy(state, heights, depth);
         report.dissipated_energy = report.energy_before_change - report.energy;
-        report.operator_applications = operator.applications() - applications_before;
+        // A window's pairs are transforms of twice its side (counted alike, as the nested
+        // solver counts its windows').
+        report.window_applications = self.window_applications - applications_before.1;
+        report.operator_applications = operator.applications() - applications_before.0 + report.window_applications;
         report
     }
 }

@@ -181,6 +181,12 @@ pub struct AdhesiveParams {
     /// fully on a copy and panic if a pressure moved by more than the certified bound or a
     /// release decision changed. Costs a full solve per early stop.
     pub check_certificates: bool,
+    /// Run each fixed-set CG on the contact's bounding box on a free half-space (default
+    /// true; the module `window` of the adhesive solver): the same matrix K_CC, transforms
+    /// of twice the box's side instead of twice the grid's while the box is at most 0.8 of
+    /// the grid's side, and one application of the solve's pressure change on the whole
+    /// grid for the displacement outside it. False runs every CG on the whole grid.
+    pub contact_window: bool,
 }
 
 impl Default for AdhesiveParams {
@@ -199,6 +205,7 @@ impl Default for AdhesiveParams {
             predicted_growth: PredictedGrowth::Auto,
             trial_ring_layers: NonZeroUsize::MIN,
             check_certificates: false,
+            contact_window: true,
         }
     }
 }
@@ -213,6 +220,10 @@ pub struct StepReport {
     pub cg_iterations: usize,
     /// Elastic operator applications (FFT pairs).
     pub operator_applications: u64,
+    /// Of those, the applications on contact windows (`AdhesiveParams::contact_window`:
+    /// DC-FFT pairs of twice a window's side).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub window_applications: u64,
     /// Attachment rounds: how often the step attached candidates (a trial ring, penetrating
     /// elements, or both) and went on to solve; a growing front needs one per ring.
     pub attachment_rounds: usize,

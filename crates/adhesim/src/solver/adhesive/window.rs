@@ -1,0 +1,245 @@
+//! The fixed-set CG of the adhesive step on the contact's bounding box.
+//!
+//! The CG of a fixed-set solve (docs/physics.md §3.2) reads and writes only the contact
+//! set C: its residual, direction and pressure vanish off C. Where the operator has a
+//! window restriction ([`ElasticOperator::window_operator`]: the free half-space, whose
+//! DC-FFT kernel depends on the offset only), K_CC is the same matrix on any square window
+//! that holds C, so the CG runs there with transforms of twice the window's side instead
+//! of twice the grid's, and its vector loops visit the window only (the contact window of
+//! the non-adhesive solver, `solver::contact_window`, made for the adhesive step). The
+//! displacement outside the window, which the growth and the outputs read, follows from
+//! one single-precision application of the solve's pressure change on the whole grid.
+//! The window is chosen from the contact alone (its bounding box, centred), so a resumed
+//! run chooses the same windows as an uninterrupted one.
+
+use crate::elastic::ElasticOperator;
+use crate::grid::Grid;
+use crate::solver::contact_window::{smooth_side, Bounds, Window};
+use crate::solver::workspace::Workspace;
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// A window is used while its side is at most this fraction of the grid's shorter side:
+/// above it, its transforms save little against the grid's row-pruned ones, and the
+/// application of the pressure change on the whole grid costs more than they save.
+const MAX_WINDOW_FRACTION: f64 = 0.8;
+
+/// Windows kept planned, by side (the least recently used is dropped): a growing or
+/// shrinking contact passes through a few sides, and each is planned once.
+const KEPT_SIDES: usize = 4;
+
+/// One window's operator, the CG's buffers and preconditioner on it, and copies of the
+/// set's fields.
+pub(super) struct SetWindow {
+    pub(super) placement: Window,
+    pub(super) operator: Box<dyn ElasticOperator + Sync>,
+    pub(super) workspace: Workspace,
+    /// Whether the CG is preconditioned (`AdhesiveParams::preconditioned`).
+    pub(super) preconditioned: bool,
+    pub(super) pressure: Vec<f64>,
+    pub(super) displacement: Vec<f64>,
+    pub(super) critical_stress: Vec<f64>,
+    pub(super) contact: Vec<bool>,
+    /// The pressure the full grid's displacement belonged to when the window was loaded.
+    base_pressure: Vec<f64>,
+    /// Elements per row of the full grid.
+    nx: usize,
+    last_used: u64,
+}
+
+/// The planned windows of a solver.
+#[derive(Default)]
+pub(super) struct SetWindows {
+    kept: Vec<SetWindow>,
+    /// Index in `kept` of the window of the solve under way.
+    current: Option<usize>,
+    clock: u64,
+}
+
+impl SetWindows {
+    /// Chooses the window that holds the contact `contact` of `operator`'s grid (planned
+    /// and placed; its fields are not loaded) as the current one; false, and no current
+    /// window, when the operator has no window restriction, the contact is empty, or its
+    /// window would not be much smaller than the grid.
+    pub(super) fn enter<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &O,
+        contact: &[bool],
+        preconditioned: bool,
+    ) -> bool {
+        self.current = self.place(operator, contact, preconditioned);
+        self.current.is_some()
+    }
+
+    /// The window chosen by the last [`enter`](Self::enter).
+    pub(super) fn current(&mut self) -> Option<&mut SetWindow> {
+        self.current.map(|index| &mut self.kept[index])
+    }
+
+    fn place<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &O,
+        contact: &[bool],
+        preconditioned: bool,
+    ) -> Option<usize> {
+        let grid = *operator.grid();
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let bounds = Bounds::of_contact(contact, nx)?;
+        let side = smooth_side(bounds.extent());
+        if side as f64 > MAX_WINDOW_FRACTION * nx.min(ny) as f64 {
+            return None;
+        }
+        self.clock += 1;
+        let index = match self.kept.iter().position(|window| window.placement.side == side) {
+            Some(index) => index,
+            None => {
+                let window = SetWindow::new(operator, &grid, side, preconditioned)?;
+                if self.kept.len() == KEPT_SIDES {
+                    let oldest = (0..self.kept.len()).min_by_key(|&i| self.kept[i].last_used)?;
+                    self.kept.swap_remove(oldest);
+                }
+                self.kept.push(window);
+                self.kept.len() - 1
+            }
+        };
+        let window = &mut self.kept[index];
+        window.last_used = self.clock;
+        window.placement = Window::place(&bounds, side, (nx, ny));
+        window.nx = nx;
+        Some(index)
+    }
+}
+
+impl SetWindow {
+    fn new<O: ElasticOperator + ?Sized>(operator: &O, grid: &Grid, side: usize, preconditioned: bool) -> Option<Self> {
+        let window_operator = operator.window_operator(side)?;
+        let window_grid = *window_operator.grid();
+        let len = side * side;
+        Some(Self {
+            placement: Window {
+                row: 0,
+                column: 0,
+                side,
+            },
+            nx: grid.nx(),
+            workspace: Workspace::new(&window_grid, operator.contact_modulus()),
+            preconditioned,
+            operator: window_operator,
+            pressure: vec![0.0; len],
+            displacement: vec![0.0; len],
+            critical_stress: vec![0.0; len],
+            contact: vec![false; len],
+            base_pressure: vec![0.0; len],
+            last_used: 0,
+        })
+    }
+
+    /// Pairs of (full grid, window) element ranges, row by row (borrowing nothing).
+    fn rows(&self) -> impl Iterator<Item = (Range<usize>, Range<usize>)> {
+        let (Window { row, column, side }, nx) = (self.placement, self.nx);
+        (0..side).map(move |i| {
+            let start = (row + i) * nx + column;
+            (start..start + side, i * side..(i + 1) * side)
+        })
+    }
+
+    /// Whether every nonzero of a full-grid field on the elements `span` lies in the window.
+    pub(super) fn holds(&self, field: &[f64], span: Range<usize>) -> bool {
+        let Window { row, column, side } = self.placement;
+        let nx = self.nx;
+        span.into_iter().all(|k| {
+            field[k] == 0.0 || ((row..row + side).contains(&(k / nx)) && (column..column + side).contains(&(k % nx)))
+        })
+    }
+
+    /// Loads the pressure and displacement, with `base` the pressure the displacement
+    /// belongs to (on the whole grid, where it differs from the pressure only inside the
+    /// window). A base other than the pressure is applied on the window, and the window's
+    /// displacement written back on the window: on the window u = K p from here on, and
+    /// outside it u follows at [`copy_out`](Self::copy_out). Returns the window's operator
+    /// applications (0 or 1).
+    pub(super) fn load_state(&mut self, pressure: &[f64], displacement: &mut [f64], base: &[f64]) -> u64 {
+        for (full, local) in self.rows() {
+            self.pressure[local.clone()].copy_from_slice(&pressure[full.clone()]);
+            self.displacement[local.clone()].copy_from_slice(&displacement[full.clone()]);
+            self.base_pressure[local].copy_from_slice(&base[full]);
+        }
+        if self.pressure == self.base_pressure {
+            return 0;
+        }
+        for ((change, &now), &before) in self
+            .workspace
+            .direction
+            .iter_mut()
+            .zip(&self.pressure)
+            .zip(&self.base_pressure)
+        {
+            *change = now - before;
+        }
+        self.operator
+            .apply_single(&self.workspace.direction, &mut self.workspace.response);
+        for (u, du) in self.displacement.iter_mut().zip(&self.workspace.response) {
+            *u += du;
+        }
+        for (full, local) in self.rows() {
+            displacement[full].copy_from_slice(&self.displacement[local]);
+        }
+        1
+    }
+
+    /// Loads the set's fields for the CG (each one value per full-grid element).
+    pub(super) fn load_set(&mut self, residual: &[f64], mask: &[f64], critical_stress: &[f64], contact: &[bool]) {
+        for (full, local) in self.rows() {
+            self.workspace.residual[local.clone()].copy_from_slice(&residual[full.clone()]);
+            self.workspace.mask[local.clone()].copy_from_slice(&mask[full.clone()]);
+            self.critical_stress[local.clone()].copy_from_slice(&critical_stress[full.clone()]);
+            self.contact[local].copy_from_slice(&contact[full]);
+        }
+    }
+
+    /// Writes the window's pressure and displacement back into the full grid's: the
+    /// pressure on the window (it vanishes outside, where there is no contact), the
+    /// displacement on the window from the window's operator, and outside it u plus K
+    /// applied (in single precision, on the whole grid) to the change of p from the base,
+    /// with `change` and `response` as the full grid's scratch vectors.
+    pub(super) fn copy_out<O: ElasticOperator + ?Sized>(
+        &self,
+        operator: &mut O,
+        pressure: &mut [f64],
+        displacement: &mut [f64],
+        (change, response): (&mut [f64], &mut [f64]),
+    ) {
+        let (nx, ny) = (operator.grid().nx(), operator.grid().ny());
+        let Window { row, column, side } = self.placement;
+        let rows = row..row + side;
+        change[rows.start * nx..rows.end * nx].fill(0.0);
+        for (full, local) in self.rows() {
+            for ((target, &now), &before) in change[full.clone()]
+                .iter_mut()
+                .zip(&self.pressure[local.clone()])
+                .zip(&self.base_pressure[local.clone()])
+            {
+                *target = now - before;
+            }
+            pressure[full].copy_from_slice(&self.pressure[local]);
+        }
+        if self.pressure != self.base_pressure {
+            operator.apply_single_rows(change, response, rows.clone(), 0..ny);
+            displacement
+                .par_chunks_mut(nx)
+                .zip(response.par_chunks(nx))
+                .enumerate()
+                .for_each(|(i, (u, du))| {
+                    let inside = if rows.contains(&i) { column..column + side } else { 0..0 };
+                    for (j, (u, du)) in u.iter_mut().zip(du).enumerate() {
+                        if !inside.contains(&j) {
+                            *u += du;
+                        }
+                    }
+                });
+        }
+        for (full, local) in self.rows() {
+            displacement[full].copy_from_slice(&self.displacement[local]);
+        }
+    }
+}
