@@ -76,7 +76,7 @@ impl SolverSection {
             "a run without adhesion (adhesion.work_of_adhesion = 0)".to_string()
         } else if law != LawName::Jkr {
             format!(
-                "adhesion.law = \"{}\" (a cohesive law has no rings to predict nor a fixed-set CG)",
+                "adhesion.law = \"{}\" (the cohesive solver has neither rule)",
                 law.name()
             )
         } else if boundary == BoundaryName::Periodic {
