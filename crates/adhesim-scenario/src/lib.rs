@@ -254,6 +254,8 @@ mod guards_tests;
 #[cfg(test)]
 mod layer_tests;
 #[cfg(test)]
+mod shull_tests;
+#[cfg(test)]
 mod solver_tests;
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,274 @@
+//! JKR spheres on a bonded incompressible layer against Shull's (2002) thin-layer corrections
+//! and against the axisymmetric integral equation (docs/validation.md §18).
+
+mod axisymmetric;
+
+use adhesim::LayerBase;
+use axisymmetric::AxisymmetricLayer;
+use std::f64::consts::PI;
+
+/// Shull's thin-layer corrections as quoted in docs/validation.md §18 (bonded base,
+/// ν = 1/2; x = a/h): C = [1 + 1.33x + 1.33x³]⁻¹/(2aE*), P_H' = P_H(1 + 0.33x³),
+/// δ_H' = δ_H(0.4 + 0.6e^{−1.8x}), and the JKR curve P = P_H' − √(2w/|dC/dA|),
+/// δ = δ_H' + (P − P_H')C.
+struct Shull {
+    contact_modulus: f64,
+    sphere_radius: f64,
+    thickness: f64,
+}
+
+impl Shull {
+    fn compliance(&self, a: f64) -> f64 {
+        let x = a / self.thickness;
+        1.0 / (2.0 * a * self.contact_modulus) / (1.0 + 1.33 * x + 1.33 * x.powi(3))
+    }
+    fn compliance_slope(&self, a: f64) -> f64 {
+        let h = 1e-6 * a;
+        (self.compliance(a + h) - self.compliance(a - h)) / (2.0 * h)
+    }
+    /// (δ_H', P_H') at contact radius a.
+    fn hertzian(&self, a: f64) -> (f64, f64) {
+        let x = a / self.thickness;
+        let depth = a * a / self.sphere_radius * (0.4 + 0.6 * (-1.8 * x).exp());
+        let load = 4.0 * self.contact_modulus * a.powi(3) / (3.0 * self.sphere_radius) * (1.0 + 0.33 * x.powi(3));
+        (depth, load)
+    }
+    /// (depth, load) at contact radius a with G = w.
+    fn adhesive(&self, a: f64, work: f64) -> (f64, f64) {
+        let (depth_h, load_h) = self.hertzian(a);
+        let punch = (2.0 * work * 2.0 * PI * a / self.compliance_slope(a).abs()).sqrt();
+        let load = load_h - punch;
+        (depth_h - punch * self.compliance(a), load)
+    }
+}
+
+/// The smallest load along a JKR curve a ↦ (δ, P) on [lo, hi] (golden section, to 1e-5 in
+/// a; P is flat there): (a, P, δ).
+fn pull_off(curve: impl Fn(f64) -> (f64, f64), lo: f64, hi: f64) -> (f64, f64, f64) {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (lo, hi);
+    while hi - lo > 1e-5 * hi {
+        let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+        if curve(x1).1 < curve(x2).1 {
+            hi = x2;
+        } else {
+            lo = x1;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    let (depth, load) = curve(a);
+    (a, load, depth)
+}
+
+const SPACING: f64 = 1.0 / 128.0;
+
+/// A material of E* = 4 (G = 1) on a layer of thickness t (none: the half-space).
+fn body(thickness: Option<f64>) -> (adhesim::ElasticMaterial, adhesim::ElasticLayer) {
+    let material = adhesim::ElasticMaterial::new(4.0).unwrap();
+    let layer = adhesim::ElasticLayer::new(thickness.unwrap_or(1e6), 0.5, LayerBase::Bonded).unwrap();
+    (material, layer)
+}
+
+/// CCG on an n² free grid of spacing 1/128 with the indenter `profile` pressed to `depth`:
+/// (force, contact area).
+fn press(n: usize, thickness: Option<f64>, profile: &dyn adhesim::Profile, depth: f64) -> (f64, f64) {
+    let grid = adhesim::Grid::new(n, n as f64 * SPACING, adhesim::Boundary::Free).unwrap();
+    let (material, layer) = body(thickness);
+    let mut operator = adhesim::LayerOperator::new(grid, material, layer).unwrap();
+    let heights = profile.heights(&grid);
+    let mut state = adhesim::ContactState::new(&grid);
+    let report = adhesim::Ccg::new(adhesim::CcgParams::default())
+        .solve(
+            &mut operator,
+            &heights,
+            adhesim::Control::Displacement(depth),
+            &mut state,
+        )
+        .unwrap();
+    (report.force, report.contact_area)
+}
+
+/// A JKR sphere (R = 1, E* = 4, G = 1, ν = 1/2) pressed to `max_depth` in `steps` and pulled
+/// off through the scenario pipeline on an n² grid of spacing `spacing`: the largest
+/// adhesive force.
+fn jkr_pull_off(n: usize, spacing: f64, thickness: Option<f64>, work: f64, max_depth: f64, steps: usize) -> f64 {
+    let layer = thickness.map_or(String::new(), |t| format!("thickness = {t:e}\n"));
+    let text = format!(
+        "[grid]\nn = {n}\nsize = {size:e}\n[material]\nyoungs_modulus = 3.0\npoisson_ratio = 0.5\n{layer}\
+         [adhesion]\nwork_of_adhesion = {work:e}\n[indenter]\nshape = \"sphere\"\nradius = 1.0\n\
+         [protocol]\nkind = \"indent_pulloff\"\nmax_depth = {max_depth:e}\ndepth_unit = \"length\"\n\
+         steps = {steps}\nmax_retract_steps = 20000\n",
+        size = n as f64 * spacing
+    );
+    let scenario = crate::load(&text, "shull", std::path::Path::new("."), &[]).unwrap();
+    let outcome = crate::run(&scenario, &mut ()).unwrap();
+    let crate::RunResults::Indentation(results) = outcome.results else {
+        panic!("an indentation's results")
+    };
+    results.max_adhesive_force
+}
+
+/// The layers of the comparison: a/h = 0.5, 1, 2 at a = 32Δ (t = 64, 32, 16Δ).
+const THICKNESSES: [f64; 3] = [0.5, 0.25, 0.125];
+
+#[test]
+fn the_axisymmetric_reference_is_exact_on_the_half_space_and_converged_on_a_layer() {
+    // On the half-space the kernel vanishes and the Nyström solution is Sneddon's: Hertz's
+    // δ = a²/R, P = 4E*a³/(3R), the punch's 1/C = 2E*a and JKR's δ = a²/R − √(2πaw/E*).
+    let (a, modulus, work) = (0.25, 4.0, 0.01);
+    let half = AxisymmetricLayer::new(f64::INFINITY, 0.5, LayerBase::Bonded, modulus).solve(a, 1.0, 8);
+    let (depth, load) = half.hertzian();
+    assert!((depth / (a * a) - 1.0).abs() < 1e-12 && (load / (4.0 * modulus * a.powi(3) / 3.0) - 1.0).abs() < 1e-12);
+    assert!((half.compliance() * 2.0 * modulus * a - 1.0).abs() < 1e-12);
+    let jkr = a * a - (2.0 * PI * a * work / modulus).sqrt();
+    assert!((half.adhesive(work).0 / jkr - 1.0).abs() < 1e-12);
+    // On the layers φ is smooth: 16 nodes agree with 48 to 1e-9 at a/h = 0.5–2 (a/h = 4
+    // as a margin).
+    for t in THICKNESSES.into_iter().chain([0.0625]) {
+        let layer = AxisymmetricLayer::new(t, 0.5, LayerBase::Bonded, modulus);
+        let (coarse, fine) = (layer.solve(a, 1.0, 16), layer.solve(a, 1.0, 48));
+        for (x, y) in [
+            (coarse.compliance(), fine.compliance()),
+            (coarse.hertzian().0, fine.hertzian().0),
+            (coarse.hertzian().1, fine.hertzian().1),
+            (coarse.adhesive(work).1, fine.adhesive(work).1),
+        ] {
+            assert!((x / y - 1.0).abs() < 1e-9, "t = {t}: {x} vs {y}");
+        }
+    }
+    // The thin-layer end meets the boundary elements of docs/validation.md §18: at a/t = 20
+    // (t = 0.01, G = 1) the radius is 0.939 of the lubrication limit's 2√(Rd) (the §18
+    // table: −6.2 % at t = 2Δ, radius from the area; printed, not asserted).
+    let thin = AxisymmetricLayer::new(0.01, 0.5, LayerBase::Bonded, modulus).solve(0.2, 1.0, 96);
+    let (depth, load) = thin.hertzian();
+    println!(
+        "a/t = 20: a/(2√(Rd)) − 1 = {:+.4}, P/(2πGR²d³/t³) − 1 = {:+.4}",
+        0.2 / (2.0 * depth.sqrt()) - 1.0,
+        load / (2.0 * PI * depth.powi(3) / 1e-6) - 1.0
+    );
+}
+
+/// Non-adhesive sphere (R = 1, E* = 4, ν = 1/2) and flat punch at a = 32Δ on 128², for a/h =
+/// 0.5, 1, 2, against the axisymmetric solution and, printed, against Shull's fits.
+///
+/// The sphere is pressed to the exact δ_H'(a) and its force compared with the exact
+/// P_H'(a); the punch of radius 32Δ has the area-equivalent radius a_e = √(A/π) = 31.96Δ,
+/// and its compliance δ/P is compared with the exact C(a_e). Tolerances are the mesh
+/// errors at t → ∞ where the closed forms are exact: the sphere's force at a = 32Δ is
+/// Hertz's to 5.1e-5 (docs/validation.md §18), so 5e-4 (the layer's coefficients are
+/// exact element integrals, and the error is the element-wise constant pressure's); the
+/// punch's staircase edge makes C 0.33 % too large on the half-space, and the error is the
+/// edge's, whose share of the compliance grows as the layer stiffens the rest, so 1 %.
+#[test]
+fn a_sphere_and_a_punch_on_a_layer_are_the_axisymmetric_solution() {
+    let (modulus, a) = (4.0, 32.0 * SPACING);
+    let sphere = adhesim::Sphere::new(1.0).unwrap();
+    let punch = adhesim::FlatPunch::new(a).unwrap();
+    for thickness in [None].into_iter().chain(THICKNESSES.map(Some)) {
+        let t = thickness.unwrap_or(f64::INFINITY);
+        let layer = AxisymmetricLayer::new(t, 0.5, LayerBase::Bonded, modulus);
+        let exact = layer.solve(a, 1.0, 24);
+        let (depth, load) = exact.hertzian();
+        let (force, _) = press(128, thickness, &sphere, depth);
+        let (punch_force, punch_area) = press(128, thickness, &punch, 1e-3);
+        let effective = (punch_area / PI).sqrt();
+        let compliance = 1e-3 / punch_force;
+        let exact_compliance = layer.solve(effective, 1.0, 24).compliance();
+        let half_space = 1.0 / (2.0 * modulus * a);
+        let shull = Shull {
+            contact_modulus: modulus,
+            sphere_radius: 1.0,
+            thickness: t,
+        };
+        let (shull_depth, shull_load) = shull.hertzian(a);
+        let hertz = 4.0 * modulus * a.powi(3) / 3.0;
+        println!(
+            "a/h = {:.2}: sphere F/P_H' − 1 = {:+.2e}; punch C/C − 1 = {:+.2e}; exact (Shull): \
+             C/C0 = {:.4} ({:.4}), P_H'/P_H = {:.4} ({:.4}), δ_H'/δ_H = {:.4} ({:.4})",
+            a / t,
+            force / load - 1.0,
+            compliance / exact_compliance - 1.0,
+            exact.compliance() / half_space,
+            shull.compliance(a) / half_space,
+            load / hertz,
+            shull_load / hertz,
+            depth / (a * a),
+            shull_depth / (a * a),
+        );
+        assert!((force / load - 1.0).abs() < 5e-4, "t = {t}: {force} vs {load}");
+        assert!(
+            (compliance / exact_compliance - 1.0).abs() < 1e-2,
+            "t = {t}: {compliance} vs {exact_compliance}"
+        );
+    }
+}
+
+/// The JKR sphere's pull-off force through the scenario pipeline on a layer against the
+/// exact layer's (the smallest load of the axisymmetric solution with G = w), on n² with
+/// spacing `spacing`, w = 8E*(32Δ₀)³/(9πR²) (a_JKR = 32Δ₀ = 0.25 on the half-space): for
+/// each thickness (None: the half-space) the ratio F/F_exact and a_min/Δ.
+fn pull_off_ratios(n: usize, spacing: f64, thicknesses: &[Option<f64>]) -> Vec<(f64, f64)> {
+    let modulus = 4.0;
+    let work = 8.0 * modulus * 0.25f64.powi(3) / (9.0 * PI);
+    thicknesses
+        .iter()
+        .map(|&thickness| {
+            let t = thickness.unwrap_or(f64::INFINITY);
+            let layer = AxisymmetricLayer::new(t, 0.5, LayerBase::Bonded, modulus);
+            let exact = pull_off(|a| layer.solve(a, 1.0, 16).adhesive(work), 0.02, 0.5);
+            let shull = Shull {
+                contact_modulus: modulus,
+                sphere_radius: 1.0,
+                thickness: t,
+            };
+            let fit = pull_off(|a| shull.adhesive(a, work), 0.02, 0.5);
+            // Pressed to the exact depth of a contact 1.3 times the pull-off radius.
+            let max_depth = layer.solve(1.3 * exact.0, 1.0, 16).adhesive(work).0;
+            let force = jkr_pull_off(n, spacing, thickness, work, max_depth, 40);
+            let ratio = force / exact.1.abs();
+            println!(
+                "a/h = {:.3} (a = {:.1}Δ): F_exact/F_JKR = {:.4}, F_Shull/F_exact = {:.4}, F_sim/F_exact = {ratio:.4}",
+                exact.0 / t,
+                exact.0 / spacing,
+                exact.1 / (-1.5 * PI * work),
+                fit.1 / exact.1,
+            );
+            (ratio, exact.0 / spacing)
+        })
+        .collect()
+}
+
+/// At a_min ≈ 26–33Δ (128², Δ = 1/128) the local rule's mesh error makes the half-space's
+/// pull-off 4.8 % too large (docs/validation.md §3: about 1.4Δ/a). On a layer the near field
+/// of the edge is the half-space's over distances ≪ t, so the simulated pull-off over the
+/// exact layer's must carry the same error. Tolerance 2 %: the half-space error's change
+/// between the cases' a_min/Δ (1.4Δ/a: 1.1 % between 26Δ and 32Δ) plus 1 % for the layer's
+/// correction to the edge field at t ≥ 13Δ.
+#[test]
+fn a_jkr_sphere_on_a_layer_pulls_off_at_the_axisymmetric_force() {
+    let cases: Vec<Option<f64>> = [None, Some(0.5), Some(0.25), Some(0.1)].into();
+    let ratios = pull_off_ratios(128, SPACING, &cases);
+    let half_space = ratios[0].0;
+    assert!((1.03..1.07).contains(&half_space), "{half_space}");
+    for (&(ratio, _), t) in ratios[1..].iter().zip(&cases[1..]) {
+        assert!(
+            (ratio / half_space - 1.0).abs() < 0.02,
+            "t = {t:?}: {ratio} vs {half_space}"
+        );
+    }
+}
+
+/// The same at twice the resolution (256², Δ = 1/256): the error halves with Δ as on the
+/// half-space. About 2 min on 2 cores:
+/// `cargo test --release -p adhesim-scenario shull_tests -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn a_jkr_sphere_on_a_layer_pulls_off_at_the_axisymmetric_force_at_twice_the_resolution() {
+    let cases: Vec<Option<f64>> = [None, Some(0.5), Some(0.25), Some(0.1)].into();
+    let coarse = pull_off_ratios(128, SPACING, &cases);
+    let fine = pull_off_ratios(256, SPACING / 2.0, &cases);
+    for ((c, f), t) in coarse.iter().zip(&fine).zip(&cases) {
+        println!("t = {t:?}: error {:+.4} at 128², {:+.4} at 256²", c.0 - 1.0, f.0 - 1.0);
+        assert!((f.0 - 1.0).abs() < 0.6 * (c.0 - 1.0).abs(), "t = {t:?}: {c:?} {f:?}");
+    }
+}
