@@ -94,6 +94,12 @@ impl Window {
         }
     }
 
+    /// Whether the window holds every element of `bounds`.
+    pub(super) fn holds(&self, bounds: &Bounds) -> bool {
+        let inside = |(low, high): (usize, usize), start: usize| start <= low && high < start + self.side;
+        inside(bounds.rows, self.row) && inside(bounds.columns, self.column)
+    }
+
     /// Index in the full grid (rows of nx elements) of window element (i, j).
     fn full_index(&self, i: usize, j: usize, nx: usize) -> usize {
         (self.row + i) * nx + self.column + j

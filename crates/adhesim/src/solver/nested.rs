@@ -4,7 +4,7 @@ pub use checkpoint::NestedCheckpoint;
 
 use super::contact_window::WindowLevel;
 use super::workspace::Workspace;
-use super::{dot, masked_pcg, ContactState, PcgBuffers, SolveError, SolveReport};
+use super::{dot, masked_pcg, ContactState, SolveError, SolveReport};
 use crate::elastic::{ElasticOperator, FreeOperator};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
@@ -501,14 +501,7 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
     (goal, target_norm, relative_tolerance): (f64, f64, f64),
     max_iterations: usize,
 ) -> Result<usize, SolveError> {
-    let preconditioner = &mut work.preconditioner;
-    let buffers = PcgBuffers {
-        residual: &mut work.residual,
-        preconditioned: &mut work.preconditioned,
-        direction: &mut work.direction,
-        response: &mut work.response,
-        mask: &work.mask,
-    };
+    let (buffers, preconditioner) = work.buffers();
     masked_pcg(
         operator,
         &mut state.pressure,

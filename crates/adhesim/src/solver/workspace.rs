@@ -4,6 +4,7 @@
 //! one, and the active-set rounds of `nested.rs` fill it; it lives apart from both so
 //! that neither imports the other's.
 
+use super::PcgBuffers;
 use crate::elastic::SpectralPreconditioner;
 use crate::grid::Grid;
 
@@ -30,5 +31,17 @@ impl Workspace {
             mask: vec![0.0; len],
             preconditioner: SpectralPreconditioner::new(grid, contact_modulus),
         }
+    }
+
+    /// The CG's buffers and the preconditioner, borrowed apart.
+    pub(super) fn buffers(&mut self) -> (PcgBuffers<'_>, &mut SpectralPreconditioner) {
+        let buffers = PcgBuffers {
+            residual: &mut self.residual,
+            preconditioned: &mut self.preconditioned,
+            direction: &mut self.direction,
+            response: &mut self.response,
+            mask: &self.mask,
+        };
+        (buffers, &mut self.preconditioner)
     }
 }

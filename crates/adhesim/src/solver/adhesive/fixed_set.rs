@@ -182,13 +182,29 @@ impl AdhesiveSolver {
         }
         let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Output)?;
         self.displacement_pressure.copy_from_slice(&state.pressure);
+        // The step's outputs and the next step read u everywhere.
+        self.sync_outside(operator, state);
         Ok(iterations)
     }
 
     /// u = K p in double precision, from the pressures alone.
     fn make_displacement_exact<O: ElasticOperator + ?Sized>(&mut self, operator: &mut O, state: &mut ContactState) {
         operator.apply(&state.pressure, &mut state.displacement);
+        self.windows.discard_lag();
         self.displacement_drifted = false;
+    }
+
+    /// Brings the displacement outside the last solve's window up to its pressure (a
+    /// reader of u outside the contact follows: the growth, a probe, the outputs, a saved
+    /// state).
+    pub(super) fn sync_outside<O: ElasticOperator + ?Sized>(&mut self, operator: &mut O, state: &mut ContactState) {
+        // The residual and response are free between solves (the pending change of the
+        // next solve is in `direction`).
+        self.windows.sync_outside(
+            operator,
+            &mut state.displacement,
+            (&mut self.residual, &mut self.response),
+        );
     }
 
     /// [`AdhesiveParams::check_certificates`]: converges the solve fully from the early
@@ -201,6 +217,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &mut ContactState,
     ) -> Result<usize, SolveError> {
+        self.sync_outside(operator, state);
         let early = state.clone();
         let (bound, gap_bound) = (self.pressure_error_bound, self.gap_error_bound);
         let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Converge)?;
@@ -225,6 +242,7 @@ impl AdhesiveSolver {
         }
         state.pressure.copy_from_slice(&early.pressure);
         state.displacement.copy_from_slice(&early.displacement);
+        self.windows.discard_lag();
         (self.pressure_error_bound, self.gap_error_bound) = (bound, gap_bound);
         self.last_solve_certified = true;
         Ok(iterations)
@@ -301,7 +319,7 @@ impl AdhesiveSolver {
         let (contact_modulus, element_size) = (operator.contact_modulus(), self.bound_element_size());
         self.last_solve_certified = false;
         let pending = self.pending_change.take();
-        let windowed = self.enter_window(operator, state, pending);
+        self.enter_window(operator, state, pending);
         let span = contact_span(&state.contact, self.grid.nx());
         let (target_norm, residual_norm) = self.set_residual(heights, depth, state, span.clone());
         if target_norm == 0.0 {
@@ -310,6 +328,7 @@ impl AdhesiveSolver {
             // so u = K p = 0; CG could never meet ‖r‖ ≤ ε‖b‖ = 0 on the rounding of p.
             state.pressure.iter_mut().for_each(|p| *p = 0.0);
             state.displacement.iter_mut().for_each(|u| *u = 0.0);
+            self.windows.discard_lag();
             (self.pressure_error_bound, self.gap_error_bound) = (0.0, 0.0);
             return Ok(0);
         }
@@ -326,25 +345,16 @@ impl AdhesiveSolver {
             self.pressure_error_bound =
                 pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
             self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
-            if windowed {
-                self.leave_window(operator, state);
-            }
+            self.windows.leave(&mut state.pressure, &mut state.displacement);
             return Ok(0);
         }
         self.fill_mask(&state.contact, span.clone());
         let applications = &mut self.preconditioner_applications;
-        let (outcome, certified, largest) = match self.windows.current().filter(|_| windowed) {
+        let (outcome, certified, largest) = match self.windows.current() {
             Some(window) => {
                 window.load_set(&self.residual, &self.mask, &self.critical_stress, &state.contact);
                 let before = window.operator.applications();
-                let workspace = &mut window.workspace;
-                let buffers = PcgBuffers {
-                    residual: &mut workspace.residual,
-                    preconditioned: &mut workspace.preconditioned,
-                    direction: &mut workspace.direction,
-                    response: &mut workspace.response,
-                    mask: &workspace.mask,
-                };
+                let (buffers, preconditioner) = window.workspace.buffers();
                 let sets = SetFields {
                     contact: &window.contact,
                     critical_stress: &window.critical_stress,
@@ -354,16 +364,13 @@ impl AdhesiveSolver {
                     window.operator.as_mut(),
                     (&mut window.pressure, &mut window.displacement),
                     buffers,
-                    (
-                        window.preconditioned.then_some(&mut workspace.preconditioner),
-                        applications,
-                    ),
+                    (window.preconditioned.then_some(preconditioner), applications),
                     sets,
                     rule,
                 );
                 self.window_applications += window.operator.applications() - before;
                 let largest = largest_magnitude(&window.workspace.residual);
-                self.leave_window(operator, state);
+                self.windows.leave(&mut state.pressure, &mut state.displacement);
                 (outcome, certified, largest)
             }
             None => {
@@ -398,26 +405,35 @@ impl AdhesiveSolver {
         })
     }
 
-    /// Chooses the CG's window (`window`) for the contact in `state` and loads it, after
-    /// bringing u up to the pressure change `pending` (in `direction`, from the solve's
-    /// start): on the window when the change lies inside it, else on the whole grid.
-    /// Returns whether the CG runs on a window.
+    /// Chooses the CG's window for the contact in `state` and loads it, after bringing u up
+    /// to the pressure change `pending` (in `direction`, from the solve's start): on the
+    /// window when the change lies inside it, else on the whole grid. A window whose
+    /// outside lags is kept while it serves the contact ([`SetWindows::keep`]); otherwise
+    /// the outside is brought up first.
     fn enter_window<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
         state: &mut ContactState,
         pending: Option<Range<usize>>,
-    ) -> bool {
-        let windowed = self.grid.boundary() == Boundary::Free
-            && self.params.contact_window
-            && self
-                .windows
-                .enter(operator, &state.contact, self.preconditioner.is_some());
-        let on_window = match (&pending, self.windows.current().filter(|_| windowed)) {
+    ) {
+        let kept = self.windows.keep(&state.contact);
+        if !kept {
+            self.sync_outside(operator, state);
+            if self.grid.boundary() == Boundary::Free && self.params.contact_window {
+                self.windows
+                    .enter(operator, &state.contact, self.preconditioner.is_some());
+            } else {
+                self.windows.clear();
+            }
+        }
+        let on_window = match (&pending, self.windows.current()) {
             (Some(changed), Some(window)) => window.holds(&self.direction, changed.clone()),
             _ => false,
         };
         if let Some(changed) = pending.filter(|_| !on_window) {
+            // A change on the whole grid while the outside lags would be counted twice
+            // where it lies in the window: bring the outside up first.
+            self.sync_outside(operator, state);
             apply_change(
                 operator,
                 &self.direction,
@@ -426,27 +442,14 @@ impl AdhesiveSolver {
                 changed,
             );
         }
-        if let Some(window) = self.windows.current().filter(|_| windowed) {
+        let lagging = self.windows.lagging();
+        if let Some(window) = self.windows.current() {
             let base = if on_window {
                 &self.displacement_pressure
             } else {
                 &state.pressure
             };
-            self.window_applications += window.load_state(&state.pressure, &mut state.displacement, base);
-        }
-        windowed
-    }
-
-    /// Writes the current window's pressure and displacement back into `state` (u outside
-    /// the window from one application of the pressure change on the whole grid).
-    fn leave_window<O: ElasticOperator + ?Sized>(&mut self, operator: &mut O, state: &mut ContactState) {
-        if let Some(window) = self.windows.current() {
-            window.copy_out(
-                operator,
-                &mut state.pressure,
-                &mut state.displacement,
-                (&mut self.direction, &mut self.response),
-            );
+            self.window_applications += window.load_state(&state.pressure, &mut state.displacement, base, lagging);
         }
     }
 }

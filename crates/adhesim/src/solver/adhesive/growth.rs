@@ -29,6 +29,8 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         round: &mut Round,
     ) -> Result<Flow, SolveError> {
+        // Gaps outside the contact are read from here on.
+        self.sync_outside(operator, state);
         if round.growth == Growth::Predicted
             && (self.dropped_member_penetrates(heights, depth, state) || self.stability_uncertain(state))
         {
@@ -167,6 +169,7 @@ impl AdhesiveSolver {
     ) -> Result<Flow, SolveError> {
         let any_failed_trial = self.violators.iter().any(|&k| self.trial[k]);
         if round.growth == Growth::FullRing {
+            self.sync_outside(operator, state);
             self.ring_solved_pressure.copy_from_slice(&state.pressure);
             self.ring_solved_displacement.copy_from_slice(&state.displacement);
             self.ring_solved_bounds = (
@@ -243,6 +246,7 @@ impl AdhesiveSolver {
         }
         state.pressure.copy_from_slice(&self.ring_solved_pressure);
         state.displacement.copy_from_slice(&self.ring_solved_displacement);
+        self.windows.discard_lag();
         self.displacement_pressure.copy_from_slice(&self.ring_solved_pressure);
         self.displacement_drifted = true;
         (

@@ -293,6 +293,7 @@ impl AdhesiveSolver {
         self.clear_ring_history();
         self.drop_current_ring();
         self.banned.iter_mut().for_each(|b| *b = false);
+        self.windows.discard_lag();
     }
 
     /// Π = ½Δ²Σp·u − Δ²Σ_C γ: elastic energy minus adhesion energy of the state.
@@ -391,6 +392,7 @@ impl AdhesiveSolver {
             let stop = self.stop_rule(first, heights, state, round.retry_high_water);
             round.report.cg_iterations += self.solve_fixed_set(operator, heights, depth, state, exact, stop)?;
             if first {
+                self.sync_outside(operator, state);
                 round.report.force_before_change = state.force(self.grid.element_area());
                 round.report.energy_before_change = self.solved_energy(state, heights, depth);
                 before_change(state);
@@ -478,6 +480,7 @@ impl AdhesiveSolver {
         // before the ring was tried. Restore and stop.
         state.pressure.copy_from_slice(&self.saved_pressure);
         state.displacement.copy_from_slice(&self.saved_displacement);
+        self.windows.discard_lag();
         self.displacement_pressure.copy_from_slice(&self.saved_pressure);
         if self.saved_needs_convergence {
             self.converge_final(operator, heights, depth, state, &mut round.report)?;

@@ -80,6 +80,7 @@ impl AdhesiveSolver {
         state: &mut ContactState,
         trial_only: bool,
     ) -> Result<(), SolveError> {
+        self.sync_outside(operator, state);
         let before = state.clone();
         let displacement_pressure = self.displacement_pressure.clone();
         let (bound, gap_bound, certified) = (
@@ -101,6 +102,7 @@ impl AdhesiveSolver {
             }
         }
         *state = before;
+        self.windows.discard_lag();
         self.displacement_pressure = displacement_pressure;
         (
             self.pressure_error_bound,

@@ -7,10 +7,14 @@
 //! that holds C, so the CG runs there with transforms of twice the window's side instead
 //! of twice the grid's, and its vector loops visit the window only (the contact window of
 //! the non-adhesive solver, `solver::contact_window`, made for the adhesive step). The
-//! displacement outside the window, which the growth and the outputs read, follows from
-//! one single-precision application of the solve's pressure change on the whole grid.
-//! The window is chosen from the contact alone (its bounding box, centred), so a resumed
-//! run chooses the same windows as an uninterrupted one.
+//! displacement outside the window, which the growth and the outputs read, lags: it is
+//! brought up to the window's pressure by one single-precision application of the change
+//! on the whole grid when something reads it ([`SetWindows::sync_outside`]). A cascade of
+//! releases reads only pressures, so its solves keep their window and their lag, and the
+//! whole grid is transformed once after it instead of once a solve. A step's first window
+//! is chosen from the contact alone (its bounding box, centred) and a step ends with the
+//! displacement brought up everywhere, so a resumed run chooses the same windows as an
+//! uninterrupted one.
 
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
@@ -28,6 +32,11 @@ const MAX_WINDOW_FRACTION: f64 = 0.8;
 /// shrinking contact passes through a few sides, and each is planned once.
 const KEPT_SIDES: usize = 4;
 
+/// A lagging window is kept for the next solve while the side its contact would choose is
+/// at least this fraction of its own: a smaller side would save more per CG iteration (its
+/// transforms scale with the side squared) than bringing the whole grid up costs.
+const KEEP_SIDE_RATIO: f64 = 0.9;
+
 /// One window's operator, the CG's buffers and preconditioner on it, and copies of the
 /// set's fields.
 pub(super) struct SetWindow {
@@ -42,6 +51,8 @@ pub(super) struct SetWindow {
     pub(super) contact: Vec<bool>,
     /// The pressure the full grid's displacement belonged to when the window was loaded.
     base_pressure: Vec<f64>,
+    /// The pressure the displacement outside the window belongs to (while it lags).
+    outside_pressure: Vec<f64>,
     /// Elements per row of the full grid.
     nx: usize,
     last_used: u64,
@@ -53,6 +64,8 @@ pub(super) struct SetWindows {
     kept: Vec<SetWindow>,
     /// Index in `kept` of the window of the solve under way.
     current: Option<usize>,
+    /// Whether the displacement outside the current window lags its pressure.
+    lagging: bool,
     clock: u64,
 }
 
@@ -60,20 +73,81 @@ impl SetWindows {
     /// Chooses the window that holds the contact `contact` of `operator`'s grid (planned
     /// and placed; its fields are not loaded) as the current one; false, and no current
     /// window, when the operator has no window restriction, the contact is empty, or its
-    /// window would not be much smaller than the grid.
+    /// window would not be much smaller than the grid. The displacement must not lag.
     pub(super) fn enter<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &O,
         contact: &[bool],
         preconditioned: bool,
     ) -> bool {
+        debug_assert!(!self.lagging, "a window chosen while the displacement lags");
         self.current = self.place(operator, contact, preconditioned);
         self.current.is_some()
+    }
+
+    /// No window for the solve under way (the displacement must not lag).
+    pub(super) fn clear(&mut self) {
+        debug_assert!(!self.lagging, "a window left while the displacement lags");
+        self.current = None;
+    }
+
+    /// Whether the lagging current window serves the next solve on `contact` too: it holds
+    /// the contact, and the side the contact would choose is not much smaller.
+    pub(super) fn keep(&self, contact: &[bool]) -> bool {
+        let Some(window) = self.current.filter(|_| self.lagging).map(|index| &self.kept[index]) else {
+            return false;
+        };
+        Bounds::of_contact(contact, window.nx).is_some_and(|bounds| {
+            smooth_side(bounds.extent()) as f64 >= KEEP_SIDE_RATIO * window.placement.side as f64
+                && window.placement.holds(&bounds)
+        })
     }
 
     /// The window chosen by the last [`enter`](Self::enter).
     pub(super) fn current(&mut self) -> Option<&mut SetWindow> {
         self.current.map(|index| &mut self.kept[index])
+    }
+
+    /// Writes the current window's pressure and displacement back into the full grid's
+    /// (the pressure vanishes outside, where there is no contact); the displacement outside
+    /// the window lags from here on, until [`sync_outside`](Self::sync_outside).
+    pub(super) fn leave(&mut self, pressure: &mut [f64], displacement: &mut [f64]) {
+        if let Some(index) = self.current {
+            let window = &self.kept[index];
+            for (full, local) in window.rows() {
+                pressure[full.clone()].copy_from_slice(&window.pressure[local.clone()]);
+                displacement[full].copy_from_slice(&window.displacement[local]);
+            }
+            self.lagging = window.pressure != window.outside_pressure;
+        }
+    }
+
+    /// Brings the displacement outside the current window up to the window's pressure:
+    /// u += K·(p − p_outside) there, in single precision on the whole grid, with
+    /// `change` and `response` as the full grid's scratch vectors. Returns whether it did
+    /// (an operator application).
+    pub(super) fn sync_outside<O: ElasticOperator + ?Sized>(
+        &mut self,
+        operator: &mut O,
+        displacement: &mut [f64],
+        (change, response): (&mut [f64], &mut [f64]),
+    ) -> bool {
+        let Some(index) = self.current.filter(|_| self.lagging) else {
+            return false;
+        };
+        self.lagging = false;
+        self.kept[index].apply_outside(operator, displacement, (change, response));
+        true
+    }
+
+    /// Forgets the lag: the displacement was recomputed or restored on the whole grid.
+    pub(super) fn discard_lag(&mut self) {
+        self.lagging = false;
+    }
+
+    /// Whether the displacement outside the current window lags its pressure.
+    pub(super) fn lagging(&self) -> bool {
+        self.lagging
     }
 
     fn place<O: ElasticOperator + ?Sized>(
@@ -105,7 +179,6 @@ impl SetWindows {
         let window = &mut self.kept[index];
         window.last_used = self.clock;
         window.placement = Window::place(&bounds, side, (nx, ny));
-        window.nx = nx;
         Some(index)
     }
 }
@@ -130,6 +203,7 @@ impl SetWindow {
             critical_stress: vec![0.0; len],
             contact: vec![false; len],
             base_pressure: vec![0.0; len],
+            outside_pressure: vec![0.0; len],
             last_used: 0,
         })
     }
@@ -156,13 +230,22 @@ impl SetWindow {
     /// belongs to (on the whole grid, where it differs from the pressure only inside the
     /// window). A base other than the pressure is applied on the window, and the window's
     /// displacement written back on the window: on the window u = K p from here on, and
-    /// outside it u follows at [`copy_out`](Self::copy_out). Returns the window's operator
-    /// applications (0 or 1).
-    pub(super) fn load_state(&mut self, pressure: &[f64], displacement: &mut [f64], base: &[f64]) -> u64 {
+    /// outside it u lags, behind `base` (or, with `lagging`, behind the pressure it already
+    /// lagged). Returns the window's operator applications (0 or 1).
+    pub(super) fn load_state(
+        &mut self,
+        pressure: &[f64],
+        displacement: &mut [f64],
+        base: &[f64],
+        lagging: bool,
+    ) -> u64 {
         for (full, local) in self.rows() {
             self.pressure[local.clone()].copy_from_slice(&pressure[full.clone()]);
             self.displacement[local.clone()].copy_from_slice(&displacement[full.clone()]);
-            self.base_pressure[local].copy_from_slice(&base[full]);
+            self.base_pressure[local.clone()].copy_from_slice(&base[full.clone()]);
+            if !lagging {
+                self.outside_pressure[local].copy_from_slice(&base[full]);
+            }
         }
         if self.pressure == self.base_pressure {
             return 0;
@@ -197,15 +280,11 @@ impl SetWindow {
         }
     }
 
-    /// Writes the window's pressure and displacement back into the full grid's: the
-    /// pressure on the window (it vanishes outside, where there is no contact), the
-    /// displacement on the window from the window's operator, and outside it u plus K
-    /// applied (in single precision, on the whole grid) to the change of p from the base,
-    /// with `change` and `response` as the full grid's scratch vectors.
-    pub(super) fn copy_out<O: ElasticOperator + ?Sized>(
+    /// u += K·(p − p_outside) outside the window (the change applied in single precision
+    /// on the whole grid, only the window's rows transformed forward).
+    fn apply_outside<O: ElasticOperator + ?Sized>(
         &self,
         operator: &mut O,
-        pressure: &mut [f64],
         displacement: &mut [f64],
         (change, response): (&mut [f64], &mut [f64]),
     ) {
@@ -214,32 +293,26 @@ impl SetWindow {
         let rows = row..row + side;
         change[rows.start * nx..rows.end * nx].fill(0.0);
         for (full, local) in self.rows() {
-            for ((target, &now), &before) in change[full.clone()]
+            for ((target, &now), &before) in change[full]
                 .iter_mut()
                 .zip(&self.pressure[local.clone()])
-                .zip(&self.base_pressure[local.clone()])
+                .zip(&self.outside_pressure[local])
             {
                 *target = now - before;
             }
-            pressure[full].copy_from_slice(&self.pressure[local]);
         }
-        if self.pressure != self.base_pressure {
-            operator.apply_single_rows(change, response, rows.clone(), 0..ny);
-            displacement
-                .par_chunks_mut(nx)
-                .zip(response.par_chunks(nx))
-                .enumerate()
-                .for_each(|(i, (u, du))| {
-                    let inside = if rows.contains(&i) { column..column + side } else { 0..0 };
-                    for (j, (u, du)) in u.iter_mut().zip(du).enumerate() {
-                        if !inside.contains(&j) {
-                            *u += du;
-                        }
+        operator.apply_single_rows(change, response, rows.clone(), 0..ny);
+        displacement
+            .par_chunks_mut(nx)
+            .zip(response.par_chunks(nx))
+            .enumerate()
+            .for_each(|(i, (u, du))| {
+                let inside = if rows.contains(&i) { column..column + side } else { 0..0 };
+                for (j, (u, du)) in u.iter_mut().zip(du).enumerate() {
+                    if !inside.contains(&j) {
+                        *u += du;
                     }
-                });
-        }
-        for (full, local) in self.rows() {
-            displacement[full].copy_from_slice(&self.displacement[local]);
-        }
+                }
+            });
     }
 }
