@@ -34,7 +34,15 @@ impl adhesim::Observer for Cycle {
     }
 }
 
-fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, params: AdhesiveParams) -> Cycle {
+/// Runs an indentation–pull-off cycle to `max_depth` in `steps` approach steps with
+/// `observer`; returns the solver (for its counters).
+fn run_cycle(
+    grid: Grid,
+    heights: &[f64],
+    (gamma, max_depth, steps): (f64, f64, usize),
+    params: AdhesiveParams,
+    observer: &mut dyn adhesim::Observer,
+) -> NormalSolver {
     let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
@@ -50,6 +58,11 @@ fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, 
         max_retract_steps: 10_000,
         jump_force_threshold: 0.0,
     };
+    protocol.run(&mut operator, heights, &mut solver, observer).unwrap();
+    solver
+}
+
+fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, params: AdhesiveParams) -> Cycle {
     let mut record = Cycle {
         sets: Vec::new(),
         phases: Vec::new(),
@@ -58,7 +71,7 @@ fn cycle(grid: Grid, heights: &[f64], gamma: f64, max_depth: f64, steps: usize, 
         predicted_growth: (0, 0),
         window_pairs: 0,
     };
-    protocol.run(&mut operator, heights, &mut solver, &mut record).unwrap();
+    let solver = run_cycle(grid, heights, (gamma, max_depth, steps), params, &mut record);
     if let NormalSolver::Adhesive(adhesive) = &solver {
         record.predicted_growth = adhesive.predicted_growth();
         record.window_pairs = adhesive.window_applications();
@@ -299,36 +312,19 @@ fn a_step_ends_with_the_displacement_of_its_pressure_everywhere() {
     let d_jkr = (3.0 * std::f64::consts::PI.powi(2) * gamma * gamma / 64.0).cbrt();
     let grid = Grid::new(48, 0.6, Boundary::Free).unwrap();
     let heights = WavySphere::new(1.0, 0.0025, 0.05, 0.0).unwrap().heights(&grid);
-    let material = ElasticMaterial::new(1.0).unwrap();
     let params = AdhesiveParams {
         predicted_growth: PredictedGrowth::On,
         ..AdhesiveParams::default()
     };
-    let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
-        grid,
-        1.0,
-        vec![gamma; grid.len()],
-        params,
-    )));
-    let start_depth = heights.iter().cloned().fold(f64::INFINITY, f64::min);
-    let max_depth = 6.0 * d_jkr;
-    let protocol = IndentPulloff {
-        start_depth,
-        max_depth,
-        depth_step: (max_depth - start_depth) / 30.0,
-        max_retract_steps: 10_000,
-        jump_force_threshold: 0.0,
-    };
     let mut check = Consistency {
-        operator: FreeOperator::new(grid, material),
+        operator: FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap()),
         heights: &heights,
         exact: vec![0.0; grid.len()],
         worst: 0.0,
         deepest: 0.0,
         steps: 0,
     };
-    let mut operator = FreeOperator::new(grid, material);
-    protocol.run(&mut operator, &heights, &mut solver, &mut check).unwrap();
+    let solver = run_cycle(grid, &heights, (gamma, 6.0 * d_jkr, 30), params, &mut check);
     let NormalSolver::Adhesive(adhesive) = &solver else {
         unreachable!()
     };
