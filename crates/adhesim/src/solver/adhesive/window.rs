@@ -24,8 +24,8 @@ use rayon::prelude::*;
 use std::ops::Range;
 
 /// A window is used while its side is at most this fraction of the grid's shorter side:
-/// above it, its transforms save little against the grid's row-pruned ones, and the
-/// application of the pressure change on the whole grid costs more than they save.
+/// above it, its transforms save little against the grid's row-pruned ones, and bringing
+/// the whole grid up after it costs more than they save.
 const MAX_WINDOW_FRACTION: f64 = 0.8;
 
 /// Windows kept planned, by side (the least recently used is dropped): a growing or
@@ -33,8 +33,9 @@ const MAX_WINDOW_FRACTION: f64 = 0.8;
 const KEPT_SIDES: usize = 4;
 
 /// A lagging window is kept for the next solve while the side its contact would choose is
-/// at least this fraction of its own: a smaller side would save more per CG iteration (its
-/// transforms scale with the side squared) than bringing the whole grid up costs.
+/// at least this fraction of its own: below it, the smaller window's cheaper iterations
+/// (their transforms scale with the side squared) are expected to repay bringing the whole
+/// grid up. An estimate from those costs, not a measured optimum.
 const KEEP_SIDE_RATIO: f64 = 0.9;
 
 /// One window's operator, the CG's buffers and preconditioner on it, and copies of the
@@ -124,20 +125,18 @@ impl SetWindows {
 
     /// Brings the displacement outside the current window up to the window's pressure:
     /// u += K·(p − p_outside) there, in single precision on the whole grid, with
-    /// `change` and `response` as the full grid's scratch vectors. Returns whether it did
-    /// (an operator application).
+    /// `change` and `response` as the full grid's scratch vectors (nothing when it does
+    /// not lag).
     pub(super) fn sync_outside<O: ElasticOperator + ?Sized>(
         &mut self,
         operator: &mut O,
         displacement: &mut [f64],
         (change, response): (&mut [f64], &mut [f64]),
-    ) -> bool {
-        let Some(index) = self.current.filter(|_| self.lagging) else {
-            return false;
-        };
-        self.lagging = false;
-        self.kept[index].apply_outside(operator, displacement, (change, response));
-        true
+    ) {
+        if let Some(index) = self.current.filter(|_| self.lagging) {
+            self.lagging = false;
+            self.kept[index].apply_outside(operator, displacement, (change, response));
+        }
     }
 
     /// Forgets the lag: the displacement was recomputed or restored on the whole grid.
