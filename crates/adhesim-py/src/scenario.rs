@@ -7,8 +7,9 @@ use adhesim::StepRecord;
 use adhesim::{Observer, StepView};
 use adhesim_scenario::output::folder::prepare_run_folder;
 use adhesim_scenario::output::observer::RunProgress;
+use adhesim_scenario::output::parts::BorderWatch;
 use adhesim_scenario::output::run::{performance, run_into_folder, FolderRunOptions};
-use adhesim_scenario::output::timings::PhaseTimings;
+use adhesim_scenario::output::timings::Timed;
 use adhesim_scenario::{
     CurveCell, CurveColumns, CurveKind, RunOutcome, SnapshotFields, SnapshotPlan, SnapshotRecorder, ValidScenario,
 };
@@ -59,29 +60,10 @@ impl RunProgress for PythonProgress {
     }
 }
 
-/// The observer of an in-memory Python run: keeps the snapshot fields (the scenario
-/// crate's [`SnapshotRecorder`], as in `fields.npz`), raises the border warning, times the
-/// phases as the command line does ([`PhaseTimings`]) and runs [`PythonProgress`].
-struct PythonObserver {
-    progress: PythonProgress,
-    recorder: SnapshotRecorder,
-    warnings: Vec<String>,
-    timings: PhaseTimings,
-}
-
-impl Observer for PythonObserver {
+/// The progress between steps as an observer (the first Python exception stops the run).
+impl Observer for PythonProgress {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        let record = view.record;
-        self.timings.solver_step(record.phase.map_or("unknown", |p| p.name()));
-        let output_start = Instant::now();
-        self.recorder.observe(&view);
-        if record.touches_border && self.warnings.is_empty() {
-            self.warnings
-                .push(adhesim_scenario::border_warning(record.step, record.depth));
-        }
-        let flow = self.progress.between_steps(record.step);
-        self.timings.output_done(output_start);
-        flow
+        self.between_steps(view.record.step)
     }
 }
 
@@ -161,14 +143,19 @@ fn run_in_memory(
     progress: PythonProgress,
 ) -> PyResult<(RunOutcome, String, SnapshotFields)> {
     let start = Instant::now();
-    let mut observer = PythonObserver {
+    // The observer of an in-memory run: the snapshot fields (as in `fields.npz`), the
+    // border warning and the progress, timed by phase as the command line's run is.
+    let mut observer = Timed::new((
+        SnapshotRecorder::new(SnapshotPlan::new(scenario)),
+        BorderWatch::default(),
         progress,
-        recorder: SnapshotRecorder::new(SnapshotPlan::new(scenario)),
-        warnings: Vec::new(),
-        timings: PhaseTimings::new(),
-    };
+    ));
     let outcome = py.detach(|| adhesim_scenario::run(scenario, &mut observer));
-    let outcome = match (outcome, observer.progress.error.take()) {
+    let Timed {
+        observer: (mut recorder, border, mut progress),
+        timings,
+    } = observer;
+    let outcome = match (outcome, progress.error.take()) {
         (_, Some(error)) => return Err(error),
         (Ok(outcome), None) => outcome,
         (Err(error), None) => {
@@ -178,10 +165,10 @@ fn run_in_memory(
             )))
         }
     };
-    let performance = performance(start.elapsed().as_secs_f64(), &outcome, &observer.timings);
-    let summary = adhesim_scenario::Summary::new(scenario, &outcome, performance, &observer.warnings);
+    let performance = performance(start.elapsed().as_secs_f64(), &outcome, &timings);
+    let summary = adhesim_scenario::Summary::new(scenario, &outcome, performance, &border.warnings);
     let summary = summary.to_json().map_err(|e| PyValueError::new_err(format!("{e:#}")))?;
-    let fields = SnapshotFields::new(scenario, observer.recorder.take_snapshots());
+    let fields = SnapshotFields::new(scenario, recorder.take_snapshots());
     Ok((outcome, summary, fields))
 }
 

@@ -9,9 +9,8 @@ use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticOperator, FrictionLaw, HalfSpace, IndentPulloff,
     LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearBody,
-    ShearSummary, StepRecord, StepView, TangentialParams, TangentialSolver, TranslationSummary,
+    ShearSummary, StepRecord, TangentialParams, TangentialSolver, TranslationSummary,
 };
-use std::ops::ControlFlow;
 
 /// The protocol of a scenario, built in one place ([`ValidScenario::protocol_setup`]).
 #[derive(Debug, Clone, Copy)]
@@ -169,25 +168,7 @@ pub struct RunOutcome {
 }
 
 /// Keeps every record and passes each step on to the caller's observer.
-struct Recording<'a> {
-    records: Vec<StepRecord>,
-    inner: &'a mut dyn Observer,
-}
-
-impl Observer for Recording<'_> {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        self.records.push(*view.record);
-        self.inner.on_step(view)
-    }
-
-    fn wants_checkpoint(&mut self) -> bool {
-        self.inner.wants_checkpoint()
-    }
-
-    fn on_checkpoint(&mut self, checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
-        self.inner.on_checkpoint(checkpoint)
-    }
-}
+type Recording<'a> = (Vec<StepRecord>, &'a mut dyn Observer);
 
 /// Where a run goes on from: the protocol's checkpoint and the records of the steps
 /// before it.
@@ -313,10 +294,7 @@ pub fn run_from(
             "the checkpoint is of another protocol than this run's".into(),
         ));
     }
-    let mut recording = Recording {
-        records,
-        inner: observer,
-    };
+    let mut recording: Recording<'_> = (records, observer);
     match scenario.protocol_setup() {
         ProtocolSetup::Indentation(protocol) => {
             let (heights, start) = (&scenario.heights, indentation_start.as_deref());
@@ -326,7 +304,7 @@ pub fn run_from(
                 }
                 None => protocol.run_from(&mut *operator, heights, &mut solver, &mut recording, start)?,
             };
-            let records = recording.records;
+            let records = recording.0;
             let (fits, _) = fit_results(scenario, &records);
             Ok(RunOutcome {
                 results: RunResults::Indentation(Results {
@@ -366,7 +344,7 @@ pub fn run_from(
                     translation_start.as_deref(),
                 )?,
             };
-            let records = recording.records;
+            let records = recording.0;
             let mut results = analyse_translation(scenario, setup, &summary, &records);
             if setup.friction.is_some() {
                 results = results.with_interface_friction(&summary);
@@ -405,7 +383,7 @@ fn run_shear(
         &mut friction,
         &mut recording,
     )?;
-    let records = recording.records;
+    let records = recording.0;
     Ok(RunOutcome {
         results: RunResults::Shear(ShearResults::new(&summary, &records, &setup.protocol)),
         report: ProtocolReport::Shear(summary),

@@ -246,19 +246,7 @@ pub struct FieldShapes {
 mod tests {
     use super::*;
     use crate::snapshots::{SnapshotPlan, SnapshotRecorder};
-    use adhesim::{Observer, StepRecord, StepView};
-    use std::ops::ControlFlow;
-
-    /// The recorder and the records of every step.
-    struct Both(SnapshotRecorder, Vec<StepRecord>);
-
-    impl Observer for Both {
-        fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-            self.0.observe(&view);
-            self.1.push(*view.record);
-            ControlFlow::Continue(())
-        }
-    }
+    use adhesim::StepRecord;
 
     /// A JKR sphere (n = 32, 10 approach steps) with `[output]` choosing step 2.
     fn scenario() -> ValidScenario {
@@ -290,9 +278,9 @@ mod tests {
         let plan = SnapshotPlan::new(&scenario);
         assert_eq!(plan.max_depth_step, 9);
         assert!(plan.is_chosen(2) && !plan.is_chosen(9) && plan.keeps_fields(9));
-        let mut both = Both(SnapshotRecorder::new(plan), Vec::new());
+        let mut both = (SnapshotRecorder::new(plan), Vec::<StepRecord>::new());
         crate::run(&scenario, &mut both).unwrap();
-        let Both(mut recorder, records) = both;
+        let (mut recorder, records) = both;
         let last_in_contact = records.iter().rposition(|r| r.contact_elements > 0).unwrap();
         let most = records.iter().map(|r| r.contact_elements).max().unwrap();
         let largest = records.iter().position(|r| r.contact_elements == most).unwrap();

@@ -8,7 +8,9 @@ pub mod fields;
 pub mod folder;
 pub mod observer;
 mod observer_state;
+pub mod parts;
 pub mod run;
+pub mod snapshot_maps;
 pub mod timings;
 
 use anyhow::{anyhow, Context, Result};

@@ -8,12 +8,12 @@ use adhesim::bit_string;
 use std::collections::BTreeMap;
 
 /// A contact set in a checkpoint.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub(super) struct Bits(#[serde(with = "bit_string")] pub(super) Vec<bool>);
 
 /// What the observer of a run carries from step to step (in a checkpoint): everything the
 /// files written after the checkpoint depend on.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub(crate) struct ObserverState {
     pub(super) jump_snapshots: usize,
     pub(super) largest: (usize, usize, Bits),

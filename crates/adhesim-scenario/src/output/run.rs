@@ -101,7 +101,7 @@ pub fn run_into_folder(
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(ProtocolError::Interrupted(step)) => {
-            let cause = observer.error.take().unwrap_or_else(|| anyhow!("interrupted"));
+            let cause = observer.take_error().unwrap_or_else(|| anyhow!("interrupted"));
             return Err(cause.context(format!("run stopped at step {step}")));
         }
         Err(error) => {
@@ -114,12 +114,12 @@ pub fn run_into_folder(
         }
     };
     let plot_files = match options.pictures {
-        Some(pictures) => pictures.figures(scenario, &outcome, &observer.captured, &out.join("plots"))?,
+        Some(pictures) => pictures.figures(scenario, &outcome, &observer.captured.captured, &out.join("plots"))?,
         None => Vec::new(),
     };
     let wall_seconds = start.elapsed().as_secs_f64();
     let performance = performance(wall_seconds, &outcome, &observer.timings);
-    let summary = Summary::new(scenario, &outcome, performance, &observer.warnings);
+    let summary = Summary::new(scenario, &outcome, performance, &observer.border.warnings);
     let path = out.join("summary.json");
     let summary_json = summary
         .to_json()
@@ -133,7 +133,7 @@ pub fn run_into_folder(
         outcome,
         summary_json,
         fields,
-        snapshot_files: std::mem::take(&mut observer.snapshot_files),
+        snapshot_files: observer.take_snapshot_files(),
         plot_files,
         wall_seconds,
     })

@@ -4,12 +4,14 @@
 
 mod checkpoint;
 mod indentation;
+mod observer;
 mod shear;
 mod stepper;
 mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
 pub use indentation::{AgingLaw, Hold, IndentPulloff, ProtocolSummary};
+pub use observer::{Observer, StepView};
 pub use shear::{
     contact_split, element_energy_ratio, shear_weakened_critical_stress, ModeMixity, Shear, ShearFields, ShearSummary,
     TangentialForce,
@@ -24,7 +26,6 @@ use crate::solver::{
     AdhesiveSolver, Ccg, CcgParams, CohesiveSolver, ContactState, NestedActiveSet, NestedParams, SolveError,
     StepReport, TangentialError,
 };
-use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// Stage of a protocol a step belongs to.
@@ -157,52 +158,6 @@ impl StepRecord {
             touches_border: grid.boundary() == Boundary::Free && state.touches_border(grid),
             ..Self::default()
         }
-    }
-}
-
-/// What an observer sees of a step.
-pub struct StepView<'a> {
-    /// The record.
-    pub record: &'a StepRecord,
-    /// The configuration at the end of the step.
-    pub state: &'a ContactState,
-    /// The contact set at the start of the step (to mark attached/detached elements).
-    pub previous_contact: &'a [bool],
-    /// The tangential fields of a shift step of a shear (None otherwise).
-    pub shear: Option<&'a ShearFields>,
-}
-
-/// Receives every step of a protocol; returning `ControlFlow::Break` stops the protocol.
-pub trait Observer {
-    /// Called after each step.
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()>;
-
-    /// Asked after each step of a protocol that offers checkpoints (an indentation or a
-    /// translation, on a solver that supports them): whether to take one now. Default:
-    /// never.
-    fn wants_checkpoint(&mut self) -> bool {
-        false
-    }
-
-    /// The checkpoint asked for by [`wants_checkpoint`](Self::wants_checkpoint), after the
-    /// step [`on_step`](Self::on_step) has seen; `Break` stops the protocol as there.
-    fn on_checkpoint(&mut self, _checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
-}
-
-/// An observer that does nothing.
-impl Observer for () {
-    fn on_step(&mut self, _view: StepView<'_>) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
-}
-
-/// Collects the records (handy in tests and small studies).
-impl Observer for Vec<StepRecord> {
-    fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
-        self.push(*view.record);
-        ControlFlow::Continue(())
     }
 }
 

@@ -6,7 +6,7 @@ use crate::elastic::FreeOperator;
 use crate::geometry::{Profile, Sphere};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
-use crate::protocol::{IndentPulloff, NormalSolver, Observer, ProtocolCheckpoint, StepRecord, StepView};
+use crate::protocol::{IndentPulloff, NormalSolver, Observer, ProtocolCheckpoint, ProtocolError, StepRecord, StepView};
 use crate::solver::AdhesiveParams;
 use std::ops::ControlFlow;
 
@@ -72,6 +72,13 @@ impl Observer for Recorder {
 
 /// A JKR sphere on 32² (about 14 approach steps and its pull-off), by `solver`.
 fn indent(solver: &mut NormalSolver) -> Recorder {
+    let mut recorder = Recorder::default();
+    indent_observed(solver, &mut recorder).unwrap();
+    recorder
+}
+
+/// The indentation of [`indent`] seen by `observer`.
+fn indent_observed(solver: &mut NormalSolver, observer: &mut dyn Observer) -> Result<(), ProtocolError> {
     let grid = grid();
     let material = ElasticMaterial::new(1.0).unwrap();
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
@@ -82,11 +89,9 @@ fn indent(solver: &mut NormalSolver) -> Recorder {
         max_retract_steps: 1000,
         jump_force_threshold: 0.0,
     };
-    let mut recorder = Recorder::default();
     protocol
-        .run(&mut FreeOperator::new(grid, material), &heights, solver, &mut recorder)
-        .unwrap();
-    recorder
+        .run(&mut FreeOperator::new(grid, material), &heights, solver, observer)
+        .map(|_| ())
 }
 
 fn grid() -> Grid {
@@ -133,4 +138,65 @@ fn a_checkpoint_of_another_family_is_refused_by_name() {
         ccg.restore(&saved, &state).unwrap_err(),
         "the checkpoint is of the JKR-type adhesive solver, this run's solver is the non-adhesive CCG"
     );
+}
+
+/// Counts the steps it sees and the checkpoints it is handed, asks for none, and stops the
+/// run after `stop_after` steps.
+struct Counter {
+    steps: usize,
+    offered: usize,
+    stop_after: usize,
+}
+
+impl Observer for Counter {
+    fn on_step(&mut self, _view: StepView<'_>) -> ControlFlow<()> {
+        self.steps += 1;
+        if self.steps == self.stop_after {
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(())
+    }
+
+    fn on_checkpoint(&mut self, _checkpoint: ProtocolCheckpoint) -> ControlFlow<()> {
+        self.offered += 1;
+        ControlFlow::Continue(())
+    }
+}
+
+#[test]
+fn composed_observers_see_every_step_and_only_the_checkpoints_they_asked_for() {
+    let solver = || NormalSolver::Adhesive(Box::new(adhesive()));
+    let alone = indent(&mut solver());
+    let quiet = || Counter {
+        steps: 0,
+        offered: 0,
+        stop_after: usize::MAX,
+    };
+    let absent: Option<Recorder> = None;
+    let mut composed = (quiet(), Recorder::default(), (absent, quiet()));
+    indent_observed(&mut solver(), &mut composed).unwrap();
+    let (first, recorder, (_, last)) = composed;
+    assert_eq!(format!("{:?}", recorder.records), format!("{:?}", alone.records));
+    assert_eq!(
+        recorder.offered, alone.offered,
+        "the part that asked is handed every checkpoint"
+    );
+    assert_eq!((first.steps, last.steps), (alone.records.len(), alone.records.len()));
+    assert_eq!(
+        (first.offered, last.offered),
+        (0, 0),
+        "parts that did not ask are handed none"
+    );
+
+    // A part that stops the run stops it before the parts after it see that step.
+    let mut stopping = (
+        Counter {
+            stop_after: 5,
+            ..quiet()
+        },
+        quiet(),
+    );
+    let stopped = indent_observed(&mut solver(), &mut stopping);
+    assert!(matches!(stopped, Err(ProtocolError::Interrupted(_))), "{stopped:?}");
+    assert_eq!((stopping.0.steps, stopping.1.steps), (5, 4));
 }
