@@ -51,8 +51,9 @@ pub(super) fn gauss_legendre(n: usize, lo: f64, hi: f64) -> Vec<(f64, f64)> {
 pub(super) struct AxisymmetricLayer {
     thickness: f64,
     contact_modulus: f64,
-    /// (s, weight·(1 − f(s))) on s = kt ∈ [0, 16]: 1 − f < 1e-12 beyond (it decays as
-    /// 4s²e^{−2s} at ν = 1/2).
+    /// (s, weight·(1 − f(s))) on s = kt ∈ [0, 20]: 1 − f < 1e-14 beyond for both bases and
+    /// every ν (it decays as 2(2s² + (1 + κ²)/2)e^{−2s}/κ on a bonded base, κ = 3 − 4ν,
+    /// largest at ν = 1/2: 7.1e-15 at s = 20; as 2(2s + 1)e^{−2s} on a frictionless one).
     excess: Vec<(f64, f64)>,
 }
 
@@ -98,7 +99,7 @@ impl AxisymmetricLayer {
         if thickness.is_finite() {
             let panel = 0.1;
             let rule = gauss_legendre(8, 0.0, panel);
-            for j in 0..160 {
+            for j in 0..200 {
                 for &(s, weight) in &rule {
                     let s = s + j as f64 * panel;
                     excess.push((s, weight * (1.0 - layer_compliance_factor(s, poisson_ratio, base))));
@@ -148,18 +149,27 @@ impl AxisymmetricLayer {
     }
 }
 
-/// Solves (I − K)φ = b by Gaussian elimination with partial pivoting.
+/// Solves (I − K)φ = b.
 fn solve_second_kind(kernel: &[Vec<f64>], rhs: &[f64]) -> Vec<f64> {
-    let n = rhs.len();
-    let mut matrix: Vec<Vec<f64>> = kernel
+    let matrix: Vec<Vec<f64>> = kernel
         .iter()
         .enumerate()
         .map(|(i, row)| {
             let mut row: Vec<f64> = row.iter().map(|k| -k).collect();
             row[i] += 1.0;
-            row.push(rhs[i]);
             row
         })
+        .collect();
+    solve_linear(&matrix, rhs)
+}
+
+/// Solves A x = b by Gaussian elimination with partial pivoting.
+pub(super) fn solve_linear(matrix: &[Vec<f64>], rhs: &[f64]) -> Vec<f64> {
+    let n = rhs.len();
+    let mut matrix: Vec<Vec<f64>> = matrix
+        .iter()
+        .zip(rhs)
+        .map(|(row, &b)| row.iter().copied().chain([b]).collect())
         .collect();
     for column in 0..n {
         let pivot = (column..n)
