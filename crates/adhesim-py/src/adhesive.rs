@@ -69,7 +69,7 @@ impl AdhesiveSolver {
         let mut guard = state.try_borrow_mut()?;
         let (solver, heights) = (&mut self.inner, &self.heights);
         let (op, st) = (&mut operator.inner, guard.fields_mut());
-        let report = py.detach(|| solver.step(op, heights, depth, st)).map_err(solve_error)?;
+        let report = crate::pool::detached(py, || solver.step(op, heights, depth, st))?.map_err(solve_error)?;
         guard.record(&self.heights, depth);
         Ok(step_report(depth, &report, guard.fields()))
     }

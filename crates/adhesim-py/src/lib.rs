@@ -13,6 +13,7 @@ mod cli;
 mod convert;
 mod grid;
 mod objects;
+mod pool;
 mod reference;
 mod scenario;
 mod shapes;

@@ -136,7 +136,7 @@ impl HalfSpace {
             &format!("HalfSpace({}) and its solvers", describe(&grid.inner)),
             half_space_bytes(&grid.inner),
         )?;
-        let inner = py.detach(|| adhesim::HalfSpace::new(grid.inner, material.inner));
+        let inner = crate::pool::detached(py, || adhesim::HalfSpace::new(grid.inner, material.inner))?;
         Ok(Self {
             inner,
             grid: grid.inner,
@@ -170,7 +170,7 @@ impl HalfSpace {
         let Self {
             inner, scratch, output, ..
         } = self;
-        py.detach(|| inner.apply(scratch, output));
+        crate::pool::detached(py, || inner.apply(scratch, output))?;
         field(py, &self.output, &grid)
     }
 

@@ -3,6 +3,7 @@
 //! `summary.json` content as the command line, with the GIL released during the run and
 //! Python's signal handlers and the progress callback run between steps.
 
+use crate::pool::run_watching_signals;
 use adhesim::StepRecord;
 use adhesim::{Observer, StepView};
 use adhesim_scenario::output::folder::prepare_run_folder;
@@ -19,19 +20,27 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
-/// Between steps, with the GIL: Python's signal handlers (Ctrl-C) and the progress
-/// callback `progress(step, total)`; the first exception stops the run.
+/// Between steps, with the GIL: the progress callback `progress(step, total)`, and a stop
+/// when the calling thread's signal handlers raised (Ctrl-C; [`run_watching_signals`]);
+/// the first exception stops the run.
 struct PythonProgress {
     progress: Option<Py<PyAny>>,
     expected_steps: usize,
-    /// The Python exception (KeyboardInterrupt, or the callback's) that stopped the run.
+    /// The callback's exception that stopped the run.
     error: Option<PyErr>,
+    /// Set when a signal handler raised on the calling thread.
+    interrupted: Arc<AtomicBool>,
 }
 
 impl PythonProgress {
     fn between_steps(&mut self, step: usize) -> ControlFlow<()> {
+        if self.interrupted.load(Ordering::SeqCst) {
+            return ControlFlow::Break(());
+        }
         let total = self.expected_steps.max(step + 1);
         let result = Python::attach(|py| {
             py.check_signals()?;
@@ -102,7 +111,7 @@ fn load(
 /// `curve.csv`), `summary` (the text of `summary.json`), `snapshots` (list of dicts of the
 /// selected steps' fields).
 #[pyfunction]
-#[pyo3(signature = (text, origin, base, overrides, progress = None, check_memory = false, out = None, force = false))]
+#[pyo3(signature = (text, origin, base, overrides, progress = None, check_memory = false, out = None, force = false, threads = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn _run_scenario<'py>(
     py: Python<'py>,
@@ -114,16 +123,19 @@ pub fn _run_scenario<'py>(
     check_memory: bool,
     out: Option<PathBuf>,
     force: bool,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scenario = load(text, origin, &base, &overrides, check_memory)?;
+    let pool = crate::pool::run_pool(py, threads)?;
     let progress = PythonProgress {
         progress,
         expected_steps: scenario.expected_steps(),
         error: None,
+        interrupted: Arc::new(AtomicBool::new(false)),
     };
     let (outcome, summary, fields) = match out {
-        Some(out) => run_in_folder(py, &scenario, &out, force, progress)?,
-        None => run_in_memory(py, &scenario, progress)?,
+        Some(out) => run_in_folder(py, &pool, &scenario, &out, force, progress)?,
+        None => run_in_memory(py, &pool, &scenario, progress)?,
     };
     let columns = CurveColumns::of(&scenario);
     let result = PyDict::new(py);
@@ -139,6 +151,7 @@ pub fn _run_scenario<'py>(
 /// A run in memory: (outcome, summary.json text, snapshot fields).
 fn run_in_memory(
     py: Python<'_>,
+    pool: &rayon::ThreadPool,
     scenario: &ValidScenario,
     progress: PythonProgress,
 ) -> PyResult<(RunOutcome, String, SnapshotFields)> {
@@ -150,12 +163,15 @@ fn run_in_memory(
         BorderWatch::default(),
         progress,
     ));
-    let outcome = py.detach(|| adhesim_scenario::run(scenario, &mut observer));
+    let interrupted = Arc::clone(&observer.observer.2.interrupted);
+    let (outcome, raised) = run_watching_signals(py, pool, &interrupted, || {
+        adhesim_scenario::run(scenario, &mut observer)
+    });
     let Timed {
         observer: (mut recorder, border, mut progress),
         timings,
     } = observer;
-    let outcome = match (outcome, progress.error.take()) {
+    let outcome = match (outcome, raised.or_else(|| progress.error.take())) {
         (_, Some(error)) => return Err(error),
         (Ok(outcome), None) => outcome,
         (Err(error), None) => {
@@ -177,6 +193,7 @@ fn run_in_memory(
 /// snapshot fields).
 fn run_in_folder(
     py: Python<'_>,
+    pool: &rayon::ThreadPool,
     scenario: &ValidScenario,
     out: &Path,
     force: bool,
@@ -188,8 +205,11 @@ fn run_in_folder(
             adhesim_scenario::error_text::error_line(e.chain())
         ))
     })?;
-    let done = py.detach(|| run_into_folder(scenario, out, FolderRunOptions::default(), &mut progress));
-    match (done, progress.error.take()) {
+    let interrupted = Arc::clone(&progress.interrupted);
+    let (done, raised) = run_watching_signals(py, pool, &interrupted, || {
+        run_into_folder(scenario, out, FolderRunOptions::default(), &mut progress)
+    });
+    match (done, raised.or_else(|| progress.error.take())) {
         (_, Some(error)) => Err(error),
         (Ok(done), None) => Ok((done.outcome, done.summary_json, done.fields)),
         (Err(error), None) => Err(crate::convert::SolveError::new_err(

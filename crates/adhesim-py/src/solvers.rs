@@ -75,7 +75,7 @@ where
     let mut operator = operator.bind(py).try_borrow_mut()?;
     let mut guard = state.bind(py).try_borrow_mut()?;
     let (op, st) = (&mut operator.inner, guard.fields_mut());
-    let report = py.detach(|| solve(op, heights, st)).map_err(solve_error)?;
+    let report = crate::pool::detached(py, || solve(op, heights, st))?.map_err(solve_error)?;
     guard.record(heights, report.depth);
     drop(guard);
     Ok(solve_report(report, state))
@@ -294,7 +294,7 @@ impl NestedActiveSet {
                 "NestedActiveSet solves free grids only (operator has a periodic grid: use Ccg)",
             ));
         }
-        let inner = py.detach(|| adhesim::NestedActiveSet::new(grid, material, params));
+        let inner = crate::pool::detached(py, || adhesim::NestedActiveSet::new(grid, material, params))?;
         Ok(Self {
             inner,
             params,

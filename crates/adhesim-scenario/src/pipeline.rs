@@ -7,9 +7,9 @@ use crate::results::{fit_results, Results, RunResults};
 use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Ccg, CcgParams, ElasticOperator, FrictionLaw, HalfSpace, IndentPulloff,
-    LayerOperator, NormalSolver, Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearBody,
-    ShearSummary, StepRecord, TangentialParams, TangentialSolver, TranslationSummary,
+    AdhesiveParams, AdhesiveSolver, Backend, Ccg, CcgParams, ElasticOperator, FrictionLaw, IndentPulloff, NormalSolver,
+    Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearBody, ShearSummary, StepRecord,
+    TangentialParams, TangentialSolver, TranslationSummary,
 };
 
 /// The protocol of a scenario, built in one place ([`ValidScenario::protocol_setup`]).
@@ -265,13 +265,9 @@ pub fn run_from(
     observer: &mut dyn Observer,
     resume: Option<Resume>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut operator: Box<dyn ElasticOperator> = match scenario.layer {
-        Some(layer) => Box::new(
-            LayerOperator::new(scenario.grid, scenario.material, layer)
-                .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?,
-        ),
-        None => Box::new(HalfSpace::new(scenario.grid, scenario.material)),
-    };
+    let mut operator = Backend::default()
+        .normal_operator(scenario.grid, scenario.material, scenario.layer)
+        .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?;
     let operator = operator.as_mut();
     let mut solver = scenario.normal_solver();
     let (start, records) = match resume {

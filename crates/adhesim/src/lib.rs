@@ -108,8 +108,8 @@ pub mod surface;
 
 pub use elastic::cerruti::ShearMaterial;
 pub use elastic::{
-    CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError, LayerOperator,
-    PeriodicKernel, PeriodicOperator, ShearBody, TangentialOperator, TangentialOperatorError,
+    Backend, CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError,
+    LayerOperator, PeriodicKernel, PeriodicOperator, ShearBody, TangentialOperator, TangentialOperatorError,
 };
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,

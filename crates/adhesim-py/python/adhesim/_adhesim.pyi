@@ -242,6 +242,7 @@ def _run_scenario(
     check_memory: bool = False,
     out: Optional[str] = None,
     force: bool = False,
+    threads: Optional[int] = None,
 ) -> Dict[str, Any]: ...
 def _scenario_heights(text: str, origin: str, base: str, overrides: List[str]) -> Tuple[Grid, _FloatField]: ...
 @final

@@ -310,6 +310,7 @@ def run(
     overrides: Optional[Mapping[str, Any]] = None,
     allow_large: bool = False,
     force: bool = False,
+    threads: Optional[int] = None,
     **keyword_overrides: Any,
 ) -> RunResult:
     """Runs a scenario as ``adhesim run`` does and returns its results in memory.
@@ -346,6 +347,13 @@ def run(
     force : bool
         write into a non-empty ``out`` that is not a run folder (its outputs are
         replaced), like ``--force``.
+    threads : int, optional
+        threads of the run's own pool, like ``--threads`` (more than the cores this
+        process may use are clamped to them with a ``UserWarning``); by default the
+        cores. The results are the same bits for every count. The pool is the run's,
+        not a global one, so a run in a fork-started worker process (a
+        ``ProcessPoolExecutor`` on Linux) after one in its parent does not wait forever
+        for the parent's threads.
     **keyword_overrides
         more overrides; dotted keys need ``**{"grid.n": 64}``.
 
@@ -375,6 +383,8 @@ def run(
     The GIL is released during the run, except for the signal check and the progress
     callback between steps.
     """
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+        raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
     text, origin, base = _scenario_text(scenario)
     items = _override_items(overrides, keyword_overrides)
     folder = None if out is None else Path(out)
@@ -384,7 +394,7 @@ def run(
         # writes the files as `adhesim run --out` does, without the figures.
         raw = _adhesim._run_scenario(
             text, origin, str(base), items, callback, not allow_large,
-            None if folder is None else str(folder), force,
+            None if folder is None else str(folder), force, threads,
         )
     finally:
         if bar is not None:

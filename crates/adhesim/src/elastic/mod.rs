@@ -6,6 +6,7 @@
 //! body. Both operators discretise Boussinesq's solution with uniform pressure on square
 //! elements and collocation at element centres.
 
+mod backend;
 pub mod cerruti;
 mod coupling;
 mod free;
@@ -22,6 +23,7 @@ mod tangential_periodic;
 #[cfg(test)]
 pub(crate) mod test_fields;
 
+pub use backend::Backend;
 pub use coupling::{coupling_rectangle, CouplingOperator};
 pub use free::FreeOperator;
 pub use layer::{layer_compliance_factor, ElasticLayer, LayerBase, LayerError, LayerOperator};
