@@ -160,7 +160,7 @@ impl WindowLevel {
             operator: FreeOperator::new(window_grid, material),
             heights: vec![0.0; window_grid.len()],
             state: ContactState::new(&window_grid),
-            workspace: Workspace::new(&window_grid, material.contact_modulus()),
+            workspace: Workspace::with_target(&window_grid, material.contact_modulus()),
             window: Window {
                 row: 0,
                 column: 0,

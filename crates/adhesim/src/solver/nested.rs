@@ -3,7 +3,7 @@ mod checkpoint;
 pub use checkpoint::NestedCheckpoint;
 
 use super::contact_window::WindowLevel;
-use super::workspace::Workspace;
+use super::workspace::{precondition_rows, Workspace};
 use super::{dot, masked_pcg, ContactState, SolveError, SolveReport};
 use crate::elastic::{ElasticOperator, FreeOperator};
 use crate::grid::{Boundary, Grid};
@@ -117,7 +117,7 @@ impl NestedActiveSet {
         Self {
             params,
             grid,
-            fine: Workspace::new(&grid, modulus),
+            fine: Workspace::with_target(&grid, modulus),
             coarse,
             coarse_applications: 0,
             fine_window: None,
@@ -210,7 +210,7 @@ impl NestedActiveSet {
             let (operator, workspace) = level.full.get_or_insert_with(|| {
                 (
                     FreeOperator::new(level.grid, self.material),
-                    Workspace::new(&level.grid, self.material.contact_modulus()),
+                    Workspace::with_target(&level.grid, self.material.contact_modulus()),
                 )
             });
             let before = operator.applications();
@@ -501,13 +501,24 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
     (goal, target_norm, relative_tolerance): (f64, f64, f64),
     max_iterations: usize,
 ) -> Result<usize, SolveError> {
-    let (buffers, preconditioner) = work.buffers();
+    let row_length = operator.grid().nx();
+    let (buffers, mut preconditioner) = work.buffers();
+    let mut applications = 0;
     masked_pcg(
         operator,
         &mut state.pressure,
         &mut state.displacement,
         buffers,
-        |residual, preconditioned, rows| preconditioner.apply_rows(residual, preconditioned, rows),
+        |residual, preconditioned, rows| {
+            let preconditioner = preconditioner.as_deref_mut();
+            precondition_rows(
+                preconditioner,
+                (residual, preconditioned),
+                rows,
+                row_length,
+                &mut applications,
+            );
+        },
         |residual, _, _, _, _| {
             let norm = residual.norm2.sqrt();
             norm.is_finite().then_some(norm <= goal)

@@ -10,7 +10,7 @@ use crate::solver::certificate::{
     count_releases, gap_error_bound, gap_error_bound_of, largest_magnitude, pressure_error_bound,
     pressure_error_bound_of,
 };
-use crate::solver::{contact_span, ContactState, PcgBuffers, SolveError, PARALLEL_CHUNK};
+use crate::solver::{contact_span, ContactState, SolveError, PARALLEL_CHUNK};
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -103,7 +103,8 @@ impl AdhesiveSolver {
             });
         if exact {
             self.make_displacement_exact(operator, state);
-        } else if let Some(changed) = pressure_change(&mut self.direction, &state.pressure, &self.displacement_pressure)
+        } else if let Some(changed) =
+            pressure_change(&mut self.work.direction, &state.pressure, &self.displacement_pressure)
         {
             // Applied by the CG's start: on its window when the change lies in it.
             self.pending_change = Some(changed);
@@ -203,7 +204,7 @@ impl AdhesiveSolver {
         self.windows.sync_outside(
             operator,
             &mut state.displacement,
-            (&mut self.residual, &mut self.response),
+            (&mut self.work.residual, &mut self.work.response),
         );
     }
 
@@ -254,16 +255,16 @@ impl AdhesiveSolver {
     fn set_residual(&mut self, heights: &[f64], depth: f64, state: &ContactState, span: Range<usize>) -> (f64, f64) {
         let mut target_norm = 0.0;
         let mut residual_norm = 0.0;
-        self.residual[..span.start].fill(0.0);
-        self.residual[span.end..].fill(0.0);
+        self.work.residual[..span.start].fill(0.0);
+        self.work.residual[span.end..].fill(0.0);
         for k in span {
             if state.contact[k] {
                 let target = depth - heights[k];
                 target_norm += target * target;
-                self.residual[k] = target - state.displacement[k];
-                residual_norm += self.residual[k] * self.residual[k];
+                self.work.residual[k] = target - state.displacement[k];
+                residual_norm += self.work.residual[k] * self.work.residual[k];
             } else {
-                self.residual[k] = 0.0;
+                self.work.residual[k] = 0.0;
             }
         }
         (target_norm, residual_norm)
@@ -292,9 +293,9 @@ impl AdhesiveSolver {
     /// C, so the masked updates equal the element-wise conditional ones). Only the
     /// contact's rows `span` hold ones.
     fn fill_mask(&mut self, contact: &[bool], span: Range<usize>) {
-        self.mask[..span.start].fill(0.0);
-        self.mask[span.end..].fill(0.0);
-        for (m, &c) in self.mask[span.clone()].iter_mut().zip(&contact[span]) {
+        self.work.mask[..span.start].fill(0.0);
+        self.work.mask[span.end..].fill(0.0);
+        for (m, &c) in self.work.mask[span.clone()].iter_mut().zip(&contact[span]) {
             *m = if c { 1.0 } else { 0.0 };
         }
     }
@@ -341,10 +342,10 @@ impl AdhesiveSolver {
             element_size,
             max_iterations,
         };
-        if convergence.met(tolerance_scale, residual_norm, &self.residual, &state.contact) {
+        if convergence.met(tolerance_scale, residual_norm, &self.work.residual, &state.contact) {
             self.pressure_error_bound =
-                pressure_error_bound(&self.residual[span.clone()], contact_modulus, element_size);
-            self.gap_error_bound = gap_error_bound(&self.residual[span.clone()]);
+                pressure_error_bound(&self.work.residual[span.clone()], contact_modulus, element_size);
+            self.gap_error_bound = gap_error_bound(&self.work.residual[span.clone()]);
             self.windows.leave(&mut state.pressure, &mut state.displacement);
             return Ok(0);
         }
@@ -352,7 +353,12 @@ impl AdhesiveSolver {
         let applications = &mut self.preconditioner_applications;
         let (outcome, certified, largest) = match self.windows.current() {
             Some(window) => {
-                window.load_set(&self.residual, &self.mask, &self.critical_stress, &state.contact);
+                window.load_set(
+                    &self.work.residual,
+                    &self.work.mask,
+                    &self.critical_stress,
+                    &state.contact,
+                );
                 let before = window.operator.applications();
                 let (buffers, preconditioner) = window.workspace.buffers();
                 let sets = SetFields {
@@ -364,7 +370,7 @@ impl AdhesiveSolver {
                     window.operator.as_mut(),
                     (&mut window.pressure, &mut window.displacement),
                     buffers,
-                    (window.preconditioned.then_some(preconditioner), applications),
+                    (preconditioner, applications),
                     sets,
                     rule,
                 );
@@ -374,13 +380,7 @@ impl AdhesiveSolver {
                 (outcome, certified, largest)
             }
             None => {
-                let buffers = PcgBuffers {
-                    residual: &mut self.residual,
-                    preconditioned: &mut self.preconditioned_residual,
-                    direction: &mut self.direction,
-                    response: &mut self.response,
-                    mask: &self.mask,
-                };
+                let (buffers, preconditioner) = self.work.buffers();
                 let sets = SetFields {
                     contact: &state.contact,
                     critical_stress: &self.critical_stress,
@@ -390,11 +390,11 @@ impl AdhesiveSolver {
                     operator,
                     (&mut state.pressure, &mut state.displacement),
                     buffers,
-                    (self.preconditioner.as_mut(), applications),
+                    (preconditioner, applications),
                     sets,
                     rule,
                 );
-                (outcome, certified, largest_magnitude(&self.residual[span]))
+                (outcome, certified, largest_magnitude(&self.work.residual[span]))
             }
         };
         self.last_solve_certified = certified;
@@ -420,14 +420,13 @@ impl AdhesiveSolver {
         if !kept {
             self.sync_outside(operator, state);
             if self.grid.boundary() == Boundary::Free && self.params.contact_window {
-                self.windows
-                    .enter(operator, &state.contact, self.preconditioner.is_some());
+                self.windows.enter(operator, &state.contact, self.params.preconditioned);
             } else {
                 self.windows.clear();
             }
         }
         let on_window = match (&pending, self.windows.current()) {
-            (Some(changed), Some(window)) => window.holds(&self.direction, changed.clone()),
+            (Some(changed), Some(window)) => window.holds(&self.work.direction, changed.clone()),
             _ => false,
         };
         if let Some(changed) = pending.filter(|_| !on_window) {
@@ -436,8 +435,8 @@ impl AdhesiveSolver {
             self.sync_outside(operator, state);
             apply_change(
                 operator,
-                &self.direction,
-                &mut self.response,
+                &self.work.direction,
+                &mut self.work.response,
                 &mut state.displacement,
                 changed,
             );

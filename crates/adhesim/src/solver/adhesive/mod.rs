@@ -21,8 +21,9 @@ pub use params::{
 
 use super::local_peel::LocalPeel;
 use super::peel_predictor::PeelPredictor;
+use super::workspace::Workspace;
 use super::{ContactState, SolveError};
-use crate::elastic::{ElasticOperator, SpectralPreconditioner};
+use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use ring::{RingAttempt, RingPool};
 use set_cg::StopRule;
@@ -50,13 +51,11 @@ pub struct AdhesiveSolver {
     critical_stress: Vec<f64>,
     minimum_critical_stress: f64,
     // scratch, allocated once
-    residual: Vec<f64>,
-    mask: Vec<f64>,
-    preconditioned_residual: Vec<f64>,
-    direction: Vec<f64>,
-    preconditioner: Option<SpectralPreconditioner>,
+    /// The whole grid's CG buffers and preconditioner (`direction` also carries the
+    /// pending pressure change of the next solve; `residual` and `response` are free
+    /// between solves).
+    work: Workspace,
     preconditioner_applications: u64,
-    response: Vec<f64>,
     banned: Vec<bool>,
     trial: Vec<bool>,
     start_contact: Vec<bool>,
@@ -155,15 +154,8 @@ impl AdhesiveSolver {
             work_of_adhesion,
             critical_stress,
             minimum_critical_stress,
-            residual: vec![0.0; len],
-            mask: vec![0.0; len],
-            preconditioned_residual: vec![0.0; len],
-            direction: vec![0.0; len],
-            preconditioner: params
-                .preconditioned
-                .then(|| SpectralPreconditioner::new(&grid, contact_modulus)),
+            work: Workspace::new(&grid, contact_modulus, params.preconditioned),
             preconditioner_applications: 0,
-            response: vec![0.0; len],
             banned: vec![false; len],
             trial: vec![false; len],
             start_contact: vec![false; len],

@@ -3,6 +3,7 @@
 
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::solver::certificate::{attachments_certain, count_releases, gap_error_bound_of, pressure_error_bound_of};
+use crate::solver::workspace::precondition_rows;
 use crate::solver::{masked_pcg, PcgBuffers, PcgError, PcgInfo};
 
 /// When a fixed-set solve may stop (docs/fast-step.md).
@@ -74,15 +75,9 @@ pub(super) fn solve_on_set<O: ElasticOperator + ?Sized>(
         pressure,
         displacement,
         buffers,
-        |residual, preconditioned, rows| match preconditioner.as_mut() {
-            Some(preconditioner) => {
-                preconditioner.apply_rows(residual, preconditioned, rows);
-                *applications += 1;
-            }
-            None => {
-                let set = rows.start * n..rows.end * n;
-                preconditioned[set.clone()].copy_from_slice(&residual[set]);
-            }
+        |residual, preconditioned, rows| {
+            let preconditioner = preconditioner.as_deref_mut();
+            precondition_rows(preconditioner, (residual, preconditioned), rows, n, applications);
         },
         |measured, residual, pressure, displacement, set| {
             let norm2 = measured.norm2;

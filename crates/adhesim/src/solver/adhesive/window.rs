@@ -43,9 +43,8 @@ const KEEP_SIDE_RATIO: f64 = 0.9;
 pub(super) struct SetWindow {
     pub(super) placement: Window,
     pub(super) operator: Box<dyn ElasticOperator + Sync>,
+    /// The CG's buffers, and its preconditioner where `AdhesiveParams::preconditioned`.
     pub(super) workspace: Workspace,
-    /// Whether the CG is preconditioned (`AdhesiveParams::preconditioned`).
-    pub(super) preconditioned: bool,
     pub(super) pressure: Vec<f64>,
     pub(super) displacement: Vec<f64>,
     pub(super) critical_stress: Vec<f64>,
@@ -194,8 +193,7 @@ impl SetWindow {
                 side,
             },
             nx: grid.nx(),
-            workspace: Workspace::new(&window_grid, operator.contact_modulus()),
-            preconditioned,
+            workspace: Workspace::new(&window_grid, operator.contact_modulus(), preconditioned),
             operator: window_operator,
             pressure: vec![0.0; len],
             displacement: vec![0.0; len],

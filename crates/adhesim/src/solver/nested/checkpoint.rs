@@ -124,7 +124,7 @@ impl NestedActiveSet {
             } else if level.full.is_none() {
                 level.full = Some((
                     FreeOperator::new(level.grid, material),
-                    Workspace::new(&level.grid, material.contact_modulus()),
+                    Workspace::with_target(&level.grid, material.contact_modulus()),
                 ));
             }
         }
