@@ -65,3 +65,17 @@ def test_a_run_through_the_console_script_writes_its_folder(tmp_path):
     result = run(console_script(), "run", str(scenario), "--out", str(out), "--quiet", "--set", "grid.n=32")
     assert result.returncode == 0, result.stderr
     assert (out / "summary.json").is_file() and (out / "curve.csv").is_file()
+
+
+def test_the_entry_runs_twice_in_one_process_with_threads(tmp_path):
+    """The console script's entry called twice in one interpreter, each with `--threads`:
+    the option sized rayon's global pool, which a process sizes once, so the second run
+    was refused ("The global thread pool has already been initialized"); each run now has
+    a pool of its own."""
+    from adhesim import _adhesim
+
+    jkr = Path(__file__).resolve().parents[3] / "scenarios" / "jkr.toml"
+    for k in range(2):
+        args = ["adhesim", "run", str(jkr), "--set", "grid.n=32", "--threads", "1", "--quiet"]
+        assert _adhesim.cli_main([*args, "--out", str(tmp_path / f"run{k}")]) == 0
+    assert (tmp_path / "run0" / "curve.csv").read_bytes() == (tmp_path / "run1" / "curve.csv").read_bytes()

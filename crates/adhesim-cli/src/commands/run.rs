@@ -122,21 +122,27 @@ pub fn run_with_progress(
     scenario: &ValidScenario,
     out: &Path,
     options: &RunOptions,
-    progress: &mut dyn RunProgress,
+    progress: &mut (dyn RunProgress + Send),
 ) -> Result<()> {
-    if let Some(threads) = options.threads {
-        let threads = resources::clamp_threads(threads)?;
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global()
-            .context("cannot set up the thread pool")?;
-    }
     let folder_options = FolderRunOptions {
         pictures: Some(&RunFigures),
         netcdf: options.fields == Some(FieldsFormat::Netcdf),
         checkpoint: options.checkpoint.as_ref(),
     };
-    let done = run_case(scenario, out, folder_options, progress)?;
+    // `--threads N`: a pool of the run's own, not rayon's global one (which a process can
+    // size once: a second run in the same process, as the Python package's console entry
+    // makes, was refused).
+    let done = match options.threads {
+        Some(threads) => {
+            let threads = resources::clamp_threads(threads)?;
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .context("cannot set up the thread pool")?
+                .install(|| run_case(scenario, out, folder_options, progress))?
+        }
+        None => run_case(scenario, out, folder_options, progress)?,
+    };
     let outcome = &done.outcome;
     if !options.quiet {
         let wall_seconds = done.wall_seconds;

@@ -204,7 +204,7 @@ fn run_case_with(
     scenario: &ValidScenario,
     folder: &Path,
     checkpoint: Option<&CheckpointPolicy>,
-    progress: &mut dyn RunProgress,
+    progress: &mut (dyn RunProgress + Send),
 ) -> Result<()> {
     run_with_progress(scenario, folder, &case_options(checkpoint), progress)
 }
