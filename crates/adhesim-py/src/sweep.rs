@@ -166,13 +166,14 @@ impl SweepFolder {
 /// (the folder of a killed run that `pending` named). Returns (ran, error message of a
 /// failed case or None). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (out, index, checkpoint_seconds=0.0, resume=None))]
+#[pyo3(signature = (out, index, checkpoint_seconds=0.0, resume=None, threads=None))]
 pub fn _sweep_run_case(
     py: Python<'_>,
     out: PathBuf,
     index: usize,
     checkpoint_seconds: f64,
     resume: Option<PathBuf>,
+    threads: Option<usize>,
 ) -> PyResult<(bool, Option<String>)> {
     let plan = sweep::read_plan(&out).map_err(value_error)?;
     let Some(case) = plan.cases.get(index) else {
@@ -193,14 +194,8 @@ pub fn _sweep_run_case(
         case,
         runner: &adhesim_figures::run_figures::run_sweep_case,
     };
-    // A pool of its own, not rayon's global one: a worker forked from a process whose
-    // global pool was already running (a fork-started ProcessPoolExecutor) inherits that
-    // pool without its threads, and a case on it would wait for them forever.
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| PyValueError::new_err(format!("cannot build a thread pool: {e}")))?;
+    // A pool of its own or the process's, never rayon's global one (crate::pool).
+    let pool = crate::pool::run_pool(py, threads)?;
     let failure = py
         .detach(|| pool.install(|| batch::run_case(&out, &sweep_case, policy.as_ref(), resume.as_deref())))
         .map_err(|e| value_error(e.context(format!("case {}", case.id))))?;

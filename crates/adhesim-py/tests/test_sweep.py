@@ -193,3 +193,22 @@ def test_sweep_errors_name_the_argument(tmp_path):
     # An alpha sweep of a scenario without amplitude-bearing indenter names the problem.
     with pytest.raises(ValueError, match="alpha"):
         adhesim.sweep(base, vary={"alpha": [0.8]}, derived={"alpha": "indenter.radius"}, out=tmp_path / "c")
+
+
+def test_one_thread_cases_on_a_process_pool_equal_the_command_line(command_line_sweep, tmp_path):
+    """`threads=1`: each case in a one-thread pool of its own, two cases side by side (the
+    faster split on few cores); the same bits as the command line's sweep."""
+    folder, cli_out = command_line_sweep
+    out = tmp_path / "one_thread"
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        cases = adhesim.sweep(folder / "base.toml", vary=ALPHAS, out=out, series="s", executor=pool, threads=1)
+    assert cases.ran == 2
+    assert [c.summary["performance"]["threads"] for c in cases] == [1, 1]
+    assert_same_sweep(out, cli_out)
+
+
+@pytest.mark.parametrize("threads", [0, -2, 2.0, False])
+def test_a_bad_thread_count_of_a_sweep_is_refused_by_name(threads, tmp_path):
+    with pytest.raises(ValueError, match="threads must be an integer >= 1, got"):
+        adhesim.sweep(BASE, vary=ALPHAS, out=tmp_path / "s", threads=threads)
+    assert not (tmp_path / "s").exists()

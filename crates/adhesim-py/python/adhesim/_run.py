@@ -303,6 +303,12 @@ def _progress_callback(progress):
     raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
 
 
+def _check_threads(threads: Optional[int]) -> None:
+    """Refuses a thread count that is not an integer >= 1 (None: the default pool)."""
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+        raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
+
+
 def run(
     scenario: ScenarioLike,
     out: Union[str, "os.PathLike[str]", None] = None,
@@ -383,8 +389,7 @@ def run(
     The GIL is released during the run, except for the signal check and the progress
     callback between steps.
     """
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
-        raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
+    _check_threads(threads)
     text, origin, base = _scenario_text(scenario)
     items = _override_items(overrides, keyword_overrides)
     folder = None if out is None else Path(out)

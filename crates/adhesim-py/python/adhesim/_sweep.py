@@ -21,7 +21,7 @@ import numpy as np
 
 from ._args import number
 from . import _adhesim
-from ._run import RunResult, ScenarioLike, _check_overrides, _plain, _scenario_text, load
+from ._run import RunResult, ScenarioLike, _check_overrides, _check_threads, _plain, _scenario_text, load
 
 __all__ = ["SweepResult", "sweep"]
 
@@ -57,12 +57,13 @@ class SweepResult(list):
 
 
 def _run_case(out: str, index: int, checkpoint_every: float = 0.0,
-              resume: Optional[str] = None) -> Tuple[bool, Optional[str]]:
+              resume: Optional[str] = None, threads: Optional[int] = None) -> Tuple[bool, Optional[str]]:
     """Runs case ``index`` of the sweep in ``out`` (in whatever process calls it):
     (whether it ran, the error of a failed case or None). A finished case is not redone.
     With ``checkpoint_every`` > 0 the run writes a mid-run checkpoint that often (seconds)
-    and goes on from the one in ``resume``, the folder of a killed run."""
-    return _adhesim._sweep_run_case(out, index, checkpoint_every, resume)
+    and goes on from the one in ``resume``, the folder of a killed run; ``threads`` as in
+    ``sweep``."""
+    return _adhesim._sweep_run_case(out, index, checkpoint_every, resume, threads)
 
 
 def _cell(text: str) -> Any:
@@ -163,6 +164,7 @@ def sweep(
     allow_large: bool = False,
     retry_failed: bool = False,
     checkpoint_every: float = 600.0,
+    threads: Optional[int] = None,
     **keyword_overrides: Any,
 ) -> SweepResult:
     """Runs a parameter sweep of a scenario as ``adhesim sweep`` does.
@@ -206,6 +208,13 @@ def sweep(
         ``adhesim sweep --checkpoint-every``: a case whose worker was killed goes on from
         its last checkpoint when the sweep is called again with the same ``out``
         (docs/sweeps.md, "Resuming a case mid-run").
+    threads : int, optional
+        Threads of each case's own pool, like ``adhesim sweep --threads`` (more than the
+        cores are clamped to them with a ``UserWarning``); by default the cores of the
+        process that runs the case. With an executor of k worker processes on c cores,
+        ``threads = c // k`` keeps them from contending (on 2 cores two one-thread cases
+        side by side took 0.51 of the wall of one two-thread case at a time,
+        BENCHMARKS.md "Cases or threads"). The results are the same bits for every count.
 
     Returns
     -------
@@ -224,6 +233,7 @@ def sweep(
         others are finished and kept, and ``table.csv`` is written.
     """
     _check_overrides(overrides)
+    _check_threads(threads)
     tables = {
         "vary": _table_of(vary, "vary"),
         "zip": _table_of(zip, "zip"),
@@ -239,19 +249,19 @@ def sweep(
         if out is None:
             with tempfile.TemporaryDirectory(prefix="adhesim-sweep-") as temporary:
                 result = _sweep_into(scenario, tables, Path(temporary) / "sweep", executor, series or "sweep",
-                                     callback, allow_large, retry_failed, checkpoint_every)
+                                     callback, allow_large, retry_failed, checkpoint_every, threads)
                 result.out = None
                 return result
         out = Path(out)
         return _sweep_into(scenario, tables, out, executor, series or out.resolve().name, callback,
-                           allow_large, retry_failed, checkpoint_every)
+                           allow_large, retry_failed, checkpoint_every, threads)
     finally:
         if bar is not None:
             bar.close()
 
 
 def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_large, retry_failed,
-                checkpoint_every):
+                checkpoint_every, threads):
     text, origin, base = _scenario_text(scenario)
     sweep_text = _adhesim._toml_document(tables)
     folder = _adhesim._sweep_open(str(out), sweep_text, text, origin, str(base), series, not allow_large, 1,
@@ -259,7 +269,7 @@ def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_l
     try:
         cases = folder.cases()
         todo = folder.pending(retry_failed)
-        _run_cases(out, cases, todo, executor, progress, number("checkpoint_every", checkpoint_every))
+        _run_cases(out, cases, todo, executor, progress, number("checkpoint_every", checkpoint_every), threads)
         table_path, failed = folder.finish()
     finally:
         folder.close()
@@ -281,18 +291,18 @@ def _sweep_into(scenario, tables, out: Path, executor, series, progress, allow_l
 
 
 def _run_cases(out: Path, cases, todo: List[Tuple[int, Optional[str]]], executor, progress,
-               checkpoint_every: float) -> None:
+               checkpoint_every: float, threads: Optional[int]) -> None:
     """Runs the cases ``todo`` ((index, folder of a killed run to go on from or None)) in
     this process or on ``executor``; waits for all of them."""
     if executor is None:
         for done, (index, resume) in enumerate(todo, start=1):
-            _run_case(str(out), index, checkpoint_every, resume)
+            _run_case(str(out), index, checkpoint_every, resume, threads)
             if progress is not None:
                 progress(done, len(todo), cases[index])
         return
     from concurrent.futures import FIRST_COMPLETED, wait
 
-    pending = {executor.submit(_run_case, str(out), index, checkpoint_every, resume): index
+    pending = {executor.submit(_run_case, str(out), index, checkpoint_every, resume, threads): index
                for index, resume in todo}
     done = 0
     try:
