@@ -57,9 +57,13 @@ def test_a_bad_thread_count_is_refused_by_name(threads):
         adhesim.run(JKR_TOML, overrides=SMALL, threads=threads)
 
 
-def test_more_threads_than_cores_are_clamped_with_a_warning():
+@pytest.mark.parametrize("threads", [100_000, 10**30])
+def test_more_threads_than_cores_are_clamped_with_a_warning(threads):
+    # 10**30 exceeds a machine word (it raised OverflowError before it was clamped).
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        result = adhesim.run(JKR_TOML, overrides=SMALL, threads=100_000)
-    assert any("threads = 100000 exceeds the" in str(w.message) for w in caught), [str(w.message) for w in caught]
+        result = adhesim.run(JKR_TOML, overrides=SMALL, threads=threads)
+    assert any(" exceeds the " in str(w.message) and "cores" in str(w.message) for w in caught), [
+        str(w.message) for w in caught
+    ]
     assert len(result.curve_arrays["step"]) > 0

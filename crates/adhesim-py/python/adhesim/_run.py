@@ -13,6 +13,7 @@ import csv
 import json
 import os
 import re
+import sys
 import warnings
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Union
@@ -303,10 +304,15 @@ def _progress_callback(progress):
     raise TypeError(f"progress must be None, True or a callable(step, total), got {progress!r}")
 
 
-def _check_threads(threads: Optional[int]) -> None:
-    """Refuses a thread count that is not an integer >= 1 (None: the default pool)."""
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int) or threads < 1):
+def _check_threads(threads: Optional[int]) -> Optional[int]:
+    """The thread count to pass on: None (the default pool), or an integer >= 1 (one
+    beyond what a machine word holds becomes the largest it holds, which the run clamps to
+    the cores with its warning); anything else is refused by name."""
+    if threads is None:
+        return None
+    if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
         raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
+    return min(threads, sys.maxsize)
 
 
 def run(
@@ -389,7 +395,7 @@ def run(
     The GIL is released during the run, except for the signal check and the progress
     callback between steps.
     """
-    _check_threads(threads)
+    threads = _check_threads(threads)
     text, origin, base = _scenario_text(scenario)
     items = _override_items(overrides, keyword_overrides)
     folder = None if out is None else Path(out)

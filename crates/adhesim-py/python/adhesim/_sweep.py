@@ -233,7 +233,7 @@ def sweep(
         others are finished and kept, and ``table.csv`` is written.
     """
     _check_overrides(overrides)
-    _check_threads(threads)
+    threads = _check_threads(threads)
     tables = {
         "vary": _table_of(vary, "vary"),
         "zip": _table_of(zip, "zip"),
