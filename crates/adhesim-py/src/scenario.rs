@@ -1,7 +1,8 @@
 //! One-call runs of a scenario (`adhesim.run`): the scenario crate's reading, validation
 //! and run pipeline (`adhesim_scenario::run`), the same `curve.csv` columns and
-//! `summary.json` content as the command line, with the GIL released during the run and
-//! Python's signal handlers and the progress callback run between steps.
+//! `summary.json` content as the command line, with the GIL released during the run, the
+//! progress callback run between steps and Python's signal handlers on the calling thread
+//! while the steps run on a pool.
 
 use crate::pool::run_watching_signals;
 use adhesim::StepRecord;
@@ -42,13 +43,12 @@ impl PythonProgress {
             return ControlFlow::Break(());
         }
         let total = self.expected_steps.max(step + 1);
-        let result = Python::attach(|py| {
-            py.check_signals()?;
-            match &self.progress {
-                Some(callback) => callback.call1(py, (step + 1, total)).map(drop),
-                None => Ok(()),
-            }
-        });
+        // Signals are not checked here: the steps run on a pool thread, where Python runs
+        // no handler; the calling thread runs them ([`run_watching_signals`]).
+        let Some(callback) = &self.progress else {
+            return ControlFlow::Continue(());
+        };
+        let result = Python::attach(|py| callback.call1(py, (step + 1, total)).map(drop));
         match result {
             Ok(()) => ControlFlow::Continue(()),
             Err(error) => {
