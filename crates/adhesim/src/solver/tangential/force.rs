@@ -2,13 +2,17 @@
 //! indenter's shift δ that carries it is found (Cattaneo 1938 and Mindlin 1949 state
 //! their results this way, for a force Q below μP; docs/physics.md §8.2).
 //!
-//! The force along the direction, F(δ), of one quasi-static step from a given state is
-//! the derivative of the step's incremental energy, a convex function of δ, so F rises
-//! monotonically with δ. Each trial is an exact displacement-controlled step from the same
-//! starting state; the shift is bracketed from the secant stiffness and then found by the
-//! Illinois variant of false position (Dowell & Jarratt 1971, *BIT* 11, 168), which
-//! converges superlinearly and never leaves the bracket.
+//! The step is solved at once: the force is a linear constraint on the tractions and the
+//! shift its multiplier, carried through the face's CG (constraint.rs), one step's rounds
+//! in all. Should that solve fail, the step falls back to trials: the force along the
+//! direction, F(δ), of one quasi-static step from a given state is the derivative of the
+//! step's incremental energy, a convex function of δ, so F rises monotonically with δ;
+//! each trial is an exact displacement-controlled step from the same starting state, the
+//! shift bracketed from the secant stiffness and then found by the Illinois variant of
+//! false position (Dowell & Jarratt 1971, *BIT* 11, 168), which converges superlinearly
+//! and never leaves the bracket.
 
+use super::constraint::ForceConstraint;
 use super::{TangentialError, TangentialReport, TangentialSolver, TangentialState};
 use crate::elastic::TangentialOperator;
 use crate::solver::ContactState;
@@ -34,10 +38,12 @@ impl TangentialSolver {
     /// step's starting shift δ⁻ (`state.shift`). Across e the shift does not change; the
     /// force across it is the contact's (zero for a contact symmetric about e).
     ///
-    /// Each trial is [`step`](Self::step) from the same starting state, so the final
-    /// fields are those of a displacement-controlled step to the shift found, to |F − Q| ≤
-    /// 1e-8·max(|Q|, |F⁻|) (F⁻ the starting force); the report's counters add up every trial's
-    /// ([`TangentialReport::trials`]).
+    /// The step is one [`step`](Self::step) whose solves carry the force, so its fields
+    /// are those of a displacement-controlled step to the shift found, to |F − Q| ≤
+    /// 1e-8·max(|Q|, |F⁻|) (F⁻ the starting force); [`TangentialReport::trials`] is 1. If
+    /// that solve fails or misses the force, the step is found by trials from the same
+    /// start (each a displacement-controlled step), and the report's counters add up every
+    /// trial's, the failed solve counted as a trial and in the transform pairs.
     ///
     /// Errors: [`TangentialError::ForceBeyondCapacity`] when |Q| reaches what the interface
     /// holds, Δ²Σg, to the tolerance (gross slip: no shift carries it);
@@ -84,6 +90,82 @@ impl TangentialSolver {
             return Err(TangentialError::ForceBeyondCapacity { force, capacity });
         }
         let start_force = along(unit, state.force(area));
+        let tolerance = FORCE_TOLERANCE * force.abs().max(start_force.abs());
+        let (start, history) = (state.clone(), self.history.clone());
+        let pairs_before = operator.transform_pairs();
+        let mut report = match self.step_to_force_at_once(operator, normal, (unit, force), state, tolerance) {
+            Ok(report) => report,
+            Err(_) => {
+                // The trials from the same start; the single solve's transforms counted.
+                state.clone_from(&start);
+                self.history = history;
+                let mut report = self.step_to_force_by_trials(operator, normal, (unit, force), state, tolerance)?;
+                report.trials += 1;
+                report
+            }
+        };
+        report.transform_pairs = operator.transform_pairs() - pairs_before;
+        Ok(report)
+    }
+
+    /// The force-controlled step as one step whose face CG carries the force
+    /// (constraint.rs): the shift is the solve's multiplier. Its first target is the
+    /// shift the last secant stiffness predicts (as the trials' first). An error when the
+    /// solve fails or its final tractions (each slipping one back on its circle) miss the
+    /// force by more than `tolerance`: the caller then falls back to the trials.
+    fn step_to_force_at_once(
+        &mut self,
+        operator: &mut TangentialOperator,
+        normal: &ContactState,
+        (unit, force): ([f64; 2], f64),
+        state: &mut TangentialState,
+        tolerance: f64,
+    ) -> Result<TangentialReport, TangentialError> {
+        let area = operator.grid().element_area();
+        let start_force = along(unit, state.force(area));
+        let origin = along(unit, state.shift);
+        let stiffness = self
+            .force_stiffness
+            .unwrap_or_else(|| uncoupled_stiffness(operator, normal));
+        let reach = (force - start_force) / stiffness;
+        let first = [0, 1].map(|c| state.shift[c] + reach * unit[c]);
+        self.constraint = Some(ForceConstraint {
+            unit,
+            sum: force / area,
+            moved: 0.0,
+        });
+        let result = self.step(operator, normal, first, state);
+        self.constraint = None;
+        let mut report = result?;
+        let reached = along(unit, report.force);
+        if !((reached - force).abs() <= tolerance) {
+            return Err(TangentialError::ForceNotReached {
+                target: force,
+                reached,
+                trials: 1,
+            });
+        }
+        let moved = along(unit, report.shift) - origin;
+        let secant = (reached - start_force) / moved;
+        if moved != 0.0 {
+            self.force_stiffness = (secant.is_finite() && secant > 0.0).then_some(secant);
+        }
+        report.trials = 1;
+        Ok(report)
+    }
+
+    /// The force-controlled step by trials: displacement-controlled steps from the same
+    /// starting state, bracketed along the secant and closed by the Illinois rule.
+    pub(super) fn step_to_force_by_trials(
+        &mut self,
+        operator: &mut TangentialOperator,
+        normal: &ContactState,
+        (unit, force): ([f64; 2], f64),
+        state: &mut TangentialState,
+        tolerance: f64,
+    ) -> Result<TangentialReport, TangentialError> {
+        let area = operator.grid().element_area();
+        let start_force = along(unit, state.force(area));
         let mut search = Search {
             start: state.clone(),
             history: self.history.clone(),
@@ -92,7 +174,6 @@ impl TangentialSolver {
             origin: along(unit, state.shift),
             total: TangentialReport::default(),
         };
-        let tolerance = FORCE_TOLERANCE * force.abs().max(start_force.abs());
         let first = Trial {
             shift: search.origin,
             excess: start_force - force,
@@ -210,3 +291,7 @@ impl Search {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "force_tests.rs"]
+mod tests;

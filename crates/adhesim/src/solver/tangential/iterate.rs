@@ -1,6 +1,7 @@
 //! The rounds of the tangential active set: CG on the face of the sets, the set changes,
 //! and the final measurements.
 
+use super::constraint::FaceSums;
 use super::{SlipStatus, TangentialError, TangentialReport, TangentialSolver, TangentialState};
 use crate::elastic::TangentialOperator;
 use crate::solver::ContactState;
@@ -9,7 +10,7 @@ use crate::solver::ContactState;
 /// the component along the tangent (−e_y, e_x) of its traction's circle on a slipping one
 /// (its magnitude is held at the bound), none elsewhere. `unit` holds e per element.
 #[inline]
-fn project(status: SlipStatus, unit: (f64, f64), v: (f64, f64)) -> (f64, f64) {
+pub(super) fn project(status: SlipStatus, unit: (f64, f64), v: (f64, f64)) -> (f64, f64) {
     match status {
         SlipStatus::Stick => v,
         SlipStatus::Slip => {
@@ -44,6 +45,8 @@ impl TangentialSolver {
     ) -> Result<usize, TangentialError> {
         let n = state.status.len();
         let diagonal = operator.self_compliance();
+        // Under force control the tractions first carry the force (constraint.rs).
+        let norms = self.meet_force(state, diagonal)?;
         {
             let [ux, uy] = &mut state.displacement;
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
@@ -51,7 +54,7 @@ impl TangentialSolver {
         self.refresh_drive_offset(state);
         let compliance = self.drive_compliance;
         let mut target_norm = 0.0;
-        let (mut rr, mut rz) = (0.0, 0.0);
+        let mut sums = FaceSums::default();
         for i in 0..n {
             let status = self.face_status(state.status[i], i);
             if status != SlipStatus::Open {
@@ -62,17 +65,23 @@ impl TangentialSolver {
             (self.residual[0][i], self.residual[1][i]) = (rx, ry);
             let inverse = 1.0 / (diagonal + self.spring[i]);
             (self.direction[0][i], self.direction[1][i]) = (rx * inverse, ry * inverse);
-            rr += rx * rx + ry * ry;
-            rz += (rx * rx + ry * ry) * inverse;
+            sums.add((rx, ry), self.constraint_gradient(status, i), inverse);
+        }
+        let mut resolved = sums.resolve(norms);
+        // The shift along the force found in this solve (constraint.rs).
+        let mut moved = 0.0;
+        if norms.is_some() {
+            self.update_direction(state, diagonal, resolved.shift, 0.0);
+            moved += resolved.shift;
         }
         let goal = tolerance * target_norm.sqrt();
         self.gap_floor = self.params.tolerance * target_norm.sqrt();
         let mut iterations = 0;
-        while rr.sqrt() > goal {
+        while resolved.rr.sqrt() > goal {
             if iterations >= self.params.max_iterations {
                 return Err(TangentialError::NotConverged {
                     iterations,
-                    relative_residual: rr.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
+                    relative_residual: resolved.rr.sqrt() / target_norm.sqrt().max(f64::MIN_POSITIVE),
                     tolerance,
                 });
             }
@@ -95,8 +104,8 @@ impl TangentialSolver {
             if !(curvature.is_finite() && curvature > 0.0) {
                 return Err(TangentialError::NonFinite(iterations));
             }
-            let alpha = rz / curvature;
-            let (mut next, mut next_rz) = (0.0, 0.0);
+            let alpha = resolved.rz / curvature;
+            let mut next = FaceSums::default();
             for i in 0..n {
                 let status = self.face_status(state.status[i], i);
                 let (dx, dy) = (self.direction[0][i], self.direction[1][i]);
@@ -113,33 +122,30 @@ impl TangentialSolver {
                 state.traction[1][i] += alpha * dy;
                 self.residual[0][i] -= alpha * (ax + spring * dx);
                 self.residual[1][i] -= alpha * (ay + spring * dy);
-                let squared = self.residual[0][i].powi(2) + self.residual[1][i].powi(2);
-                next += squared;
-                next_rz += squared / (diagonal + spring);
+                let residual = (self.residual[0][i], self.residual[1][i]);
+                next.add_dividing(residual, self.constraint_gradient(status, i), diagonal + spring);
             }
             for c in 0..2 {
                 self.drive_offset[c] += alpha * drive[c];
             }
-            let beta = next_rz / rz;
-            (rr, rz) = (next, next_rz);
-            for i in 0..n {
-                let inverse = 1.0 / (diagonal + self.spring[i]);
-                for c in 0..2 {
-                    self.direction[c][i] = self.residual[c][i] * inverse + beta * self.direction[c][i];
-                }
-            }
+            let next = next.resolve(norms);
+            let beta = next.rz / resolved.rz;
+            resolved = next;
+            self.update_direction(state, diagonal, resolved.shift, beta);
+            moved += resolved.shift;
             iterations += 1;
         }
-        if !rr.is_finite() {
+        if !resolved.rr.is_finite() {
             return Err(TangentialError::NonFinite(iterations));
         }
+        self.move_target(moved);
         Ok(iterations)
     }
 
     /// The status as the face sees it: a slipping element without a bound is fixed (its
     /// traction is zero).
     #[inline]
-    fn face_status(&self, status: SlipStatus, i: usize) -> SlipStatus {
+    pub(super) fn face_status(&self, status: SlipStatus, i: usize) -> SlipStatus {
         if status == SlipStatus::Slip && self.bound[i] == 0.0 {
             SlipStatus::Open
         } else {
@@ -282,5 +288,18 @@ impl TangentialSolver {
         report.force = state.force(area);
         state.shift = self.indenter_shift(shift);
         state.drive = shift;
+    }
+
+    /// max|w| over the contact set (1 where it vanishes: nothing moves).
+    pub(super) fn target_scale(&self, normal: &ContactState) -> f64 {
+        let scale = (0..normal.contact.len())
+            .filter(|&i| normal.contact[i])
+            .map(|i| self.target[0][i].hypot(self.target[1][i]))
+            .fold(0.0, f64::max);
+        if scale > 0.0 {
+            scale
+        } else {
+            1.0
+        }
     }
 }

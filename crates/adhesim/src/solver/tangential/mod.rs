@@ -190,8 +190,9 @@ pub struct TangentialReport {
     /// The step was a slip event: elements broke loose and the force along the drive's
     /// motion fell.
     pub slip_event: bool,
-    /// Displacement-controlled trial steps of a force-controlled step (0: the step was
-    /// displacement-controlled; [`TangentialSolver::step_to_force`]).
+    /// Solves of a force-controlled step: 1 when it was solved at once, more when it fell
+    /// back to displacement-controlled trials (0: the step was displacement-controlled;
+    /// [`TangentialSolver::step_to_force`]).
     #[cfg_attr(feature = "serde", serde(default))]
     pub trials: usize,
 }
@@ -342,6 +343,8 @@ pub struct TangentialSolver {
     /// slipping element whose slip is below it keeps slipping in a gross slide or once the
     /// rounds cycle (`classify`).
     gap_floor: f64,
+    /// The imposed force of a step solved at once (None: the shift is imposed).
+    constraint: Option<constraint::ForceConstraint>,
     /// The step moves the drive on from a gross slide: no element of the last step's
     /// contact stuck, and the contact is not at rest.
     gross_slide: bool,
@@ -374,6 +377,7 @@ impl TangentialSolver {
             pressure_displacement: [Vec::new(), Vec::new()],
             gap_floor: 0.0,
             gross_slide: false,
+            constraint: None,
         }
     }
 
@@ -483,6 +487,14 @@ impl TangentialSolver {
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
         self.refresh_drive_offset(state);
+        // Under force control the shift (and the scale of the targets) is what the solve found.
+        let shift = self.solved_shift(shift);
+        let scale = if self.constraint.is_some() {
+            self.target_scale(normal)
+        } else {
+            scale
+        };
+        let increment = [shift[0] - state.drive[0], shift[1] - state.drive[1]];
         self.record_weakening_slip(normal, state);
         self.finish(operator, normal, shift, state, scale, &mut report);
         self.add_pressure_displacement(state);
@@ -573,21 +585,9 @@ impl TangentialSolver {
             }
         }
     }
-
-    /// max|w| over the contact set (1 where it vanishes: nothing moves).
-    fn target_scale(&self, normal: &ContactState) -> f64 {
-        let scale = (0..normal.contact.len())
-            .filter(|&i| normal.contact[i])
-            .map(|i| self.target[0][i].hypot(self.target[1][i]))
-            .fold(0.0, f64::max);
-        if scale > 0.0 {
-            scale
-        } else {
-            1.0
-        }
-    }
 }
 
+mod constraint;
 mod coupled;
 mod drive;
 mod force;
