@@ -5,6 +5,7 @@
 mod axisymmetric;
 mod bases;
 mod factor;
+mod signs;
 
 use adhesim::LayerBase;
 use axisymmetric::AxisymmetricLayer;
@@ -154,8 +155,9 @@ fn jkr_pull_off(
 const THICKNESSES: [f64; 3] = [0.5, 0.25, 0.125];
 
 /// The kinds the reference is run with: Shull's bonded incompressible layer, and ν = 0.3
-/// bonded, ν = 1/2 and ν = 0.3 on a frictionless base (shull_tests/bases.rs).
-const KINDS: [LayerKind; 4] = [
+/// bonded, ν = 1/2 and ν = 0.3 on a frictionless base (shull_tests/bases.rs); ν = 0 and
+/// −0.3 bonded (shull_tests/signs.rs).
+const KINDS: [LayerKind; 6] = [
     RUBBER,
     LayerKind {
         poisson_ratio: 0.3,
@@ -168,6 +170,14 @@ const KINDS: [LayerKind; 4] = [
     LayerKind {
         poisson_ratio: 0.3,
         base: LayerBase::Frictionless,
+    },
+    LayerKind {
+        poisson_ratio: 0.0,
+        base: LayerBase::Bonded,
+    },
+    LayerKind {
+        poisson_ratio: -0.3,
+        base: LayerBase::Bonded,
     },
 ];
 
