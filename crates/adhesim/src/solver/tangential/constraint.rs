@@ -125,7 +125,7 @@ impl TangentialSolver {
             norms.cc += squared;
             norms.czc += squared / (diagonal + self.spring[i]);
         }
-        if !(norms.czc > 0.0) {
+        if norms.czc.is_nan() || norms.czc <= 0.0 {
             return Err(TangentialError::ForceNotReached {
                 target: constraint.sum,
                 reached: carried,

@@ -138,7 +138,8 @@ impl TangentialSolver {
         self.constraint = None;
         let mut report = result?;
         let reached = along(unit, report.force);
-        if !((reached - force).abs() <= tolerance) {
+        let miss = (reached - force).abs();
+        if miss.is_nan() || miss > tolerance {
             return Err(TangentialError::ForceNotReached {
                 target: force,
                 reached,
