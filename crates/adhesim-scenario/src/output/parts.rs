@@ -86,7 +86,7 @@ impl Observer for SnapshotRecorder {
 pub struct CapturedSteps {
     steps: BTreeSet<usize>,
     /// (step, contact, previous contact) of the captured steps, in step order.
-    pub captured: Vec<CapturedStep>,
+    pub sets: Vec<CapturedStep>,
 }
 
 impl CapturedSteps {
@@ -94,20 +94,20 @@ impl CapturedSteps {
     pub fn new(steps: impl IntoIterator<Item = usize>) -> Self {
         Self {
             steps: steps.into_iter().collect(),
-            captured: Vec::new(),
+            sets: Vec::new(),
         }
     }
 
     pub(super) fn save(&self, state: &mut ObserverState) {
         state.captured = self
-            .captured
+            .sets
             .iter()
             .map(|(s, c, p)| (*s, Bits(c.clone()), Bits(p.clone())))
             .collect();
     }
 
     pub(super) fn restore(&mut self, state: &mut ObserverState) {
-        self.captured = std::mem::take(&mut state.captured)
+        self.sets = std::mem::take(&mut state.captured)
             .into_iter()
             .map(|(s, c, p)| (s, c.0, p.0))
             .collect();
@@ -118,7 +118,7 @@ impl Observer for CapturedSteps {
     fn on_step(&mut self, view: StepView<'_>) -> ControlFlow<()> {
         let step = view.record.step;
         if self.steps.contains(&step) {
-            self.captured
+            self.sets
                 .push((step, view.state.contact.clone(), view.previous_contact.to_vec()));
         }
         ControlFlow::Continue(())

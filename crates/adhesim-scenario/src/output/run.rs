@@ -114,7 +114,7 @@ pub fn run_into_folder(
         }
     };
     let plot_files = match options.pictures {
-        Some(pictures) => pictures.figures(scenario, &outcome, &observer.captured.captured, &out.join("plots"))?,
+        Some(pictures) => pictures.figures(scenario, &outcome, &observer.captured.sets, &out.join("plots"))?,
         None => Vec::new(),
     };
     let wall_seconds = start.elapsed().as_secs_f64();
