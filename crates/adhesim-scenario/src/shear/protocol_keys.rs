@@ -62,19 +62,13 @@ pub(crate) fn mixity_keys(section: &FrictionSection) -> impl Iterator<Item = (&'
 
 /// `friction.coupling = "full"` (the coupled operator of a half-space or a layer), with
 /// what it does not combine with yet refused by name.
-pub(super) fn coupled(section: &FrictionSection, force_control: bool, mode_mixity: ModeMixity) -> Result<bool> {
+pub(super) fn coupled(section: &FrictionSection, mode_mixity: ModeMixity) -> Result<bool> {
     if section.coupling != Some(CouplingName::Full) {
         return Ok(false);
     }
     let refuse = |requirement: &str, message: &str| -> Result<bool> {
         Err(ScenarioError::invalid_as("friction.coupling", "\"full\"", requirement, message.to_string()).into())
     };
-    if force_control {
-        return refuse(
-            "\"none\" with protocol.tangential_force",
-            "friction.coupling = \"full\" changes the normal problem at every step, and an imposed tangential force (protocol.tangential_force) holds it fixed: impose protocol.distance, or use coupling = \"none\"",
-        );
-    }
     if mode_mixity.weakens() {
         return refuse(
             "\"none\" with friction.mode_mixity > 0",

@@ -50,7 +50,6 @@ fn coupling_refuses_what_it_does_not_combine_with() {
     // Each refusal names friction.coupling and what it meets.
     let dir = tempfile::tempdir().unwrap();
     for (scenario, meets) in [
-        ("friction/fretting_force.toml", "protocol.tangential_force"),
         ("friction/adhesive_shear.toml", "friction.mode_mixity"),
         ("friction/slide_shear_strength.toml", "protocol.kind = \"shear\" only"),
     ] {
@@ -62,6 +61,40 @@ fn coupling_refuses_what_it_does_not_combine_with() {
         );
         assert_fails_with(&output, &["friction.coupling", meets]);
     }
+}
+
+#[test]
+fn an_imposed_force_with_the_coupled_operator_finds_the_shift_that_carries_it() {
+    // The glued punch of bonded_punch.toml at ν = 0.3 sheared by 0.0005 in four steps, then
+    // loaded by the tangential force that shift carried, ramped in four steps: its contact
+    // never changes, so the coupled problem is linear and the force's shift must be the
+    // imposed one, to the force tolerance (1e-8) over the contact's stiffness; every step
+    // carries its share of the force to 1e-8, and the normal forces agree to 1e-9.
+    let dir = tempfile::tempdir().unwrap();
+    let punch = repo().join("scenarios/friction/bonded_punch.toml");
+    let (header, rows) = curve_with_sets(&punch, &dir.path().join("shift"), &[]);
+    let force = *column_values(&header, &rows, "force_tangential").last().unwrap();
+    let normal = *column_values(&header, &rows, "force_normal").last().unwrap();
+    let text = std::fs::read_to_string(&punch).unwrap();
+    assert!(text.contains("\ndistance = 0.0005"), "bonded_punch.toml changed");
+    let imposed = text.replace("\ndistance = 0.0005", &format!("\ntangential_force = {force:e}"));
+    let scenario = dir.path().join("force.toml");
+    std::fs::write(&scenario, imposed).unwrap();
+    let (header, rows) = curve_with_sets(&scenario, &dir.path().join("force"), &[]);
+    let shifts = column_values(&header, &rows, "x");
+    let forces = column_values(&header, &rows, "force_tangential");
+    let approach = 4;
+    for (k, (shift, carried)) in shifts[approach..].iter().zip(&forces[approach..]).enumerate() {
+        let share = (k + 1) as f64 / 4.0;
+        assert!(
+            (carried / (share * force) - 1.0).abs() < 1e-8,
+            "step {k}: {carried} vs {}",
+            share * force
+        );
+        assert!((shift / (share * 0.0005) - 1.0).abs() < 1e-7, "step {k}: shift {shift}");
+    }
+    let last_normal = *column_values(&header, &rows, "force_normal").last().unwrap();
+    assert!((last_normal / normal - 1.0).abs() < 1e-9, "{last_normal} vs {normal}");
 }
 
 #[test]

@@ -3,6 +3,7 @@
 //! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
 
 use super::edge::{add_normal, add_tangential, NormalSide};
+use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
 use crate::elastic::{CouplingOperator, ShearBody};
 use crate::grid::Grid;
@@ -78,20 +79,27 @@ impl Coupling {
         })
     }
 
-    /// One step to `shift` at `normal.depth` (a block Gauss–Seidel of the coupled problem,
+    /// One step to `target` at `normal.depth` (a block Gauss–Seidel of the coupled problem,
     /// Kalker 1990 §5 / Panagiotopoulos' process): the normal step on the profile raised by
     /// the lift v, the tangential step with the pressure's pull K_tz p, and again, each
     /// round from the step's starting tangential state and v relaxed towards K_zt q
     /// ([`relax`](Self::relax)), until K_zt q meets v and the contact set no longer changes.
+    /// Under an imposed force each round's tangential step is force-controlled
+    /// ([`TangentialSolver::step_to_force`]): the shift is found again with each round's
+    /// pressure and contact.
     pub(super) fn step(
         &mut self,
         normal: NormalSide<'_>,
         room: &mut TangentialRoom,
         friction: &mut TangentialSolver,
-        shift: [f64; 2],
+        target: ShiftTarget,
         step: usize,
     ) -> Result<CoupledStep, ProtocolError> {
-        let along = shift[0].hypot(shift[1]);
+        let start = room.state.shift;
+        let along = match target {
+            ShiftTarget::Shift(shift) => shift[0].hypot(shift[1]),
+            ShiftTarget::Force { .. } => start[0].hypot(start[1]),
+        };
         let mut total = CoupledStep {
             tangential: TangentialReport::default(),
             normal: StepReport::default(),
@@ -134,7 +142,14 @@ impl Coupling {
             }
             friction.set_pressure_displacement(Some([&self.window_shift[0], &self.window_shift[1]]));
             room.window.gather_into(normal.state, &mut self.window_state);
-            let tangential = friction.step(&mut room.operator, &self.window_state, shift, &mut room.state);
+            let tangential = match target {
+                ShiftTarget::Shift(shift) => {
+                    friction.step(&mut room.operator, &self.window_state, shift, &mut room.state)
+                }
+                ShiftTarget::Force { unit, force } => {
+                    friction.step_to_force(&mut room.operator, &self.window_state, unit, force, &mut room.state)
+                }
+            };
             friction.set_pressure_displacement(None);
             let tangential = tangential.map_err(|source| ProtocolError::Tangential {
                 step,
@@ -146,7 +161,12 @@ impl Coupling {
             let change = self.residual_of(room);
             total.tangential.transform_pairs += 2;
             if change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0) && normal.state.contact == before {
-                let increment = [0, 1].map(|c| shift[c] - self.saved.drive[c]);
+                // The drive's position: the imposed shift, or the one the force found.
+                let drive = match target {
+                    ShiftTarget::Shift(shift) => shift,
+                    ShiftTarget::Force { .. } => tangential.shift,
+                };
+                let increment = [0, 1].map(|c| drive[c] - self.saved.drive[c]);
                 friction.remember_step(&self.saved.traction, increment);
                 return Ok(total);
             }

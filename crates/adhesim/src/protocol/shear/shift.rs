@@ -34,7 +34,8 @@ enum NormalMode {
 pub(super) enum ShiftTarget {
     /// The indenter's shift (the drive's position under a compliant drive).
     Shift([f64; 2]),
-    /// The tangential force along the unit vector (the normal problem held).
+    /// The tangential force along the unit vector (the normal problem held, or solved in
+    /// turn with the tangential one by the coupled operator).
     Force { unit: [f64; 2], force: f64 },
 }
 
@@ -148,14 +149,14 @@ impl ShiftStepper {
                 depth: None,
             });
         }
-        if let ShiftTarget::Force { .. } = target {
+        if let (ShiftTarget::Force { .. }, NormalMode::Moving | NormalMode::Weakened(_)) = (target, &self.mode) {
             return Err(ProtocolError::InvalidParameter(
-                "an imposed tangential force holds the normal problem fixed (no incline, no mode_mixity)".into(),
+                "an imposed tangential force holds the normal problem fixed or solves it with the coupled operator's rounds (no incline, no mode_mixity)".into(),
             ));
         }
         match &mut self.mode {
             NormalMode::Coupled(coupling) => {
-                let coupled = coupling.step(normal, &mut self.room, friction, shift, step)?;
+                let coupled = coupling.step(normal, &mut self.room, friction, target, step)?;
                 Ok(ShiftOutcome {
                     tangential: coupled.tangential,
                     normal: coupled.normal,

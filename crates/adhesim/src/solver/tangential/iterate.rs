@@ -36,7 +36,8 @@ impl TangentialSolver {
     ///
     /// Preconditioned by the diagonal K_ii + σ_i: without it the stiff springs of elements
     /// with a small bound (the contact's edge) stall CG. Stops at ‖w − u‖₂ ≤ `tolerance`·‖w‖₂
-    /// over the face.
+    /// over the face; under an imposed force, projected onto it, on the gaps left after the
+    /// best uniform shift along the force (constraint.rs).
     pub(super) fn solve_face(
         &mut self,
         operator: &mut TangentialOperator,
