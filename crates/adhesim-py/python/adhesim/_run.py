@@ -305,14 +305,31 @@ def _progress_callback(progress):
 
 
 def _check_threads(threads: Optional[int]) -> Optional[int]:
-    """The thread count to pass on: None (the default pool), or an integer >= 1 (one
-    beyond what a machine word holds becomes the largest it holds, which the run clamps to
-    the cores with its warning); anything else is refused by name."""
+    """The thread count to pass on: None (the default pool), or an integer >= 1; anything
+    else is refused by name. A count beyond what a machine word holds is clamped here to
+    the cores this process may use, with the warning the run gives any count above them
+    (naming the count given, which the run could not receive)."""
     if threads is None:
         return None
     if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
         raise ValueError(f"threads must be an integer >= 1, got {threads!r}")
-    return min(threads, sys.maxsize)
+    if threads > sys.maxsize:
+        cores = _cores()
+        warnings.warn(
+            f"threads = {threads} exceeds the {cores} cores this process may use; using {cores}",
+            UserWarning,
+            stacklevel=3,
+        )
+        return cores
+    return threads
+
+
+def _cores() -> int:
+    """The cores this process may run on (its affinity where the system has one)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
 
 
 def run(
