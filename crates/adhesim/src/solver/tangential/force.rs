@@ -146,11 +146,7 @@ impl TangentialSolver {
                 trials: 1,
             });
         }
-        let moved = along(unit, report.shift) - origin;
-        let secant = (reached - start_force) / moved;
-        if moved != 0.0 {
-            self.force_stiffness = (secant.is_finite() && secant > 0.0).then_some(secant);
-        }
+        self.keep_force_stiffness(reached - start_force, along(unit, report.shift) - origin);
         report.trials = 1;
         Ok(report)
     }
@@ -213,16 +209,23 @@ impl TangentialSolver {
             }
             last = next;
         }
-        if last.shift != first.shift {
-            let secant = (last.excess - first.excess) / (last.shift - first.shift);
-            self.force_stiffness = (secant.is_finite() && secant > 0.0).then_some(secant);
-        }
+        self.keep_force_stiffness(last.excess - first.excess, last.shift - first.shift);
         let total = search.total;
         report.rounds = total.rounds;
         report.cg_iterations = total.cg_iterations;
         report.transform_pairs = total.transform_pairs;
         report.trials = total.trials;
         Ok(report)
+    }
+
+    /// Keeps a force-controlled step's secant stiffness dF/dδ (the force's change over the
+    /// shift's), when the shift moved and the secant is a positive number: its successor's
+    /// first target.
+    fn keep_force_stiffness(&mut self, force_change: f64, shift_change: f64) {
+        if shift_change != 0.0 {
+            let secant = force_change / shift_change;
+            self.force_stiffness = (secant.is_finite() && secant > 0.0).then_some(secant);
+        }
     }
 
     /// Δ²Σg over the contact of `normal` (`area` = Δ²): the largest tangential force the

@@ -453,7 +453,6 @@ impl TangentialSolver {
         self.prepare(normal, shift, state, n);
         let rho = 1.0 / operator.self_compliance();
         self.predict(normal, increment, state, rho);
-        let scale = self.target_scale(normal);
         let mut report = TangentialReport::default();
         // Inexact Newton: while the sets still change, a loose solve decides them as well;
         // the rounds that may end the step solve to the full tolerance.
@@ -487,13 +486,10 @@ impl TangentialSolver {
             operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
         }
         self.refresh_drive_offset(state);
-        // Under force control the shift (and the scale of the targets) is what the solve found.
+        // Under force control the shift (and with it the targets) is what the solve found;
+        // the targets' scale is taken from them as they end.
         let shift = self.solved_shift(shift);
-        let scale = if self.constraint.is_some() {
-            self.target_scale(normal)
-        } else {
-            scale
-        };
+        let scale = self.target_scale(normal);
         let increment = [shift[0] - state.drive[0], shift[1] - state.drive[1]];
         self.record_weakening_slip(normal, state);
         self.finish(operator, normal, shift, state, scale, &mut report);
