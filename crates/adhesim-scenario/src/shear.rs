@@ -120,7 +120,7 @@ impl ScenarioFile {
             mode_mixity,
             force_control,
             coupled,
-            hold_normal_force: normal_control(p, coupled)?,
+            hold_normal_force: normal_control(p)?,
         };
         if protocol.shift_steps() > MAX_STEPS {
             bail!(ScenarioError::invalid_as(

@@ -136,29 +136,18 @@ pub(crate) fn layer_shear(layer: &ElasticLayer) -> Result<()> {
 }
 
 /// `protocol.normal_control` (default `"depth"`): `"force"` holds the normal force of the end
-/// of the approach during the shift; refused with an incline (the path sets the depth) and
-/// with the coupled operator.
-pub(super) fn normal_control(p: &ShearProtocol, coupled: bool) -> Result<bool> {
+/// of the approach during the shift; refused with an incline (the path sets the depth).
+pub(super) fn normal_control(p: &ShearProtocol) -> Result<bool> {
     if p.normal_control.unwrap_or_default() == NormalControl::Depth {
         return Ok(false);
     }
-    let refuse = |with: &str, why: &str| -> Result<bool> {
-        Err(ScenarioError::invalid_as(
+    if p.incline.is_some_and(|incline| incline != 0.0) {
+        bail!(ScenarioError::invalid_as(
             "protocol.normal_control",
             "\"force\"",
-            format!("\"depth\" with {with}"),
-            format!("protocol.normal_control = \"force\" does not go with {with}: {why}"),
-        )
-        .into())
-    };
-    if p.incline.is_some_and(|incline| incline != 0.0) {
-        return refuse("protocol.incline", "an inclined path sets the depth at each step");
-    }
-    if coupled {
-        return refuse(
-            "friction.coupling = \"full\"",
-            "the coupled rounds run at the step's depth (not built with a held force yet)",
-        );
+            "\"depth\" with protocol.incline",
+            "protocol.normal_control = \"force\" does not go with protocol.incline: an inclined path sets the depth at each step",
+        ));
     }
     Ok(true)
 }

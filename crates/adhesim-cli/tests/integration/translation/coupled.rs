@@ -120,3 +120,69 @@ fn an_alternating_contact_set_stops_the_run_with_its_reason() {
     );
     assert!(out.join("curve.csv.partial").exists());
 }
+
+#[test]
+fn a_held_normal_force_with_the_coupled_operator_keeps_the_step_its_depth_gives() {
+    // The paper's R = 22 mm sphere on the 5 mm layer (scenarios/layer/paper_r22_shear.toml,
+    // coarsened to 64² and a 10-step approach), sheared by 0.02 in one step at the held
+    // normal force. At the held depth the coupled shear moves the normal force by −1.1e-3
+    // of it (measured), so the step must find its depth: the force is held to the search's
+    // tolerance (1e-8 of it). Each trial depth starts from the step's start, the coupled
+    // rounds' lift and the pressure's pull put back with the rest, so the kept step is the
+    // depth-controlled step at its depth. Checked against a run that reaches that depth on
+    // its own: one step up an incline chosen so that depth + shift·tan(incline) is the
+    // found depth to the last bit. Its forces, areas and stick and slip counts agree to
+    // 1e-12 (bit for bit on one thread; the reductions' order may differ on more). Trials
+    // that left the rounds' lift behind moved the kept step's tangential force by 7e-9 of
+    // it and its depth by 4e-9 (measured).
+    let dir = tempfile::tempdir().unwrap();
+    let layer = repo().join("scenarios/layer/paper_r22_shear.toml");
+    let (depth, shift) = (0.2, 0.02);
+    let one_step = [
+        "grid.n=64",
+        "protocol.approach_steps=10",
+        "protocol.steps=1",
+        "protocol.distance=0.02",
+    ];
+    let force_sets = [&one_step[..], &["protocol.normal_control=\"force\""]].concat();
+    let (header, rows) = curve_with_sets(&layer, &dir.path().join("force"), &force_sets);
+    let approach = 10;
+    assert_eq!(rows.len(), approach + 1);
+    let normal = column_values(&header, &rows, "force_normal");
+    let (held, kept) = (normal[approach - 1], normal[approach]);
+    assert!((kept / held - 1.0).abs() <= 1e-8, "F_N {kept} vs held {held}");
+    let found = column_values(&header, &rows, "d")[approach];
+    assert!((found / depth - 1.0).abs() > 1e-6, "the depth did not move: {found}");
+    // The incline whose one step of `shift` lands on the found depth exactly, as the
+    // protocol computes it (degrees to radians, the tangent, depth + shift·slope).
+    let lands = |degrees: f64| depth + shift * degrees.to_radians().tan() == found;
+    let guess = ((found - depth) / shift).atan().to_degrees();
+    let degrees = (0..100_000u64)
+        .flat_map(|k| [f64::from_bits(guess.to_bits() + k), f64::from_bits(guess.to_bits() - k)])
+        .find(|&degrees| lands(degrees))
+        .expect("an incline that lands on the found depth");
+    let incline = format!("protocol.incline={degrees}");
+    let (header_up, rows_up) = curve_with_sets(
+        &layer,
+        &dir.path().join("incline"),
+        &[&one_step[..], &[incline.as_str()]].concat(),
+    );
+    assert_eq!(column_values(&header_up, &rows_up, "d")[approach], found);
+    for name in [
+        "force_normal",
+        "force_tangential",
+        "area",
+        "area_front",
+        "area_rear",
+        "n_contact",
+        "n_stick",
+        "n_slip",
+    ] {
+        let at_held_force = column_values(&header, &rows, name)[approach];
+        let up_the_incline = column_values(&header_up, &rows_up, name)[approach];
+        assert!(
+            (at_held_force - up_the_incline).abs() <= 1e-12 * at_held_force.abs(),
+            "{name}: {at_held_force} at the held force, {up_the_incline} up the incline"
+        );
+    }
+}

@@ -2,7 +2,7 @@
 //! layer): the
 //! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
 
-use super::edge::{add_normal, add_tangential, NormalSide};
+use super::edge::{add_normal, add_tangential, NormalSide, RoundsStep};
 use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
 use crate::elastic::{CouplingOperator, ShearBody};
@@ -16,13 +16,6 @@ use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver
 const COUPLING_TOLERANCE: f64 = 1e-8;
 /// Rounds allowed per step.
 const MAX_COUPLING_ROUNDS: usize = 100;
-
-/// What a coupled step did: the final tangential solve and the normal steps, with the
-/// counters of all rounds.
-pub(super) struct CoupledStep {
-    pub tangential: TangentialReport,
-    pub normal: StepReport,
-}
 
 /// The coupled steps of a run: the coupling operator on the whole grid and the fields it
 /// carries from round to round.
@@ -53,6 +46,18 @@ pub(super) struct Coupling {
     /// once the window has moved).
     warm: Option<[Vec<f64>; 2]>,
     window_state: ContactState,
+    /// The fields a step carries into the next, kept at a step's start for the trials of
+    /// normal-force control ([`keep`](Self::keep)).
+    kept: Carried,
+}
+
+/// The fields of a [`Coupling`] that a step leaves for the next.
+#[derive(Default)]
+struct Carried {
+    lift: Vec<f64>,
+    relaxation: f64,
+    pressure_shift: [Vec<f64>; 2],
+    window_shift: [Vec<f64>; 2],
 }
 
 impl Coupling {
@@ -76,7 +81,28 @@ impl Coupling {
             saved: TangentialState::new(0),
             warm: None,
             window_state: ContactState::new(grid),
+            kept: Carried::default(),
         })
+    }
+
+    /// Keeps the fields this step will leave for the next, as they are at its start: a
+    /// trial of normal-force control that is not accepted puts them back
+    /// ([`put_back`](Self::put_back)).
+    pub(super) fn keep(&mut self) {
+        self.kept.lift.clone_from(&self.lift);
+        self.kept.relaxation = self.relaxation;
+        self.kept.pressure_shift.clone_from(&self.pressure_shift);
+        self.kept.window_shift.clone_from(&self.window_shift);
+    }
+
+    /// Puts back the fields [`keep`](Self::keep) kept. A room whose window a trial widened
+    /// comes back with the memory's displacement K q alone; the kept window's K_tz p has
+    /// another size then, so the next round adds the pressure's share back (`follow`).
+    pub(super) fn put_back(&mut self) {
+        self.lift.clone_from(&self.kept.lift);
+        self.relaxation = self.kept.relaxation;
+        self.pressure_shift.clone_from(&self.kept.pressure_shift);
+        self.window_shift.clone_from(&self.kept.window_shift);
     }
 
     /// One step to `target` at `normal.depth` (a block Gauss–Seidel of the coupled problem,
@@ -94,15 +120,12 @@ impl Coupling {
         friction: &mut TangentialSolver,
         target: ShiftTarget,
         step: usize,
-    ) -> Result<CoupledStep, ProtocolError> {
-        let start = room.state.shift;
-        let along = match target {
-            ShiftTarget::Shift(shift) => shift[0].hypot(shift[1]),
-            ShiftTarget::Force { .. } => start[0].hypot(start[1]),
-        };
-        let mut total = CoupledStep {
+    ) -> Result<RoundsStep, ProtocolError> {
+        let along = target.named_shift(room.state.shift);
+        let mut total = RoundsStep {
             tangential: TangentialReport::default(),
             normal: StepReport::default(),
+            rounds: 0,
         };
         self.saved.clone_from(&room.state);
         self.warm = None;
@@ -142,32 +165,18 @@ impl Coupling {
             }
             friction.set_pressure_displacement(Some([&self.window_shift[0], &self.window_shift[1]]));
             room.window.gather_into(normal.state, &mut self.window_state);
-            let tangential = match target {
-                ShiftTarget::Shift(shift) => {
-                    friction.step(&mut room.operator, &self.window_state, shift, &mut room.state)
-                }
-                ShiftTarget::Force { unit, force } => {
-                    friction.step_to_force(&mut room.operator, &self.window_state, unit, force, &mut room.state)
-                }
-            };
+            let tangential = target.solve(friction, room, &self.window_state, step);
             friction.set_pressure_displacement(None);
-            let tangential = tangential.map_err(|source| ProtocolError::Tangential {
-                step,
-                shift: along,
-                source,
-            })?;
+            let tangential = tangential?;
             add_tangential(&mut total.tangential, tangential);
             self.warm = Some(room.state.traction.clone());
             let change = self.residual_of(room);
             total.tangential.transform_pairs += 2;
             if change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0) && normal.state.contact == before {
-                // The drive's position: the imposed shift, or the one the force found.
-                let drive = match target {
-                    ShiftTarget::Shift(shift) => shift,
-                    ShiftTarget::Force { .. } => tangential.shift,
-                };
+                let drive = target.drive(&tangential);
                 let increment = [0, 1].map(|c| drive[c] - self.saved.drive[c]);
                 friction.remember_step(&self.saved.traction, increment);
+                total.rounds = rounds;
                 return Ok(total);
             }
             // An adhesive edge can flip a ring of elements back and forth with the

@@ -67,9 +67,10 @@ pub(super) struct NormalSide<'a> {
     pub state: &'a mut ContactState,
 }
 
-/// What a weakened shift step did: the final tangential solve (with the counters of all
-/// rounds) and the normal steps summed.
-pub(super) struct WeakenedStep {
+/// What a shift step solved in rounds did (a weakened edge's, or the coupled operator's):
+/// the final tangential solve (with the counters of all rounds) and the normal steps
+/// summed.
+pub(super) struct RoundsStep {
     pub tangential: TangentialReport,
     pub normal: StepReport,
     /// Rounds of tangential solve and normal step.
@@ -121,13 +122,13 @@ impl EdgeWeakening {
         friction: &mut TangentialSolver,
         shift: [f64; 2],
         step: usize,
-    ) -> Result<WeakenedStep, ProtocolError> {
+    ) -> Result<RoundsStep, ProtocolError> {
         let along = shift[0].hypot(shift[1]);
         let Some(solver) = normal.solver.as_adhesive_mut() else {
             unreachable!("the shear checks for the adhesive solver before its shift")
         };
         self.weakened.copy_from_slice(&self.base);
-        let mut total = WeakenedStep {
+        let mut total = RoundsStep {
             tangential: TangentialReport::default(),
             normal: StepReport::default(),
             rounds: 0,

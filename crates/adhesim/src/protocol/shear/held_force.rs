@@ -1,13 +1,17 @@
-//! Normal-force control of a shear whose edge the shear weakens (`protocol.normal_control
-//! = "force"`): each shift step finds the depth at which the weakened step's normal force is
-//! the one held (docs/physics.md §8.5), as in Savkoor & Briggs' experiments at constant load.
+//! Normal-force control of a shear whose normal problem changes with the shift
+//! (`protocol.normal_control = "force"`): each shift step finds the depth at which the
+//! step's normal force is the one held (docs/physics.md §8.5), as in Savkoor & Briggs'
+//! experiments at constant load. The step is a weakened edge's rounds or the coupled
+//! operator's ([`TrialStep`]).
 
-use super::edge::{EdgeWeakening, NormalSide, WeakenedStep};
+use super::coupled::Coupling;
+use super::edge::{EdgeWeakening, NormalSide, RoundsStep};
+use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
 use crate::protocol::ProtocolError;
 use crate::solver::TangentialSolver;
 
-/// Trials (weakened steps at a trial depth) allowed per shift step.
+/// Trials (steps at a trial depth) allowed per shift step.
 const MAX_TRIALS: usize = 60;
 /// The step ends when the normal force is within this share of the held force P (or of
 /// the trial's force, where larger).
@@ -37,19 +41,83 @@ struct Trial {
     force: f64,
 }
 
+/// A shift step that normal-force control runs at trial depths, each from the step's start.
+pub(super) trait TrialStep {
+    /// Keeps what the step changes for the next beyond the normal solver's history, the
+    /// contact state, the room and the tangential solver's memory, as it is at the start.
+    fn keep(&mut self);
+    /// Puts back what [`keep`](Self::keep) kept, before the next trial.
+    fn put_back(&mut self);
+    /// The step to `target` at `normal.depth`.
+    fn run(
+        &mut self,
+        normal: NormalSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
+        target: ShiftTarget,
+        step: usize,
+    ) -> Result<RoundsStep, ProtocolError>;
+}
+
+/// A weakened edge carries nothing from step to step: each starts from the unweakened σ_c.
+impl TrialStep for EdgeWeakening {
+    fn keep(&mut self) {}
+
+    fn put_back(&mut self) {}
+
+    fn run(
+        &mut self,
+        normal: NormalSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
+        target: ShiftTarget,
+        step: usize,
+    ) -> Result<RoundsStep, ProtocolError> {
+        let ShiftTarget::Shift(shift) = target else {
+            return Err(ProtocolError::InvalidParameter(
+                "an imposed tangential force does not go with a shear-weakened edge".into(),
+            ));
+        };
+        self.step(normal, room, friction, shift, step)
+    }
+}
+
+/// The coupled operator's step carries its lift and the pressure's pull.
+impl TrialStep for Coupling {
+    fn keep(&mut self) {
+        Coupling::keep(self);
+    }
+
+    fn put_back(&mut self) {
+        Coupling::put_back(self);
+    }
+
+    fn run(
+        &mut self,
+        normal: NormalSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
+        target: ShiftTarget,
+        step: usize,
+    ) -> Result<RoundsStep, ProtocolError> {
+        self.step(normal, room, friction, target, step)
+    }
+}
+
 impl HeldForce {
-    /// One shift step at the held normal force: weakened steps at trial depths, each from
-    /// the step's starting state (the normal solver's history restored from its checkpoint,
-    /// the tangential fields from the room's snapshot), by secant steps kept inside a
-    /// bracket once one exists (a regula falsi), since the force rises with the depth.
-    /// Returns the step and its depth.
+    /// One shift step at the held normal force: `trials` at trial depths, each from the
+    /// step's starting state (the normal solver's history restored from its checkpoint,
+    /// the tangential fields from the room's snapshot, the tangential solver's memory and
+    /// the step's own carried fields put back), by secant steps kept inside a bracket once
+    /// one exists (a regula falsi), since the force rises with the depth. The step kept is
+    /// the one a depth-controlled run would take at its depth. Returns it and its depth.
     pub(super) fn step(
         &mut self,
-        edge: &mut EdgeWeakening,
+        trials: &mut dyn TrialStep,
         normal: NormalSide<'_>,
         (room, friction): (&mut TangentialRoom, &mut TangentialSolver),
-        (shift, step): ([f64; 2], usize),
-    ) -> Result<(WeakenedStep, f64), ProtocolError> {
+        (shift_target, step): (ShiftTarget, usize),
+    ) -> Result<(RoundsStep, f64), ProtocolError> {
         let NormalSide {
             operator,
             heights,
@@ -64,11 +132,15 @@ impl HeldForce {
         let element = operator.grid().dx().max(operator.grid().dy());
         let mut stiffness = self.stiffness;
         let start_state = state.clone();
-        let Some(adhesive) = solver.as_adhesive_mut() else {
-            unreachable!("a weakened edge runs the JKR-type adhesive solver")
+        let Some(checkpoint) = solver.checkpoint() else {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "normal-force control restarts each trial depth from the step's start, which the {} solver cannot checkpoint: hold the depth instead",
+                solver.stepper().name()
+            )));
         };
-        let checkpoint = adhesive.checkpoint();
         let start_room = room.snapshot();
+        let memory = friction.memory();
+        trials.keep();
         let (mut below, mut above): (Option<Trial>, Option<Trial>) = (None, None);
         let (mut trial_depth, mut last): (f64, Option<Trial>) = (start_depth, None);
         // The work of the trials before the last: counted, not kept.
@@ -76,11 +148,12 @@ impl HeldForce {
         for trial in 0..MAX_TRIALS {
             if trial > 0 {
                 state.clone_from(&start_state);
-                let adhesive = solver.as_adhesive_mut().expect("checked above");
-                adhesive
+                solver
                     .restore(&checkpoint, &start_state)
                     .map_err(ProtocolError::InvalidParameter)?;
                 spent.transform_pairs += room.restore(&start_room);
+                friction.put_back_memory(&memory);
+                trials.put_back();
             }
             let side = NormalSide {
                 operator: &mut *operator,
@@ -89,7 +162,7 @@ impl HeldForce {
                 solver: &mut *solver,
                 state: &mut *state,
             };
-            let mut result = edge.step(side, room, friction, shift, step)?;
+            let mut result = trials.run(side, room, friction, shift_target, step)?;
             let now = Trial {
                 depth: trial_depth,
                 force: result.normal.force,
@@ -157,7 +230,7 @@ struct Spent {
 
 impl Spent {
     /// Adds a trial's counters.
-    fn count(&mut self, trial: &WeakenedStep) {
+    fn count(&mut self, trial: &RoundsStep) {
         self.solves += trial.normal.solves;
         self.cg_iterations += trial.normal.cg_iterations;
         self.operator_applications += trial.normal.operator_applications;
@@ -168,7 +241,7 @@ impl Spent {
     }
 
     /// Adds the counters to the accepted trial's.
-    fn add_to(self, step: &mut WeakenedStep) {
+    fn add_to(self, step: &mut RoundsStep) {
         step.normal.solves += self.solves;
         step.normal.cg_iterations += self.cg_iterations;
         step.normal.operator_applications += self.operator_applications;

@@ -78,7 +78,8 @@ pub struct Shear {
     /// Normal-force control: the shift holds the normal force of the end of the approach,
     /// each step finding its depth, instead of the depth (Savkoor & Briggs' experiments at
     /// constant load). It changes what a weakened edge does; a held normal problem keeps
-    /// its force anyway; refused with an incline or the coupled operator.
+    /// its force anyway; with the coupled operator each trial depth runs the coupled
+    /// rounds; refused with an incline.
     pub hold_normal_force: bool,
 }
 

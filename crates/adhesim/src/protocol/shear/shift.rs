@@ -5,7 +5,7 @@
 
 use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide};
-use super::held_force::HeldForce;
+use super::held_force::{HeldForce, TrialStep};
 use super::mixity::ModeMixity;
 use super::window::TangentialRoom;
 use crate::elastic::ShearBody;
@@ -37,6 +37,50 @@ pub(super) enum ShiftTarget {
     /// The tangential force along the unit vector (the normal problem held, or solved in
     /// turn with the tangential one by the coupled operator).
     Force { unit: [f64; 2], force: f64 },
+}
+
+impl ShiftTarget {
+    /// The tangential step on `room` to this target, the normal problem `normal` (on the
+    /// room's window) given: to the shift, or to the force, the shift found with it.
+    pub(super) fn solve(
+        self,
+        friction: &mut TangentialSolver,
+        room: &mut TangentialRoom,
+        normal: &ContactState,
+        step: usize,
+    ) -> Result<TangentialReport, ProtocolError> {
+        let along = self.named_shift(room.state.shift);
+        let solved = match self {
+            Self::Shift(shift) => friction.step(&mut room.operator, normal, shift, &mut room.state),
+            Self::Force { unit, force } => {
+                friction.step_to_force(&mut room.operator, normal, unit, force, &mut room.state)
+            }
+        };
+        solved.map_err(|source| ProtocolError::Tangential {
+            step,
+            shift: along,
+            source,
+        })
+    }
+
+    /// The shift an error names: the imposed one, or the indenter's `start` at the step's
+    /// start.
+    pub(super) fn named_shift(self, start: [f64; 2]) -> f64 {
+        let shift = match self {
+            Self::Shift(shift) => shift,
+            Self::Force { .. } => start,
+        };
+        shift[0].hypot(shift[1])
+    }
+
+    /// The drive's position after a step that reported `solved`: the imposed shift, or the
+    /// one the force found.
+    pub(super) fn drive(self, solved: &TangentialReport) -> [f64; 2] {
+        match self {
+            Self::Shift(shift) => shift,
+            Self::Force { .. } => solved.shift,
+        }
+    }
 }
 
 /// What a shift step did.
@@ -123,95 +167,66 @@ impl ShiftStepper {
         step: usize,
         held_force: f64,
     ) -> Result<ShiftOutcome, ProtocolError> {
-        let shift = match target {
-            ShiftTarget::Shift(shift) => shift,
-            ShiftTarget::Force { .. } => self.room.state.shift,
-        };
-        let along = shift[0].hypot(shift[1]);
-        let tangential_error = |source| ProtocolError::Tangential {
-            step,
-            shift: along,
-            source,
-        };
-        if let (ShiftTarget::Force { unit, force }, NormalMode::Held) = (target, &self.mode) {
-            let tangential = friction
-                .step_to_force(
-                    &mut self.room.operator,
-                    &self.window_state,
-                    unit,
-                    force,
-                    &mut self.room.state,
-                )
-                .map_err(tangential_error)?;
-            return Ok(ShiftOutcome {
-                tangential,
-                normal: held(held_force),
-                depth: None,
-            });
-        }
         if let (ShiftTarget::Force { .. }, NormalMode::Moving | NormalMode::Weakened(_)) = (target, &self.mode) {
             return Err(ProtocolError::InvalidParameter(
                 "an imposed tangential force holds the normal problem fixed or solves it with the coupled operator's rounds (no incline, no mode_mixity)".into(),
             ));
         }
-        match &mut self.mode {
-            NormalMode::Coupled(coupling) => {
-                let coupled = coupling.step(normal, &mut self.room, friction, target, step)?;
-                Ok(ShiftOutcome {
-                    tangential: coupled.tangential,
-                    normal: coupled.normal,
-                    depth: None,
-                })
+        let rounds: &mut dyn TrialStep = match &mut self.mode {
+            NormalMode::Coupled(coupling) => coupling.as_mut(),
+            NormalMode::Weakened(edge) => edge.as_mut(),
+            NormalMode::Moving | NormalMode::Held => {
+                return self.step_whole(normal, friction, target, step, held_force)
             }
-            NormalMode::Weakened(edge) => {
-                let (weakened, depth) = match &mut self.held {
-                    Some(held) => {
-                        let (weakened, depth) = held.step(edge, normal, (&mut self.room, friction), (shift, step))?;
-                        (weakened, Some(depth))
-                    }
-                    None => (edge.step(normal, &mut self.room, friction, shift, step)?, None),
-                };
-                Ok(ShiftOutcome {
-                    tangential: weakened.tangential,
-                    normal: weakened.normal,
-                    depth,
-                })
+        };
+        let (solved, depth) = match &mut self.held {
+            Some(held) => {
+                let (solved, depth) = held.step(rounds, normal, (&mut self.room, friction), (target, step))?;
+                (solved, Some(depth))
             }
-            NormalMode::Moving => {
-                let report = normal
-                    .solver
-                    .step(normal.operator, normal.heights, normal.depth, normal.state)
-                    .map_err(|source| ProtocolError::Solve {
-                        step,
-                        depth: normal.depth,
-                        source,
-                    })?;
-                let widened = self.room.cover(&normal.state.contact)?;
-                if self.window_state.contact.len() != self.room.window.grid.len() {
-                    self.window_state = ContactState::new(&self.room.window.grid);
-                }
-                self.room.window.gather_into(normal.state, &mut self.window_state);
-                let mut tangential = friction
-                    .step(&mut self.room.operator, &self.window_state, shift, &mut self.room.state)
-                    .map_err(tangential_error)?;
-                tangential.transform_pairs += widened;
-                Ok(ShiftOutcome {
-                    tangential,
-                    normal: report,
-                    depth: None,
-                })
+            None => (rounds.run(normal, &mut self.room, friction, target, step)?, None),
+        };
+        Ok(ShiftOutcome {
+            tangential: solved.tangential,
+            normal: solved.normal,
+            depth,
+        })
+    }
+
+    /// A step of a normal problem held or moved along an incline (no rounds): the normal
+    /// step at the step's depth where it moves, then the tangential step to `target`.
+    fn step_whole(
+        &mut self,
+        normal: NormalSide<'_>,
+        friction: &mut TangentialSolver,
+        target: ShiftTarget,
+        step: usize,
+        held_force: f64,
+    ) -> Result<ShiftOutcome, ProtocolError> {
+        let mut outcome = ShiftOutcome {
+            tangential: TangentialReport::default(),
+            normal: held(held_force),
+            depth: None,
+        };
+        let mut widened = 0;
+        if let NormalMode::Moving = self.mode {
+            outcome.normal = normal
+                .solver
+                .step(normal.operator, normal.heights, normal.depth, normal.state)
+                .map_err(|source| ProtocolError::Solve {
+                    step,
+                    depth: normal.depth,
+                    source,
+                })?;
+            widened = self.room.cover(&normal.state.contact)?;
+            if self.window_state.contact.len() != self.room.window.grid.len() {
+                self.window_state = ContactState::new(&self.room.window.grid);
             }
-            NormalMode::Held => {
-                let tangential = friction
-                    .step(&mut self.room.operator, &self.window_state, shift, &mut self.room.state)
-                    .map_err(tangential_error)?;
-                Ok(ShiftOutcome {
-                    tangential,
-                    normal: held(held_force),
-                    depth: None,
-                })
-            }
+            self.room.window.gather_into(normal.state, &mut self.window_state);
         }
+        outcome.tangential = target.solve(friction, &mut self.room, &self.window_state, step)?;
+        outcome.tangential.transform_pairs += widened;
+        Ok(outcome)
     }
 
     /// Holds the normal force instead of the depth during the shift (`hold`; else nothing).
@@ -222,7 +237,7 @@ impl ShiftStepper {
             return Ok(());
         }
         match self.mode {
-            NormalMode::Weakened(_) => {
+            NormalMode::Weakened(_) | NormalMode::Coupled(_) => {
                 self.held = Some(HeldForce {
                     target: None,
                     depth: None,
@@ -231,8 +246,8 @@ impl ShiftStepper {
                 Ok(())
             }
             NormalMode::Held => Ok(()),
-            NormalMode::Moving | NormalMode::Coupled(_) => Err(ProtocolError::InvalidParameter(
-                "normal-force control finds each shift step's depth, which an inclined path (incline ≠ 0) prescribes and the coupled operator's rounds hold fixed: hold the depth instead".into(),
+            NormalMode::Moving => Err(ProtocolError::InvalidParameter(
+                "normal-force control finds each shift step's depth, which an inclined path (incline ≠ 0) prescribes: hold the depth instead".into(),
             )),
         }
     }

@@ -1,7 +1,15 @@
 //! The predictor of a step's starting tractions from the last step's change.
 
-use super::{SlipStatus, TangentialSolver, TangentialState};
+use super::{SlipStatus, StepHistory, TangentialSolver, TangentialState};
 use crate::solver::ContactState;
+
+/// What a step leaves the next beyond its [`TangentialState`]: the predictor's memory and
+/// the secant stiffness of force control.
+#[derive(Debug, Clone)]
+pub(crate) struct StepMemory {
+    history: Option<StepHistory>,
+    force_stiffness: Option<f64>,
+}
 
 impl TangentialSolver {
     /// The start of a step that continues the last one in the same direction: the last
@@ -25,6 +33,22 @@ impl TangentialSolver {
         };
         self.extrapolate(&history, normal, increment, state, rho);
         self.history = Some(history);
+    }
+
+    /// The memory the next step starts from: a step tried and undone (a trial depth of
+    /// normal-force control) puts it back with [`put_back_memory`](Self::put_back_memory),
+    /// so that the step it keeps starts as it would have without the trials.
+    pub(crate) fn memory(&self) -> StepMemory {
+        StepMemory {
+            history: self.history.clone(),
+            force_stiffness: self.force_stiffness,
+        }
+    }
+
+    /// Puts back a [`memory`](Self::memory).
+    pub(crate) fn put_back_memory(&mut self, memory: &StepMemory) {
+        self.history.clone_from(&memory.history);
+        self.force_stiffness = memory.force_stiffness;
     }
 
     /// [`predict`](Self::predict) from the last step's tractions `before` and increment.
