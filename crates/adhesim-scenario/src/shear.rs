@@ -97,7 +97,7 @@ impl ScenarioFile {
         let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
         let mode_mixity = mode_mixity(friction, gamma0)?;
-        let coupled = coupled(friction, mode_mixity)?;
+        let coupled = coupled(friction);
         if let Some(layer) = &layer {
             layer_shear(layer)?;
         }

@@ -60,22 +60,9 @@ pub(crate) fn mixity_keys(section: &FrictionSection) -> impl Iterator<Item = (&'
     .filter_map(|(key, value)| value.map(|value| (key, value)))
 }
 
-/// `friction.coupling = "full"` (the coupled operator of a half-space or a layer), with
-/// what it does not combine with yet refused by name.
-pub(super) fn coupled(section: &FrictionSection, mode_mixity: ModeMixity) -> Result<bool> {
-    if section.coupling != Some(CouplingName::Full) {
-        return Ok(false);
-    }
-    let refuse = |requirement: &str, message: &str| -> Result<bool> {
-        Err(ScenarioError::invalid_as("friction.coupling", "\"full\"", requirement, message.to_string()).into())
-    };
-    if mode_mixity.weakens() {
-        return refuse(
-            "\"none\" with friction.mode_mixity > 0",
-            "friction.coupling = \"full\" is not combined with a shear-weakened edge (friction.mode_mixity > 0) yet: use one of them",
-        );
-    }
-    Ok(true)
+/// `friction.coupling = "full"`: the coupled operator of a half-space or a layer.
+pub(super) fn coupled(section: &FrictionSection) -> bool {
+    section.coupling == Some(CouplingName::Full)
 }
 
 /// `protocol.depth` and `protocol.press_depth` in length units. Without a press the held

@@ -2,7 +2,7 @@
 //! docs/tangential.md): the bonded punch against Mossakovskii's closed form, and the
 //! combinations refused by name. A module of the translation tests.
 
-use super::common::{assert_fails_with, column_values, curve_with_sets, repo, run_with_sets};
+use super::common::{assert_fails_with, column, column_values, curve_with_sets, repo, run_with_sets};
 
 /// The normal force at the end of the approach of scenarios/friction/bonded_punch.toml
 /// with the overrides `sets`.
@@ -46,21 +46,15 @@ fn bonded_punch_is_stiffer_by_mossakovskiis_factor() {
 }
 
 #[test]
-fn coupling_refuses_what_it_does_not_combine_with() {
-    // Each refusal names friction.coupling and what it meets.
+fn coupling_is_refused_under_a_translation() {
+    // The refusal names friction.coupling and the protocol it is offered under.
     let dir = tempfile::tempdir().unwrap();
-    for (scenario, meets) in [
-        ("friction/adhesive_shear.toml", "friction.mode_mixity"),
-        ("friction/slide_shear_strength.toml", "protocol.kind = \"shear\" only"),
-    ] {
-        let out = dir.path().join(scenario.replace(['/', '.'], "_"));
-        let output = run_with_sets(
-            &repo().join("scenarios").join(scenario),
-            &out,
-            &["friction.coupling=\"full\""],
-        );
-        assert_fails_with(&output, &["friction.coupling", meets]);
-    }
+    let output = run_with_sets(
+        &repo().join("scenarios/friction/slide_shear_strength.toml"),
+        &dir.path().join("slide"),
+        &["friction.coupling=\"full\""],
+    );
+    assert_fails_with(&output, &["friction.coupling", "protocol.kind = \"shear\" only"]);
 }
 
 #[test]
@@ -185,4 +179,42 @@ fn a_held_normal_force_with_the_coupled_operator_keeps_the_step_its_depth_gives(
             "{name}: {at_held_force} at the held force, {up_the_incline} up the incline"
         );
     }
+}
+
+#[test]
+fn a_shear_weakened_edge_with_the_coupled_operator_at_one_half_is_goodmans() {
+    // scenarios/friction/adhesive_shear.toml (the adhesive sphere glued and sheared with
+    // mode mixity 1, a0 = 36Δ, ν = 1/2; Savkoor–Briggs within its tolerances) with the
+    // coupled operator: at ν = 1/2 on a half-space its coupling terms vanish, so the
+    // coupled rounds, which weaken the edge after each tangential solve, must give the
+    // weakened Goodman step: the same contact, front, rear, stick and slip counts at every
+    // step, the tangential force to 1e-9 of its largest (measured 1.2e-11) and the normal
+    // force to 1e-6 of its largest (measured 2.2e-8: the normal solves' tolerance, reached
+    // from other starting points, since a coupled round solves the normal problem first).
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/friction/adhesive_shear.toml");
+    let (header, goodman) = curve_with_sets(&scenario, &dir.path().join("goodman"), &[]);
+    let (header_coupled, coupled) =
+        curve_with_sets(&scenario, &dir.path().join("coupled"), &["friction.coupling=\"full\""]);
+    assert_eq!(goodman.len(), coupled.len());
+    for name in ["n_contact", "area_front", "area_rear", "n_stick", "n_slip"] {
+        assert_eq!(
+            column(&header, &goodman, name),
+            column(&header_coupled, &coupled, name),
+            "{name}"
+        );
+    }
+    for (name, tolerance) in [("force_tangential", 1e-9), ("force_normal", 1e-6)] {
+        let (a, b) = (
+            column_values(&header, &goodman, name),
+            column_values(&header_coupled, &coupled, name),
+        );
+        let largest = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+            assert!((a - b).abs() <= tolerance * largest, "row {k}: {name} {a} vs {b}");
+        }
+    }
+    // The edge was weakened: the contact lost area over the shift.
+    let contact = column_values(&header_coupled, &coupled, "n_contact");
+    assert!(contact[contact.len() - 1] < 0.95 * contact[19], "{contact:?}");
 }

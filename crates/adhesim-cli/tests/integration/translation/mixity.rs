@@ -68,14 +68,6 @@ fn mode_mixity_sides_name_their_keys() {
         ]),
         &["friction.mode_mixity_rear", "adhesion.work_of_adhesion"],
     );
-    assert_fails_with(
-        &run(&[
-            "friction.mode_mixity=0",
-            "friction.mode_mixity_front=1",
-            "friction.coupling=\"full\"",
-        ]),
-        &["friction.coupling", "mode_mixity"],
-    );
 }
 
 #[test]

@@ -2,13 +2,13 @@
 //! layer): the
 //! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
 
-use super::edge::{add_normal, add_tangential, NormalSide, RoundsStep};
+use super::edge::{add_normal, add_tangential, NormalSide, RoundsStep, Weakening};
 use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
 use crate::elastic::{CouplingOperator, ShearBody};
 use crate::grid::Grid;
-use crate::protocol::ProtocolError;
-use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
+use crate::protocol::{NormalSolver, ProtocolError};
+use crate::solver::{AdhesiveSolver, ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
 
 /// The rounds stop when the normal displacement of the shear tractions, K_zt q, differs
 /// from the lift the normal step saw by at most this share of its largest value (and the
@@ -46,6 +46,8 @@ pub(super) struct Coupling {
     /// once the window has moved).
     warm: Option<[Vec<f64>; 2]>,
     window_state: ContactState,
+    /// The edge weakened by the shear it carries (a mode mixity above 0), or None.
+    weakening: Option<Weakening>,
     /// The fields a step carries into the next, kept at a step's start for the trials of
     /// normal-force control ([`keep`](Self::keep)).
     kept: Carried,
@@ -81,8 +83,24 @@ impl Coupling {
             saved: TangentialState::new(0),
             warm: None,
             window_state: ContactState::new(grid),
+            weakening: None,
             kept: Carried::default(),
         })
+    }
+
+    /// Weakens the adhesive edge by the shear it carries in every round (docs/physics.md
+    /// §8.5): after each tangential solve, σ_c of each contact element is lowered by its
+    /// traction (never raised within the step), and the next round's normal step detaches
+    /// with it.
+    pub(super) fn weaken_edge(&mut self, weakening: Weakening) {
+        self.weakening = Some(weakening);
+    }
+
+    /// Gives the solver its unweakened σ_c back.
+    pub(super) fn finish(&self, solver: &mut NormalSolver) {
+        if let (Some(weakening), Some(adhesive)) = (&self.weakening, solver.as_adhesive_mut()) {
+            weakening.restore(adhesive);
+        }
     }
 
     /// Keeps the fields this step will leave for the next, as they are at its start: a
@@ -132,6 +150,11 @@ impl Coupling {
         for c in 0..2 {
             self.start_shift[c].copy_from_slice(&self.pressure_shift[c]);
         }
+        if let Some(weakening) = &mut self.weakening {
+            // Each step starts from the unweakened σ_c, as a weakened edge's does.
+            weakening.begin();
+            weakening.apply(adhesive(normal.solver)?);
+        }
         let mut before = normal.state.contact.clone();
         // The contact set two rounds back: a set that returns to it alternates.
         let mut two_back = before.clone();
@@ -172,7 +195,16 @@ impl Coupling {
             self.warm = Some(room.state.traction.clone());
             let change = self.residual_of(room);
             total.tangential.transform_pairs += 2;
-            if change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0) && normal.state.contact == before {
+            // A σ_c lowered by this round's tractions: the normal step must see it.
+            let lowered = match &mut self.weakening {
+                Some(weakening) => {
+                    weakening.weaken(&room.window, &self.window_state.contact, &room.state);
+                    weakening.apply(adhesive(normal.solver)?)
+                }
+                None => false,
+            };
+            let settled = change <= COUPLING_TOLERANCE && (rounds > 1 || change == 0.0);
+            if settled && !lowered && normal.state.contact == before {
                 let drive = target.drive(&tangential);
                 let increment = [0, 1].map(|c| drive[c] - self.saved.drive[c]);
                 friction.remember_step(&self.saved.traction, increment);
@@ -287,4 +319,11 @@ impl Coupling {
             change
         }
     }
+}
+
+/// The JKR-type solver a weakened edge needs.
+fn adhesive(solver: &mut NormalSolver) -> Result<&mut AdhesiveSolver, ProtocolError> {
+    solver.as_adhesive_mut().ok_or_else(|| {
+        ProtocolError::InvalidParameter("a shear-weakened edge needs the JKR-type adhesive solver".into())
+    })
 }

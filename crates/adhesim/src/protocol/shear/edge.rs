@@ -77,14 +77,73 @@ pub(super) struct RoundsStep {
     pub rounds: usize,
 }
 
-/// The shear-weakened detachment rule across the shift steps of a run.
-pub(super) struct EdgeWeakening {
+/// σ_c of the contact elements lowered by the shear they carry, within a step (never
+/// raised there), from the unweakened σ_c at each step's start.
+pub(super) struct Weakening {
     mode_mixity: ModeMixity,
     energy_ratio: f64,
     /// σ_c per element without shear.
     base: Vec<f64>,
     /// σ_c,eff per element in the current step.
     weakened: Vec<f64>,
+}
+
+impl Weakening {
+    pub(super) fn new(solver: &AdhesiveSolver, material: ShearMaterial, mode_mixity: ModeMixity) -> Self {
+        let base = solver.critical_stresses().to_vec();
+        Self {
+            mode_mixity,
+            energy_ratio: element_energy_ratio(material),
+            weakened: base.clone(),
+            base,
+        }
+    }
+
+    /// A step starts from the unweakened σ_c.
+    pub(super) fn begin(&mut self) {
+        self.weakened.copy_from_slice(&self.base);
+    }
+
+    /// Lowers σ_c,eff of each element in `contact` (on the window) by its current shear
+    /// traction in `state`.
+    pub(super) fn weaken(&mut self, window: &ContactWindow, contact: &[bool], state: &TangentialState) {
+        for (w, k) in window.elements() {
+            if !contact[w] {
+                continue;
+            }
+            let traction = [state.traction[0][w], state.traction[1][w]];
+            let sigma = if self.mode_mixity.is_uniform() {
+                let magnitude = traction[0].hypot(traction[1]);
+                shear_weakened_critical_stress(self.base[k], magnitude, self.mode_mixity.along, self.energy_ratio)
+            } else {
+                let normal = edge_normal(&window.grid, contact, w);
+                let counted = self.mode_mixity.counted_square(traction, normal);
+                (self.base[k] * self.base[k] - self.energy_ratio * counted)
+                    .max(0.0)
+                    .sqrt()
+            };
+            self.weakened[k] = self.weakened[k].min(sigma);
+        }
+    }
+
+    /// Gives `solver` the step's σ_c,eff; false where it has them already.
+    pub(super) fn apply(&self, solver: &mut AdhesiveSolver) -> bool {
+        if solver.critical_stresses() == self.weakened.as_slice() {
+            return false;
+        }
+        solver.set_critical_stresses(&self.weakened);
+        true
+    }
+
+    /// Gives the solver its unweakened σ_c back.
+    pub(super) fn restore(&self, solver: &mut AdhesiveSolver) {
+        solver.set_critical_stresses(&self.base);
+    }
+}
+
+/// The shear-weakened detachment rule across the shift steps of a run.
+pub(super) struct EdgeWeakening {
+    weakening: Weakening,
     /// The tangential state at the end of the last step: each round restarts from it.
     saved: TangentialState,
     /// The normal state on the window.
@@ -98,12 +157,8 @@ impl EdgeWeakening {
         mode_mixity: ModeMixity,
         window: &ContactWindow,
     ) -> Self {
-        let base = solver.critical_stresses().to_vec();
         Self {
-            mode_mixity,
-            energy_ratio: element_energy_ratio(material),
-            weakened: base.clone(),
-            base,
+            weakening: Weakening::new(solver, material, mode_mixity),
             saved: TangentialState::new(window.grid.len()),
             window_state: ContactState::new(&window.grid),
         }
@@ -127,7 +182,7 @@ impl EdgeWeakening {
         let Some(solver) = normal.solver.as_adhesive_mut() else {
             unreachable!("the shear checks for the adhesive solver before its shift")
         };
-        self.weakened.copy_from_slice(&self.base);
+        self.weakening.begin();
         let mut total = RoundsStep {
             tangential: TangentialReport::default(),
             normal: StepReport::default(),
@@ -164,8 +219,9 @@ impl EdgeWeakening {
                     source,
                 })?;
             add_tangential(&mut total.tangential, report);
-            self.weaken(&room.window, &room.state);
-            solver.set_critical_stresses(&self.weakened);
+            self.weakening
+                .weaken(&room.window, &self.window_state.contact, &room.state);
+            solver.set_critical_stresses(&self.weakening.weakened);
             before.copy_from_slice(&normal.state.contact);
             let report = solver
                 .step(normal.operator, normal.heights, normal.depth, normal.state)
@@ -181,30 +237,9 @@ impl EdgeWeakening {
         }
     }
 
-    /// σ_c,eff of each contact element from its current shear traction.
-    fn weaken(&mut self, window: &ContactWindow, state: &TangentialState) {
-        for (w, k) in window.elements() {
-            if !self.window_state.contact[w] {
-                continue;
-            }
-            let traction = [state.traction[0][w], state.traction[1][w]];
-            let sigma = if self.mode_mixity.is_uniform() {
-                let magnitude = traction[0].hypot(traction[1]);
-                shear_weakened_critical_stress(self.base[k], magnitude, self.mode_mixity.along, self.energy_ratio)
-            } else {
-                let normal = edge_normal(&window.grid, &self.window_state.contact, w);
-                let counted = self.mode_mixity.counted_square(traction, normal);
-                (self.base[k] * self.base[k] - self.energy_ratio * counted)
-                    .max(0.0)
-                    .sqrt()
-            };
-            self.weakened[k] = self.weakened[k].min(sigma);
-        }
-    }
-
     /// Gives the solver its unweakened σ_c back.
     pub(super) fn restore(&self, solver: &mut AdhesiveSolver) {
-        solver.set_critical_stresses(&self.base);
+        self.weakening.restore(solver);
     }
 }
 

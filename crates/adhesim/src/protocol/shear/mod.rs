@@ -198,6 +198,7 @@ impl Shear {
             Ok,
         )?;
         stepper.hold_normal_force(self.hold_normal_force)?;
+        stepper.weaken_coupled_edge(self.mode_mixity, body.material, solver)?;
         let mut fields = ShearFields::new(grid.len());
         let unit = [self.direction.cos(), self.direction.sin()];
         let slope = self.incline.tan();

@@ -4,10 +4,11 @@
 //! contact's room.
 
 use super::coupled::Coupling;
-use super::edge::{EdgeWeakening, NormalSide};
+use super::edge::{EdgeWeakening, NormalSide, Weakening};
 use super::held_force::{HeldForce, TrialStep};
 use super::mixity::ModeMixity;
 use super::window::TangentialRoom;
+use crate::elastic::cerruti::ShearMaterial;
 use crate::elastic::ShearBody;
 use crate::grid::Grid;
 use crate::protocol::{NormalSolver, ProtocolError};
@@ -117,11 +118,6 @@ impl ShiftStepper {
     ) -> Result<Self, ProtocolError> {
         let material = body.material;
         if coupled {
-            if mode_mixity.weakens() {
-                return Err(ProtocolError::InvalidParameter(format!(
-                    "the coupled operator is not combined with a shear-weakened edge yet (mode_mixity = {mode_mixity:?}): use mode_mixity = 0 or coupling = \"none\""
-                )));
-            }
             // The room follows the contact as it grows from nothing in the approach.
             let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, body)?;
             return Ok(Self {
@@ -141,11 +137,7 @@ impl ShiftStepper {
                 mode_mixity,
                 &room.window,
             ))),
-            (true, None) => {
-                return Err(ProtocolError::InvalidParameter(format!(
-                    "mode_mixity ({mode_mixity:?}) weakens an adhesive edge: it needs the JKR-type adhesive solver"
-                )))
-            }
+            (true, None) => return Err(needs_adhesion(mode_mixity)),
             (false, _) if inclined => NormalMode::Moving,
             (false, _) => NormalMode::Held,
         };
@@ -252,10 +244,34 @@ impl ShiftStepper {
         }
     }
 
+    /// Weakens the adhesive edge of a coupled shift by the shear it carries (`mode_mixity`
+    /// above 0; else nothing), from the σ_c the approach ends with: the shift's steps, not
+    /// the approach's, weaken the edge, as without the coupling.
+    pub(super) fn weaken_coupled_edge(
+        &mut self,
+        mode_mixity: ModeMixity,
+        material: ShearMaterial,
+        solver: &mut NormalSolver,
+    ) -> Result<(), ProtocolError> {
+        let NormalMode::Coupled(coupling) = &mut self.mode else {
+            return Ok(());
+        };
+        if !mode_mixity.weakens() {
+            return Ok(());
+        }
+        let Some(adhesive) = solver.as_adhesive_mut() else {
+            return Err(needs_adhesion(mode_mixity));
+        };
+        coupling.weaken_edge(Weakening::new(adhesive, material, mode_mixity));
+        Ok(())
+    }
+
     /// Gives the normal solver back its unweakened detachment rule.
     pub(super) fn finish(self, solver: &mut NormalSolver) {
-        if let (NormalMode::Weakened(edge), Some(adhesive)) = (self.mode, solver.as_adhesive_mut()) {
-            edge.restore(adhesive);
+        match (self.mode, solver.as_adhesive_mut()) {
+            (NormalMode::Weakened(edge), Some(adhesive)) => edge.restore(adhesive),
+            (NormalMode::Coupled(coupling), _) => coupling.finish(solver),
+            _ => {}
         }
     }
 }
@@ -267,4 +283,11 @@ fn held(force: f64) -> StepReport {
         force_before_change: force,
         ..StepReport::default()
     }
+}
+
+/// The refusal of a mode mixity without the JKR-type adhesive solver.
+fn needs_adhesion(mode_mixity: ModeMixity) -> ProtocolError {
+    ProtocolError::InvalidParameter(format!(
+        "mode_mixity ({mode_mixity:?}) weakens an adhesive edge: it needs the JKR-type adhesive solver"
+    ))
 }
