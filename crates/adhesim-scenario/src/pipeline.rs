@@ -120,6 +120,8 @@ pub struct Counters {
     pub operator_applications: u64,
     /// Of those, the pairs of the adhesive CG on contact windows.
     pub window_applications: u64,
+    /// The CG preconditioner's applications (not in `operator_applications`).
+    pub preconditioner_applications: u64,
     /// Contact on the border of a free grid at some step.
     pub touches_border: bool,
 }
@@ -134,6 +136,7 @@ impl ProtocolReport {
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
                 window_applications: s.window_applications,
+                preconditioner_applications: s.preconditioner_applications,
                 touches_border: s.touches_border,
             },
             Self::Translation(s) => Counters {
@@ -142,6 +145,7 @@ impl ProtocolReport {
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
                 window_applications: s.window_applications,
+                preconditioner_applications: s.preconditioner_applications,
                 touches_border: s.touches_border,
             },
             Self::Shear(s) => Counters {
@@ -150,6 +154,7 @@ impl ProtocolReport {
                 cg_iterations: s.cg_iterations,
                 operator_applications: s.operator_applications,
                 window_applications: s.window_applications,
+                preconditioner_applications: s.preconditioner_applications,
                 touches_border: s.touches_border,
             },
         }

@@ -22,6 +22,9 @@ pub struct Performance {
     /// Of those, the adhesive CG's pairs on contact windows (transforms of twice a
     /// window's side instead of twice the grid's; docs/physics.md §3.2).
     pub window_fft_pairs: u64,
+    /// The CG preconditioner's applications, not in `fft_pairs`: unpadded transform pairs
+    /// of the solved grid's own size (the whole grid, a window or a nested level).
+    pub preconditioner_fft_pairs: u64,
     pub solves: usize,
     pub steps: usize,
     pub threads: usize,
@@ -57,6 +60,7 @@ impl Performance {
             cg_iterations: solver_iterations,
             operator_applications: fft_pairs,
             window_applications: window_fft_pairs,
+            preconditioner_applications: preconditioner_fft_pairs,
             ..
         } = *counters;
         let per = |value: f64, count: usize| if count > 0 { value / count as f64 } else { 0.0 };
@@ -65,6 +69,7 @@ impl Performance {
             solver_iterations,
             fft_pairs,
             window_fft_pairs,
+            preconditioner_fft_pairs,
             solves,
             steps,
             threads: rayon::current_num_threads(),

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use std::process::Output;
 
 use crate::common;
-use common::{adhesim, assert_fails_with, column_values, read_csv, read_json, scenarios_dir, stderr, write};
+use common::{
+    adhesim, assert_fails_with, column_values, read_csv, read_json, run_with_sets, scenarios_dir, stderr, write,
+};
 
 const HERTZ: &str = r#"
 [grid]
@@ -247,6 +249,33 @@ fn hertz_run_writes_the_contract() {
     for name in ["largest_contact.png", "max_depth.png", "pull_off.png"] {
         assert!(out.join("snapshots").join(name).exists(), "snapshot {name}");
     }
+}
+
+#[test]
+fn the_preconditioners_transforms_are_counted_apart() {
+    // performance.preconditioner_fft_pairs: the CG applies its spectral preconditioner
+    // before its first iteration and after every iteration but the last, once per
+    // iteration. The JKR-type solver's CG iterations are all preconditioned, so the two
+    // counts are equal (Fig. 1 at 64²); the nested non-adhesive solver's CG iterations count
+    // its fine level and its windows only, while its coarse levels apply the preconditioner
+    // too, so Hertz's count exceeds them.
+    let dir = tempfile::tempdir().unwrap();
+    let performance = |scenario: &str| {
+        let out = dir.path().join(scenario.trim_end_matches(".toml"));
+        let output = run_with_sets(&scenarios_dir().join(scenario), &out, &["grid.n=64"]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let summary = read_json(&out.join("summary.json"));
+        let count = |key: &str| summary["performance"][key].as_u64().unwrap();
+        (count("preconditioner_fft_pairs"), count("solver_iterations"))
+    };
+    let (preconditioner, iterations) = performance("fig1.toml");
+    assert!(iterations > 0);
+    assert_eq!(preconditioner, iterations);
+    let (preconditioner, iterations) = performance("hertz.toml");
+    assert!(
+        preconditioner > iterations && iterations > 0,
+        "{preconditioner} vs {iterations}"
+    );
 }
 
 #[test]

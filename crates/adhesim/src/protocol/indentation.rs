@@ -49,6 +49,10 @@ pub struct ProtocolSummary {
     /// Of those, the adhesive CG's applications on contact windows.
     #[cfg_attr(feature = "serde", serde(default))]
     pub window_applications: u64,
+    /// The CG preconditioner's applications (FFT pairs of the solved grid's own size; not
+    /// in `operator_applications`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preconditioner_applications: u64,
     /// Largest contact (elements) and the step where it occurred.
     pub largest_contact: (usize, usize),
     /// Some step had contact on the border of a free grid.
@@ -207,6 +211,7 @@ impl IndentPulloff {
         summary.cg_iterations += report.cg_iterations;
         summary.operator_applications += report.operator_applications;
         summary.window_applications += report.window_applications;
+        summary.preconditioner_applications += report.preconditioner_applications;
         summary.jumps += record.jumped as usize;
         summary.touches_border |= record.touches_border;
         if -record.force_normal > summary.max_adhesive_force {

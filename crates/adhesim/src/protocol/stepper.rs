@@ -111,6 +111,7 @@ fn non_adhesive_step(
         operator_applications: solve.operator_applications,
         // The non-adhesive solvers' windows are counted in their applications only.
         window_applications: 0,
+        preconditioner_applications: solve.preconditioner_applications,
         attachment_rounds: 0,
         attached,
         detached,

@@ -73,6 +73,10 @@ pub struct TranslationSummary {
     /// Of those, the adhesive CG's applications on contact windows.
     #[cfg_attr(feature = "serde", serde(default))]
     pub window_applications: u64,
+    /// The CG preconditioner's applications (FFT pairs of the solved grid's own size; not
+    /// in `operator_applications`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preconditioner_applications: u64,
     /// Some step had contact on the border of a free grid.
     pub touches_border: bool,
     /// Energy dissipated by friction at the interface over the run (0 without).
@@ -252,6 +256,7 @@ impl Translation {
         summary.cg_iterations += report.cg_iterations;
         summary.operator_applications += report.operator_applications;
         summary.window_applications += report.window_applications;
+        summary.preconditioner_applications += report.preconditioner_applications;
         summary.jumps += record.jumped as usize;
         summary.touches_border |= record.touches_border;
         if record.phase != Some(Phase::Approach) && record.step < forward_end {

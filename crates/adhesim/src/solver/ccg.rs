@@ -474,6 +474,8 @@ impl Ccg {
             force: state.force(grid.element_area()),
             depth,
             operator_applications: operator.applications() - applications_before,
+            // Polonsky–Keer's CCG runs unpreconditioned.
+            preconditioner_applications: 0,
         }
     }
 }

@@ -66,6 +66,9 @@ pub struct SolveReport {
     pub depth: f64,
     /// Elastic operator applications (FFT pairs) spent.
     pub operator_applications: u64,
+    /// Applications of the CG's spectral preconditioner (FFT pairs of the solved grid's
+    /// own size; not in `operator_applications`).
+    pub preconditioner_applications: u64,
 }
 
 /// Why a solve failed.

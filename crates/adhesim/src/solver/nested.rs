@@ -87,6 +87,9 @@ pub struct NestedActiveSet {
     /// The fine level's contact window (see [`super::contact_window`]).
     fine_window: Option<WindowLevel>,
     window_applications: u64,
+    /// Applications of the CG's preconditioner (all levels and windows) during the last
+    /// solve.
+    preconditioner_applications: u64,
     material: ElasticMaterial,
     /// Depth of the last successful solve (decides whether a warm start is an unload).
     last_depth: Option<f64>,
@@ -122,6 +125,7 @@ impl NestedActiveSet {
             coarse_applications: 0,
             fine_window: None,
             window_applications: 0,
+            preconditioner_applications: 0,
             material,
             last_depth: None,
         }
@@ -202,6 +206,7 @@ impl NestedActiveSet {
                 tolerance,
             )?;
             self.window_applications += window.applications;
+            self.preconditioner_applications += window.preconditioner_applications;
             // A level without contact has nothing to solve (nothing penetrates: the
             // coarsest level's cold start holds every penetrated element).
             if window.settled || !level.state.contact.iter().any(|&c| c) {
@@ -213,7 +218,7 @@ impl NestedActiveSet {
                     Workspace::with_target(&level.grid, self.material.contact_modulus()),
                 )
             });
-            let before = operator.applications();
+            let before = (operator.applications(), workspace.preconditioner_applications);
             solve_level(
                 operator,
                 &level.heights,
@@ -223,7 +228,8 @@ impl NestedActiveSet {
                 &self.params,
                 tolerance,
             )?;
-            self.coarse_applications += operator.applications() - before;
+            self.coarse_applications += operator.applications() - before.0;
+            self.preconditioner_applications += workspace.preconditioner_applications - before.1;
         }
         Ok(())
     }
@@ -271,6 +277,7 @@ impl NestedActiveSet {
         }
         self.coarse_applications = 0;
         self.window_applications = 0;
+        self.preconditioner_applications = 0;
         let warm = self.keep_warm_start(depth, state);
         self.last_depth = None;
         if !warm && !self.coarse.is_empty() {
@@ -289,7 +296,9 @@ impl NestedActiveSet {
             self.params.relative_tolerance,
         )?;
         self.window_applications += window.applications;
+        self.preconditioner_applications += window.preconditioner_applications;
         let before = operator.applications();
+        let preconditioned_before = self.fine.preconditioner_applications;
         let (iterations, residual) = solve_level(
             operator,
             heights,
@@ -299,6 +308,7 @@ impl NestedActiveSet {
             &self.params,
             self.params.relative_tolerance,
         )?;
+        self.preconditioner_applications += self.fine.preconditioner_applications - preconditioned_before;
         self.last_depth = Some(depth);
         let area = self.grid.element_area();
         let contact_elements = state.contact.iter().filter(|&&c| c).count();
@@ -310,6 +320,7 @@ impl NestedActiveSet {
             force: state.force(area),
             depth,
             operator_applications: operator.applications() - before + window.applications,
+            preconditioner_applications: self.preconditioner_applications,
         })
     }
 }
@@ -320,6 +331,8 @@ const MAX_WINDOW_MOVES: usize = 4;
 /// What a window pre-solve did.
 struct WindowWork {
     applications: u64,
+    /// The CG preconditioner's applications on the window.
+    preconditioner_applications: u64,
     iterations: usize,
     /// The contact settled inside the window (it did not reach an open edge).
     settled: bool,
@@ -340,6 +353,7 @@ fn solve_in_window(
 ) -> Result<WindowWork, SolveError> {
     let mut work = WindowWork {
         applications: 0,
+        preconditioner_applications: 0,
         iterations: 0,
         settled: false,
     };
@@ -348,7 +362,10 @@ fn solve_in_window(
         let Some(level) = WindowLevel::enter(cache, grid, material, heights, state) else {
             break;
         };
-        let before = level.operator.applications();
+        let before = (
+            level.operator.applications(),
+            level.workspace.preconditioner_applications,
+        );
         let result = solve_level(
             &mut level.operator,
             &level.heights,
@@ -358,7 +375,8 @@ fn solve_in_window(
             params,
             relative_tolerance,
         );
-        work.applications += level.operator.applications() - before;
+        work.applications += level.operator.applications() - before.0;
+        work.preconditioner_applications += level.workspace.preconditioner_applications - before.1;
         work.iterations += result?.0;
         work.settled = !level.leave((grid.nx(), grid.ny()), state);
         if work.settled {
@@ -504,7 +522,7 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
     let row_length = operator.grid().nx();
     let (buffers, mut preconditioner) = work.buffers();
     let mut applications = 0;
-    masked_pcg(
+    let solved = masked_pcg(
         operator,
         &mut state.pressure,
         &mut state.displacement,
@@ -524,7 +542,9 @@ fn conjugate_gradients<O: ElasticOperator + ?Sized>(
             norm.is_finite().then_some(norm <= goal)
         },
         max_iterations,
-    )
-    .map(|info| info.iterations)
-    .map_err(|error| error.into_solve_error(target_norm, relative_tolerance))
+    );
+    work.preconditioner_applications += applications;
+    solved
+        .map(|info| info.iterations)
+        .map_err(|error| error.into_solve_error(target_norm, relative_tolerance))
 }

@@ -19,6 +19,8 @@ pub(super) struct Workspace {
     pub(super) mask: Vec<f64>,
     /// None where the CG runs unpreconditioned (`AdhesiveParams::preconditioned`).
     pub(super) preconditioner: Option<SpectralPreconditioner>,
+    /// Applications of the preconditioner by the nested levels' CG on this workspace.
+    pub(super) preconditioner_applications: u64,
 }
 
 impl Workspace {
@@ -34,6 +36,7 @@ impl Workspace {
             response: vec![0.0; len],
             mask: vec![0.0; len],
             preconditioner: preconditioned.then(|| SpectralPreconditioner::new(grid, contact_modulus)),
+            preconditioner_applications: 0,
         }
     }
 

@@ -259,6 +259,8 @@ pub(super) fn add_normal(total: &mut StepReport, round: StepReport) {
     sum.solves += total.solves;
     sum.cg_iterations += total.cg_iterations;
     sum.operator_applications += total.operator_applications;
+    sum.window_applications += total.window_applications;
+    sum.preconditioner_applications += total.preconditioner_applications;
     sum.attachment_rounds += total.attachment_rounds;
     sum.attached += total.attached;
     sum.detached += total.detached;

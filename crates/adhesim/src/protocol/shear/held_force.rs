@@ -222,6 +222,8 @@ struct Spent {
     solves: usize,
     cg_iterations: usize,
     operator_applications: u64,
+    window_applications: u64,
+    preconditioner_applications: u64,
     tangential_rounds: usize,
     tangential_iterations: usize,
     transform_pairs: u64,
@@ -234,6 +236,8 @@ impl Spent {
         self.solves += trial.normal.solves;
         self.cg_iterations += trial.normal.cg_iterations;
         self.operator_applications += trial.normal.operator_applications;
+        self.window_applications += trial.normal.window_applications;
+        self.preconditioner_applications += trial.normal.preconditioner_applications;
         self.tangential_rounds += trial.tangential.rounds;
         self.tangential_iterations += trial.tangential.cg_iterations;
         self.transform_pairs += trial.tangential.transform_pairs;
@@ -245,6 +249,8 @@ impl Spent {
         step.normal.solves += self.solves;
         step.normal.cg_iterations += self.cg_iterations;
         step.normal.operator_applications += self.operator_applications;
+        step.normal.window_applications += self.window_applications;
+        step.normal.preconditioner_applications += self.preconditioner_applications;
         step.tangential.rounds += self.tangential_rounds;
         step.tangential.cg_iterations += self.tangential_iterations;
         step.tangential.transform_pairs += self.transform_pairs;

@@ -122,6 +122,10 @@ pub struct ShearSummary {
     /// FFT pairs of the adhesive CG on contact windows.
     #[cfg_attr(feature = "serde", serde(default))]
     pub window_applications: u64,
+    /// The CG preconditioner's applications (FFT pairs of the solved grid's own size; not
+    /// in `operator_applications`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preconditioner_applications: u64,
     /// Active-set rounds of the tangential solves.
     pub tangential_rounds: usize,
     /// Largest tangential force along the shift during the forward stroke (the static
@@ -443,6 +447,7 @@ fn add_normal_counters(summary: &mut ShearSummary, report: &StepReport) {
     summary.cg_iterations += report.cg_iterations;
     summary.operator_applications += report.operator_applications;
     summary.window_applications += report.window_applications;
+    summary.preconditioner_applications += report.preconditioner_applications;
 }
 
 /// A shift step's normal and tangential counters into the totals, and the tangential ones

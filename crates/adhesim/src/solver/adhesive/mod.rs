@@ -362,7 +362,11 @@ impl AdhesiveSolver {
                 got: heights.len(),
             });
         }
-        let applications_before = (operator.applications(), self.window_applications);
+        let applications_before = (
+            operator.applications(),
+            self.window_applications,
+            self.preconditioner_applications,
+        );
         let mut round = Round {
             report: StepReport::default(),
             retry_high_water: self.begin_step(heights, depth, state),
@@ -506,7 +510,7 @@ impl AdhesiveSolver {
         depth: f64,
         state: &ContactState,
         mut report: StepReport,
-        applications_before: (u64, u64),
+        applications_before: (u64, u64, u64),
     ) -> StepReport {
         (report.attached, report.detached) = state.changes_from(&self.start_contact);
         if self.history.len() == 2 {
@@ -525,6 +529,7 @@ impl AdhesiveSolver {
         // A window's pairs are transforms of twice its side (counted alike, as the nested
         // solver counts its windows').
         report.window_applications = self.window_applications - applications_before.1;
+        report.preconditioner_applications = self.preconditioner_applications - applications_before.2;
         report.operator_applications = operator.applications() - applications_before.0 + report.window_applications;
         report
     }

@@ -224,6 +224,11 @@ pub struct StepReport {
     /// DC-FFT pairs of twice a window's side).
     #[cfg_attr(feature = "serde", serde(default))]
     pub window_applications: u64,
+    /// Applications of the CG's spectral preconditioner: FFT pairs of the solved grid's own
+    /// size (the whole grid, a window or a nested level), not counted in
+    /// `operator_applications`.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub preconditioner_applications: u64,
     /// Attachment rounds: how often the step attached candidates (a trial ring, penetrating
     /// elements, or both) and went on to solve; a growing front needs one per ring.
     pub attachment_rounds: usize,
