@@ -3,6 +3,7 @@
 //! normal and tangential problems solved in turn until they agree (docs/physics.md §8.1).
 
 use super::edge::{add_normal, add_tangential, NormalSide, RoundsStep, Weakening};
+use super::held_force::TrialStep;
 use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
 use crate::elastic::{CouplingOperator, ShearBody};
@@ -49,7 +50,7 @@ pub(super) struct Coupling {
     /// The edge weakened by the shear it carries (a mode mixity above 0), or None.
     weakening: Option<Weakening>,
     /// The fields a step carries into the next, kept at a step's start for the trials of
-    /// normal-force control ([`keep`](Self::keep)).
+    /// normal-force control ([`TrialStep::keep`]).
     kept: Carried,
 }
 
@@ -101,26 +102,6 @@ impl Coupling {
         if let (Some(weakening), Some(adhesive)) = (&self.weakening, solver.as_adhesive_mut()) {
             weakening.restore(adhesive);
         }
-    }
-
-    /// Keeps the fields this step will leave for the next, as they are at its start: a
-    /// trial of normal-force control that is not accepted puts them back
-    /// ([`put_back`](Self::put_back)).
-    pub(super) fn keep(&mut self) {
-        self.kept.lift.clone_from(&self.lift);
-        self.kept.relaxation = self.relaxation;
-        self.kept.pressure_shift.clone_from(&self.pressure_shift);
-        self.kept.window_shift.clone_from(&self.window_shift);
-    }
-
-    /// Puts back the fields [`keep`](Self::keep) kept. A room whose window a trial widened
-    /// comes back with the memory's displacement K q alone; the kept window's K_tz p has
-    /// another size then, so the next round adds the pressure's share back (`follow`).
-    pub(super) fn put_back(&mut self) {
-        self.lift.clone_from(&self.kept.lift);
-        self.relaxation = self.kept.relaxation;
-        self.pressure_shift.clone_from(&self.kept.pressure_shift);
-        self.window_shift.clone_from(&self.kept.window_shift);
     }
 
     /// One step to `target` at `normal.depth` (a block Gauss–Seidel of the coupled problem,
@@ -326,4 +307,36 @@ fn adhesive(solver: &mut NormalSolver) -> Result<&mut AdhesiveSolver, ProtocolEr
     solver.as_adhesive_mut().ok_or_else(|| {
         ProtocolError::InvalidParameter("a shear-weakened edge needs the JKR-type adhesive solver".into())
     })
+}
+
+/// The coupled step under normal-force control: its lift and the pressure's pull are what
+/// one step leaves the next, kept at the step's start and put back before each trial.
+impl TrialStep for Coupling {
+    fn keep(&mut self) {
+        self.kept.lift.clone_from(&self.lift);
+        self.kept.relaxation = self.relaxation;
+        self.kept.pressure_shift.clone_from(&self.pressure_shift);
+        self.kept.window_shift.clone_from(&self.window_shift);
+    }
+
+    /// A room whose window a trial widened comes back with the memory's displacement K q
+    /// alone; the kept window's K_tz p has another size then, so the next round adds the
+    /// pressure's share back (`follow`).
+    fn put_back(&mut self) {
+        self.lift.clone_from(&self.kept.lift);
+        self.relaxation = self.kept.relaxation;
+        self.pressure_shift.clone_from(&self.kept.pressure_shift);
+        self.window_shift.clone_from(&self.kept.window_shift);
+    }
+
+    fn run(
+        &mut self,
+        normal: NormalSide<'_>,
+        room: &mut TangentialRoom,
+        friction: &mut TangentialSolver,
+        target: ShiftTarget,
+        step: usize,
+    ) -> Result<RoundsStep, ProtocolError> {
+        self.step(normal, room, friction, target, step)
+    }
 }

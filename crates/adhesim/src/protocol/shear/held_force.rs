@@ -4,7 +4,6 @@
 //! experiments at constant load. The step is a weakened edge's rounds or the coupled
 //! operator's ([`TrialStep`]).
 
-use super::coupled::Coupling;
 use super::edge::{EdgeWeakening, NormalSide, RoundsStep};
 use super::shift::ShiftTarget;
 use super::window::TangentialRoom;
@@ -79,28 +78,6 @@ impl TrialStep for EdgeWeakening {
             ));
         };
         self.step(normal, room, friction, shift, step)
-    }
-}
-
-/// The coupled operator's step carries its lift and the pressure's pull.
-impl TrialStep for Coupling {
-    fn keep(&mut self) {
-        Coupling::keep(self);
-    }
-
-    fn put_back(&mut self) {
-        Coupling::put_back(self);
-    }
-
-    fn run(
-        &mut self,
-        normal: NormalSide<'_>,
-        room: &mut TangentialRoom,
-        friction: &mut TangentialSolver,
-        target: ShiftTarget,
-        step: usize,
-    ) -> Result<RoundsStep, ProtocolError> {
-        self.step(normal, room, friction, target, step)
     }
 }
 
