@@ -315,6 +315,24 @@ struct Residual {
 /// the grid or the set's rows: 16 rows of 512.
 pub(crate) const PARALLEL_CHUNK: usize = 1 << 13;
 
+/// `target.copy_from_slice(source)` on the pool: a full-grid copy made by one thread is
+/// a serial stretch the other threads wait out (a copy gives the same values for any split).
+pub(crate) fn copy_on_pool<T: Copy + Send + Sync>(target: &mut [T], source: &[T]) {
+    assert_eq!(target.len(), source.len(), "copy between fields of different sizes");
+    target
+        .par_chunks_mut(PARALLEL_CHUNK)
+        .zip(source.par_chunks(PARALLEL_CHUNK))
+        .for_each(|(target, source)| target.copy_from_slice(source));
+}
+
+/// How many elements of `flags` are set, counted on the pool (a count is exact in any order).
+pub(crate) fn count_on_pool(flags: &[bool]) -> usize {
+    flags
+        .par_chunks(PARALLEL_CHUNK)
+        .map(|chunk| chunk.iter().filter(|&&flag| flag).count())
+        .sum()
+}
+
 /// [`dot`] of two vectors whose products vanish outside `range`, with the bits of the dot
 /// over the whole vectors: the range is widened to whole lanes of four, so every nonzero
 /// product meets the same partial sum in the same order, and the skipped ones are exact

@@ -10,7 +10,7 @@ use crate::solver::certificate::{
     count_releases, gap_error_bound, gap_error_bound_of, largest_magnitude, pressure_error_bound,
     pressure_error_bound_of,
 };
-use crate::solver::{contact_span, ContactState, SolveError, PARALLEL_CHUNK};
+use crate::solver::{contact_span, copy_on_pool, count_on_pool, ContactState, SolveError, PARALLEL_CHUNK};
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -38,8 +38,7 @@ impl AdhesiveSolver {
         if self.params.attachment != Attachment::Trial {
             return StopRule::Releases;
         }
-        let bans_lifted =
-            self.params.retry_after_growth && state.contact.iter().filter(|&&c| c).count() > retry_high_water;
+        let bans_lifted = self.params.retry_after_growth && count_on_pool(&state.contact) > retry_high_water;
         // A trial element lies within `trial_ring_layers` rows of the contact's rows (on a
         // free grid; a periodic one wraps, so every row is looked at).
         let (n, len) = (self.grid.nx(), self.grid.len());
@@ -51,7 +50,8 @@ impl AdhesiveSolver {
             }
             Boundary::Periodic => 0..len,
         };
-        let trial_available = near.into_iter().any(|k| {
+        // On the pool: whether any element qualifies is the same answer in any order.
+        let trial_available = near.into_par_iter().with_min_len(PARALLEL_CHUNK).any(|k| {
             // As find_candidates: only adhesive elements are tried.
             if state.contact[k] || !heights[k].is_finite() || (self.banned[k] && !bans_lifted) {
                 return false;
@@ -120,7 +120,7 @@ impl AdhesiveSolver {
                 iterations += self.check_certificate(operator, heights, depth, state)?;
             }
         }
-        self.displacement_pressure.copy_from_slice(&state.pressure);
+        copy_on_pool(&mut self.displacement_pressure, &state.pressure);
         Ok(iterations)
     }
 
@@ -182,7 +182,7 @@ impl AdhesiveSolver {
             self.make_displacement_exact(operator, state);
         }
         let iterations = self.iterate_fixed_set(operator, heights, depth, state, StopRule::Output)?;
-        self.displacement_pressure.copy_from_slice(&state.pressure);
+        copy_on_pool(&mut self.displacement_pressure, &state.pressure);
         // The step's outputs and the next step read u everywhere.
         self.sync_outside(operator, state);
         Ok(iterations)
@@ -293,11 +293,18 @@ impl AdhesiveSolver {
     /// C, so the masked updates equal the element-wise conditional ones). Only the
     /// contact's rows `span` hold ones.
     fn fill_mask(&mut self, contact: &[bool], span: Range<usize>) {
-        self.work.mask[..span.start].fill(0.0);
-        self.work.mask[span.end..].fill(0.0);
-        for (m, &c) in self.work.mask[span.clone()].iter_mut().zip(&contact[span]) {
-            *m = if c { 1.0 } else { 0.0 };
-        }
+        // On the pool: a full-grid pass (the same values for any split).
+        self.work
+            .mask
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(contact.par_chunks(PARALLEL_CHUNK))
+            .enumerate()
+            .for_each(|(chunk, (mask, contact))| {
+                let first = chunk * PARALLEL_CHUNK;
+                for (k, (m, &c)) in mask.iter_mut().zip(contact).enumerate() {
+                    *m = if c && span.contains(&(first + k)) { 1.0 } else { 0.0 };
+                }
+            });
     }
 
     /// The CG iterations of [`solve_fixed_set`](Self::solve_fixed_set), from a state
@@ -342,7 +349,9 @@ impl AdhesiveSolver {
             element_size,
             max_iterations,
         };
-        if convergence.met(tolerance_scale, residual_norm, &self.work.residual, &state.contact) {
+        // r and C vanish outside the contact's rows: the test there is the whole grid's.
+        let (residual_rows, contact_rows) = (&self.work.residual[span.clone()], &state.contact[span.clone()]);
+        if convergence.met(tolerance_scale, residual_norm, residual_rows, contact_rows) {
             self.pressure_error_bound =
                 pressure_error_bound(&self.work.residual[span.clone()], contact_modulus, element_size);
             self.gap_error_bound = gap_error_bound(&self.work.residual[span.clone()]);

@@ -15,7 +15,8 @@ use super::{AdhesiveSolver, Attachment, Flow, Growth, PredictedGrowth, Round, PR
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
 use crate::solver::certificate::{classify_releases, Releases};
-use crate::solver::{ContactState, SolveError};
+use crate::solver::{copy_on_pool, ContactState, SolveError, PARALLEL_CHUNK};
+use rayon::prelude::*;
 
 impl AdhesiveSolver {
     /// A round without violators: bans lifted after growth, then penetrating elements and
@@ -79,8 +80,8 @@ impl AdhesiveSolver {
                 return Ok(Flow::Stop);
             }
             self.saved_needs_convergence = self.last_solve_certified || self.displacement_drifted;
-            self.saved_pressure.copy_from_slice(&state.pressure);
-            self.saved_displacement.copy_from_slice(&state.displacement);
+            copy_on_pool(&mut self.saved_pressure, &state.pressure);
+            copy_on_pool(&mut self.saved_displacement, &state.displacement);
             self.current_ring = Some(self.ring_pool.attempt(depth, &state.contact));
             if self.prediction_allowed(round) {
                 round.growth = Growth::FullRing;
@@ -93,14 +94,6 @@ impl AdhesiveSolver {
         }
         round.report.attachment_rounds += 1;
         Ok(Flow::Continue)
-    }
-
-    /// Whether free element `k` may be tried as a trial neighbour: not banned, and adhesive.
-    /// An element with σ_c = 0 (γ = 0) attached at a positive gap carries tension (the
-    /// Schur complement of K_CC is positive) and would fail at once, so it attaches only
-    /// by penetration (docs/physics.md §2.2).
-    pub(super) fn may_try(&self, k: usize) -> bool {
-        !self.banned[k] && self.critical_stress[k] > 0.0
     }
 
     /// Whether free element `k` lies within [`AdhesiveParams::trial_ring_layers`] edge-neighbour
@@ -118,18 +111,37 @@ impl AdhesiveSolver {
     /// by default), marked as trial.
     fn find_candidates(&mut self, heights: &[f64], depth: f64, state: &ContactState) {
         self.candidates.clear();
-        for k in 0..self.grid.len() {
-            if state.contact[k] || !heights[k].is_finite() {
-                continue;
-            }
-            let gap = heights[k] - depth + state.displacement[k];
-            if gap < 0.0 {
-                self.candidates.push(k);
-            } else if self.params.attachment == Attachment::Trial
-                && self.may_try(k)
-                && self.within_trial_reach(k, &state.contact)
-            {
-                self.candidates.push(k);
+        let len = self.grid.len();
+        let trial_attachment = self.params.attachment == Attachment::Trial;
+        let (grid, layers) = (&self.grid, self.params.trial_ring_layers.get());
+        let (banned, critical_stress) = (&self.banned, &self.critical_stress);
+        // On the pool, chunk by chunk, the chunks' lists joined in order: the serial scan's
+        // list (the test of an element reads nothing the scan writes).
+        let found: Vec<Vec<(usize, bool)>> = (0..len.div_ceil(PARALLEL_CHUNK))
+            .into_par_iter()
+            .map(|chunk| {
+                let elements = chunk * PARALLEL_CHUNK..((chunk + 1) * PARALLEL_CHUNK).min(len);
+                elements
+                    .filter_map(|k| {
+                        if state.contact[k] || !heights[k].is_finite() {
+                            return None;
+                        }
+                        let gap = heights[k] - depth + state.displacement[k];
+                        if gap < 0.0 {
+                            Some((k, false))
+                        } else {
+                            (trial_attachment
+                                && may_try(banned, critical_stress, k)
+                                && within_steps(grid, &state.contact, k, layers))
+                            .then_some((k, true))
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        for (k, trial) in found.into_iter().flatten() {
+            self.candidates.push(k);
+            if trial {
                 self.trial[k] = true;
             }
         }
@@ -170,8 +182,8 @@ impl AdhesiveSolver {
         let any_failed_trial = self.violators.iter().any(|&k| self.trial[k]);
         if round.growth == Growth::FullRing {
             self.sync_outside(operator, state);
-            self.ring_solved_pressure.copy_from_slice(&state.pressure);
-            self.ring_solved_displacement.copy_from_slice(&state.displacement);
+            copy_on_pool(&mut self.ring_solved_pressure, &state.pressure);
+            copy_on_pool(&mut self.ring_solved_displacement, &state.displacement);
             self.ring_solved_bounds = (
                 self.pressure_error_bound,
                 self.gap_error_bound,
@@ -244,10 +256,10 @@ impl AdhesiveSolver {
             state.contact[k] = true;
             self.trial[k] = true;
         }
-        state.pressure.copy_from_slice(&self.ring_solved_pressure);
-        state.displacement.copy_from_slice(&self.ring_solved_displacement);
+        copy_on_pool(&mut state.pressure, &self.ring_solved_pressure);
+        copy_on_pool(&mut state.displacement, &self.ring_solved_displacement);
         self.windows.discard_lag();
-        self.displacement_pressure.copy_from_slice(&self.ring_solved_pressure);
+        copy_on_pool(&mut self.displacement_pressure, &self.ring_solved_pressure);
         self.displacement_drifted = true;
         (
             self.pressure_error_bound,
@@ -331,6 +343,14 @@ impl AdhesiveSolver {
     }
 }
 
+/// Whether free element `k` may be tried as a trial neighbour: not banned, and adhesive.
+/// An element with σ_c = 0 (γ = 0) attached at a positive gap carries tension (the Schur
+/// complement of K_CC is positive) and would fail at once, so it attaches only by
+/// penetration (docs/physics.md §2.2).
+fn may_try(banned: &[bool], critical_stress: &[f64], k: usize) -> bool {
+    !banned[k] && critical_stress[k] > 0.0
+}
+
 /// Whether an element of `contact` lies within `steps` edge-neighbour steps of element `k`
 /// (`k` itself excluded): a walk over [`Grid::for_each_neighbour`] through any elements.
 fn within_steps(grid: &Grid, contact: &[bool], k: usize, steps: usize) -> bool {
@@ -380,6 +400,61 @@ mod tests {
             prediction_blocked: false,
         };
         (solver, state, round, grid)
+    }
+
+    /// The candidates found on the pool are the serial scan's, in its order, with the same
+    /// trial marks: a 128² grid (two pool chunks) whose ragged contact, penetrating
+    /// elements, banned and non-adhesive elements lie on both sides of the chunks' border,
+    /// on a pool of four threads (each chunk's list joined in order; a wrong join or a
+    /// dropped chunk reorders or loses candidates).
+    #[test]
+    fn candidates_found_on_the_pool_are_the_serial_scans() {
+        let n = 128;
+        let grid = Grid::new(n, 1.0, Boundary::Free).expect("grid");
+        let work_of_adhesion: Vec<f64> = (0..grid.len()).map(|k| if k % 7 == 3 { 0.0 } else { 1e-3 }).collect();
+        let mut solver = AdhesiveSolver::new(grid, 1.0, work_of_adhesion, AdhesiveParams::default());
+        let mut state = ContactState::new(&grid);
+        let (centre, depth) = (63.5, 0.0);
+        let mut heights = vec![0.0; grid.len()];
+        for k in 0..grid.len() {
+            let (row, column) = ((k / n) as f64 - centre, (k % n) as f64 - centre);
+            let radius = (row * row + column * column).sqrt();
+            // A ragged disc of radius 37–43 in contact, and a shallow bowl that penetrates
+            // out to radius 41: its ragged edge has free neighbours that penetrate and
+            // free neighbours that do not (the trial ones).
+            state.contact[k] = radius < 40.0 + 3.0 * (column * 0.7).sin();
+            heights[k] = 1e-4 * (radius - 41.0);
+            solver.banned[k] = k % 11 == 5;
+        }
+        heights[5] = f64::INFINITY;
+        let serial: Vec<(usize, bool)> = (0..grid.len())
+            .filter(|&k| !state.contact[k] && heights[k].is_finite())
+            .filter_map(|k| {
+                if heights[k] - depth + state.displacement[k] < 0.0 {
+                    Some((k, false))
+                } else {
+                    let tried = !solver.banned[k] && solver.critical_stress[k] > 0.0;
+                    (tried && within_steps(&grid, &state.contact, k, 1)).then_some((k, true))
+                }
+            })
+            .collect();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(4).build().expect("pool");
+        pool.install(|| solver.find_candidates(&heights, depth, &state));
+        let found: Vec<(usize, bool)> = solver.candidates.iter().map(|&k| (k, solver.trial[k])).collect();
+        let (tried, penetrating) = (
+            serial.iter().filter(|c| c.1).count(),
+            serial.iter().filter(|c| !c.1).count(),
+        );
+        assert!(
+            tried > 50 && penetrating > 50,
+            "{tried} trial, {penetrating} penetrating candidates"
+        );
+        assert!(serial.iter().any(|c| c.0 < PARALLEL_CHUNK) && serial.iter().any(|c| c.0 >= PARALLEL_CHUNK));
+        assert_eq!(found, serial);
+        assert_eq!(
+            solver.trial.iter().filter(|&&t| t).count(),
+            serial.iter().filter(|c| c.1).count()
+        );
     }
 
     /// Guard (b) of docs/fast-step.md §3: a predicted subset whose stability is a tie (a

@@ -22,7 +22,7 @@ pub use params::{
 use super::local_peel::LocalPeel;
 use super::peel_predictor::PeelPredictor;
 use super::workspace::Workspace;
-use super::{ContactState, SolveError};
+use super::{copy_on_pool, ContactState, SolveError};
 use crate::elastic::ElasticOperator;
 use crate::grid::{Boundary, Grid};
 use ring::{RingAttempt, RingPool};
@@ -422,7 +422,7 @@ impl AdhesiveSolver {
             self.banned.iter_mut().for_each(|b| *b = false);
         }
         self.trial.iter_mut().for_each(|t| *t = false);
-        self.start_contact.copy_from_slice(&state.contact);
+        copy_on_pool(&mut self.start_contact, &state.contact);
         for k in 0..len {
             if state.contact[k] && !heights[k].is_finite() {
                 state.contact[k] = false;
@@ -474,10 +474,10 @@ impl AdhesiveSolver {
         }
         // The whole ring failed and nothing else changed: C is the saved set, stable
         // before the ring was tried. Restore and stop.
-        state.pressure.copy_from_slice(&self.saved_pressure);
-        state.displacement.copy_from_slice(&self.saved_displacement);
+        copy_on_pool(&mut state.pressure, &self.saved_pressure);
+        copy_on_pool(&mut state.displacement, &self.saved_displacement);
         self.windows.discard_lag();
-        self.displacement_pressure.copy_from_slice(&self.saved_pressure);
+        copy_on_pool(&mut self.displacement_pressure, &self.saved_pressure);
         if self.saved_needs_convergence {
             self.converge_final(operator, heights, depth, state, &mut round.report)?;
         }
@@ -516,8 +516,8 @@ impl AdhesiveSolver {
         if self.history.len() == 2 {
             let mut oldest = self.history.remove(0);
             oldest.0 = depth;
-            oldest.1.copy_from_slice(&state.pressure);
-            oldest.2.copy_from_slice(&state.contact);
+            copy_on_pool(&mut oldest.1, &state.pressure);
+            copy_on_pool(&mut oldest.2, &state.contact);
             self.history.push(oldest);
         } else {
             self.history

@@ -4,7 +4,8 @@
 use super::params::over_stress_ratio;
 use super::{AdhesiveSolver, Detachment, StopRule};
 use crate::elastic::ElasticOperator;
-use crate::solver::{ContactState, SolveError};
+use crate::solver::{ContactState, SolveError, PARALLEL_CHUNK};
+use rayon::prelude::*;
 
 impl AdhesiveSolver {
     /// Releases the violators (only the failed trial elements with `trial_only`), then,
@@ -143,32 +144,58 @@ impl AdhesiveSolver {
     /// ([`over_stress_ratio`]): they are violators under every rule, and the worst ones.
     pub(super) fn find_violators(&mut self, state: &ContactState) {
         self.violators.clear();
-        let mut any_violator = false;
-        let mut smallest = f64::INFINITY;
-        let mut largest: f64 = 0.0;
         let span = crate::solver::contact_span(&state.contact, self.grid.nx());
-        for k in span.clone() {
-            if state.contact[k] {
-                let ratio = over_stress_ratio(state.pressure[k], self.critical_stress[k]);
-                if ratio > 1.0 {
-                    any_violator = true;
-                    smallest = smallest.min(ratio);
-                    largest = largest.max(ratio);
+        let (pressure, contact, critical_stress) = (
+            &state.pressure[span.clone()],
+            &state.contact[span.clone()],
+            &self.critical_stress[span.clone()],
+        );
+        // On the pool: a minimum and a maximum are exact in any order, and the violators
+        // are gathered chunk by chunk in order, so the list is the serial scan's.
+        let ratios = || {
+            pressure
+                .par_chunks(PARALLEL_CHUNK)
+                .zip(contact.par_chunks(PARALLEL_CHUNK))
+                .zip(critical_stress.par_chunks(PARALLEL_CHUNK))
+                .enumerate()
+        };
+        let Some((smallest, largest)) = ratios()
+            .map(|(_, ((pressure, contact), critical_stress))| {
+                let mut extremes: Option<(f64, f64)> = None;
+                for k in 0..pressure.len() {
+                    let ratio = over_stress_ratio(pressure[k], critical_stress[k]);
+                    if contact[k] && ratio > 1.0 {
+                        let (smallest, largest) = extremes.unwrap_or((f64::INFINITY, 0.0));
+                        extremes = Some((smallest.min(ratio), largest.max(ratio)));
+                    }
                 }
-            }
-        }
-        if !any_violator {
+                extremes
+            })
+            .reduce(
+                || None,
+                |a, b| match (a, b) {
+                    (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+                    (a, None) => a,
+                    (None, b) => b,
+                },
+            )
+        else {
             return;
-        }
+        };
         let threshold = match self.params.detachment {
             Detachment::AllViolators | Detachment::RandomHalf { .. } => smallest,
             Detachment::WorstFirst { fraction } => smallest.max(largest * (1.0 - fraction)),
         } * (1.0 - 1e-9);
-        for k in span {
-            if state.contact[k] && over_stress_ratio(state.pressure[k], self.critical_stress[k]) >= threshold {
-                self.violators.push(k);
-            }
-        }
+        let found: Vec<Vec<usize>> = ratios()
+            .map(|(chunk, ((pressure, contact), critical_stress))| {
+                let first = span.start + chunk * PARALLEL_CHUNK;
+                (0..pressure.len())
+                    .filter(|&k| contact[k] && over_stress_ratio(pressure[k], critical_stress[k]) >= threshold)
+                    .map(|k| first + k)
+                    .collect()
+            })
+            .collect();
+        self.violators.extend(found.into_iter().flatten());
         if let Detachment::RandomHalf { .. } = self.params.detachment {
             self.keep_random_half(state, largest);
         }
@@ -197,5 +224,58 @@ impl AdhesiveSolver {
             Some(index - 1) == worst || random & 1 == 0
         });
         self.random_state = random;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{AdhesiveParams, AdhesiveSolver, Detachment};
+    use super::over_stress_ratio;
+    use crate::grid::{Boundary, Grid};
+    use crate::solver::{ContactState, PARALLEL_CHUNK};
+
+    /// The violators found on the pool are the serial scan's, in its order, for the
+    /// worst-first rule, whose threshold needs the smallest and the largest ratio over all
+    /// chunks: a 128² grid (two pool chunks of the contact's rows) whose largest ratio lies
+    /// in the second chunk, on four threads.
+    #[test]
+    fn violators_found_on_the_pool_are_the_serial_scans() {
+        let n = 128;
+        let grid = Grid::new(n, 1.0, Boundary::Free).expect("grid");
+        let work_of_adhesion: Vec<f64> = (0..grid.len()).map(|k| if k % 13 == 2 { 0.0 } else { 1e-3 }).collect();
+        let params = AdhesiveParams {
+            detachment: Detachment::WorstFirst { fraction: 0.4 },
+            ..AdhesiveParams::default()
+        };
+        let mut solver = AdhesiveSolver::new(grid, 1.0, work_of_adhesion, params);
+        let mut state = ContactState::new(&grid);
+        for k in 10 * n..120 * n {
+            state.contact[k] = k % 9 != 4;
+            // Ratios −p/σ_c between 0.5 and 2; compression where σ_c = 0.
+            let ratio = 0.5 + 1.5 * (0.5 + 0.5 * (k as f64 * 0.37).sin());
+            let critical_stress = solver.critical_stress[k];
+            state.pressure[k] = if critical_stress > 0.0 {
+                -critical_stress * ratio
+            } else {
+                1e-4
+            };
+        }
+        let largest = 100 * n + 8;
+        state.pressure[largest] = -solver.critical_stress[largest] * 2.5;
+        let ratio = |k: usize| over_stress_ratio(state.pressure[k], solver.critical_stress[k]);
+        let violators: Vec<usize> = (0..grid.len())
+            .filter(|&k| state.contact[k] && ratio(k) > 1.0)
+            .collect();
+        let smallest = violators.iter().map(|&k| ratio(k)).fold(f64::INFINITY, f64::min);
+        let worst = violators.iter().map(|&k| ratio(k)).fold(0.0, f64::max);
+        assert_eq!(worst, ratio(largest), "the largest ratio is the planted one");
+        let threshold = smallest.max(worst * (1.0 - 0.4)) * (1.0 - 1e-9);
+        let serial: Vec<usize> = violators.into_iter().filter(|&k| ratio(k) >= threshold).collect();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(4).build().expect("pool");
+        pool.install(|| solver.find_violators(&state));
+        assert!(
+            serial.iter().any(|&k| k < 10 * n + PARALLEL_CHUNK) && serial.iter().any(|&k| k >= 10 * n + PARALLEL_CHUNK)
+        );
+        assert_eq!(solver.violators, serial);
     }
 }

@@ -4,7 +4,8 @@
 use crate::elastic::{ElasticOperator, SpectralPreconditioner};
 use crate::solver::certificate::{attachments_certain, count_releases, gap_error_bound_of, pressure_error_bound_of};
 use crate::solver::workspace::precondition_rows;
-use crate::solver::{masked_pcg, PcgBuffers, PcgError, PcgInfo};
+use crate::solver::{masked_pcg, PcgBuffers, PcgError, PcgInfo, PARALLEL_CHUNK};
+use rayon::prelude::*;
 
 /// When a fixed-set solve may stop (docs/fast-step.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -133,10 +134,12 @@ impl Convergence {
             return false;
         }
         if self.pointwise.is_finite() {
+            // On the pool: a test of every element, the same answer in any order.
+            let bound = scale * self.pointwise;
             residual
-                .iter()
-                .zip(contact)
-                .all(|(r, &c)| !c || r.abs() <= scale * self.pointwise)
+                .par_chunks(PARALLEL_CHUNK)
+                .zip(contact.par_chunks(PARALLEL_CHUNK))
+                .all(|(residual, contact)| residual.iter().zip(contact).all(|(r, &c)| !c || r.abs() <= bound))
         } else {
             true
         }

@@ -20,6 +20,7 @@ use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
 use crate::solver::contact_window::{smooth_side, Bounds, Window};
 use crate::solver::workspace::Workspace;
+use crate::solver::PARALLEL_CHUNK;
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -114,11 +115,9 @@ impl SetWindows {
     pub(super) fn leave(&mut self, pressure: &mut [f64], displacement: &mut [f64]) {
         if let Some(index) = self.current {
             let window = &self.kept[index];
-            for (full, local) in window.rows() {
-                pressure[full.clone()].copy_from_slice(&window.pressure[local.clone()]);
-                displacement[full].copy_from_slice(&window.displacement[local]);
-            }
-            self.lagging = window.pressure != window.outside_pressure;
+            window.scatter(&window.pressure, pressure);
+            window.scatter(&window.displacement, displacement);
+            self.lagging = !same_values(&window.pressure, &window.outside_pressure);
         }
     }
 
@@ -205,13 +204,15 @@ impl SetWindow {
         })
     }
 
-    /// Pairs of (full grid, window) element ranges, row by row (borrowing nothing).
-    fn rows(&self) -> impl Iterator<Item = (Range<usize>, Range<usize>)> {
+    /// Copies the window field `local` into the window's part of the full-grid `full`,
+    /// rows on the pool.
+    fn scatter(&self, local: &[f64], full: &mut [f64]) {
         let (Window { row, column, side }, nx) = (self.placement, self.nx);
-        (0..side).map(move |i| {
-            let start = (row + i) * nx + column;
-            (start..start + side, i * side..(i + 1) * side)
-        })
+        full[row * nx..(row + side) * nx]
+            .par_chunks_mut(nx)
+            .zip(local.par_chunks(side))
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(full, local)| full[column..column + side].copy_from_slice(local));
     }
 
     /// Whether every nonzero of a full-grid field on the elements `span` lies in the window.
@@ -236,45 +237,43 @@ impl SetWindow {
         base: &[f64],
         lagging: bool,
     ) -> u64 {
-        for (full, local) in self.rows() {
-            self.pressure[local.clone()].copy_from_slice(&pressure[full.clone()]);
-            self.displacement[local.clone()].copy_from_slice(&displacement[full.clone()]);
-            self.base_pressure[local.clone()].copy_from_slice(&base[full.clone()]);
-            if !lagging {
-                self.outside_pressure[local].copy_from_slice(&base[full]);
-            }
+        let (placement, nx) = (self.placement, self.nx);
+        gather(placement, nx, pressure, &mut self.pressure);
+        gather(placement, nx, displacement, &mut self.displacement);
+        gather(placement, nx, base, &mut self.base_pressure);
+        if !lagging {
+            gather(placement, nx, base, &mut self.outside_pressure);
         }
-        if self.pressure == self.base_pressure {
+        if same_values(&self.pressure, &self.base_pressure) {
             return 0;
         }
-        for ((change, &now), &before) in self
-            .workspace
+        self.workspace
             .direction
-            .iter_mut()
-            .zip(&self.pressure)
-            .zip(&self.base_pressure)
-        {
-            *change = now - before;
-        }
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(self.pressure.par_chunks(PARALLEL_CHUNK))
+            .zip(self.base_pressure.par_chunks(PARALLEL_CHUNK))
+            .for_each(|((change, now), before)| {
+                for ((change, &now), &before) in change.iter_mut().zip(now).zip(before) {
+                    *change = now - before;
+                }
+            });
         self.operator
             .apply_single(&self.workspace.direction, &mut self.workspace.response);
-        for (u, du) in self.displacement.iter_mut().zip(&self.workspace.response) {
-            *u += du;
-        }
-        for (full, local) in self.rows() {
-            displacement[full].copy_from_slice(&self.displacement[local]);
-        }
+        self.displacement
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(self.workspace.response.par_chunks(PARALLEL_CHUNK))
+            .for_each(|(u, du)| u.iter_mut().zip(du).for_each(|(u, du)| *u += du));
+        self.scatter(&self.displacement, displacement);
         1
     }
 
     /// Loads the set's fields for the CG (each one value per full-grid element).
     pub(super) fn load_set(&mut self, residual: &[f64], mask: &[f64], critical_stress: &[f64], contact: &[bool]) {
-        for (full, local) in self.rows() {
-            self.workspace.residual[local.clone()].copy_from_slice(&residual[full.clone()]);
-            self.workspace.mask[local.clone()].copy_from_slice(&mask[full.clone()]);
-            self.critical_stress[local.clone()].copy_from_slice(&critical_stress[full.clone()]);
-            self.contact[local].copy_from_slice(&contact[full]);
-        }
+        let (placement, nx) = (self.placement, self.nx);
+        gather(placement, nx, residual, &mut self.workspace.residual);
+        gather(placement, nx, mask, &mut self.workspace.mask);
+        gather(placement, nx, critical_stress, &mut self.critical_stress);
+        gather(placement, nx, contact, &mut self.contact);
     }
 
     /// u += K·(p − p_outside) outside the window (the change applied in single precision
@@ -288,16 +287,20 @@ impl SetWindow {
         let (nx, ny) = (operator.grid().nx(), operator.grid().ny());
         let Window { row, column, side } = self.placement;
         let rows = row..row + side;
-        change[rows.start * nx..rows.end * nx].fill(0.0);
-        for (full, local) in self.rows() {
-            for ((target, &now), &before) in change[full]
-                .iter_mut()
-                .zip(&self.pressure[local.clone()])
-                .zip(&self.outside_pressure[local])
-            {
-                *target = now - before;
-            }
-        }
+        change[rows.start * nx..rows.end * nx]
+            .par_chunks_mut(nx)
+            .zip(
+                self.pressure
+                    .par_chunks(side)
+                    .zip(self.outside_pressure.par_chunks(side)),
+            )
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(change, (now, before))| {
+                change.fill(0.0);
+                for ((target, &now), &before) in change[column..column + side].iter_mut().zip(now).zip(before) {
+                    *target = now - before;
+                }
+            });
         operator.apply_single_rows(change, response, rows.clone(), 0..ny);
         displacement
             .par_chunks_mut(nx)
@@ -312,4 +315,26 @@ impl SetWindow {
                 }
             });
     }
+}
+
+/// Window rows per rayon task of the copies between the grid and a window.
+const ROWS_PER_TASK: usize = 16;
+
+/// Copies the window's part of the full-grid field `full` (rows of `nx`) into the window
+/// field `local`, rows on the pool (a copy: the same values for any split).
+fn gather<T: Copy + Send + Sync>(placement: Window, nx: usize, full: &[T], local: &mut [T]) {
+    let Window { row, column, side } = placement;
+    local
+        .par_chunks_mut(side)
+        .zip(full[row * nx..(row + side) * nx].par_chunks(nx))
+        .with_min_len(ROWS_PER_TASK)
+        .for_each(|(local, full)| local.copy_from_slice(&full[column..column + side]));
+}
+
+/// Whether two fields hold the same values (`==` element by element, as for slices).
+fn same_values(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len()
+        && a.par_chunks(PARALLEL_CHUNK)
+            .zip(b.par_chunks(PARALLEL_CHUNK))
+            .all(|(a, b)| a == b)
 }
