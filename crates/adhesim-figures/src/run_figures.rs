@@ -5,9 +5,10 @@
 
 use crate::{plots, tangential_plots};
 use adhesim::analysis::reference::Hertz;
+use adhesim::RunSummary;
 use adhesim::{Grid, Profile, SlipStatus, StepRecord, TranslationSummary};
 use adhesim_scenario::output::observer::{CapturedStep, RunPictures};
-use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
+use adhesim_scenario::{ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
 use anyhow::Result;
 use std::path::Path;
 
@@ -40,7 +41,7 @@ impl RunPictures for RunFigures {
         dir: &Path,
     ) -> Result<Vec<String>> {
         match (&outcome.report, scenario.protocol_setup()) {
-            (ProtocolReport::Translation(summary), ProtocolSetup::Translation(setup)) => {
+            (RunSummary::Translation(summary), ProtocolSetup::Translation(setup)) => {
                 translation_plots(scenario, setup, summary, &outcome.records, captured, dir)
             }
             _ => indentation_plots(scenario, outcome, dir),

@@ -76,7 +76,7 @@ pub use guards::{
 pub use memory::{memory_available, memory_limit, MemoryLimit};
 pub use model::*;
 pub use parse::{read_height_map, read_npy_2d};
-pub use pipeline::{run, run_from, Counters, ProtocolReport, ProtocolSetup, Resume, RunOutcome};
+pub use pipeline::{run, run_from, ProtocolSetup, Resume, RunOutcome};
 pub use results::{fit_results, min_fit_radius, FitResults, Results, RunResults};
 pub use roughness::{roughness_on_grid, RoughnessMap};
 pub use shear::ShearResults;

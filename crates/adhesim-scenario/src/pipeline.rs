@@ -8,8 +8,8 @@ use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Backend, Ccg, CcgParams, ElasticOperator, FrictionLaw, IndentPulloff, NormalSolver,
-    Observer, Profile, ProtocolCheckpoint, ProtocolError, ProtocolSummary, ShearBody, ShearSummary, StepRecord,
-    TangentialParams, TangentialSolver, TranslationSummary,
+    Observer, Profile, ProtocolCheckpoint, ProtocolError, RunSummary, ShearBody, StepRecord, TangentialParams,
+    TangentialSolver, TranslationFriction, TranslationSummary,
 };
 
 /// The protocol of a scenario, built in one place ([`ValidScenario::protocol_setup`]).
@@ -102,72 +102,13 @@ impl ValidScenario {
     }
 }
 
-/// The library's own summary of a run.
-#[derive(Debug, Clone)]
-pub enum ProtocolReport {
-    Indentation(ProtocolSummary),
-    Translation(TranslationSummary),
-    Shear(ShearSummary),
-}
-
-/// Counters of a run (for the performance section of `summary.json`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Counters {
-    pub steps: usize,
-    pub solves: usize,
-    pub cg_iterations: usize,
-    /// Forward + inverse FFT pairs.
-    pub operator_applications: u64,
-    /// Of those, the pairs of the adhesive CG on contact windows.
-    pub window_applications: u64,
-    /// The CG preconditioner's applications (not in `operator_applications`).
-    pub preconditioner_applications: u64,
-    /// Contact on the border of a free grid at some step.
-    pub touches_border: bool,
-}
-
-impl ProtocolReport {
-    /// The run's counters.
-    pub fn counters(&self) -> Counters {
-        match self {
-            Self::Indentation(s) => Counters {
-                steps: s.steps,
-                solves: s.solves,
-                cg_iterations: s.cg_iterations,
-                operator_applications: s.operator_applications,
-                window_applications: s.window_applications,
-                preconditioner_applications: s.preconditioner_applications,
-                touches_border: s.touches_border,
-            },
-            Self::Translation(s) => Counters {
-                steps: s.steps,
-                solves: s.solves,
-                cg_iterations: s.cg_iterations,
-                operator_applications: s.operator_applications,
-                window_applications: s.window_applications,
-                preconditioner_applications: s.preconditioner_applications,
-                touches_border: s.touches_border,
-            },
-            Self::Shear(s) => Counters {
-                steps: s.steps,
-                solves: s.solves,
-                cg_iterations: s.cg_iterations,
-                operator_applications: s.operator_applications,
-                window_applications: s.window_applications,
-                preconditioner_applications: s.preconditioner_applications,
-                touches_border: s.touches_border,
-            },
-        }
-    }
-}
-
 /// What [`run`] gives back.
 #[derive(Debug, Clone)]
 pub struct RunOutcome {
     /// The `results` section of `summary.json`.
     pub results: RunResults,
     /// The library's summary of the protocol.
-    pub report: ProtocolReport,
+    pub report: RunSummary,
     /// Every step's record.
     pub records: Vec<StepRecord>,
 }
@@ -312,7 +253,7 @@ pub fn run_from(
                     fits,
                     ..Results::from_protocol(&summary)
                 }),
-                report: ProtocolReport::Indentation(summary),
+                report: RunSummary::Indentation(summary),
                 records,
             })
         }
@@ -323,18 +264,19 @@ pub fn run_from(
                     &mut *operator,
                     &setup.contact,
                     &mut solver,
-                    (
-                        ShearBody {
+                    TranslationFriction {
+                        body: ShearBody {
                             material: friction.material,
                             layer: scenario.layer,
                         },
-                        &mut tangential_solver(
+                        solver: &mut tangential_solver(
                             friction.law,
                             friction.static_law,
                             friction.slip_weakening_distance,
                             friction.drive_stiffness,
                         )?,
-                    ),
+                        coupled: friction.coupled,
+                    },
                     &mut recording,
                 )?,
                 None => setup.protocol.run_from(
@@ -352,7 +294,7 @@ pub fn run_from(
             }
             Ok(RunOutcome {
                 results: RunResults::Translation(results),
-                report: ProtocolReport::Translation(summary),
+                report: RunSummary::Translation(summary),
                 records,
             })
         }
@@ -387,7 +329,7 @@ fn run_shear(
     let records = recording.0;
     Ok(RunOutcome {
         results: RunResults::Shear(ShearResults::new(&summary, &records, &setup.protocol)),
-        report: ProtocolReport::Shear(summary),
+        report: RunSummary::Shear(summary),
         records,
     })
 }

@@ -185,17 +185,6 @@ impl ScenarioFile {
                 )
             ));
         }
-        if friction.coupling == Some(CouplingName::Full) {
-            bail!(ScenarioError::invalid_as(
-                "friction.coupling",
-                "\"full\"",
-                "\"none\" with a roll, slide or translate",
-                format!(
-                    "friction.coupling = \"full\" (the coupled normal–tangential operator) is offered under protocol.kind = \"shear\" only, got \"{}\"; use \"none\" (Goodman's approximation, exact at material.poisson_ratio = 0.5)",
-                    self.protocol.kind().name()
-                )
-            ));
-        }
         self.interface_laws(friction, contact_modulus).map(Some)
     }
 
@@ -213,6 +202,7 @@ impl ScenarioFile {
             slip_weakening_distance,
             material,
             drive_stiffness: None,
+            coupled: coupled(friction),
         })
     }
 

@@ -3,9 +3,9 @@
 //! Python package report the same run the same way; the caller writes the text.
 
 use crate::model::{Derived, ScenarioFile, ValidScenario};
-use crate::pipeline::{Counters, RunOutcome};
+use crate::pipeline::RunOutcome;
 use crate::results::RunResults;
-use adhesim::{Phase, StepRecord};
+use adhesim::{Phase, RunCounters, StepRecord};
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -53,8 +53,8 @@ pub struct PhaseTimes {
 impl Performance {
     /// Counters of a run, with the per-step averages, the threads of rayon's pool and
     /// the observer's phase timings.
-    pub fn new(wall_seconds: f64, counters: &Counters, times: PhaseTimes) -> Self {
-        let Counters {
+    pub fn new(wall_seconds: f64, counters: &RunCounters, times: PhaseTimes) -> Self {
+        let RunCounters {
             steps,
             solves,
             cg_iterations: solver_iterations,

@@ -294,6 +294,16 @@ fn translation_drive(
             )
         ));
     };
+    if friction.coupled {
+        bail!(ScenarioError::invalid_as(
+            "protocol.drive_stiffness",
+            stiffness,
+            "absent with friction.coupling = \"full\"",
+            format!(
+                "protocol.drive_stiffness = {stiffness} with friction.coupling = \"full\": the spring's rounds (the profile moved to where the indenter goes) are not built around the coupled operator's rounds; drop the key for a rigid drive, or use friction.coupling = \"none\" with the spring"
+            )
+        ));
+    }
     Ok(Some(InterfaceFriction {
         drive_stiffness: Some(stiffness),
         ..friction

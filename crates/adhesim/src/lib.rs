@@ -124,8 +124,8 @@ pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
 pub use protocol::{
     AgingLaw, Hold, IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint,
-    ProtocolError, ProtocolSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint, StepRecord, StepView,
-    TangentialForce, Translation, TranslationCheckpoint, TranslationSummary,
+    ProtocolError, ProtocolSummary, RunCounters, RunSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint,
+    StepRecord, StepView, TangentialForce, Translation, TranslationCheckpoint, TranslationFriction, TranslationSummary,
 };
 pub use solver::{
     Acceleration, AdhesiveParams, AdhesiveSolver, Attachment, Ccg, CcgParams, CohesiveLaw, CohesiveParams,

@@ -3,13 +3,14 @@
 //! pictures and progress bar (`crate::output`), then the report on stdout.
 
 use crate::{output, resources};
+use adhesim::RunSummary;
 use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
 use adhesim_figures::run_figures::RunFigures;
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
 use adhesim_scenario::output::observer::RunProgress;
 use adhesim_scenario::output::run::{run_case, FolderRunOptions};
-use adhesim_scenario::{ProtocolReport, ProtocolSetup, RunOutcome, RunResults, ValidScenario};
+use adhesim_scenario::{ProtocolSetup, RunOutcome, RunResults, ValidScenario};
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -147,9 +148,9 @@ pub fn run_with_progress(
     if !options.quiet {
         let wall_seconds = done.wall_seconds;
         match &outcome.report {
-            ProtocolReport::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
-            ProtocolReport::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
-            ProtocolReport::Shear(summary) => print_shear(summary, outcome, wall_seconds),
+            RunSummary::Indentation(summary) => print_indentation(scenario, summary, wall_seconds),
+            RunSummary::Translation(summary) => print_translation(scenario, summary, outcome, wall_seconds),
+            RunSummary::Shear(summary) => print_shear(summary, outcome, wall_seconds),
         }
         outln!("outputs in {}/", out.display());
         outln!(
@@ -157,7 +158,7 @@ pub fn run_with_progress(
             if options.fields.is_some() { ", fields.nc" } else { "" }
         );
         outln!("  {}", done.plot_files.join(", "));
-        if matches!(outcome.report, ProtocolReport::Indentation(_)) {
+        if matches!(outcome.report, RunSummary::Indentation(_)) {
             outln!(
                 "  snapshots/: {} contact maps (largest_contact.png, max_depth.png, pull_off.png, jump_*.png, step_*.png)",
                 done.snapshot_files.len()

@@ -162,6 +162,8 @@ pub struct InterfaceFriction {
     pub material: ShearMaterial,
     /// The drive's spring of a slide or translate (None: a rigid drive).
     pub drive_stiffness: Option<f64>,
+    /// The coupled normal–tangential operator (`friction.coupling = "full"`).
+    pub coupled: bool,
 }
 
 /// A validated shear run: the library's protocol, the interface law and the half-space's

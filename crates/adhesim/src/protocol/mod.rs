@@ -7,6 +7,7 @@ mod indentation;
 mod observer;
 mod shear;
 mod stepper;
+mod summary;
 mod translation;
 
 pub use checkpoint::{IndentCheckpoint, ProtocolCheckpoint, SolverCheckpoint, TranslationCheckpoint};
@@ -14,9 +15,10 @@ pub use indentation::{AgingLaw, Hold, IndentPulloff, ProtocolSummary};
 pub use observer::{Observer, StepView};
 pub use shear::{
     contact_split, element_energy_ratio, shear_weakened_critical_stress, ModeMixity, Shear, ShearFields, ShearSummary,
-    TangentialForce,
+    TangentialForce, TranslationFriction,
 };
 pub use stepper::NormalStepper;
+pub use summary::{RunCounters, RunSummary};
 pub use translation::{Translation, TranslationSummary};
 
 use crate::elastic::ElasticOperator;

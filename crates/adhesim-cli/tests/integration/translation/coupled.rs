@@ -1,6 +1,7 @@
 //! End-to-end tests of the coupled operator (`friction.coupling = "full"`, ν < 1/2;
-//! docs/tangential.md): the bonded punch against Mossakovskii's closed form, and the
-//! combinations refused by name. A module of the translation tests.
+//! docs/tangential.md): the bonded punch against Mossakovskii's closed form, a slide in
+//! gross slip against the first-order moment of its pressure, and the combinations refused
+//! by name. A module of the translation tests.
 
 use super::common::{assert_fails_with, column, column_values, curve_with_sets, repo, run_with_sets};
 
@@ -46,15 +47,90 @@ fn bonded_punch_is_stiffer_by_mossakovskiis_factor() {
 }
 
 #[test]
-fn coupling_is_refused_under_a_translation() {
-    // The refusal names friction.coupling and the protocol it is offered under.
+fn a_coupled_slide_in_gross_slip_moves_the_pressure_rearward_by_the_first_order_moment() {
+    // scenarios/friction/slide_coupled.toml: a sphere (a = 12.8Δ) slid in gross slip with
+    // Coulomb μ = 0.3 on ν = 0.3. The tractions μp press the surface in ahead of each
+    // element, so the pressure's moment about the axis turns negative and with it the
+    // boundary force F_B = F_T − μP (all slip: the interface carries μP exactly):
+    // F_B/(μP) = −(3/(4π))·(1 − 2ν)/(1 − ν)·a/R to first order in μ(1 − 2ν)/(2(1 − ν))
+    // (Betti's theorem twice, docs/physics.md §8.4a), with a = (3PR/(4E*))^(1/3) each
+    // step. Tolerance 2 % over the stroke's last six steps: the second order, (βμ)² =
+    // 0.7 %, and the contact edge's staircase at 12.8 elements (measured 0.993–0.998 of
+    // the closed form at 128², 0.998 at 256²). The same run under Goodman's approximation
+    // must show no such force (below 1e-3 of μP; measured 7e-5): the effect is the
+    // coupling's.
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/friction/slide_coupled.toml");
+    let (nu, radius, contact_modulus, mu) = (0.3, 1.0, 2.6 / (1.0 - 0.3 * 0.3), 0.3);
+    let expected_per_radius = -3.0 / (4.0 * std::f64::consts::PI) * (1.0 - 2.0 * nu) / (1.0 - nu);
+    for (name, sets) in [("coupled", &[][..]), ("goodman", &["friction.coupling=\"none\""][..])] {
+        let (header, rows) = curve_with_sets(&scenario, &dir.path().join(name), sets);
+        assert_eq!(rows.len(), 30, "{name}");
+        let normal = column_values(&header, &rows, "force_normal");
+        let tangential = column_values(&header, &rows, "force_tangential");
+        let stick = column_values(&header, &rows, "n_stick");
+        for k in rows.len() - 6..rows.len() {
+            assert_eq!(stick[k], 0.0, "{name} step {k}: not in gross slip");
+            let boundary = (tangential[k] - mu * normal[k]) / (mu * normal[k]);
+            let radius_of_contact = (3.0 * normal[k] * radius / (4.0 * contact_modulus)).cbrt();
+            let expected = expected_per_radius * radius_of_contact / radius;
+            if name == "coupled" {
+                assert!(
+                    (boundary / expected - 1.0).abs() < 0.02,
+                    "step {k}: F_B/(μP) = {boundary:e}, first order {expected:e}"
+                );
+            } else {
+                assert!(boundary.abs() < 1e-3, "step {k}: Goodman's F_B/(μP) = {boundary:e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_coupled_slide_at_one_half_is_goodmans() {
+    // The slide of slide_coupled.toml at ν = 1/2 (E = 3, G = 1), coarsened to 64²: the
+    // coupling terms vanish on a half-space, so each step's coupled rounds must give the
+    // uncoupled step: the same contact, stick, slip, front and rear counts at every step
+    // (the approach's too, whose tractions vanish), forces and friction's dissipation to
+    // 1e-12 of their largest (measured: identical to 7e-17).
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/friction/slide_coupled.toml");
+    let half = ["grid.n=64", "material.poisson_ratio=0.5", "material.youngs_modulus=3"];
+    let (header, coupled) = curve_with_sets(&scenario, &dir.path().join("coupled"), &half);
+    let goodman_sets = [&half[..], &["friction.coupling=\"none\""]].concat();
+    let (header_goodman, goodman) = curve_with_sets(&scenario, &dir.path().join("goodman"), &goodman_sets);
+    assert_eq!(coupled.len(), goodman.len());
+    for name in ["n_contact", "n_stick", "n_slip", "area_front", "area_rear"] {
+        assert_eq!(
+            column(&header, &coupled, name),
+            column(&header_goodman, &goodman, name),
+            "{name}"
+        );
+    }
+    for name in ["force_normal", "force_tangential", "frictional_dissipation"] {
+        let (a, b) = (
+            column_values(&header, &coupled, name),
+            column_values(&header_goodman, &goodman, name),
+        );
+        let largest = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(largest > 0.0, "{name} vanishes");
+        for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+            assert!((a - b).abs() <= 1e-12 * largest, "row {k}: {name} {a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn a_compliant_drive_with_the_coupled_operator_is_refused_by_name() {
+    // A spring's rounds (the profile moved to where the indenter goes) are not built around
+    // the coupled rounds: the refusal names both keys.
     let dir = tempfile::tempdir().unwrap();
     let output = run_with_sets(
-        &repo().join("scenarios/friction/slide_shear_strength.toml"),
-        &dir.path().join("slide"),
-        &["friction.coupling=\"full\""],
+        &repo().join("scenarios/friction/slide_coupled.toml"),
+        &dir.path().join("spring"),
+        &["protocol.drive_stiffness=1.0"],
     );
-    assert_fails_with(&output, &["friction.coupling", "protocol.kind = \"shear\" only"]);
+    assert_fails_with(&output, &["protocol.drive_stiffness", "friction.coupling = \"full\""]);
 }
 
 #[test]

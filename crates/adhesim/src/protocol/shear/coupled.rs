@@ -17,6 +17,11 @@ use crate::solver::{AdhesiveSolver, ContactState, StepReport, TangentialReport, 
 const COUPLING_TOLERANCE: f64 = 1e-8;
 /// Rounds allowed per step.
 const MAX_COUPLING_ROUNDS: usize = 100;
+/// Rounds of a step whose contact set returns to the one two rounds back before the rounds
+/// are said to alternate: an edge element whose pressure is near nought may leave and come
+/// back once while the lift still converges (a translating contact's edge), a ring that
+/// flips with the lift does so again and again.
+const MAX_ALTERNATIONS: usize = 4;
 
 /// The coupled steps of a run: the coupling operator on the whole grid and the fields it
 /// carries from round to round.
@@ -139,7 +144,7 @@ impl Coupling {
         let mut before = normal.state.contact.clone();
         // The contact set two rounds back: a set that returns to it alternates.
         let mut two_back = before.clone();
-        let mut rounds = 0;
+        let (mut rounds, mut alternations) = (0, 0);
         loop {
             rounds += 1;
             for ((raised, height), lift) in self.heights.iter_mut().zip(normal.heights).zip(&self.lift) {
@@ -194,7 +199,9 @@ impl Coupling {
             }
             // An adhesive edge can flip a ring of elements back and forth with the
             // tractions' lift: the rounds then never settle.
-            let alternating = rounds > 2 && normal.state.contact != before && normal.state.contact == two_back;
+            let returned = rounds > 2 && normal.state.contact != before && normal.state.contact == two_back;
+            alternations += usize::from(returned);
+            let alternating = alternations >= MAX_ALTERNATIONS;
             if rounds >= MAX_COUPLING_ROUNDS || alternating {
                 return Err(ProtocolError::CouplingNotConverged {
                     step,

@@ -3,6 +3,7 @@
 
 mod approach;
 mod coupled;
+mod coupled_slide;
 mod edge;
 mod held_force;
 mod mixity;
@@ -12,6 +13,7 @@ mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
 pub use mixity::ModeMixity;
+pub use sliding::TranslationFriction;
 pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};

@@ -157,21 +157,35 @@ impl Interface<'_> {
     }
 }
 
+/// Friction at a translation's interface: the body's tangential constants, the interface's
+/// solver, and whether the normal and tangential problems are coupled.
+pub struct TranslationFriction<'a> {
+    /// The tangential operator's body: a half-space, or the layer whose normal operator the
+    /// run's is.
+    pub body: ShearBody,
+    /// The interface law's solver.
+    pub solver: &'a mut TangentialSolver,
+    /// The coupled operator (`friction.coupling = "full"`, docs/physics.md §8.1a): each
+    /// step solves the two problems in turn. False: Goodman's approximation.
+    pub coupled: bool,
+}
+
 impl Translation {
-    /// Rolling or sliding with friction at the interface ([`TangentialSolver`]): after each normal step of the stroke, a tangential step on the contact's
-    /// window. A slide (and a translation) shifts the indenter's material with its axis; a
-    /// roll does not (free rolling: the surfaces do not slip where they touch). New contact
-    /// sticks where it touches. The step's tangential force is the boundary force of the
-    /// normal problem plus the interface's Δ²Σq_x; the energy balance counts friction's
-    /// dissipation. Offers no checkpoints. The normal problem does not see the shear
-    /// (Goodman's approximation). The tangential operator is `body`'s: a half-space, or the
-    /// layer whose normal operator `operator` is.
+    /// Rolling or sliding with friction at the interface ([`TangentialSolver`]): after each
+    /// normal step of the stroke, a tangential step on the contact's window. A slide (and a
+    /// translation) shifts the indenter's material with its axis; a roll does not (free
+    /// rolling: the surfaces do not slip where they touch). New contact sticks where it
+    /// touches. The step's tangential force is the boundary force of the normal problem
+    /// plus the interface's Δ²Σq_x; the energy balance counts friction's dissipation.
+    /// Offers no checkpoints. Without `friction.coupled` the normal problem does not see
+    /// the shear (Goodman's approximation); with it each step, the approach's too, is a
+    /// coupled step (docs/physics.md §8.4a).
     pub fn run_with_friction(
         &self,
         operator: &mut dyn ElasticOperator,
         contact: &TranslatingContact,
         solver: &mut NormalSolver,
-        (body, friction): (ShearBody, &mut TangentialSolver),
+        friction: TranslationFriction<'_>,
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
@@ -181,6 +195,14 @@ impl Translation {
             Kinematics::Roll => Phase::Roll,
             _ => Phase::Slide,
         };
+        let TranslationFriction {
+            body,
+            solver: friction,
+            coupled,
+        } = friction;
+        if coupled {
+            return self.run_coupled(operator, contact, solver, (body, friction), observer, phase);
+        }
         let schedule = self.schedule(phase);
         let mut run = TranslationCheckpoint {
             steps_done: 0,
