@@ -332,8 +332,19 @@ fn a_roll_with_friction_carries_no_interface_traction() {
 
 #[test]
 fn friction_on_a_translation_refuses_what_only_the_shear_offers() {
-    let mixity = error_of(SLIDE, &["friction.mode_mixity=1"]);
-    assert!(mixity.contains("friction.mode_mixity"), "{mixity}");
+    // A mode mixity goes with a translation's Goodman step and rigid drive, not with the
+    // coupled operator's rounds or a spring's.
+    let adhesive = ["adhesion.work_of_adhesion=1e-4", "friction.mode_mixity=1"];
+    let coupled = error_of(SLIDE, &[&adhesive[..], &["friction.coupling=\"full\""]].concat());
+    assert!(
+        coupled.contains("friction.mode_mixity") && coupled.contains("friction.coupling"),
+        "{coupled}"
+    );
+    let spring = error_of(SLIDE, &[&adhesive[..], &["protocol.drive_stiffness=0.5"]].concat());
+    assert!(
+        spring.contains("protocol.drive_stiffness") && spring.contains("friction.mode_mixity"),
+        "{spring}"
+    );
     let analysis = error_of(&format!("{SLIDE}\n[analysis]\ntau0 = 0.002\n"), &[]);
     assert!(analysis.contains("[friction] and [analysis]"), "{analysis}");
     let indentation = error_of(

@@ -276,6 +276,7 @@ pub fn run_from(
                             friction.drive_stiffness,
                         )?,
                         coupled: friction.coupled,
+                        mode_mixity: friction.mode_mixity,
                     },
                     &mut recording,
                 )?,

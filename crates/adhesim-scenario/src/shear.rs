@@ -78,8 +78,9 @@ impl ScenarioFile {
             static_law,
             slip_weakening_distance,
             material: shear_material,
+            mode_mixity,
             ..
-        } = self.interface_laws(friction, material.contact_modulus())?;
+        } = self.interface_laws(friction, material.contact_modulus(), gamma0)?;
         let (depth, press_depth) = approach_depths(p, unit, start_depth)?;
         let deepest = press_depth.unwrap_or(depth);
         let (distance, force_control) = shift_or_force(p, friction, law, static_law)?;
@@ -96,7 +97,6 @@ impl ScenarioFile {
         )?;
         let direction = finite("protocol.direction", p.direction.unwrap_or(0.0))?.to_radians();
         let jump_force_threshold = self.output_checks(gamma0, &jkr, &indenter, material.contact_modulus())?;
-        let mode_mixity = mode_mixity(friction, gamma0)?;
         let coupled = coupled(friction);
         if let Some(layer) = &layer {
             layer_shear(layer)?;
@@ -169,28 +169,41 @@ impl ScenarioFile {
     }
 
     /// `[friction]` of a roll, slide or translate (None without one): the laws and the
-    /// tangential constants, with what shear alone offers refused by name.
-    pub(crate) fn interface_friction(&self, contact_modulus: f64) -> Result<Option<InterfaceFriction>> {
+    /// tangential constants, with what shear alone offers refused by name (a mode mixity
+    /// goes with Goodman's approximation only there).
+    pub(crate) fn interface_friction(
+        &self,
+        contact_modulus: f64,
+        work_of_adhesion: f64,
+    ) -> Result<Option<InterfaceFriction>> {
         let Some(friction) = &self.friction else {
             return Ok(None);
         };
-        if let Some((key, mixity)) = mixity_keys(friction).find(|&(_, m)| m != 0.0) {
-            bail!(ScenarioError::invalid_as(
-                key,
-                mixity,
-                "absent with a roll, slide or translate",
-                format!(
-                    "{key} weakens the adhesive edge under protocol.kind = \"shear\" only, got {mixity} with \"{}\"",
-                    self.protocol.kind().name()
-                )
-            ));
+        let interface = self.interface_laws(friction, contact_modulus, work_of_adhesion)?;
+        if interface.coupled {
+            if let Some((key, mixity)) = mixity_keys(friction).find(|&(_, m)| m != 0.0) {
+                bail!(ScenarioError::invalid_as(
+                    key,
+                    mixity,
+                    "0 with friction.coupling = \"full\" under a roll, slide or translate",
+                    format!(
+                        "{key} = {mixity} weakens the edge in rounds that are not built around the coupled operator's under protocol.kind = \"{}\": use friction.coupling = \"none\" with it, or protocol.kind = \"shear\"",
+                        self.protocol.kind().name()
+                    )
+                ));
+            }
         }
-        self.interface_laws(friction, contact_modulus).map(Some)
+        Ok(Some(interface))
     }
 
     /// The laws of `friction` and the tangential constants, with what no protocol combines
     /// with `[friction]` yet refused (the checks a shear and a translation share).
-    fn interface_laws(&self, friction: &FrictionSection, contact_modulus: f64) -> Result<InterfaceFriction> {
+    fn interface_laws(
+        &self,
+        friction: &FrictionSection,
+        contact_modulus: f64,
+        work_of_adhesion: f64,
+    ) -> Result<InterfaceFriction> {
         let law = friction_law(friction)?;
         let static_law = static_friction_law(friction)?;
         let slip_weakening_distance = slip_weakening(friction, static_law)?;
@@ -203,6 +216,7 @@ impl ScenarioFile {
             material,
             drive_stiffness: None,
             coupled: coupled(friction),
+            mode_mixity: mode_mixity(friction, work_of_adhesion)?,
         })
     }
 

@@ -83,7 +83,7 @@ impl ScenarioFile {
             ));
         }
         let (gammas, tau0) = analysis_inputs(&self.analysis)?;
-        let friction = self.interface_friction(material.contact_modulus())?;
+        let friction = self.interface_friction(material.contact_modulus(), gamma0)?;
         let friction = translation_drive(kind, p.drive_stiffness, friction)?;
         if let (Some(_), Some(layer)) = (&friction, &layer) {
             crate::shear::layer_shear(layer)?;
@@ -294,6 +294,17 @@ fn translation_drive(
             )
         ));
     };
+    if friction.mode_mixity.weakens() {
+        bail!(ScenarioError::invalid_as(
+            "protocol.drive_stiffness",
+            stiffness,
+            "absent with friction.mode_mixity",
+            format!(
+                "protocol.drive_stiffness = {stiffness} with friction.mode_mixity ({:?}): the spring's rounds (the profile moved to where the indenter goes) are not built around the weakened edge's rounds; drop the key for a rigid drive",
+                friction.mode_mixity
+            )
+        ));
+    }
     if friction.coupled {
         bail!(ScenarioError::invalid_as(
             "protocol.drive_stiffness",

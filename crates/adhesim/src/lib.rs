@@ -113,8 +113,9 @@ pub mod surface;
 
 pub use elastic::cerruti::ShearMaterial;
 pub use elastic::{
-    Backend, CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase, LayerError,
-    LayerOperator, PeriodicKernel, PeriodicOperator, ShearBody, TangentialOperator, TangentialOperatorError,
+    Backend, CouplingCompliance, CouplingOperator, ElasticLayer, ElasticOperator, FreeOperator, HalfSpace, LayerBase,
+    LayerError, LayerOperator, PeriodicKernel, PeriodicOperator, ShearBody, ShearCompliance, TangentialOperator,
+    TangentialOperatorError,
 };
 pub use geometry::{
     EllipticPunch, FlatPunch, Indenter, Kinematics, Profile, RoughBase, RoughProfile, Sphere, Topography,

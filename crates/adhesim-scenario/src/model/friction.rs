@@ -2,6 +2,7 @@
 //! validated shear setup.
 
 use super::DepthUnit;
+use adhesim::protocol::ModeMixity;
 use adhesim::{FrictionLaw, Shear, ShearMaterial};
 use serde::{Deserialize, Serialize};
 
@@ -164,6 +165,8 @@ pub struct InterfaceFriction {
     pub drive_stiffness: Option<f64>,
     /// The coupled normal–tangential operator (`friction.coupling = "full"`).
     pub coupled: bool,
+    /// `friction.mode_mixity` and its front and rear values (0: the edge is not weakened).
+    pub mode_mixity: ModeMixity,
 }
 
 /// A validated shear run: the library's protocol, the interface law and the half-space's

@@ -17,6 +17,7 @@ mod layer_shear;
 mod periodic;
 pub(crate) mod planner;
 mod preconditioner;
+mod shear_compliance;
 mod spectral;
 mod tangential;
 mod tangential_periodic;
@@ -30,6 +31,7 @@ pub use layer::{layer_compliance_factor, ElasticLayer, LayerBase, LayerError, La
 pub use layer_shear::{layer_coupling_ratio, layer_longitudinal_factor, layer_transverse_factor};
 pub use periodic::{PeriodicKernel, PeriodicOperator};
 pub use preconditioner::SpectralPreconditioner;
+pub use shear_compliance::{CouplingCompliance, ShearCompliance};
 pub use tangential::{ShearBody, TangentialOperator, TangentialOperatorError};
 
 use crate::grid::{Boundary, Grid};
@@ -96,6 +98,12 @@ pub trait ElasticOperator: Send {
     /// Number of applications so far (each is one forward+inverse FFT pair, in double or
     /// single precision).
     fn applications(&self) -> u64;
+
+    /// The backend that computes this operator: the interface's tangential and coupling
+    /// operators of a run are built by the same one ([`Backend::shear_operator`]).
+    fn backend(&self) -> Backend {
+        Backend::Cpu
+    }
 }
 
 /// The half-space operator of either boundary kind, chosen by the grid's [`Boundary`].

@@ -145,6 +145,19 @@ impl IndentCheckpoint {
 }
 
 impl TranslationCheckpoint {
+    /// The state of a translation on `grid` before its first step: no contact, nothing
+    /// counted.
+    pub(super) fn start(grid: &Grid) -> Self {
+        Self {
+            steps_done: 0,
+            state: ContactState::new(grid),
+            cumulative_dissipated_energy: 0.0,
+            summary: TranslationSummary::default(),
+            stationary: Vec::new(),
+            solver: SolverCheckpoint::Stateless,
+        }
+    }
+
     /// Checks that the checkpoint fits `grid` and a run of `steps` steps in all.
     pub(super) fn check(&self, grid: &Grid, steps: usize) -> Result<(), ProtocolError> {
         let len = grid.len();

@@ -135,14 +135,7 @@ impl Translation {
                     ..checkpoint.clone()
                 }
             }
-            None => TranslationCheckpoint {
-                steps_done: 0,
-                state: ContactState::new(&grid),
-                cumulative_dissipated_energy: 0.0,
-                summary: TranslationSummary::default(),
-                stationary: Vec::new(),
-                solver: super::SolverCheckpoint::Stateless,
-            },
+            None => TranslationCheckpoint::start(&grid),
         };
         let mut previous = run.state.contact.clone();
         let mut heights = vec![0.0; grid.len()];

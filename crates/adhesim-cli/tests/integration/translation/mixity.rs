@@ -1,8 +1,8 @@
-//! End-to-end tests of the direction-dependent mode mixity of the shear-weakened edge
-//! (`friction.mode_mixity_front`, `friction.mode_mixity_rear`; docs/physics.md §8.5). A
-//! module of the translation tests.
+//! End-to-end tests of the shear-weakened edge (docs/physics.md §8.5): its
+//! direction-dependent mode mixity (`friction.mode_mixity_front`, `friction.mode_mixity_rear`)
+//! and the weakened edge of a slide. A module of the translation tests.
 
-use super::common::{assert_fails_with, column_values, read_csv, repo, run_with_sets};
+use super::common::{assert_fails_with, column, column_values, curve_with_sets, read_csv, repo, run_with_sets};
 use super::run_scenario;
 
 /// (n_contact, area_front, area_rear) per row of a run of the glued adhesive sphere.
@@ -83,5 +83,60 @@ fn normal_control_names_its_key() {
     assert_fails_with(
         &run(&["protocol.normal_control=\"sideways\""]),
         &["normal_control", "sideways"],
+    );
+}
+
+#[test]
+fn a_weakened_slide_under_a_shear_strength_is_the_slide_at_the_reduced_work_of_adhesion() {
+    // scenarios/layer/paper_r22_slide.toml (the paper's sphere slid over its rubber layer
+    // under τ0 = 36 kPa) at 192 × 48 (Δ = 0.2 mm), slid 0.6 mm with mode mixity 1. Once
+    // the contact slides, every element carries |q| = τ0, so the element rule's
+    // σ_c,eff² = σ_c² − m·r·τ0² (r = 3/2 at ν = 1/2) is the σ_c of the uniformly reduced
+    // work of adhesion w(1 − m·r·τ0²/σ_c²), σ_c = √(E*w/(c_U Δ)): 0.646 w here. The
+    // weakened slide must be the unweakened slide at that w from the first stroke step on
+    // (its approach, unweakened, is the full w's): the same contact, front, rear, stick
+    // and slip counts at every stroke step, forces to 1e-6 of each (the normal and
+    // tangential solves' tolerances from other starting points; measured 5e-8). The
+    // contact loses 4.5 % of its area against the full w's (1.6 % at Δ = 0.1 mm: a
+    // bounded traction's weakening is the lattice's, σ_c² ∝ 1/Δ).
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = repo().join("scenarios/layer/paper_r22_slide.toml");
+    let coarse = ["grid.n=[192, 48]", "protocol.distance=0.6", "protocol.steps=12"];
+    let (work_of_adhesion, shear_strength, contact_modulus, element) = (3.9e-4, 0.036, 1.0 / 0.75, 0.2);
+    let sigma = adhesim::solver::critical_stress(contact_modulus, work_of_adhesion, element);
+    let reduced = work_of_adhesion * (1.0 - 1.5 * shear_strength * shear_strength / (sigma * sigma));
+    assert!((reduced / work_of_adhesion - 0.646).abs() < 1e-3, "{reduced}");
+    let weakened_sets = [&coarse[..], &["friction.mode_mixity=1"]].concat();
+    let (header, weakened) = curve_with_sets(&scenario, &dir.path().join("weakened"), &weakened_sets);
+    let reduced_set = format!("adhesion.work_of_adhesion={reduced:e}");
+    let reduced_sets = [&coarse[..], &[reduced_set.as_str()]].concat();
+    let (header_reduced, at_reduced) = curve_with_sets(&scenario, &dir.path().join("reduced"), &reduced_sets);
+    let approach = 20;
+    assert_eq!(weakened.len(), approach + 12);
+    for name in ["n_contact", "area_front", "area_rear", "n_stick", "n_slip"] {
+        assert_eq!(
+            column(&header, &weakened, name)[approach..],
+            column(&header_reduced, &at_reduced, name)[approach..],
+            "{name}"
+        );
+    }
+    for name in ["force_normal", "force_tangential"] {
+        let (a, b) = (
+            column_values(&header, &weakened, name),
+            column_values(&header_reduced, &at_reduced, name),
+        );
+        for k in approach..a.len() {
+            assert!(
+                (a[k] / b[k] - 1.0).abs() < 1e-6,
+                "step {k}: {name} {} vs {}",
+                a[k],
+                b[k]
+            );
+        }
+    }
+    let contact = column_values(&header, &weakened, "n_contact");
+    assert!(
+        contact[weakened.len() - 1] < 0.97 * contact[approach - 1],
+        "{contact:?}"
     );
 }

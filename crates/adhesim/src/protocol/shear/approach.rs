@@ -31,9 +31,8 @@ impl Shear {
             self.approach(operator, heights, solver, (state, previous), summary, observer)?;
             return self.contact_held(state).map(|_| None);
         }
-        let grid = *operator.grid();
         let inclined = self.incline != 0.0;
-        let mut stepper = ShiftStepper::new(&grid, state, body, self.mode_mixity, inclined, true, solver)?;
+        let mut stepper = ShiftStepper::new(&*operator, state, body, self.mode_mixity, inclined, true, solver)?;
         self.approach_coupled(
             NormalSide {
                 operator,

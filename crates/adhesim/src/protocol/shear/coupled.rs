@@ -5,11 +5,12 @@
 use super::edge::{add_normal, add_tangential, NormalSide, RoundsStep, Weakening};
 use super::held_force::TrialStep;
 use super::shift::ShiftTarget;
+use super::weakened_slide::adhesive;
 use super::window::TangentialRoom;
-use crate::elastic::{CouplingOperator, ShearBody};
+use crate::elastic::{Backend, CouplingCompliance, ShearBody};
 use crate::grid::Grid;
 use crate::protocol::{NormalSolver, ProtocolError};
-use crate::solver::{AdhesiveSolver, ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
+use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver, TangentialState};
 
 /// The rounds stop when the normal displacement of the shear tractions, K_zt q, differs
 /// from the lift the normal step saw by at most this share of its largest value (and the
@@ -26,7 +27,7 @@ const MAX_ALTERNATIONS: usize = 4;
 /// The coupled steps of a run: the coupling operator on the whole grid and the fields it
 /// carries from round to round.
 pub(super) struct Coupling {
-    operator: CouplingOperator,
+    operator: Box<dyn CouplingCompliance>,
     /// The profile plus the lift: what the normal solver sees.
     heights: Vec<f64>,
     /// The lift v of the profile in the round's normal solve: K_zt q of the tractions,
@@ -69,10 +70,12 @@ struct Carried {
 }
 
 impl Coupling {
-    /// The coupling of `grid`: its operator acts on the whole grid (the normal displacement
-    /// of the tractions reaches every gap), the tangential problem on the room's window.
-    pub(super) fn new(grid: &Grid, body: ShearBody) -> Result<Self, ProtocolError> {
-        let operator = CouplingOperator::for_body(*grid, body)
+    /// The coupling of `grid`: its operator, built by `backend`, acts on the whole grid
+    /// (the normal displacement of the tractions reaches every gap), the tangential problem
+    /// on the room's window.
+    pub(super) fn new(grid: &Grid, (body, backend): (ShearBody, Backend)) -> Result<Self, ProtocolError> {
+        let operator = backend
+            .coupling_operator(*grid, body)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         let n = grid.len();
         Ok(Self {
@@ -307,13 +310,6 @@ impl Coupling {
             change
         }
     }
-}
-
-/// The JKR-type solver a weakened edge needs.
-fn adhesive(solver: &mut NormalSolver) -> Result<&mut AdhesiveSolver, ProtocolError> {
-    solver.as_adhesive_mut().ok_or_else(|| {
-        ProtocolError::InvalidParameter("a shear-weakened edge needs the JKR-type adhesive solver".into())
-    })
 }
 
 /// The coupled step under normal-force control: its lift and the pressure's pull are what

@@ -10,10 +10,10 @@ use crate::elastic::{ElasticOperator, ShearBody};
 use crate::geometry::TranslatingContact;
 use crate::protocol::translation::stationary_means;
 use crate::protocol::{
-    NormalSolver, Observer, Phase, ProtocolError, SolverCheckpoint, StepRecord, StepView, Translation,
-    TranslationCheckpoint, TranslationSummary,
+    NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView, Translation, TranslationCheckpoint,
+    TranslationSummary,
 };
-use crate::solver::{Complementarity, ContactState, TangentialSolver};
+use crate::solver::{Complementarity, TangentialSolver};
 use std::ops::ControlFlow;
 
 impl Translation {
@@ -45,15 +45,8 @@ impl Translation {
         }
         let grid = *operator.grid();
         let schedule = self.schedule(phase);
-        let mut run = TranslationCheckpoint {
-            steps_done: 0,
-            state: ContactState::new(&grid),
-            cumulative_dissipated_energy: 0.0,
-            summary: TranslationSummary::default(),
-            stationary: Vec::new(),
-            solver: SolverCheckpoint::Stateless,
-        };
-        let mut stepper = ShiftStepper::new(&grid, &run.state, body, ModeMixity::default(), false, true, solver)?;
+        let mut run = TranslationCheckpoint::start(&grid);
+        let mut stepper = ShiftStepper::new(&*operator, &run.state, body, ModeMixity::default(), false, true, solver)?;
         let mut fields = ShearFields::new(grid.len());
         let (mut frictional_dissipation, mut complementarity) = (0.0, Complementarity::default());
         let mut previous = run.state.contact.clone();

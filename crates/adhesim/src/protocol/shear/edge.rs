@@ -212,7 +212,7 @@ impl EdgeWeakening {
             }
             room.window.gather_into(normal.state, &mut self.window_state);
             let report = friction
-                .step(&mut room.operator, &self.window_state, shift, &mut room.state)
+                .step(room.operator.as_mut(), &self.window_state, shift, &mut room.state)
                 .map_err(|source| ProtocolError::Tangential {
                     step,
                     shift: along,

@@ -9,6 +9,7 @@ mod held_force;
 mod mixity;
 mod shift;
 mod sliding;
+mod weakened_slide;
 mod window;
 
 pub use edge::{element_energy_ratio, shear_weakened_critical_stress};
@@ -200,7 +201,7 @@ impl Shear {
             Some(TangentialForce::OfCapacity(share)) => share * friction.capacity(&state, grid.element_area()),
         };
         let mut stepper = coupled.map_or_else(
-            || ShiftStepper::new(&grid, &state, body, self.mode_mixity, inclined, false, solver),
+            || ShiftStepper::new(&*operator, &state, body, self.mode_mixity, inclined, false, solver),
             Ok,
         )?;
         stepper.hold_normal_force(self.hold_normal_force)?;

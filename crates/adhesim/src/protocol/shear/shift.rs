@@ -9,8 +9,7 @@ use super::held_force::{HeldForce, TrialStep};
 use super::mixity::ModeMixity;
 use super::window::TangentialRoom;
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::ShearBody;
-use crate::grid::Grid;
+use crate::elastic::{ElasticOperator, ShearBody};
 use crate::protocol::{NormalSolver, ProtocolError};
 use crate::solver::{ContactState, StepReport, TangentialReport, TangentialSolver};
 
@@ -52,9 +51,9 @@ impl ShiftTarget {
     ) -> Result<TangentialReport, ProtocolError> {
         let along = self.named_shift(room.state.shift);
         let solved = match self {
-            Self::Shift(shift) => friction.step(&mut room.operator, normal, shift, &mut room.state),
+            Self::Shift(shift) => friction.step(room.operator.as_mut(), normal, shift, &mut room.state),
             Self::Force { unit, force } => {
-                friction.step_to_force(&mut room.operator, normal, unit, force, &mut room.state)
+                friction.step_to_force(room.operator.as_mut(), normal, unit, force, &mut room.state)
             }
         };
         solved.map_err(|source| ProtocolError::Tangential {
@@ -106,9 +105,10 @@ pub(super) struct ShiftStepper {
 
 impl ShiftStepper {
     /// The stepper for the contact of `state` at the end of the approach; `inclined` when
-    /// the depth changes along the shift.
+    /// the depth changes along the shift. Its operators are built on the grid and by the
+    /// backend of the run's normal `operator`.
     pub(super) fn new(
-        grid: &Grid,
+        operator: &dyn ElasticOperator,
         state: &ContactState,
         body: ShearBody,
         mode_mixity: ModeMixity,
@@ -117,19 +117,20 @@ impl ShiftStepper {
         solver: &mut NormalSolver,
     ) -> Result<Self, ProtocolError> {
         let material = body.material;
+        let (grid, backend) = (operator.grid(), operator.backend());
         if coupled {
             // The room follows the contact as it grows from nothing in the approach.
-            let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, body)?;
+            let room = TangentialRoom::new(grid, &state.contact, MOVING_WINDOW_MARGIN, (body, backend))?;
             return Ok(Self {
                 window_state: room.window.gather(state),
                 room,
-                mode: NormalMode::Coupled(Box::new(Coupling::new(grid, body)?)),
+                mode: NormalMode::Coupled(Box::new(Coupling::new(grid, (body, backend))?)),
                 held: None,
             });
         }
         let changes = mode_mixity.weakens() || inclined;
         let margin = if changes { MOVING_WINDOW_MARGIN } else { 0 };
-        let room = TangentialRoom::new(grid, &state.contact, margin, body)?;
+        let room = TangentialRoom::new(grid, &state.contact, margin, (body, backend))?;
         let mode = match (mode_mixity.weakens(), solver.as_adhesive_mut()) {
             (true, Some(adhesive)) => NormalMode::Weakened(Box::new(EdgeWeakening::new(
                 adhesive,

@@ -1,18 +1,20 @@
 //! Rolling and sliding with friction at the interface: the translation protocol with a
 //! tangential step on the contact's window after each normal step (docs/physics.md §8.4).
 
-use super::edge::add_normal;
+use super::edge::{add_normal, Weakening};
+use super::mixity::ModeMixity;
+use super::weakened_slide::adhesive;
 use super::window::TangentialRoom;
 use super::{contact_split_about, worst, ShearFields};
-use crate::elastic::{ElasticOperator, ShearBody};
+use crate::elastic::{Backend, ElasticOperator, ShearBody};
 use crate::geometry::{Kinematics, TranslatingContact};
 use crate::grid::Grid;
 use crate::protocol::translation::stationary_means;
 use crate::protocol::{
-    NormalSolver, Observer, Phase, ProtocolError, SolverCheckpoint, StepRecord, StepView, Translation,
-    TranslationCheckpoint, TranslationSummary,
+    NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView, Translation, TranslationCheckpoint,
+    TranslationSummary,
 };
-use crate::solver::{Complementarity, ContactState, StepReport, TangentialSolver};
+use crate::solver::{Complementarity, ContactState, StepReport, TangentialReport, TangentialSolver};
 use std::ops::ControlFlow;
 
 /// Elements of margin around the contact in the window of a translation: room to travel
@@ -27,20 +29,22 @@ const DRIVE_TOLERANCE: f64 = 1e-6;
 
 /// The tangential side of a translation with friction: the room, the solver and what the
 /// run has summed.
-struct Interface<'a> {
-    grid: Grid,
-    body: ShearBody,
-    friction: &'a mut TangentialSolver,
-    room: Option<TangentialRoom>,
-    window_state: ContactState,
-    fields: ShearFields,
+pub(super) struct Interface<'a> {
+    pub(super) grid: Grid,
+    pub(super) body: ShearBody,
+    /// The run's normal operator's backend, which builds the room's.
+    pub(super) backend: Backend,
+    pub(super) friction: &'a mut TangentialSolver,
+    pub(super) room: Option<TangentialRoom>,
+    pub(super) window_state: ContactState,
+    pub(super) fields: ShearFields,
     /// The indenter's material moves with the axis (slide, translate) or not (roll).
-    slides: bool,
-    frictional_dissipation: f64,
-    complementarity: Complementarity,
+    pub(super) slides: bool,
+    pub(super) frictional_dissipation: f64,
+    pub(super) complementarity: Complementarity,
     /// The indenter's shift at the end of the last step (under a compliant drive it lags
     /// the drive's position).
-    indenter: f64,
+    pub(super) indenter: f64,
 }
 
 impl Interface<'_> {
@@ -60,6 +64,39 @@ impl Interface<'_> {
             record.stick_elements = count;
             return Ok(offset);
         }
+        let moved = self.room_on(state)?;
+        // The spring pulls against the tractions and the boundary's force alike: the
+        // solver's drive stands at X − F_B/k so that k(X − δ) = F_B + Δ²Σq_x.
+        let shift = match (drive, self.friction.drive_stiffness()) {
+            (Some(drive), Some(stiffness)) => drive - record.force_tangential / stiffness,
+            _ if self.slides => offset,
+            _ => 0.0,
+        };
+        let report = self.tangential_step(step, shift)?;
+        let room = self.room.as_ref().expect("room_on made the room");
+        room.window.scatter(&room.state, &mut self.fields);
+        self.account(&report, moved, record);
+        Ok(report.shift[0])
+    }
+
+    /// The tangential step of step `step` to `shift` on the room, the normal state
+    /// gathered on its window by [`room_on`](Self::room_on).
+    pub(super) fn tangential_step(&mut self, step: usize, shift: f64) -> Result<TangentialReport, ProtocolError> {
+        let room = self.room.as_mut().expect("room_on made the room");
+        self.friction
+            .step(
+                room.operator.as_mut(),
+                &self.window_state,
+                [shift, 0.0],
+                &mut room.state,
+            )
+            .map_err(|source| ProtocolError::Tangential { step, shift, source })
+    }
+
+    /// Puts the room on the contact of `state` (made at the stroke's first step, moved onto
+    /// the contact when it has left the window) and gathers the normal state on its
+    /// window; returns the FFT pairs a move spent.
+    pub(super) fn room_on(&mut self, state: &ContactState) -> Result<u64, ProtocolError> {
         let moved = match &mut self.room {
             Some(room) => room.follow(&state.contact)?,
             None => {
@@ -67,7 +104,7 @@ impl Interface<'_> {
                     &self.grid,
                     &state.contact,
                     TRAVEL_MARGIN,
-                    self.body,
+                    (self.body, self.backend),
                 )?);
                 0
             }
@@ -77,18 +114,13 @@ impl Interface<'_> {
             self.window_state = ContactState::new(&room.window.grid);
         }
         room.window.gather_into(state, &mut self.window_state);
-        // The spring pulls against the tractions and the boundary's force alike: the
-        // solver's drive stands at X − F_B/k so that k(X − δ) = F_B + Δ²Σq_x.
-        let shift = match (drive, self.friction.drive_stiffness()) {
-            (Some(drive), Some(stiffness)) => drive - record.force_tangential / stiffness,
-            _ if self.slides => offset,
-            _ => 0.0,
-        };
-        let report = self
-            .friction
-            .step(&mut room.operator, &self.window_state, [shift, 0.0], &mut room.state)
-            .map_err(|source| ProtocolError::Tangential { step, shift, source })?;
-        room.window.scatter(&room.state, &mut self.fields);
+        Ok(moved)
+    }
+
+    /// A step's tangential solve (`report`, and `moved`, the FFT pairs of moving the room)
+    /// into its record and the run's totals: its force added to the boundary force, its
+    /// counters, friction's dissipation and the optimality conditions.
+    pub(super) fn account(&mut self, report: &TangentialReport, moved: u64, record: &mut StepRecord) {
         record.force_tangential += report.force[0];
         record.force_tangential_before_change += report.force[0];
         (record.stick_elements, record.slip_elements) = (report.stick_elements, report.slip_elements);
@@ -97,7 +129,6 @@ impl Interface<'_> {
         self.frictional_dissipation += report.dissipated_energy;
         record.cumulative_frictional_dissipation = self.frictional_dissipation;
         worst(&mut self.complementarity, report.complementarity);
-        Ok(report.shift[0])
     }
 
     /// A stroke step under a compliant drive at `drive`: rounds of a normal step with the
@@ -168,6 +199,11 @@ pub struct TranslationFriction<'a> {
     /// The coupled operator (`friction.coupling = "full"`, docs/physics.md §8.1a): each
     /// step solves the two problems in turn. False: Goodman's approximation.
     pub coupled: bool,
+    /// The share of an element's shear energy that counts toward its detachment, by the
+    /// side of the edge (docs/physics.md §8.5; the default, 0: the shear does not weaken
+    /// the edge). Above 0 it needs the JKR-type adhesive solver, a rigid drive and
+    /// Goodman's approximation.
+    pub mode_mixity: ModeMixity,
 }
 
 impl Translation {
@@ -179,7 +215,9 @@ impl Translation {
     /// plus the interface's Δ²Σq_x; the energy balance counts friction's dissipation.
     /// Offers no checkpoints. Without `friction.coupled` the normal problem does not see
     /// the shear (Goodman's approximation); with it each step, the approach's too, is a
-    /// coupled step (docs/physics.md §8.4a).
+    /// coupled step (docs/physics.md §8.4a). A `friction.mode_mixity` above 0 weakens the
+    /// adhesive edge by the shear it carries, each stroke step in rounds
+    /// (`Interface::weakened_step`).
     pub fn run_with_friction(
         &self,
         operator: &mut dyn ElasticOperator,
@@ -199,22 +237,27 @@ impl Translation {
             body,
             solver: friction,
             coupled,
+            mode_mixity,
         } = friction;
+        let compliant = friction.drive_stiffness().is_some();
+        if mode_mixity.weakens() && (coupled || compliant) {
+            return Err(ProtocolError::InvalidParameter(format!(
+                "a shear-weakened edge ({mode_mixity:?}) under a roll, slide or translate takes Goodman's approximation and a rigid drive: its rounds are not built around the coupled operator's or a spring's"
+            )));
+        }
         if coupled {
             return self.run_coupled(operator, contact, solver, (body, friction), observer, phase);
         }
-        let schedule = self.schedule(phase);
-        let mut run = TranslationCheckpoint {
-            steps_done: 0,
-            state: ContactState::new(&grid),
-            cumulative_dissipated_energy: 0.0,
-            summary: TranslationSummary::default(),
-            stationary: Vec::new(),
-            solver: SolverCheckpoint::Stateless,
+        let mut weakening = match mode_mixity.weakens() {
+            true => Some(Weakening::new(adhesive(solver)?, body.material, mode_mixity)),
+            false => None,
         };
+        let schedule = self.schedule(phase);
+        let mut run = TranslationCheckpoint::start(&grid);
         let mut interface = Interface {
             grid,
             body,
+            backend: operator.backend(),
             friction,
             room: None,
             window_state: ContactState::new(&grid),
@@ -224,7 +267,6 @@ impl Translation {
             complementarity: Complementarity::default(),
             indenter: 0.0,
         };
-        let compliant = interface.friction.drive_stiffness().is_some();
         if compliant && phase == Phase::Roll {
             return Err(ProtocolError::InvalidParameter(
                 "a compliant drive pulls a slide or a translation; a rolling indenter does not carry its surface along, so a roll takes a rigid drive".into(),
@@ -234,9 +276,17 @@ impl Translation {
         let mut heights = vec![0.0; grid.len()];
         for (step, &(stage, depth, offset)) in schedule.iter().enumerate() {
             previous.copy_from_slice(&run.state.contact);
+            let weakened = weakening.as_mut().filter(|_| stage != Phase::Approach);
             let record = if compliant && stage != Phase::Approach {
                 let normal = (self, &mut *operator, contact, &mut *solver);
                 let record = interface.driven_step(normal, &mut run, (step, stage, depth, offset), &mut heights)?;
+                self.count_step(&mut run, &record, offset);
+                record
+            } else if let Some(weakening) = weakened {
+                contact.fill_heights(&grid, offset, &mut heights);
+                let normal = (self, &mut *operator, contact, &mut *solver);
+                let place = (step, stage, depth, offset);
+                let record = interface.weakened_step(normal, weakening, &mut run, place, &heights)?;
                 self.count_step(&mut run, &record, offset);
                 record
             } else {
@@ -265,6 +315,9 @@ impl Translation {
                 return Err(ProtocolError::Interrupted(step));
             }
             run.steps_done = step + 1;
+        }
+        if let Some(weakening) = &weakening {
+            weakening.restore(adhesive(solver)?);
         }
         let mut summary = run.summary;
         let position = |record: &StepRecord| if compliant { record.drive_offset } else { record.offset };

@@ -1,6 +1,6 @@
 //! The window of the tangential problem: the contact's bounding box as a free grid.
 
-use crate::elastic::{ShearBody, TangentialOperator};
+use crate::elastic::{Backend, ShearBody, ShearCompliance};
 use crate::grid::{Boundary, Grid};
 use crate::protocol::ProtocolError;
 use crate::solver::{ContactState, SlipStatus, TangentialState};
@@ -140,18 +140,27 @@ impl ContactWindow {
 /// into the body), carrying the fields over.
 pub(super) struct TangentialRoom {
     pub(super) window: ContactWindow,
-    pub(super) operator: TangentialOperator,
+    pub(super) operator: Box<dyn ShearCompliance>,
     pub(super) state: TangentialState,
     grid: Grid,
     body: ShearBody,
+    /// The backend that builds the room's operator (the run's normal operator's).
+    backend: Backend,
     margin: usize,
 }
 
 impl TangentialRoom {
-    /// The room of `contact` on `grid`, `margin` elements wider on each side.
-    pub(super) fn new(grid: &Grid, contact: &[bool], margin: usize, body: ShearBody) -> Result<Self, ProtocolError> {
+    /// The room of `contact` on `grid`, `margin` elements wider on each side, its operator
+    /// built by `backend`.
+    pub(super) fn new(
+        grid: &Grid,
+        contact: &[bool],
+        margin: usize,
+        (body, backend): (ShearBody, Backend),
+    ) -> Result<Self, ProtocolError> {
         let window = ContactWindow::around(grid, contact, margin)?;
-        let operator = TangentialOperator::for_body(window.grid, body)
+        let operator = backend
+            .shear_operator(window.grid, body)
             .map_err(|error| ProtocolError::InvalidParameter(error.to_string()))?;
         Ok(Self {
             state: TangentialState::new(window.grid.len()),
@@ -159,6 +168,7 @@ impl TangentialRoom {
             operator,
             grid: *grid,
             body,
+            backend,
             margin,
         })
     }
@@ -175,7 +185,7 @@ impl TangentialRoom {
         for (_, k) in self.window.elements() {
             union[k] = true;
         }
-        let wider = Self::new(&self.grid, &union, self.margin, self.body)?;
+        let wider = Self::new(&self.grid, &union, self.margin, (self.body, self.backend))?;
         Ok(self.move_into(wider))
     }
 
@@ -194,7 +204,7 @@ impl TangentialRoom {
                 loaded[k] = true;
             }
         }
-        let moved = Self::new(&self.grid, &loaded, self.margin, self.body)?;
+        let moved = Self::new(&self.grid, &loaded, self.margin, (self.body, self.backend))?;
         Ok(self.move_into(moved))
     }
 
@@ -214,7 +224,7 @@ impl TangentialRoom {
         let mut next = TangentialState::new(self.window.grid.len());
         carry_fields((window, state), (&self.window, &mut next), self.grid.len());
         let before = self.operator.transform_pairs();
-        recompute_displacements(&mut self.operator, &mut next);
+        recompute_displacements(self.operator.as_mut(), &mut next);
         self.state = next;
         self.operator.transform_pairs() - before
     }
@@ -236,7 +246,7 @@ impl TangentialRoom {
             (&next.window, &mut next.state),
             self.grid.len(),
         );
-        recompute_displacements(&mut next.operator, &mut next.state);
+        recompute_displacements(next.operator.as_mut(), &mut next.state);
         let pairs = next.operator.transform_pairs();
         *self = next;
         pairs
@@ -279,7 +289,7 @@ fn carry_fields(
 }
 
 /// u = K q of the state's tractions: the same field on whatever window holds them.
-fn recompute_displacements(operator: &mut TangentialOperator, state: &mut TangentialState) {
+fn recompute_displacements(operator: &mut dyn ShearCompliance, state: &mut TangentialState) {
     let [ux, uy] = &mut state.displacement;
     operator.apply([&state.traction[0], &state.traction[1]], [ux, uy]);
 }
@@ -309,7 +319,7 @@ mod tests {
         let grid = Grid::new(32, 1.0, Boundary::Free).unwrap();
         let material = ShearMaterial::from_contact_modulus(4.0, 0.5);
         let contact = disc(16);
-        let mut room = TangentialRoom::new(&grid, &contact, 2, material.into()).unwrap();
+        let mut room = TangentialRoom::new(&grid, &contact, 2, (material.into(), Backend::Cpu)).unwrap();
         let window = room.window.clone();
         room.state.slip_since_stuck = vec![0.0; window.grid.len()];
         for (w, k) in window.elements() {

@@ -14,7 +14,7 @@
 
 use super::constraint::ForceConstraint;
 use super::{TangentialError, TangentialReport, TangentialSolver, TangentialState};
-use crate::elastic::TangentialOperator;
+use crate::elastic::ShearCompliance;
 use crate::solver::ContactState;
 
 /// The imposed force is met when |F − Q| ≤ this × max(|Q|, |F⁻|), F⁻ the step's starting
@@ -74,7 +74,7 @@ impl TangentialSolver {
     /// ```
     pub fn step_to_force(
         &mut self,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         normal: &ContactState,
         unit: [f64; 2],
         force: f64,
@@ -115,7 +115,7 @@ impl TangentialSolver {
     /// force by more than `tolerance`: the caller then falls back to the trials.
     fn step_to_force_at_once(
         &mut self,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         normal: &ContactState,
         (unit, force): ([f64; 2], f64),
         state: &mut TangentialState,
@@ -155,7 +155,7 @@ impl TangentialSolver {
     /// starting state, bracketed along the secant and closed by the Illinois rule.
     pub(super) fn step_to_force_by_trials(
         &mut self,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         normal: &ContactState,
         (unit, force): ([f64; 2], f64),
         state: &mut TangentialState,
@@ -239,7 +239,7 @@ impl TangentialSolver {
 /// Δ²Σ 1/K_ii over the contact: the stiffness if its elements did not share their
 /// displacements, above the true one; a first trial from it falls short, and the secant
 /// through it is the contact's.
-fn uncoupled_stiffness(operator: &TangentialOperator, normal: &ContactState) -> f64 {
+fn uncoupled_stiffness(operator: &dyn ShearCompliance, normal: &ContactState) -> f64 {
     let elements = normal.contact.iter().filter(|&&c| c).count().max(1);
     operator.grid().element_area() * elements as f64 / operator.self_compliance()
 }
@@ -270,7 +270,7 @@ impl Search {
     fn trial(
         &mut self,
         solver: &mut TangentialSolver,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         normal: &ContactState,
         state: &mut TangentialState,
         shift: f64,

@@ -3,7 +3,7 @@
 
 use super::constraint::FaceSums;
 use super::{SlipStatus, TangentialError, TangentialReport, TangentialSolver, TangentialState};
-use crate::elastic::TangentialOperator;
+use crate::elastic::ShearCompliance;
 use crate::solver::ContactState;
 
 /// The free part of element i's traction change: both components on a sticking element,
@@ -40,7 +40,7 @@ impl TangentialSolver {
     /// best uniform shift along the force (constraint.rs).
     pub(super) fn solve_face(
         &mut self,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         state: &mut TangentialState,
         tolerance: f64,
     ) -> Result<usize, TangentialError> {
@@ -244,7 +244,7 @@ impl TangentialSolver {
     /// fields; records the shift.
     pub(super) fn finish(
         &self,
-        operator: &TangentialOperator,
+        operator: &dyn ShearCompliance,
         normal: &ContactState,
         shift: [f64; 2],
         state: &mut TangentialState,

@@ -26,7 +26,7 @@ mod law;
 pub use law::{FrictionLaw, FrictionLawError};
 
 use super::ContactState;
-use crate::elastic::TangentialOperator;
+use crate::elastic::ShearCompliance;
 use thiserror::Error;
 
 /// The tangential state of an element.
@@ -425,7 +425,7 @@ impl TangentialSolver {
     /// from the balance of the spring ([`TangentialReport::shift`]).
     pub fn step(
         &mut self,
-        operator: &mut TangentialOperator,
+        operator: &mut dyn ShearCompliance,
         normal: &ContactState,
         shift: [f64; 2],
         state: &mut TangentialState,

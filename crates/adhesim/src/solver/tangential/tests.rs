@@ -1,6 +1,6 @@
 use super::*;
 use crate::elastic::cerruti::ShearMaterial;
-use crate::elastic::FreeOperator;
+use crate::elastic::{FreeOperator, TangentialOperator};
 use crate::geometry::{Profile, Sphere};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
