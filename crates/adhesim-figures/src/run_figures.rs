@@ -5,8 +5,7 @@
 
 use crate::{plots, tangential_plots};
 use adhesim::analysis::reference::Hertz;
-use adhesim::RunSummary;
-use adhesim::{Grid, Profile, SlipStatus, StepRecord, TranslationSummary};
+use adhesim::{Grid, Profile, RunSummary, SlipStatus, StepRecord, TranslationSummary};
 use adhesim_scenario::output::observer::{CapturedStep, RunPictures};
 use adhesim_scenario::{ProtocolSetup, RunOutcome, RunResults, TranslationSetup, ValidScenario};
 use anyhow::Result;

@@ -3,8 +3,7 @@
 //! pictures and progress bar (`crate::output`), then the report on stdout.
 
 use crate::{output, resources};
-use adhesim::RunSummary;
-use adhesim::{ProtocolSummary, ShearSummary, TranslationSummary};
+use adhesim::{ProtocolSummary, RunSummary, ShearSummary, TranslationSummary};
 use adhesim_figures::run_figures::RunFigures;
 use adhesim_scenario::output::checkpoint::CheckpointPolicy;
 use adhesim_scenario::output::folder;
