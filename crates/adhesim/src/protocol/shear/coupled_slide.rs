@@ -5,7 +5,8 @@
 use super::edge::NormalSide;
 use super::mixity::ModeMixity;
 use super::shift::{ShiftStepper, ShiftTarget};
-use super::{contact_split_about, worst, ShearFields};
+use super::sliding::add_tangential_step;
+use super::{contact_split_about, ShearFields};
 use crate::elastic::{ElasticOperator, ShearBody};
 use crate::geometry::TranslatingContact;
 use crate::protocol::translation::stationary_means;
@@ -68,17 +69,13 @@ impl Translation {
                 step,
                 0.0,
             )?;
-            let tangential = outcome.tangential;
-            let mut normal = outcome.normal;
-            normal.cg_iterations += tangential.cg_iterations;
-            normal.operator_applications += tangential.transform_pairs;
-            run.cumulative_dissipated_energy += normal.dissipated_energy;
+            run.cumulative_dissipated_energy += outcome.normal.dissipated_energy;
             let mut record = StepRecord::measure(
                 step,
                 stage,
                 depth,
                 offset,
-                normal,
+                outcome.normal,
                 &run.state,
                 &grid,
                 run.cumulative_dissipated_energy,
@@ -89,13 +86,10 @@ impl Translation {
             } else {
                 contact.tangential_force(&grid, &run.state.pressure, offset)
             };
-            record.force_tangential = boundary + tangential.force[0];
-            record.force_tangential_before_change = record.force_tangential;
-            (record.stick_elements, record.slip_elements) = (tangential.stick_elements, tangential.slip_elements);
+            (record.force_tangential, record.force_tangential_before_change) = (boundary, boundary);
+            let totals = (&mut frictional_dissipation, &mut complementarity);
+            add_tangential_step(&outcome.tangential, &mut record, totals);
             (_, record.area_front, record.area_rear) = contact_split_about(&grid, &run.state.contact, 0.0, offset);
-            frictional_dissipation += tangential.dissipated_energy;
-            record.cumulative_frictional_dissipation = frictional_dissipation;
-            worst(&mut complementarity, tangential.complementarity);
             self.count_step(&mut run, &record, offset);
             stepper.room.window.scatter(&stepper.room.state, &mut fields);
             let view = StepView {

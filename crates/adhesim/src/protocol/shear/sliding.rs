@@ -118,17 +118,11 @@ impl Interface<'_> {
     }
 
     /// A step's tangential solve (`report`, and `moved`, the FFT pairs of moving the room)
-    /// into its record and the run's totals: its force added to the boundary force, its
-    /// counters, friction's dissipation and the optimality conditions.
+    /// into its record and the run's totals ([`add_tangential_step`]).
     pub(super) fn account(&mut self, report: &TangentialReport, moved: u64, record: &mut StepRecord) {
-        record.force_tangential += report.force[0];
-        record.force_tangential_before_change += report.force[0];
-        (record.stick_elements, record.slip_elements) = (report.stick_elements, report.slip_elements);
-        record.report.cg_iterations += report.cg_iterations;
-        record.report.operator_applications += report.transform_pairs + moved;
-        self.frictional_dissipation += report.dissipated_energy;
-        record.cumulative_frictional_dissipation = self.frictional_dissipation;
-        worst(&mut self.complementarity, report.complementarity);
+        record.report.operator_applications += moved;
+        let totals = (&mut self.frictional_dissipation, &mut self.complementarity);
+        add_tangential_step(report, record, totals);
     }
 
     /// A stroke step under a compliant drive at `drive`: rounds of a normal step with the
@@ -312,13 +306,12 @@ impl Translation {
                 shear: (stage != Phase::Approach).then_some(&interface.fields),
             };
             if let ControlFlow::Break(()) = observer.on_step(view) {
+                restore_edge(weakening.as_ref(), solver)?;
                 return Err(ProtocolError::Interrupted(step));
             }
             run.steps_done = step + 1;
         }
-        if let Some(weakening) = &weakening {
-            weakening.restore(adhesive(solver)?);
-        }
+        restore_edge(weakening.as_ref(), solver)?;
         let mut summary = run.summary;
         let position = |record: &StepRecord| if compliant { record.drive_offset } else { record.offset };
         stationary_means(&mut summary, &run.stationary, position);
@@ -326,4 +319,31 @@ impl Translation {
         summary.complementarity = interface.complementarity;
         Ok(summary)
     }
+}
+
+/// A translation step's tangential solve into its record and the run's totals: its force
+/// added to the boundary force the record holds (before and after the configuration
+/// change), its stick and slip counts and counters, friction's dissipation so far and the
+/// worst optimality conditions.
+pub(super) fn add_tangential_step(
+    report: &TangentialReport,
+    record: &mut StepRecord,
+    (frictional_dissipation, complementarity): (&mut f64, &mut Complementarity),
+) {
+    record.force_tangential += report.force[0];
+    record.force_tangential_before_change += report.force[0];
+    (record.stick_elements, record.slip_elements) = (report.stick_elements, report.slip_elements);
+    record.report.cg_iterations += report.cg_iterations;
+    record.report.operator_applications += report.transform_pairs;
+    *frictional_dissipation += report.dissipated_energy;
+    record.cumulative_frictional_dissipation = *frictional_dissipation;
+    worst(complementarity, report.complementarity);
+}
+
+/// Gives the solver its unweakened σ_c back after a run that weakened its edge.
+fn restore_edge(weakening: Option<&Weakening>, solver: &mut NormalSolver) -> Result<(), ProtocolError> {
+    if let Some(weakening) = weakening {
+        weakening.restore(adhesive(solver)?);
+    }
+    Ok(())
 }
