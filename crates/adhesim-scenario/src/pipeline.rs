@@ -7,8 +7,8 @@ use crate::results::{fit_results, Results, RunResults};
 use crate::shear::ShearResults;
 use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Backend, Ccg, CcgParams, ElasticOperator, FrictionLaw, IndentPulloff, NormalSolver,
-    Observer, Profile, ProtocolCheckpoint, ProtocolError, RunSummary, ShearBody, StepRecord, TangentialParams,
+    AdhesiveParams, AdhesiveSolver, Backend, Ccg, CcgParams, FrictionLaw, IndentPulloff, NormalSolver, Observer,
+    Problem, Profile, ProtocolCheckpoint, ProtocolError, RunSummary, ShearBody, StepRecord, TangentialParams,
     TangentialSolver, TranslationFriction, TranslationSummary,
 };
 
@@ -45,7 +45,18 @@ impl ValidScenario {
     /// "exponential", the adhesive active set where γ0 > 0, the library's non-adhesive
     /// default otherwise.
     pub fn normal_solver(&self) -> NormalSolver {
-        if let Some(solver) = cohesive_solver(&self.law, self.grid, self.material, &self.gamma) {
+        self.solver_with(&self.gamma)
+    }
+
+    /// [`normal_solver`](Self::normal_solver) of `problem` (this scenario's, its work of
+    /// adhesion checked when it was built).
+    fn normal_solver_of(&self, problem: &Problem) -> NormalSolver {
+        self.solver_with(problem.work_of_adhesion())
+    }
+
+    /// The normal solver with the work of adhesion `work_of_adhesion` per element.
+    fn solver_with(&self, work_of_adhesion: &[f64]) -> NormalSolver {
+        if let Some(solver) = cohesive_solver(&self.law, self.grid, self.material, work_of_adhesion) {
             NormalSolver::Cohesive(Box::new(solver))
         } else if self.gamma0 > 0.0 {
             // On a layer the reference rule: the certified stops and local replays are
@@ -70,7 +81,7 @@ impl ValidScenario {
             NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
                 self.grid,
                 self.material.contact_modulus(),
-                self.gamma.clone(),
+                work_of_adhesion.to_vec(),
                 params,
             )))
         } else if self.layer.is_some() {
@@ -86,6 +97,20 @@ impl ValidScenario {
     fn predicted_growth(&self) -> adhesim::solver::PredictedGrowth {
         let name = self.file.solver.as_ref().and_then(|solver| solver.predicted_growth);
         name.map_or(AdhesiveParams::default().predicted_growth, |name| name.rule())
+    }
+
+    /// The problem this scenario solves: the body's operator (half-space, periodic or
+    /// layer), the indenter's heights (for a roll, slide or translate, its moving contact)
+    /// and the work of adhesion per element, checked by [`Problem`].
+    pub fn problem(&self) -> Result<Problem, ProtocolError> {
+        let operator = Backend::default()
+            .normal_operator(self.grid, self.material, self.layer)
+            .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?;
+        let problem = match self.protocol_setup() {
+            ProtocolSetup::Translation(setup) => Problem::translating(operator, setup.contact.clone())?,
+            _ => Problem::new(operator, self.heights.clone())?,
+        };
+        Ok(problem.with_work_of_adhesion(self.gamma.clone())?)
     }
 
     /// Steps the protocol will report (for progress bars): approach + retraction of an
@@ -211,11 +236,8 @@ pub fn run_from(
     observer: &mut dyn Observer,
     resume: Option<Resume>,
 ) -> Result<RunOutcome, ProtocolError> {
-    let mut operator = Backend::default()
-        .normal_operator(scenario.grid, scenario.material, scenario.layer)
-        .map_err(|error| ProtocolError::InvalidParameter(format!("material.thickness: {error}")))?;
-    let operator = operator.as_mut();
-    let mut solver = scenario.normal_solver();
+    let mut problem = scenario.problem()?;
+    let mut solver = scenario.normal_solver_of(&problem);
     let (start, records) = match resume {
         Some(Resume { protocol, records }) => (Some(protocol), records),
         None => (None, Vec::new()),
@@ -239,12 +261,10 @@ pub fn run_from(
     let mut recording: Recording<'_> = (records, observer);
     match scenario.protocol_setup() {
         ProtocolSetup::Indentation(protocol) => {
-            let (heights, start) = (&scenario.heights, indentation_start.as_deref());
+            let start = indentation_start.as_deref();
             let summary = match &scenario.hold {
-                Some(hold) => {
-                    protocol.run_holding(&mut *operator, heights, &mut solver, &mut recording, start, hold)?
-                }
-                None => protocol.run_from(&mut *operator, heights, &mut solver, &mut recording, start)?,
+                Some(hold) => protocol.run_holding(&mut problem, &mut solver, &mut recording, start, hold)?,
+                None => protocol.run_from(&mut problem, &mut solver, &mut recording, start)?,
             };
             let records = recording.0;
             let (fits, _) = fit_results(scenario, &records);
@@ -257,12 +277,11 @@ pub fn run_from(
                 records,
             })
         }
-        ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut *operator, &mut solver, recording),
+        ProtocolSetup::Shear(setup) => run_shear(scenario, setup, &mut problem, &mut solver, recording),
         ProtocolSetup::Translation(setup) => {
             let summary = match &setup.friction {
                 Some(friction) => setup.protocol.run_with_friction(
-                    &mut *operator,
-                    &setup.contact,
+                    &mut problem,
                     &mut solver,
                     TranslationFriction {
                         body: ShearBody {
@@ -280,13 +299,11 @@ pub fn run_from(
                     },
                     &mut recording,
                 )?,
-                None => setup.protocol.run_from(
-                    &mut *operator,
-                    &setup.contact,
-                    &mut solver,
-                    &mut recording,
-                    translation_start.as_deref(),
-                )?,
+                None => {
+                    setup
+                        .protocol
+                        .run_from(&mut problem, &mut solver, &mut recording, translation_start.as_deref())?
+                }
             };
             let records = recording.0;
             let mut results = analyse_translation(scenario, setup, &summary, &records);
@@ -306,7 +323,7 @@ pub fn run_from(
 fn run_shear(
     scenario: &ValidScenario,
     setup: &ShearSetup,
-    operator: &mut dyn ElasticOperator,
+    problem: &mut Problem,
     solver: &mut NormalSolver,
     mut recording: Recording<'_>,
 ) -> Result<RunOutcome, ProtocolError> {
@@ -317,8 +334,7 @@ fn run_shear(
         setup.drive_stiffness,
     )?;
     let summary = setup.protocol.run(
-        operator,
-        &scenario.heights,
+        problem,
         solver,
         ShearBody {
             material: setup.material,

@@ -28,7 +28,7 @@
 use adhesim::analysis::reference::{Hertz, Jkr};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, ElasticOperator,
-    FreeOperator, Grid, IndentPulloff, NestedActiveSet, NestedParams, NormalSolver, Profile, Sphere,
+    FreeOperator, Grid, IndentPulloff, NestedActiveSet, NestedParams, NormalSolver, Problem, Profile, Sphere,
 };
 use std::time::Instant;
 
@@ -212,7 +212,7 @@ fn adhesive_entry(options: &Options) -> String {
     let mut last = None;
     for _ in 0..options.repeats {
         let start = Instant::now();
-        let mut operator = FreeOperator::new(grid, material);
+        let operator = FreeOperator::new(grid, material);
         let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
             grid,
             modulus,
@@ -221,8 +221,9 @@ fn adhesive_entry(options: &Options) -> String {
         )));
         setup.push(start.elapsed().as_secs_f64());
         let start = Instant::now();
+        let mut problem = Problem::new(Box::new(operator), heights.clone()).expect("a valid problem");
         let summary = protocol
-            .run(&mut operator, &heights, &mut solver, &mut ())
+            .run(&mut problem, &mut solver, &mut ())
             .expect("load-unload cycle");
         wall.push(start.elapsed().as_secs_f64());
         last = Some(summary);

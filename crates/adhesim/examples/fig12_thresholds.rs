@@ -15,14 +15,14 @@
 use adhesim::analysis::contact::DetachmentWatch;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, ElasticMaterial, EllipticPunch, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Profile, WorkOfAdhesion,
+    NormalSolver, Problem, Profile, WorkOfAdhesion,
 };
 
 const SEMI_AXES: (f64, f64) = (1.0, 0.5);
 
 fn run(n: usize, ratio: f64) -> Result<DetachmentWatch, String> {
     let grid = Grid::new(n, 2.4, Boundary::Free).map_err(|e| e.to_string())?;
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).map_err(|e| e.to_string())?);
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).map_err(|e| e.to_string())?);
     let heights = EllipticPunch::new(SEMI_AXES, 0.0)
         .map_err(|e| e.to_string())?
         .heights(&grid);
@@ -47,8 +47,9 @@ fn run(n: usize, ratio: f64) -> Result<DetachmentWatch, String> {
         jump_force_threshold: 0.0,
     };
     let mut watch = DetachmentWatch::new(grid);
+    let mut problem = Problem::new(Box::new(operator), heights).expect("a valid problem");
     protocol
-        .run(&mut operator, &heights, &mut solver, &mut watch)
+        .run(&mut problem, &mut solver, &mut watch)
         .map_err(|e| e.to_string())?;
     Ok(watch)
 }

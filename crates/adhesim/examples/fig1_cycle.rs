@@ -21,7 +21,7 @@ use adhesim::solver::{Attachment, PredictedGrowth};
 use adhesim::Phase;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Profile, StepRecord, WavySphere,
+    Problem, Profile, StepRecord, WavySphere,
 };
 use std::io::Write;
 
@@ -56,7 +56,7 @@ fn main() {
     let heights = WavySphere::new(1.0, 0.0025, 0.05, 0.0).expect("profile").heights(&grid);
     let start_depth = heights.iter().cloned().fold(f64::INFINITY, f64::min);
     let max_depth = 15.0 * jkr.critical_depth().abs();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).expect("modulus"));
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
         1.0,
@@ -93,9 +93,8 @@ fn main() {
     let mut records: Vec<StepRecord> = Vec::new();
     let cpu_start = process_cpu_seconds();
     let start = std::time::Instant::now();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .expect("cycle");
+    let mut problem = Problem::new(Box::new(operator), heights).expect("a valid problem");
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).expect("cycle");
     let wall = start.elapsed().as_secs_f64();
     let cpu = process_cpu_seconds() - cpu_start;
     let per_step = |total: f64| total / summary.steps as f64;

@@ -19,7 +19,7 @@
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Profile, ProtocolSummary, Sphere, StepRecord,
+    Problem, Profile, ProtocolSummary, Sphere, StepRecord,
 };
 
 fn main() {
@@ -47,7 +47,7 @@ fn run(resolution: f64, max_depth_jkr: f64, steps_per_unit: f64) {
     let n = ((2.3 * reach / delta).ceil() as usize).next_power_of_two().max(16);
     let grid = Grid::new(n, n as f64 * delta, Boundary::Free).unwrap();
     let material = ElasticMaterial::new(modulus).unwrap();
-    let mut operator = FreeOperator::new(grid, material);
+    let operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(radius).unwrap().heights(&grid);
     let d_jkr = jkr.critical_depth().abs();
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
@@ -75,9 +75,8 @@ fn run(resolution: f64, max_depth_jkr: f64, steps_per_unit: f64) {
     };
     let mut records: Vec<StepRecord> = Vec::new();
     let start = std::time::Instant::now();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).expect("a valid problem");
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     let f_jkr = jkr.critical_force().abs();
     println!(
         "N = {n}, a_JKR/Δ = {resolution}, steps = {}, wall {:.2} s",

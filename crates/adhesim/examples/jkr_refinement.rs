@@ -15,7 +15,7 @@ use adhesim::analysis::curve::{analyse_indentation, CurveAnalysisOptions};
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver, Phase,
-    Profile, Sphere, StepRecord,
+    Problem, Profile, Sphere, StepRecord,
 };
 
 fn main() {
@@ -49,7 +49,7 @@ fn row(resolution: f64) {
     let reach = jkr.radius_at_depth(3.0 * d_jkr).unwrap();
     let n = ((2.3 * reach / delta).ceil() as usize).next_power_of_two().max(16);
     let grid = Grid::new(n, n as f64 * delta, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
@@ -66,9 +66,8 @@ fn row(resolution: f64) {
     };
     let mut records: Vec<StepRecord> = Vec::new();
     let start = std::time::Instant::now();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).expect("a valid problem");
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     let wall = start.elapsed().as_secs_f64();
     let (mut retract, mut approach) = (0.0f64, 0.0f64);
     for r in &records {

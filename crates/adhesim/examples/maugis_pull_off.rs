@@ -10,7 +10,7 @@
 use adhesim::analysis::reference::{cohesive_stress_for, MaugisDugdale};
 use adhesim::{
     Acceleration, Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential,
-    FreeOperator, Grid, IndentPulloff, NormalSolver, Profile, Sphere, StepRecord,
+    FreeOperator, Grid, IndentPulloff, NormalSolver, Problem, Profile, Sphere, StepRecord,
 };
 use std::time::Instant;
 
@@ -34,7 +34,7 @@ fn main() {
     };
     let grid = Grid::new(n, size, Boundary::Free).unwrap();
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut operator = FreeOperator::new(grid, material);
+    let operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
     // ADHESIM_EXPONENTIAL_RANGE=ρ runs the exponential law of that range instead.
     let law: Box<dyn CohesiveLaw> = match std::env::var("ADHESIM_EXPONENTIAL_RANGE") {
@@ -63,9 +63,8 @@ fn main() {
     };
     let start = Instant::now();
     let mut records: Vec<StepRecord> = Vec::new();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).expect("a valid problem");
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     let seconds = start.elapsed().as_secs_f64();
     let mut costly: Vec<&StepRecord> = records.iter().collect();
     costly.sort_by_key(|r| std::cmp::Reverse(r.report.solves));

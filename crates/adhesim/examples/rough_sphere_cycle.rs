@@ -44,7 +44,7 @@ use adhesim::analysis::reference::Jkr;
 use adhesim::surface::{rms_height, rms_slope};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Amplitudes, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Phase, Profile, RmsTarget, RoughBase, SelfAffine, Sphere, StepRecord,
+    NormalSolver, Phase, Problem, Profile, RmsTarget, RoughBase, SelfAffine, Sphere, StepRecord,
 };
 use std::process::ExitCode;
 
@@ -99,7 +99,7 @@ fn run() -> Result<(), String> {
     let heights = profile.heights(&grid);
     let d_jkr = jkr.critical_depth().abs();
     let max_depth = 15.0 * d_jkr;
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(modulus).map_err(|e| e.to_string())?);
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(modulus).map_err(|e| e.to_string())?);
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
         modulus,
@@ -115,8 +115,9 @@ fn run() -> Result<(), String> {
     };
     let mut records: Vec<StepRecord> = Vec::new();
     let start = std::time::Instant::now();
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).map_err(|e| e.to_string())?;
     let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
+        .run(&mut problem, &mut solver, &mut records)
         .map_err(|e| format!("cycle: {e}"))?;
     let wall = start.elapsed().as_secs_f64();
     let analysis = analyse_indentation(

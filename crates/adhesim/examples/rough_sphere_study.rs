@@ -38,7 +38,7 @@ use adhesim::analysis::reference::Jkr;
 use adhesim::surface::{rms_height, rms_slope};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Amplitudes, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Phase, Profile, RmsTarget, RoughProfile, SelfAffine, StepRecord,
+    NormalSolver, Phase, Problem, Profile, RmsTarget, RoughProfile, SelfAffine, StepRecord,
 };
 use rayon::prelude::*;
 use std::io::Write;
@@ -258,7 +258,7 @@ fn cycle(case: &Case) -> Result<String, String> {
     let profile = RoughProfile::rough_sphere(RADIUS, map, &grid).map_err(|e| e.to_string())?;
     let heights = profile.heights(&grid);
     let max_depth = 15.0 * jkr.critical_depth().abs();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(MODULUS).map_err(|e| e.to_string())?);
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(MODULUS).map_err(|e| e.to_string())?);
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
         MODULUS,
@@ -274,8 +274,9 @@ fn cycle(case: &Case) -> Result<String, String> {
     };
     let mut records: Vec<StepRecord> = Vec::new();
     let start = std::time::Instant::now();
+    let mut problem = Problem::new(Box::new(operator), heights).map_err(|e| e.to_string())?;
     let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
+        .run(&mut problem, &mut solver, &mut records)
         .map_err(|e| format!("cycle of {}: {e}", case.name()))?;
     let wall = start.elapsed().as_secs_f64();
     let min_fit_radius = 0.5 * jkr.critical_radius();

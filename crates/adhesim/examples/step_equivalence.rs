@@ -19,7 +19,7 @@ use adhesim::analysis::reference::Jkr;
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, Detachment, ElasticMaterial, EllipticPunch, FreeOperator, Grid,
-    IndentPulloff, Kinematics, NormalSolver, Observer, Phase, Profile, Sphere, StepView, TranslatingContact,
+    IndentPulloff, Kinematics, NormalSolver, Observer, Phase, Problem, Profile, Sphere, StepView, TranslatingContact,
     Translation, WavySphere, WorkOfAdhesion,
 };
 use std::ops::ControlFlow;
@@ -228,7 +228,10 @@ fn case(name: &str) -> Option<Case> {
 }
 
 fn run(case: &Case, params: AdhesiveParams) -> Run {
-    let mut operator = FreeOperator::new(case.grid, ElasticMaterial::new(1.0).expect("modulus"));
+    let operator = Box::new(FreeOperator::new(
+        case.grid,
+        ElasticMaterial::new(1.0).expect("modulus"),
+    ));
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         case.grid,
         1.0,
@@ -251,14 +254,14 @@ fn run(case: &Case, params: AdhesiveParams) -> Run {
                 max_retract_steps: 100_000,
                 jump_force_threshold: 0.0,
             };
+            let mut problem = Problem::new(operator, heights.clone()).expect("a valid problem");
             protocol
-                .run(&mut operator, heights, &mut solver, &mut record)
+                .run(&mut problem, &mut solver, &mut record)
                 .expect("indentation");
         }
         Drive::Roll { contact, protocol } => {
-            protocol
-                .run(&mut operator, contact, &mut solver, &mut record)
-                .expect("roll");
+            let mut problem = Problem::translating(operator, contact.clone()).expect("a valid problem");
+            protocol.run(&mut problem, &mut solver, &mut record).expect("roll");
         }
     }
     record.wall = start.elapsed().as_secs_f64();

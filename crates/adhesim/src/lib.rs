@@ -45,7 +45,7 @@
 //! files the command line writes in `docs/output.md`.
 //!
 //! ## Modules (one-way dependencies, see ARCHITECTURE.md)
-//! `grid`, `material` → `geometry`, `elastic` → `solver` → `protocol` → `analysis`;
+//! `grid`, `material` → `geometry`, `elastic` → `solver` → `problem` → `protocol` → `analysis`;
 //! `rng` (the seeded generator) stands alone.
 #![warn(missing_docs)]
 // Numerical kernels index several parallel fields with one index; iterator zips over
@@ -106,6 +106,7 @@ pub mod elastic;
 pub mod geometry;
 pub mod grid;
 pub mod material;
+pub mod problem;
 pub mod protocol;
 pub mod rng;
 pub mod solver;
@@ -123,6 +124,7 @@ pub use geometry::{
 };
 pub use grid::{Boundary, Grid, GridError};
 pub use material::{Axis, ElasticMaterial, MaterialError, WorkOfAdhesion};
+pub use problem::{Problem, ProblemError};
 pub use protocol::{
     AgingLaw, Hold, IndentCheckpoint, IndentPulloff, NormalSolver, NormalStepper, Observer, Phase, ProtocolCheckpoint,
     ProtocolError, ProtocolSummary, RunCounters, RunSummary, Shear, ShearFields, ShearSummary, SolverCheckpoint,

@@ -12,7 +12,7 @@ use adhesim::analysis::friction::{TranslationInputs, TranslationResults};
 use adhesim::analysis::reference::Jkr;
 use adhesim::geometry::WavySphere;
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, Grid, HalfSpace, Kinematics, NormalSolver, StepRecord,
+    AdhesiveParams, Boundary, ElasticMaterial, Grid, HalfSpace, Kinematics, NormalSolver, Problem, StepRecord,
     TranslatingContact, Translation,
 };
 
@@ -34,9 +34,11 @@ fn reduced_fig6() -> TranslationResults {
         WavySphere::new(radius, 5.627e-4, wavelength, 0.0).unwrap(),
         Kinematics::Roll,
     );
-    let mut heights = vec![0.0; grid.len()];
-    contact.fill_heights(&grid, 0.0, &mut heights);
-    let start_depth = heights.iter().copied().fold(f64::INFINITY, f64::min);
+    let mut problem = Problem::translating(Box::new(HalfSpace::new(grid, material)), contact)
+        .unwrap()
+        .with_work_of_adhesion(vec![work_of_adhesion; grid.len()])
+        .unwrap();
+    let start_depth = problem.heights().iter().copied().fold(f64::INFINITY, f64::min);
     let protocol = Translation {
         start_depth,
         depth: 5.0 * jkr.critical_depth().abs(),
@@ -47,17 +49,9 @@ fn reduced_fig6() -> TranslationResults {
         stationary_from: 0.5,
         jump_force_threshold: 0.01 * jkr.critical_force().abs(),
     };
-    let mut operator = HalfSpace::new(grid, material);
-    let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
-        grid,
-        1.0,
-        vec![work_of_adhesion; grid.len()],
-        AdhesiveParams::default(),
-    )));
+    let mut solver = NormalSolver::Adhesive(Box::new(problem.adhesive_solver(AdhesiveParams::default())));
     let mut records: Vec<StepRecord> = Vec::new();
-    let summary = protocol
-        .run(&mut operator, &contact, &mut solver, &mut records)
-        .unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     TranslationResults::new(
         &summary,
         &TranslationInputs {

@@ -1,6 +1,7 @@
 use super::{IndentCheckpoint, NormalSolver, Observer, Phase, ProtocolCheckpoint, ProtocolError, StepRecord, StepView};
 use crate::elastic::ElasticOperator;
 use crate::grid::Grid;
+use crate::problem::Problem;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
@@ -63,12 +64,11 @@ impl IndentPulloff {
     /// Runs approach then retraction; reports each step to `observer`.
     pub fn run(
         &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
     ) -> Result<ProtocolSummary, ProtocolError> {
-        self.run_from(operator, heights, solver, observer, None)
+        self.run_from(problem, solver, observer, None)
     }
 
     /// As [`run`](Self::run), continued from `start` (a checkpoint of a run of the same
@@ -77,13 +77,12 @@ impl IndentPulloff {
     /// checkpoint ([`Observer::wants_checkpoint`]) where the solver supports them.
     pub fn run_from(
         &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
         start: Option<&IndentCheckpoint>,
     ) -> Result<ProtocolSummary, ProtocolError> {
-        self.run_phases(operator, heights, solver, observer, start, None)
+        self.run_phases(problem, solver, observer, start, None)
     }
 
     /// The approach, the `hold` at the deepest indentation when given, and the retraction;
@@ -91,14 +90,14 @@ impl IndentPulloff {
     /// only (the hold's ages are not in them), so a resumed run holds from its start.
     fn run_phases(
         &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
         start: Option<&IndentCheckpoint>,
         hold: Option<&Hold>,
     ) -> Result<ProtocolSummary, ProtocolError> {
         self.check()?;
+        let (operator, heights) = problem.parts_mut();
         let grid = *operator.grid();
         solver.reset();
         let acts_across_gaps = solver.acts_across_gaps();

@@ -248,6 +248,9 @@ pub enum ProtocolError {
     /// Parameters out of range.
     #[error("invalid protocol parameter: {0}")]
     InvalidParameter(String),
+    /// The problem does not fit the protocol (fixed heights given to a translation).
+    #[error(transparent)]
+    Problem(#[from] crate::problem::ProblemError),
 }
 
 /// The normal-contact solver a protocol drives: the library's families by name, or any

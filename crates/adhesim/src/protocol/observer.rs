@@ -40,7 +40,7 @@ pub struct StepView<'a> {
 /// }
 ///
 /// let mut both = (Vec::<StepRecord>::new(), LargestContact::default());
-/// // `protocol.run(&mut operator, &heights, &mut solver, &mut both)` would fill both.
+/// // `protocol.run(&mut problem, &mut solver, &mut both)` would fill both.
 /// let (records, largest) = both;
 /// assert!(records.is_empty() && largest.0 == 0);
 /// ```

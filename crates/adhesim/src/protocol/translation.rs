@@ -3,6 +3,7 @@ use super::{
 };
 use crate::elastic::ElasticOperator;
 use crate::geometry::{Kinematics, TranslatingContact};
+use crate::problem::Problem;
 use crate::solver::ContactState;
 use std::ops::ControlFlow;
 
@@ -95,12 +96,11 @@ impl Translation {
     /// Runs the approach and the stroke(s).
     pub fn run(
         &self,
-        operator: &mut dyn ElasticOperator,
-        contact: &TranslatingContact,
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
-        self.run_from(operator, contact, solver, observer, None)
+        self.run_from(problem, solver, observer, None)
     }
 
     /// As [`run`](Self::run), continued from `start` (a checkpoint of a run of the same
@@ -109,13 +109,13 @@ impl Translation {
     /// offered a checkpoint ([`Observer::wants_checkpoint`]).
     pub fn run_from(
         &self,
-        operator: &mut dyn ElasticOperator,
-        contact: &TranslatingContact,
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
         start: Option<&TranslationCheckpoint>,
     ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
+        let (operator, contact) = problem.translating_parts()?;
         let grid = *operator.grid();
         solver.reset();
         let phase = match contact.kinematics() {

@@ -12,7 +12,7 @@ use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, CohesiveLaw, CohesiveParams, CohesiveSolver, Detachment,
     Dugdale, ElasticMaterial, Exponential, FreeOperator, Grid, IndentCheckpoint, IndentPulloff, NormalSolver, Observer,
-    PeriodicKernel, PeriodicOperator, Profile, ProtocolSummary, Sphere, WavySphere,
+    PeriodicKernel, PeriodicOperator, Problem, Profile, ProtocolSummary, Sphere, WavySphere,
 };
 
 use crate::checkpoint_common;
@@ -65,8 +65,7 @@ fn check_resumes_on(
     let mut plain = Vec::new();
     let plain_summary = protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            heights,
+            &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.to_vec()).unwrap(),
             &mut make(&grid),
             &mut plain,
         )
@@ -82,8 +81,7 @@ fn check_resumes_on(
     };
     let summary = protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            heights,
+            &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.to_vec()).unwrap(),
             &mut make(&grid),
             &mut taker,
         )
@@ -97,8 +95,7 @@ fn check_resumes_on(
         let mut rest = Vec::new();
         let resumed = protocol
             .run_from(
-                &mut FreeOperator::new(grid, material),
-                heights,
+                &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.to_vec()).unwrap(),
                 &mut make(&grid),
                 &mut rest,
                 Some(&restored),
@@ -192,8 +189,11 @@ fn periodic_ccg_resumes_bit_for_bit() {
     let mut plain = Vec::new();
     protocol
         .run(
-            &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
-            &heights,
+            &mut Problem::new(
+                Box::new(PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent)),
+                heights.clone(),
+            )
+            .unwrap(),
             &mut make(),
             &mut plain,
         )
@@ -205,8 +205,11 @@ fn periodic_ccg_resumes_bit_for_bit() {
     };
     protocol
         .run(
-            &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
-            &heights,
+            &mut Problem::new(
+                Box::new(PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent)),
+                heights.clone(),
+            )
+            .unwrap(),
             &mut make(),
             &mut taker,
         )
@@ -216,8 +219,11 @@ fn periodic_ccg_resumes_bit_for_bit() {
         let mut rest = Vec::new();
         protocol
             .run_from(
-                &mut PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent),
-                &heights,
+                &mut Problem::new(
+                    Box::new(PeriodicOperator::new(grid, material, PeriodicKernel::ElementConsistent)),
+                    heights.clone(),
+                )
+                .unwrap(),
                 &mut make(),
                 &mut rest,
                 Some(&round_trip(checkpoint)),
@@ -357,8 +363,7 @@ fn a_checkpoint_of_another_kind_of_solver_is_refused() {
             taken: Vec::new(),
         };
         let _ = protocol.run(
-            &mut FreeOperator::new(grid, material),
-            &heights,
+            &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.clone()).unwrap(),
             &mut make(&grid),
             &mut taker,
         );
@@ -384,8 +389,7 @@ fn a_checkpoint_of_another_kind_of_solver_is_refused() {
         let checkpoint = round_trip(&take(from));
         let error = protocol
             .run_from(
-                &mut FreeOperator::new(grid, material),
-                &heights,
+                &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.clone()).unwrap(),
                 &mut into(&grid),
                 &mut Vec::new(),
                 Some(&checkpoint),
@@ -413,8 +417,7 @@ fn a_checkpoint_of_another_grid_is_refused() {
     let make = adhesive(AdhesiveParams::default());
     protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            &heights,
+            &mut Problem::new(Box::new(FreeOperator::new(grid, material)), heights.clone()).unwrap(),
             &mut make(&grid),
             &mut taker,
         )
@@ -422,8 +425,7 @@ fn a_checkpoint_of_another_grid_is_refused() {
     let (other, other_heights, _) = wavy_sphere(16);
     let error = protocol
         .run_from(
-            &mut FreeOperator::new(other, material),
-            &other_heights,
+            &mut Problem::new(Box::new(FreeOperator::new(other, material)), other_heights.clone()).unwrap(),
             &mut make(&other),
             &mut Vec::new(),
             Some(&taker.taken[0]),
@@ -454,8 +456,8 @@ fn quiet_steps_predicted_from_failed_ring_records_resume_bit_for_bit() {
     };
     let make = adhesive(params);
     let run = |observer: &mut dyn Observer, start: Option<&IndentCheckpoint>| {
-        let mut operator = FreeOperator::new(grid, material);
-        let _ = protocol.run_from(&mut operator, &heights, &mut make(&grid), observer, start);
+        let mut problem = Problem::new(Box::new(FreeOperator::new(grid, material)), heights.clone()).unwrap();
+        let _ = protocol.run_from(&mut problem, &mut make(&grid), observer, start);
     };
     let mut plain = Vec::new();
     run(&mut plain, None);

@@ -9,7 +9,8 @@
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, CohesiveParams, CohesiveSolver, ElasticMaterial, Exponential,
-    FreeOperator, Grid, Kinematics, NormalSolver, TranslatingContact, Translation, TranslationCheckpoint, WavySphere,
+    FreeOperator, Grid, Kinematics, NormalSolver, Problem, TranslatingContact, Translation, TranslationCheckpoint,
+    WavySphere,
 };
 
 use crate::checkpoint_common;
@@ -65,8 +66,7 @@ fn check_resumes(n: usize, kinematics: Kinematics, make: &MakeSolver) -> (usize,
     let mut plain = Vec::new();
     let plain_summary = protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            &contact,
+            &mut Problem::translating(Box::new(FreeOperator::new(grid, material)), contact.clone()).unwrap(),
             &mut make(&grid),
             &mut plain,
         )
@@ -82,8 +82,7 @@ fn check_resumes(n: usize, kinematics: Kinematics, make: &MakeSolver) -> (usize,
     };
     let summary = protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            &contact,
+            &mut Problem::translating(Box::new(FreeOperator::new(grid, material)), contact.clone()).unwrap(),
             &mut make(&grid),
             &mut taker,
         )
@@ -96,8 +95,7 @@ fn check_resumes(n: usize, kinematics: Kinematics, make: &MakeSolver) -> (usize,
         let mut rest = Vec::new();
         let resumed = protocol
             .run_from(
-                &mut FreeOperator::new(grid, material),
-                &contact,
+                &mut Problem::translating(Box::new(FreeOperator::new(grid, material)), contact.clone()).unwrap(),
                 &mut make(&grid),
                 &mut rest,
                 Some(&round_trip(checkpoint)),
@@ -167,8 +165,7 @@ fn a_checkpoint_that_does_not_fit_is_refused() {
     };
     protocol
         .run(
-            &mut FreeOperator::new(grid, material),
-            &contact,
+            &mut Problem::translating(Box::new(FreeOperator::new(grid, material)), contact.clone()).unwrap(),
             &mut make(&grid),
             &mut taker,
         )
@@ -185,8 +182,7 @@ fn a_checkpoint_that_does_not_fit_is_refused() {
     for (grid, protocol, make) in runs {
         let error = protocol
             .run_from(
-                &mut FreeOperator::new(grid, material),
-                &contact,
+                &mut Problem::translating(Box::new(FreeOperator::new(grid, material)), contact.clone()).unwrap(),
                 &mut make(&grid),
                 &mut Vec::new(),
                 Some(&checkpoint),

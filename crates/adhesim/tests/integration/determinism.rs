@@ -4,12 +4,12 @@
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Profile, StepRecord, WavySphere,
+    Problem, Profile, StepRecord, WavySphere,
 };
 
 fn wavy_sphere_cycle(n: usize) -> Vec<StepRecord> {
     let grid = Grid::new(n, 0.3 * n as f64 / 48.0, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let profile = WavySphere::new(1.0, 5e-4, 0.025, 0.0).unwrap();
     let heights = profile.heights(&grid);
     let start = heights.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -27,9 +27,8 @@ fn wavy_sphere_cycle(n: usize) -> Vec<StepRecord> {
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+    protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     records
 }
 

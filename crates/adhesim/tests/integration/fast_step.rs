@@ -8,7 +8,7 @@
 use adhesim::solver::PredictedGrowth;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Attachment, Boundary, Detachment, ElasticMaterial, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Phase, Profile, Sphere, WavySphere,
+    IndentPulloff, NormalSolver, Phase, Problem, Profile, Sphere, WavySphere,
 };
 use std::num::NonZeroUsize;
 
@@ -43,7 +43,8 @@ fn run_cycle(
     params: AdhesiveParams,
     observer: &mut dyn adhesim::Observer,
 ) -> NormalSolver {
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let mut problem = Problem::new(Box::new(operator), heights.to_vec()).unwrap();
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
         1.0,
@@ -58,7 +59,7 @@ fn run_cycle(
         max_retract_steps: 10_000,
         jump_force_threshold: 0.0,
     };
-    protocol.run(&mut operator, heights, &mut solver, observer).unwrap();
+    protocol.run(&mut problem, &mut solver, observer).unwrap();
     solver
 }
 

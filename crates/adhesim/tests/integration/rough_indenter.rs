@@ -7,8 +7,8 @@ use crate::common;
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, FreeOperator,
-    Grid, HalfSpace, IndentPulloff, Indenter, NormalSolver, Profile, RmsTarget, RoughBase, RoughProfile, SelfAffine,
-    Sphere, StepRecord,
+    Grid, HalfSpace, IndentPulloff, Indenter, NormalSolver, Problem, Profile, RmsTarget, RoughBase, RoughProfile,
+    SelfAffine, Sphere, StepRecord,
 };
 use common::JkrCase;
 
@@ -117,7 +117,7 @@ fn first_contact_is_the_lowest_point_of_the_combined_surface() {
 
 fn cycle(case: &JkrCase, heights: &[f64]) -> Vec<StepRecord> {
     let d_jkr = case.jkr.critical_depth().abs();
-    let mut operator = FreeOperator::new(case.grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(case.grid, ElasticMaterial::new(1.0).unwrap());
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         case.grid,
         1.0,
@@ -132,7 +132,8 @@ fn cycle(case: &JkrCase, heights: &[f64]) -> Vec<StepRecord> {
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    protocol.run(&mut operator, heights, &mut solver, &mut records).unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights.to_vec()).unwrap();
+    protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     records
 }
 

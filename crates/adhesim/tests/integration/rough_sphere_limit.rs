@@ -9,8 +9,8 @@ use crate::common;
 use adhesim::analysis::johnson::rough_sphere_parameter;
 use adhesim::surface::{rms_height, rms_slope};
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, ElasticMaterial, FreeOperator, IndentPulloff, NormalSolver, Profile, RmsTarget,
-    RoughBase, SelfAffine, Sphere,
+    AdhesiveParams, AdhesiveSolver, ElasticMaterial, FreeOperator, IndentPulloff, NormalSolver, Problem, Profile,
+    RmsTarget, RoughBase, SelfAffine, Sphere,
 };
 use common::JkrCase;
 
@@ -49,7 +49,7 @@ fn vanishing_roughness_detaches_like_the_smooth_jkr_sphere() {
         .to_rough_profile(RoughBase::Sphere(Sphere::new(1.0).unwrap()))
         .unwrap()
         .heights(&case.grid);
-    let mut operator = FreeOperator::new(case.grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(case.grid, ElasticMaterial::new(1.0).unwrap());
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         case.grid,
         1.0,
@@ -64,7 +64,8 @@ fn vanishing_roughness_detaches_like_the_smooth_jkr_sphere() {
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    let summary = protocol.run(&mut operator, &rough, &mut solver, &mut records).unwrap();
+    let mut problem = Problem::new(Box::new(operator), rough.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     let rough_ratio = summary.max_adhesive_force / case.jkr.critical_force().abs();
     let expected = 1.4 / resolution;
     let error = rough_ratio - 1.0;

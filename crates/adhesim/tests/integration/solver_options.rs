@@ -7,12 +7,12 @@
 
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Profile, StepRecord, WavySphere,
+    Problem, Profile, StepRecord, WavySphere,
 };
 
 fn cycle(amplitude: f64, params: AdhesiveParams) -> Vec<StepRecord> {
     let grid = Grid::new(48, 0.3, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = WavySphere::new(1.0, amplitude, 0.025, 0.0).unwrap().heights(&grid);
     let start = heights.iter().cloned().fold(f64::INFINITY, f64::min);
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(grid, 1.0, vec![2e-5; grid.len()], params)));
@@ -24,9 +24,8 @@ fn cycle(amplitude: f64, params: AdhesiveParams) -> Vec<StepRecord> {
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+    protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     records
 }
 

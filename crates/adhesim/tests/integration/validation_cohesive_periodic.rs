@@ -13,7 +13,7 @@
 
 use adhesim::{
     Boundary, CohesiveLaw, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, Exponential, Grid, HalfSpace,
-    IndentPulloff, NormalSolver, ProtocolSummary, StepRecord,
+    IndentPulloff, NormalSolver, Problem, ProtocolSummary, StepRecord,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -60,7 +60,7 @@ fn cycle(
 ) -> (ProtocolSummary, Vec<StepRecord>) {
     let (grid, heights) = wavy(n);
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut operator = HalfSpace::new(grid, material);
+    let operator = HalfSpace::new(grid, material);
     let solver = CohesiveSolver::new(grid, material, law(&grid), CohesiveParams::default());
     let mut solver = NormalSolver::Cohesive(Box::new(solver));
     let protocol = IndentPulloff {
@@ -71,9 +71,8 @@ fn cycle(
         jump_force_threshold: 1e-3 * FULL_CONTACT_PRESSURE,
     };
     let mut records = Vec::new();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     (summary, records)
 }
 

@@ -10,7 +10,7 @@
 
 use adhesim::{
     Acceleration, Boundary, CohesiveParams, CohesiveSolver, ElasticMaterial, Exponential, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Profile, ProtocolSummary, Sphere, StepRecord,
+    IndentPulloff, NormalSolver, Problem, Profile, ProtocolSummary, Sphere, StepRecord,
 };
 use std::f64::consts::PI;
 
@@ -37,7 +37,7 @@ fn run(
     let range = range_for(mu);
     let grid = Grid::new(n, domain_for(range), Boundary::Free).unwrap();
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut operator = FreeOperator::new(grid, material);
+    let operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
     let law = Exponential::new(range, vec![WORK_OF_ADHESION; grid.len()]);
     let params = CohesiveParams {
@@ -54,7 +54,8 @@ fn run(
         jump_force_threshold: 1e-2 * WORK_OF_ADHESION,
     };
     let mut records = Vec::new();
-    let summary = protocol.run(&mut operator, &heights, &mut solver, &mut records)?;
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records)?;
     assert!(!summary.touches_border, "the domain holds the law");
     Ok((summary, records))
 }

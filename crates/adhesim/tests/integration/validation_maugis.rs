@@ -10,7 +10,7 @@
 use adhesim::analysis::reference::{cohesive_stress_for, MaugisDugdale};
 use adhesim::{
     Boundary, CohesiveParams, CohesiveSolver, Dugdale, ElasticMaterial, FreeOperator, Grid, IndentPulloff,
-    NormalSolver, Phase, Profile, ProtocolSummary, Sphere, StepRecord,
+    NormalSolver, Phase, Problem, Profile, ProtocolSummary, Sphere, StepRecord,
 };
 
 const WORK_OF_ADHESION: f64 = 1e-4;
@@ -26,7 +26,7 @@ fn run(lambda: f64, n: usize, size: f64, depth_step: f64) -> (ProtocolSummary, V
     };
     let grid = Grid::new(n, size, Boundary::Free).unwrap();
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut operator = FreeOperator::new(grid, material);
+    let operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
     let law = Dugdale::new(sigma, vec![WORK_OF_ADHESION; grid.len()]);
     let solver = CohesiveSolver::new(grid, material, Box::new(law), CohesiveParams::default());
@@ -39,9 +39,8 @@ fn run(lambda: f64, n: usize, size: f64, depth_step: f64) -> (ProtocolSummary, V
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     assert!(!summary.touches_border, "the domain holds the contact");
     (summary, records, model)
 }

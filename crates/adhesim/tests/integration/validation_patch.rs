@@ -7,7 +7,7 @@
 use adhesim::analysis::reference::{FlatPunchReference, Hertz, Jkr};
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial,
-    FreeOperator, Grid, IndentPulloff, NormalSolver, Observer, Profile, ProtocolSummary, Sphere, StepView,
+    FreeOperator, Grid, IndentPulloff, NormalSolver, Observer, Problem, Profile, ProtocolSummary, Sphere, StepView,
     WorkOfAdhesion,
 };
 use std::ops::ControlFlow;
@@ -45,7 +45,7 @@ fn patch_pull_off(params: AdhesiveParams) -> (ProtocolSummary, PatchWatch, f64) 
     let delta = 1.0 / N as f64;
     let patch_radius = 16.0 * delta;
     let grid = Grid::new(N, 1.0, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = Sphere::new(SPHERE_RADIUS).unwrap().heights(&grid);
     let patch: Vec<bool> = (0..grid.len())
         .map(|k| {
@@ -68,7 +68,8 @@ fn patch_pull_off(params: AdhesiveParams) -> (ProtocolSummary, PatchWatch, f64) 
         largest_contact: 0,
         all_finite: true,
     };
-    let summary = protocol.run(&mut operator, &heights, &mut solver, &mut watch).unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut watch).unwrap();
     (summary, watch, patch_radius)
 }
 
@@ -135,7 +136,7 @@ fn adhesive_patch_reference_rule() {
 fn sphere_on_quadratic_to_zero(params: AdhesiveParams) -> (ProtocolSummary, PatchWatch, usize) {
     let n = 32;
     let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = Sphere::new(SPHERE_RADIUS).unwrap().heights(&grid);
     let outermost = (0..grid.len()).map(|k| grid.centre(k).0.abs()).fold(0.0, f64::max);
     let field = WorkOfAdhesion::Quadratic {
@@ -166,7 +167,8 @@ fn sphere_on_quadratic_to_zero(params: AdhesiveParams) -> (ProtocolSummary, Patc
             all_finite: true,
         },
     };
-    let summary = protocol.run(&mut operator, &heights, &mut solver, &mut watch).unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut watch).unwrap();
     (summary, watch.forces, watch.most_held)
 }
 

@@ -6,7 +6,7 @@ use adhesim::analysis::contact::DetachmentWatch;
 use adhesim::analysis::reference::FlatPunchReference;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Axis, Boundary, ElasticMaterial, EllipticPunch, FlatPunch, FreeOperator, Grid,
-    IndentPulloff, NormalSolver, Profile, WorkOfAdhesion,
+    IndentPulloff, NormalSolver, Problem, Profile, WorkOfAdhesion,
 };
 
 /// Circular punch a = 16Δ: pull-off force within 5 % of Kendall's −√(8πa³E*γ0) (the
@@ -19,7 +19,7 @@ fn circular_punch_pull_off_is_kendall() {
     let radius = 16.0 * delta;
     let gamma = 1e-3;
     let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = FlatPunch::new(radius).unwrap().heights(&grid);
     let reference = FlatPunchReference {
         radius,
@@ -39,7 +39,8 @@ fn circular_punch_pull_off_is_kendall() {
         max_retract_steps: 10_000,
         jump_force_threshold: 0.0,
     };
-    let summary = protocol.run(&mut operator, &heights, &mut solver, &mut ()).unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights.clone()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut ()).unwrap();
     let ratio = summary.max_adhesive_force / reference.kendall_force(gamma).abs();
     assert!((ratio - 1.0).abs() < 0.05, "F/F_Kendall = {ratio:.4}");
     // Kendall's detachment is unstable: the whole face lets go in the last step.
@@ -51,7 +52,7 @@ fn elliptic_detachment(ratio: Option<f64>) -> DetachmentWatch {
     let delta = 1.0 / n as f64;
     let semi_axes = (26.0 * delta, 13.0 * delta);
     let grid = Grid::new(n, 1.0, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let heights = EllipticPunch::new(semi_axes, 0.0).unwrap().heights(&grid);
     let gamma = 1e-3;
     let field = match ratio {
@@ -78,7 +79,8 @@ fn elliptic_detachment(ratio: Option<f64>) -> DetachmentWatch {
         jump_force_threshold: 0.0,
     };
     let mut watch = DetachmentWatch::new(grid);
-    protocol.run(&mut operator, &heights, &mut solver, &mut watch).unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+    protocol.run(&mut problem, &mut solver, &mut watch).unwrap();
     watch
 }
 

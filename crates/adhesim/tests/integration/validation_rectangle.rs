@@ -6,7 +6,8 @@ use crate::common;
 use adhesim::analysis::reference::Hertz;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, Ccg, CcgParams, ContactState, Control, ElasticMaterial, ElasticOperator,
-    FreeOperator, Grid, HalfSpace, IndentPulloff, NestedActiveSet, NestedParams, NormalSolver, Profile, Sphere,
+    FreeOperator, Grid, HalfSpace, IndentPulloff, NestedActiveSet, NestedParams, NormalSolver, Problem, Profile,
+    Sphere,
 };
 use common::JkrCase;
 use std::f64::consts::{PI, TAU};
@@ -185,7 +186,7 @@ fn jkr_pull_off_on_rectangular_elements_converges_from_above() {
 /// The most adhesive force of a JKR cycle (R = E* = 1) to 2|d_JKR| on `grid`.
 fn pull_off(grid: Grid, work_of_adhesion: f64, d_jkr: f64) -> f64 {
     let material = ElasticMaterial::new(1.0).unwrap();
-    let mut operator = FreeOperator::new(grid, material);
+    let operator = FreeOperator::new(grid, material);
     let heights = Sphere::new(1.0).unwrap().heights(&grid);
     let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
         grid,
@@ -201,8 +202,7 @@ fn pull_off(grid: Grid, work_of_adhesion: f64, d_jkr: f64) -> f64 {
         jump_force_threshold: 0.0,
     };
     let mut records = Vec::new();
-    let summary = protocol
-        .run(&mut operator, &heights, &mut solver, &mut records)
-        .unwrap();
+    let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
     summary.max_adhesive_force
 }

@@ -3,7 +3,7 @@
 
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
-    AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, Kinematics, NormalSolver,
+    AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, Kinematics, NormalSolver, Problem,
     TranslatingContact, Translation, TranslationSummary, WavySphere,
 };
 
@@ -24,9 +24,10 @@ fn run_with(
     steps: usize,
 ) -> (TranslationSummary, Jkr) {
     let grid = Grid::new(n, 0.4, Boundary::Free).unwrap();
-    let mut operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
+    let operator = FreeOperator::new(grid, ElasticMaterial::new(1.0).unwrap());
     let indenter = WavySphere::new(1.0, amplitude, wavelength, 0.0).unwrap();
     let contact = TranslatingContact::new(indenter, kinematics);
+    let mut problem = Problem::translating(Box::new(operator), contact).unwrap();
     let jkr = Jkr {
         radius: 1.0,
         contact_modulus: 1.0,
@@ -50,7 +51,7 @@ fn run_with(
         stationary_from: 0.5,
         jump_force_threshold: 0.0,
     };
-    let summary = protocol.run(&mut operator, &contact, &mut solver, &mut ()).unwrap();
+    let summary = protocol.run(&mut problem, &mut solver, &mut ()).unwrap();
     (summary, jkr)
 }
 

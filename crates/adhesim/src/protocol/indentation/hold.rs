@@ -4,6 +4,7 @@
 
 use super::{IndentPulloff, RunState};
 use crate::elastic::ElasticOperator;
+use crate::problem::Problem;
 use crate::protocol::{IndentCheckpoint, NormalSolver, Observer, Phase, ProtocolError, ProtocolSummary};
 
 /// How an element's work of adhesion grows with the time t it has been in contact, as
@@ -142,8 +143,7 @@ impl IndentPulloff {
     /// to the hold: the ages stop with it. Aging needs the JKR-type adhesive solver.
     pub fn run_holding(
         &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         observer: &mut dyn Observer,
         start: Option<&IndentCheckpoint>,
@@ -155,7 +155,7 @@ impl IndentPulloff {
                 "aging adhesion needs the JKR-type adhesive solver (adhesion with a sharp detachment rule)".into(),
             ));
         }
-        self.run_phases(operator, heights, solver, observer, start, Some(hold))
+        self.run_phases(problem, solver, observer, start, Some(hold))
     }
 
     /// The hold's steps at the deepest indentation.

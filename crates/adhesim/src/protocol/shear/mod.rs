@@ -18,8 +18,9 @@ pub use sliding::TranslationFriction;
 pub use window::ShearFields;
 
 use super::{NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView};
-use crate::elastic::{ElasticOperator, ShearBody};
+use crate::elastic::ShearBody;
 use crate::grid::Grid;
+use crate::problem::Problem;
 use crate::solver::{Complementarity, ContactState, StepReport, TangentialReport, TangentialSolver};
 use edge::NormalSide;
 use shift::{ShiftStepper, ShiftTarget};
@@ -164,17 +165,16 @@ pub struct ShearSummary {
 
 impl Shear {
     /// Runs the approach and the shift; reports each step to `observer`.
-    #[allow(clippy::too_many_arguments)]
     pub fn run(
         &self,
-        operator: &mut dyn ElasticOperator,
-        heights: &[f64],
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         body: impl Into<ShearBody>,
         friction: &mut TangentialSolver,
         observer: &mut dyn Observer,
     ) -> Result<ShearSummary, ProtocolError> {
         self.check()?;
+        let (operator, heights) = problem.parts_mut();
         let (body, grid): (ShearBody, _) = (body.into(), *operator.grid());
         solver.reset();
         let mut state = ContactState::new(&grid);

@@ -9,6 +9,7 @@ use super::{contact_split_about, worst, ShearFields};
 use crate::elastic::{Backend, ElasticOperator, ShearBody};
 use crate::geometry::{Kinematics, TranslatingContact};
 use crate::grid::Grid;
+use crate::problem::Problem;
 use crate::protocol::translation::stationary_means;
 use crate::protocol::{
     NormalSolver, Observer, Phase, ProtocolError, StepRecord, StepView, Translation, TranslationCheckpoint,
@@ -214,13 +215,13 @@ impl Translation {
     /// (`Interface::weakened_step`).
     pub fn run_with_friction(
         &self,
-        operator: &mut dyn ElasticOperator,
-        contact: &TranslatingContact,
+        problem: &mut Problem,
         solver: &mut NormalSolver,
         friction: TranslationFriction<'_>,
         observer: &mut dyn Observer,
     ) -> Result<TranslationSummary, ProtocolError> {
         self.check()?;
+        let (operator, contact) = problem.translating_parts()?;
         let grid = *operator.grid();
         solver.reset();
         let phase = match contact.kinematics() {

@@ -6,6 +6,7 @@ use crate::elastic::FreeOperator;
 use crate::geometry::{Profile, Sphere};
 use crate::grid::{Boundary, Grid};
 use crate::material::ElasticMaterial;
+use crate::problem::Problem;
 use crate::protocol::{IndentPulloff, NormalSolver, Observer, ProtocolCheckpoint, ProtocolError, StepRecord, StepView};
 use crate::solver::AdhesiveParams;
 use std::ops::ControlFlow;
@@ -89,9 +90,8 @@ fn indent_observed(solver: &mut NormalSolver, observer: &mut dyn Observer) -> Re
         max_retract_steps: 1000,
         jump_force_threshold: 0.0,
     };
-    protocol
-        .run(&mut FreeOperator::new(grid, material), &heights, solver, observer)
-        .map(|_| ())
+    let mut problem = Problem::new(Box::new(FreeOperator::new(grid, material)), heights).unwrap();
+    protocol.run(&mut problem, solver, observer).map(|_| ())
 }
 
 fn grid() -> Grid {

@@ -4,7 +4,7 @@
 use adhesim::analysis::reference::Jkr;
 use adhesim::{
     AdhesiveParams, AdhesiveSolver, Boundary, ElasticMaterial, FreeOperator, Grid, IndentPulloff, NormalSolver,
-    Profile, ProtocolSummary, Sphere, StepRecord,
+    Problem, Profile, ProtocolSummary, Sphere, StepRecord,
 };
 
 /// A smooth-sphere JKR case with R = E* = 1 and γ chosen so that a_JKR = 0.05.
@@ -44,7 +44,7 @@ impl JkrCase {
         steps_per_unit: f64,
     ) -> (ProtocolSummary, Vec<StepRecord>) {
         let material = ElasticMaterial::new(1.0).unwrap();
-        let mut operator = FreeOperator::new(self.grid, material);
+        let operator = FreeOperator::new(self.grid, material);
         let heights = Sphere::new(1.0).unwrap().heights(&self.grid);
         let d_jkr = self.jkr.critical_depth().abs();
         let mut solver = NormalSolver::Adhesive(Box::new(AdhesiveSolver::new(
@@ -61,9 +61,8 @@ impl JkrCase {
             jump_force_threshold: 0.0,
         };
         let mut records = Vec::new();
-        let summary = protocol
-            .run(&mut operator, &heights, &mut solver, &mut records)
-            .unwrap();
+        let mut problem = Problem::new(Box::new(operator), heights).unwrap();
+        let summary = protocol.run(&mut problem, &mut solver, &mut records).unwrap();
         (summary, records)
     }
 }
