@@ -48,12 +48,6 @@ impl ValidScenario {
         self.solver_with(&self.gamma)
     }
 
-    /// [`normal_solver`](Self::normal_solver) of `problem` (this scenario's, its work of
-    /// adhesion checked when it was built).
-    fn normal_solver_of(&self, problem: &Problem) -> NormalSolver {
-        self.solver_with(problem.work_of_adhesion())
-    }
-
     /// The normal solver with the work of adhesion `work_of_adhesion` per element.
     fn solver_with(&self, work_of_adhesion: &[f64]) -> NormalSolver {
         if let Some(solver) = cohesive_solver(&self.law, self.grid, self.material, work_of_adhesion) {
@@ -237,7 +231,8 @@ pub fn run_from(
     resume: Option<Resume>,
 ) -> Result<RunOutcome, ProtocolError> {
     let mut problem = scenario.problem()?;
-    let mut solver = scenario.normal_solver_of(&problem);
+    // The solver from the problem's work of adhesion, checked when the problem was built.
+    let mut solver = scenario.solver_with(problem.work_of_adhesion());
     let (start, records) = match resume {
         Some(Resume { protocol, records }) => (Some(protocol), records),
         None => (None, Vec::new()),

@@ -153,14 +153,9 @@ impl Problem {
         &self.work_of_adhesion
     }
 
-    /// The body's normal operator.
+    /// The body's normal operator (its counters: `applications`).
     pub fn operator(&self) -> &dyn ElasticOperator {
         self.operator.as_ref()
-    }
-
-    /// The body's normal operator, to apply (its counters advance).
-    pub fn operator_mut(&mut self) -> &mut dyn ElasticOperator {
-        self.operator.as_mut()
     }
 
     /// The moving contact of a roll, slide or translate; `None` for fixed heights.
@@ -192,11 +187,6 @@ impl Problem {
             self.work_of_adhesion.clone(),
             params,
         )
-    }
-
-    /// Gives the operator back (its plans and counters with it).
-    pub fn into_operator(self) -> Box<dyn ElasticOperator> {
-        self.operator
     }
 }
 
