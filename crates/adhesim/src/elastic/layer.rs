@@ -8,6 +8,7 @@
 //! to Boussinesq's point kernel, a Hankel transform tabulated once in r/t and integrated
 //! over each element, in the DC-FFT convolution of [`super::FreeOperator`].
 
+use super::bessel::Bessel;
 use super::influence::love_rectangle;
 use super::periodic::{PeriodicKernel, PeriodicOperator};
 use super::spectral::SpectralConvolution;
@@ -181,59 +182,10 @@ pub(super) fn sinh_minus_argument(x: f64) -> f64 {
     sum
 }
 
-/// Bessel J0: its power series below x = 13 (largest term ≈ 4e3, rounding ≈ 1e-12) and
-/// Hankel's asymptotic expansion above, truncated at its smallest term (≈ e^{−2x} < 1e-11);
-/// Abramowitz & Stegun (1964) 9.1.12 and 9.2.5.
-pub(super) fn bessel_j0(x: f64) -> f64 {
-    let x = x.abs();
-    if x < 13.0 {
-        return bessel_power_series(x, 0.0, 1.0);
-    }
-    hankel_expansion(0.0, x, x - 0.25 * PI)
-}
-
-/// Σ_m a_m with a_0 = `first` and a_{m+1} = −a_m (x/2)²/((m + 1)(m + 1 + n)), n = `order`,
-/// summed until a term falls below 1e-18: J_n(x)/(x/2)^n·(first·n!) — J₀ with first = 1,
-/// J₁/x with ½, J₂ with x²/8 (Abramowitz & Stegun 9.1.10).
-pub(super) fn bessel_power_series(x: f64, order: f64, first: f64) -> f64 {
-    let step = -0.25 * x * x;
-    let (mut term, mut sum) = (first, first);
-    let mut m = 0.0f64;
-    while term.abs() > 1e-18 {
-        term *= step / ((m + 1.0) * (m + 1.0 + order));
-        sum += term;
-        m += 1.0;
-    }
-    sum
-}
-
 /// The denominator κ cosh 2s + 2s² + (1 + κ²)/2 (s = kt, κ = 3 − 4ν) shared by the bonded
 /// layer's normal, tangential and coupling compliances.
 pub(super) fn bonded_denominator(kt: f64, kappa: f64) -> f64 {
     kappa * (2.0 * kt).cosh() + 2.0 * kt * kt + 0.5 * (1.0 + kappa * kappa)
-}
-
-/// Hankel's asymptotic expansion of J_n(x), μ = 4n², at the phase x − (n/2 + 1/4)π,
-/// truncated at its smallest term (Abramowitz & Stegun 9.2.5): a_{k+1} =
-/// a_k (μ − (2k + 1)²)/(8(k + 1)x); P takes the even k with signs + − + …, Q the odd k.
-pub(super) fn hankel_expansion(mu: f64, x: f64, phase: f64) -> f64 {
-    let (mut p, mut q) = (1.0, 0.0);
-    let mut term = 1.0f64;
-    for k in 0..64u32 {
-        let next = term * (mu - f64::from(2 * k + 1).powi(2)) / (8.0 * f64::from(k + 1) * x);
-        if next.abs() >= term.abs() || next.abs() < 1e-18 {
-            break;
-        }
-        term = next;
-        let index = k + 1;
-        let sign = if (index / 2).is_multiple_of(2) { 1.0 } else { -1.0 };
-        if index.is_multiple_of(2) {
-            p += sign * term;
-        } else {
-            q += sign * term;
-        }
-    }
-    (2.0 / (PI * x)).sqrt() * (p * phase.cos() - q * phase.sin())
 }
 
 /// Gauss–Legendre nodes on [−1, 1] (positive half) and weights, 4 points.
@@ -279,32 +231,38 @@ impl PointCorrection {
         let (poisson_ratio, base) = (layer.poisson_ratio, layer.base);
         Self::tabulate(
             |s| layer_compliance_factor(s, poisson_ratio, base) - 1.0,
-            bessel_j0,
+            Bessel::J0,
             (-1.0, 1),
         )
     }
 
     /// d(ρ) = ∫0^25 `integrand`(s)·`bessel`(sρ) ds on the table, and c/ρ^n beyond it,
     /// (c, n) = `far`; `bessel` must be even (the table reflects at 0).
-    pub(super) fn tabulate(integrand: impl Fn(f64) -> f64, bessel: fn(f64) -> f64, far: (f64, i32)) -> Self {
+    /// The Bessel values of one row come from [`Bessel::fill`] (the series side by side).
+    pub(super) fn tabulate(integrand: impl Fn(f64) -> f64, bessel: Bessel, far: (f64, i32)) -> Self {
         let panels = (SCREENED_KT / PANEL).round() as usize;
-        let mut nodes = Vec::with_capacity(panels * 8);
+        let (mut nodes, mut weights) = (Vec::with_capacity(panels * 8), Vec::with_capacity(panels * 8));
         for panel in 0..panels {
             let centre = (panel as f64 + 0.5) * PANEL;
             for (&node, &weight) in GAUSS8_NODES.iter().zip(&GAUSS8_WEIGHTS) {
                 for sign in [-1.0, 1.0] {
                     let s = centre + sign * node * 0.5 * PANEL;
-                    nodes.push((s, 0.5 * PANEL * weight * integrand(s)));
+                    nodes.push(s);
+                    weights.push(0.5 * PANEL * weight * integrand(s));
                 }
             }
         }
         let count = (TABLE_RANGE / TABLE_STEP).round() as usize + 1;
         let values = (0..count)
             .into_par_iter()
-            .map(|j| {
-                let rho = j as f64 * TABLE_STEP;
-                nodes.iter().map(|&(s, w)| w * bessel(s * rho)).sum()
-            })
+            .map_init(
+                || vec![0.0; nodes.len()],
+                |row, j| {
+                    let rho = j as f64 * TABLE_STEP;
+                    bessel.fill(&nodes, rho, row);
+                    weights.iter().zip(row.iter()).map(|(&w, &b)| w * b).sum()
+                },
+            )
             .collect();
         Self {
             values,

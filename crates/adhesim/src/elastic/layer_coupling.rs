@@ -9,11 +9,10 @@
 //! half-space's x(1 − 2ν)/(4πGr²) is (x/r)·d₁(r/t)/(2πGt), d₁(ρ) = ∫₀^∞ c₁(s) J₁(sρ) ds,
 //! c₁ = h − (1 − 2ν)/2 (the n = 1 term of the plane wave, times −i·i = 1).
 
+use super::bessel::Bessel;
 use super::cerruti::ShearMaterial;
 use super::coupling::coupling_rectangle;
-use super::layer::{
-    bessel_power_series, bonded_denominator, element_integrals, hankel_expansion, PointCorrection, SCREENED_KT,
-};
+use super::layer::{bonded_denominator, element_integrals, PointCorrection, SCREENED_KT};
 use super::ElasticLayer;
 use crate::grid::Grid;
 use std::f64::consts::PI;
@@ -36,15 +35,6 @@ pub(super) fn layer_coupling_compliance(kt: f64, poisson_ratio: f64) -> f64 {
     -(kt * kt - (1.0 - 2.0 * poisson_ratio) * kappa * kt.sinh().powi(2)) / bonded_denominator(kt, kappa)
 }
 
-/// J₁(x)/x, even in x: its power series below x = 13 and Hankel's expansion (μ = 4) above.
-fn bessel_j1_over_x(x: f64) -> f64 {
-    let x = x.abs();
-    if x < 13.0 {
-        return bessel_power_series(x, 1.0, 0.5);
-    }
-    hankel_expansion(4.0, x, x - 0.75 * PI) / x
-}
-
 /// (K_zx, K_zy) of the bonded layer at offsets (lΔx, mΔy), 0 ≤ l < Nx, 0 ≤ m < Ny
 /// (`[m * Nx + l]`): the half-space's [`coupling_rectangle`] plus the layer's excess
 /// integrated over the element, zero where the whole element lies beyond 60t. K_zx is odd
@@ -62,7 +52,7 @@ pub(super) fn layer_coupling_coefficients(
     let half_space = 0.5 * (1.0 - 2.0 * nu);
     let excess = PointCorrection::tabulate(
         |s| s * (layer_coupling_compliance(s, nu) - half_space),
-        bessel_j1_over_x,
+        Bessel::J1OverX,
         (-half_space, 2),
     );
     let scale = 1.0 / (2.0 * PI * material.shear_modulus * t * t);

@@ -13,11 +13,9 @@
 //! A frictionless base cannot hold a tangential load (the layer would slide on it), so only
 //! a bonded base is taken.
 
+use super::bessel::Bessel;
 use super::cerruti::{cerruti_rectangle, CerrutiCoefficients, ShearMaterial};
-use super::layer::{
-    bessel_j0, bessel_power_series, bonded_denominator, element_integrals, hankel_expansion, sinh_minus_argument,
-    PointCorrection, SCREENED_KT,
-};
+use super::layer::{bonded_denominator, element_integrals, sinh_minus_argument, PointCorrection, SCREENED_KT};
 use super::{ElasticLayer, LayerBase};
 use crate::grid::Grid;
 use std::f64::consts::PI;
@@ -109,17 +107,6 @@ pub(super) fn layer_shear_multiplier(qx: f64, qy: f64, thickness: f64, poisson_r
     ]
 }
 
-/// Bessel J2: its power series below x = 13 and Hankel's asymptotic expansion above,
-/// truncated at its smallest term, as [`bessel_j0`] (Abramowitz & Stegun 1964, 9.1.10 and
-/// 9.2.5 with μ = 16).
-pub(super) fn bessel_j2(x: f64) -> f64 {
-    let x = x.abs();
-    if x < 13.0 {
-        return bessel_power_series(x, 2.0, 0.125 * x * x);
-    }
-    hankel_expansion(16.0, x, x - 1.25 * PI)
-}
-
 /// The layer's tangential point kernel minus Cerruti's, in the two radial functions of an
 /// isotropic 2-D tensor kernel: D_αβ(r) = [δ_αβ d0(ρ) − (2r̂_α r̂_β − δ_αβ) d2(ρ)]/(2πGt),
 /// ρ = r/t, with d_n(ρ) = ∫0^∞ c_n(s) J_n(sρ) ds and
@@ -145,7 +132,7 @@ impl ShearCorrection {
                 let (l, t) = excess(s);
                 0.5 * (l + t)
             },
-            bessel_j0,
+            Bessel::J0,
             (-(2.0 - nu) / 2.0, 1),
         );
         let deviatoric = PointCorrection::tabulate(
@@ -153,7 +140,7 @@ impl ShearCorrection {
                 let (l, t) = excess(s);
                 0.5 * (l - t)
             },
-            bessel_j2,
+            Bessel::J2,
             (nu / 2.0, 1),
         );
         Self { isotropic, deviatoric }

@@ -7,6 +7,7 @@
 //! elements and collocation at element centres.
 
 mod backend;
+mod bessel;
 pub mod cerruti;
 mod coupling;
 mod free;

@@ -1,4 +1,5 @@
 use super::*;
+use crate::elastic::bessel::bessel_j0;
 use crate::elastic::test_fields::{lcg_field, xorshift_field};
 use crate::elastic::FreeOperator;
 

@@ -1,4 +1,5 @@
 use super::*;
+use crate::elastic::bessel::bessel_j2;
 use crate::elastic::layer::navier::{surface_displacement, Load};
 use crate::elastic::test_fields::{lcg_field, xorshift_field};
 use crate::elastic::{LayerError, TangentialOperator, TangentialOperatorError};

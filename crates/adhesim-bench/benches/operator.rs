@@ -1,6 +1,6 @@
 //! Elastic operator application against the bare FFT floor, and a cold Hertz solve.
 //!
-//! `cargo bench -p adhesim --bench operator`
+//! `cargo bench -p adhesim-bench --bench operator`
 //!
 //! The floor is a plain forward + inverse real 2-D FFT pair of the padded 2N×2N array
 //! (all rows and columns transformed, no kernel product), run with the same planner,
