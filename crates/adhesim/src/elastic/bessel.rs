@@ -6,7 +6,7 @@
 //! A table entry sums thousands of them at one radius ([`super::layer`]'s `PointCorrection`).
 //! One power series is a chain of dependent divisions, so one evaluation at a time waits on
 //! each division's latency; [`Bessel::fill`] runs the series of [`LANES`] arguments side by
-//! side, each with exactly the operations of [`Bessel::at`] in the same order, so that the
+//! side, each with exactly the operations of `Bessel::at` in the same order, so that the
 //! tables keep their bits.
 
 use std::f64::consts::PI;
@@ -70,7 +70,8 @@ impl Bessel {
         }
     }
 
-    /// The function at x (each is even): the reference of [`Self::fill`].
+    /// The function at x (each is even), one at a time: the reference that [`Self::fill`]
+    /// is tested against.
     #[cfg(test)]
     pub(super) fn at(self, x: f64) -> f64 {
         let x = x.abs();
@@ -80,7 +81,7 @@ impl Bessel {
         self.far(x, hankel_sums(self.hankel_parameters(x).0, x))
     }
 
-    /// `values[i]` = [`Self::at`]`(nodes[i] * scale)`, bit for bit: the power series and
+    /// `values[i]` = `Self::at``(nodes[i] * scale)`, bit for bit: the power series and
     /// Hankel's expansions of [`LANES`] arguments advance together, each lane stopping where
     /// its own sum stops.
     pub(super) fn fill(self, nodes: &[f64], scale: f64, values: &mut [f64]) {
@@ -108,7 +109,7 @@ impl Bessel {
         }
     }
 
-    /// The power series (those of [`Self::at`]) of the first `live` lanes marked in
+    /// The power series (those of `Self::at`) of the first `live` lanes marked in
     /// `series`, side by side; a lane off the series holds a zero term, which never passes
     /// the series' test.
     fn series_lanes(self, arguments: &[f64; LANES], series: &[bool; LANES], live: usize) -> [f64; LANES] {
@@ -197,7 +198,7 @@ fn hankel_sums(mu: f64, x: f64) -> (f64, f64) {
     (p, q)
 }
 
-/// The sums (P, Q) of Hankel's expansion (those of [`Bessel::at`]) of the lanes marked in
+/// The sums (P, Q) of Hankel's expansion (those of `Bessel::at`) of the lanes marked in
 /// `far`, side by side, with the same operations in the same order; (1, 0) in the others.
 fn hankel_lanes(mu: f64, arguments: &[f64; LANES], far: &[bool; LANES]) -> [(f64, f64); LANES] {
     let (mut p, mut q, mut term) = ([1.0f64; LANES], [0.0f64; LANES], [1.0f64; LANES]);
