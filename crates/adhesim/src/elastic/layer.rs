@@ -10,6 +10,7 @@
 
 use super::bessel::Bessel;
 use super::influence::love_rectangle;
+use super::layer_tables::{table, TableKey};
 use super::periodic::{PeriodicKernel, PeriodicOperator};
 use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
@@ -18,10 +19,11 @@ use crate::material::ElasticMaterial;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::ops::Range;
+use std::sync::Arc;
 use thiserror::Error;
 
 /// How the layer is held by the rigid base.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LayerBase {
     /// Bonded: no displacement at the base (u = 0 there).
     Bonded,
@@ -219,7 +221,7 @@ const PANEL: f64 = 0.05;
 /// and is cut at s = 25 (below 1e-18); 8-point Gauss–Legendre on panels of 0.05. The
 /// tangential kernels ([`super::layer_shear`]) tabulate their own integrands the same way.
 pub(super) struct PointCorrection {
-    values: Vec<f64>,
+    values: Arc<[f64]>,
     /// d(ρ)·ρ^`far_power` beyond the table, where the layer carries nothing and D is minus
     /// the half-space's point kernel.
     far: f64,
@@ -229,7 +231,12 @@ pub(super) struct PointCorrection {
 impl PointCorrection {
     fn new(layer: &ElasticLayer) -> Self {
         let (poisson_ratio, base) = (layer.poisson_ratio, layer.base);
+        let key = TableKey::Normal {
+            poisson_ratio_bits: poisson_ratio.to_bits(),
+            base,
+        };
         Self::tabulate(
+            key,
             |s| layer_compliance_factor(s, poisson_ratio, base) - 1.0,
             Bessel::J0,
             (-1.0, 1),
@@ -238,8 +245,19 @@ impl PointCorrection {
 
     /// d(ρ) = ∫0^25 `integrand`(s)·`bessel`(sρ) ds on the table, and c/ρ^n beyond it,
     /// (c, n) = `far`; `bessel` must be even (the table reflects at 0).
-    /// The Bessel values of one row come from [`Bessel::fill`] (the series side by side).
-    pub(super) fn tabulate(integrand: impl Fn(f64) -> f64, bessel: Bessel, far: (f64, i32)) -> Self {
+    /// The Bessel values of one row come from [`Bessel::fill`] (the series side by side). A
+    /// table is computed once per `key` in a process ([`super::layer_tables`]): `key` must
+    /// name every parameter `integrand` depends on.
+    pub(super) fn tabulate(key: TableKey, integrand: impl Fn(f64) -> f64, bessel: Bessel, far: (f64, i32)) -> Self {
+        Self {
+            values: table(key, || Self::compute(integrand, bessel)),
+            far: far.0,
+            far_power: far.1,
+        }
+    }
+
+    /// The table's values, d(ρ) at ρ = jh.
+    fn compute(integrand: impl Fn(f64) -> f64, bessel: Bessel) -> Vec<f64> {
         let panels = (SCREENED_KT / PANEL).round() as usize;
         let (mut nodes, mut weights) = (Vec::with_capacity(panels * 8), Vec::with_capacity(panels * 8));
         for panel in 0..panels {
@@ -253,7 +271,7 @@ impl PointCorrection {
             }
         }
         let count = (TABLE_RANGE / TABLE_STEP).round() as usize + 1;
-        let values = (0..count)
+        (0..count)
             .into_par_iter()
             .map_init(
                 || vec![0.0; nodes.len()],
@@ -263,12 +281,7 @@ impl PointCorrection {
                     weights.iter().zip(row.iter()).map(|(&w, &b)| w * b).sum()
                 },
             )
-            .collect();
-        Self {
-            values,
-            far: far.0,
-            far_power: far.1,
-        }
+            .collect()
     }
 
     /// d(ρ): cubic Lagrange interpolation (d is even: the stencil reflects at 0), c/ρ^n

@@ -13,6 +13,7 @@ use super::bessel::Bessel;
 use super::cerruti::ShearMaterial;
 use super::coupling::coupling_rectangle;
 use super::layer::{bonded_denominator, element_integrals, PointCorrection, SCREENED_KT};
+use super::layer_tables::TableKey;
 use super::ElasticLayer;
 use crate::grid::Grid;
 use std::f64::consts::PI;
@@ -51,6 +52,9 @@ pub(super) fn layer_coupling_coefficients(
     let nu = material.poisson_ratio;
     let half_space = 0.5 * (1.0 - 2.0 * nu);
     let excess = PointCorrection::tabulate(
+        TableKey::Coupling {
+            poisson_ratio_bits: nu.to_bits(),
+        },
         |s| s * (layer_coupling_compliance(s, nu) - half_space),
         Bessel::J1OverX,
         (-half_space, 2),

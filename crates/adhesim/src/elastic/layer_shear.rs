@@ -16,6 +16,7 @@
 use super::bessel::Bessel;
 use super::cerruti::{cerruti_rectangle, CerrutiCoefficients, ShearMaterial};
 use super::layer::{bonded_denominator, element_integrals, sinh_minus_argument, PointCorrection, SCREENED_KT};
+use super::layer_tables::TableKey;
 use super::{ElasticLayer, LayerBase};
 use crate::grid::Grid;
 use std::f64::consts::PI;
@@ -127,7 +128,9 @@ impl ShearCorrection {
             let transverse = layer_transverse_factor(s) - 1.0;
             (longitudinal, transverse)
         };
+        let poisson_ratio_bits = nu.to_bits();
         let isotropic = PointCorrection::tabulate(
+            TableKey::ShearIsotropic { poisson_ratio_bits },
             |s| {
                 let (l, t) = excess(s);
                 0.5 * (l + t)
@@ -136,6 +139,7 @@ impl ShearCorrection {
             (-(2.0 - nu) / 2.0, 1),
         );
         let deviatoric = PointCorrection::tabulate(
+            TableKey::ShearDeviatoric { poisson_ratio_bits },
             |s| {
                 let (l, t) = excess(s);
                 0.5 * (l - t)

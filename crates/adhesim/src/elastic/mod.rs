@@ -15,6 +15,7 @@ pub mod influence;
 mod layer;
 mod layer_coupling;
 mod layer_shear;
+mod layer_tables;
 mod periodic;
 pub(crate) mod planner;
 mod preconditioner;
