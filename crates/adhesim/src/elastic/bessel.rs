@@ -51,18 +51,23 @@ impl Bessel {
         }
     }
 
-    /// μ = 4n² of Hankel's expansion and its phase x − (n/2 + 1/4)π.
-    fn hankel_parameters(self, x: f64) -> (f64, f64) {
+    /// μ = 4n² of Hankel's expansion.
+    fn hankel_mu(self) -> f64 {
         match self {
-            Self::J0 => (0.0, x - 0.25 * PI),
-            Self::J1OverX => (4.0, x - 0.75 * PI),
-            Self::J2 => (16.0, x - 1.25 * PI),
+            Self::J0 => 0.0,
+            Self::J1OverX => 4.0,
+            Self::J2 => 16.0,
         }
     }
 
-    /// The function at x ≥ 13 from the sums (P, Q) of Hankel's expansion at x.
+    /// The function at x ≥ 13 from the sums (P, Q) of Hankel's expansion at x, at the phase
+    /// x − (n/2 + 1/4)π.
     fn far(self, x: f64, (p, q): (f64, f64)) -> f64 {
-        let (_, phase) = self.hankel_parameters(x);
+        let phase = match self {
+            Self::J0 => x - 0.25 * PI,
+            Self::J1OverX => x - 0.75 * PI,
+            Self::J2 => x - 1.25 * PI,
+        };
         let value = (2.0 / (PI * x)).sqrt() * (p * phase.cos() - q * phase.sin());
         match self {
             Self::J1OverX => value / x,
@@ -78,7 +83,7 @@ impl Bessel {
         if x < SERIES_LIMIT {
             return bessel_power_series(x, self.order(), self.first(x));
         }
-        self.far(x, hankel_sums(self.hankel_parameters(x).0, x))
+        self.far(x, hankel_sums(self.hankel_mu(), x))
     }
 
     /// `values[i]` = `Self::at``(nodes[i] * scale)`, bit for bit: the power series and
@@ -94,10 +99,9 @@ impl Bessel {
                 series[lane] = arguments[lane] < SERIES_LIMIT;
             }
             let live = chunk.len();
-            let sums = self.series_lanes(&arguments, &series, live);
+            let sums = self.series_lanes(&arguments, &series);
             let far = std::array::from_fn(|lane| lane < live && !series[lane]);
-            let (mu, _) = self.hankel_parameters(0.0);
-            let hankel = hankel_lanes(mu, &arguments, &far);
+            let hankel = hankel_lanes(self.hankel_mu(), &arguments, &far);
             for (lane, value) in out.iter_mut().enumerate() {
                 let x = arguments[lane];
                 *value = if series[lane] {
@@ -109,12 +113,11 @@ impl Bessel {
         }
     }
 
-    /// The power series (those of `Self::at`) of the first `live` lanes marked in
-    /// `series`, side by side; a lane off the series holds a zero term, which never passes
-    /// the series' test.
-    fn series_lanes(self, arguments: &[f64; LANES], series: &[bool; LANES], live: usize) -> [f64; LANES] {
+    /// The power series (those of `Self::at`) of the lanes marked in `series`, side by
+    /// side; a lane off the series holds a zero term, which never passes the series' test.
+    fn series_lanes(self, arguments: &[f64; LANES], series: &[bool; LANES]) -> [f64; LANES] {
         let (mut term, mut sum, mut step) = ([0.0f64; LANES], [0.0f64; LANES], [0.0f64; LANES]);
-        for lane in (0..live).filter(|&lane| series[lane]) {
+        for lane in (0..LANES).filter(|&lane| series[lane]) {
             let x = arguments[lane];
             let first = self.first(x);
             (term[lane], sum[lane], step[lane]) = (first, first, -0.25 * x * x);
