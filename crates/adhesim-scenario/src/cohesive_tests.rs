@@ -258,34 +258,36 @@ fn trapezoid_keys_are_checked_by_name() {
 }
 
 /// The trapezoidal law on the smooth sphere of `maugis_lambda0p3.toml` (λ = 0.3 of its σ0,
-/// N = 128): its pull-off lies between the JKR and DMT limits (1.5πγ0R < F < 2πγ0R), and at
-/// s = 0.2 within 3 % of Dugdale's on the same grid and σ0 (the law differs from Dugdale's
-/// only in the last 20 % of its range; measured −0.67 %, and 1.847πγ0R at s = 1 against
-/// Dugdale's 1.828: the triangle of the same σ0 reaches twice as far, a smaller λ). About
-/// 10 s on 2 busy cores.
-#[test]
-fn trapezoid_pulls_off_between_the_limits_and_near_dugdale() {
+/// N = 128), the pull-off over πγ0R with `overrides`.
+fn maugis_lambda0p3_pull_off(overrides: &[&str]) -> f64 {
     let text = include_str!("../../../scenarios/cohesive/maugis_lambda0p3.toml");
-    let pull_off = |overrides: &[&str]| {
-        let overrides: Vec<String> = overrides.iter().map(|o| o.to_string()).collect();
-        let scenario = loaded(text, &overrides);
-        let outcome = run(&scenario, &mut ()).unwrap();
-        let RunResults::Indentation(results) = outcome.results else {
-            panic!("an indentation")
-        };
-        results.max_adhesive_force / (std::f64::consts::PI * 1e-4)
+    let overrides: Vec<String> = overrides.iter().map(|o| o.to_string()).collect();
+    let outcome = run(&loaded(text, &overrides), &mut ()).unwrap();
+    let RunResults::Indentation(results) = outcome.results else {
+        panic!("an indentation")
     };
-    let dugdale = pull_off(&[]);
-    for s in ["0.2", "1.0"] {
-        let trapezoid = pull_off(&[
-            "adhesion.law=\"trapezoid\"",
-            &format!("adhesion.softening_fraction={s}"),
-        ]);
-        assert!(trapezoid > 1.5 && trapezoid < 2.0, "s = {s}: F/(πγ0R) = {trapezoid}");
-        if s == "0.2" {
-            assert!((trapezoid / dugdale - 1.0).abs() < 0.03, "{trapezoid} vs {dugdale}");
-        }
-    }
+    results.max_adhesive_force / (std::f64::consts::PI * 1e-4)
+}
+
+/// The triangle (s = 1) pulls off between the JKR and DMT limits (1.5πγ0R < F < 2πγ0R;
+/// measured 1.847πγ0R against Dugdale's 1.828: the triangle of the same σ0 reaches twice
+/// as far, a smaller λ). About 4 s.
+#[test]
+fn trapezoid_pulls_off_between_the_limits() {
+    let triangle = maugis_lambda0p3_pull_off(&["adhesion.law=\"trapezoid\"", "adhesion.softening_fraction=1.0"]);
+    assert!(triangle > 1.5 && triangle < 2.0, "s = 1: F/(πγ0R) = {triangle}");
+}
+
+/// At s = 0.2 the trapezoid pulls off between the limits and within 3 % of Dugdale's on the
+/// same grid and σ0 (the law differs from Dugdale's only in the last 20 % of its range;
+/// measured −0.67 %). About 10 s on 2 busy cores.
+#[test]
+#[ignore = "10 s: cargo test --release -p adhesim-scenario trapezoid -- --ignored"]
+fn trapezoid_pulls_off_near_dugdale() {
+    let dugdale = maugis_lambda0p3_pull_off(&[]);
+    let trapezoid = maugis_lambda0p3_pull_off(&["adhesion.law=\"trapezoid\"", "adhesion.softening_fraction=0.2"]);
+    assert!(trapezoid > 1.5 && trapezoid < 2.0, "s = 0.2: F/(πγ0R) = {trapezoid}");
+    assert!((trapezoid / dugdale - 1.0).abs() < 0.03, "{trapezoid} vs {dugdale}");
 }
 
 /// The trapezoid at its smallest accepted softening fraction (1e-6) is Maugis–Dugdale: on

@@ -17,14 +17,14 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
 }
 
 /// Writes the RGB `pixels` of a figure drawn by plotters' bitmap backend as a PNG with the
-/// encoder that backend's own file writer uses (image 0.24), so that the bytes stay those
+/// encoder that backend's own file writer uses, so that the bytes stay those
 /// of the figures written before; every write checked ([`write_file`]).
 pub fn save_figure_png(pixels: Vec<u8>, size: (u32, u32), path: &Path) -> Result<()> {
-    let image = image024::RgbImage::from_raw(size.0, size.1, pixels)
+    let image = image::RgbImage::from_raw(size.0, size.1, pixels)
         .ok_or_else(|| anyhow!("{}: image buffer size", path.display()))?;
     let mut bytes = std::io::Cursor::new(Vec::new());
     image
-        .write_to(&mut bytes, image024::ImageOutputFormat::Png)
+        .write_to(&mut bytes, image::ImageOutputFormat::Png)
         .with_context(|| format!("cannot encode {}", path.display()))?;
     write_file(path, bytes.get_ref())
 }

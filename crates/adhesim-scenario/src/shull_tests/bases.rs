@@ -33,14 +33,24 @@ fn a_sphere_and_a_punch_on_compressible_and_frictionless_layers_are_the_axisymme
     assert_eq!(compressible, incompressible);
 }
 
+/// The thinnest of the layers (a/h ≈ 2, where the layer departs most from the half-space)
+/// in the default run; the three in `…_at_every_thickness`.
 #[test]
 fn a_jkr_sphere_on_a_compressible_bonded_layer_pulls_off_at_the_axisymmetric_force() {
-    assert_the_pull_off_carries_the_half_space_error(KINDS[1], &PULL_OFF_THICKNESSES);
+    assert_the_pull_off_carries_the_half_space_error(KINDS[1], &PULL_OFF_THICKNESSES[2..]);
 }
 
 #[test]
 fn a_jkr_sphere_on_a_layer_on_a_frictionless_base_pulls_off_at_the_axisymmetric_force() {
-    assert_the_pull_off_carries_the_half_space_error(KINDS[2], &PULL_OFF_THICKNESSES);
+    assert_the_pull_off_carries_the_half_space_error(KINDS[2], &PULL_OFF_THICKNESSES[2..]);
+}
+
+#[test]
+#[ignore = "about 20 s: cargo test --release -p adhesim-scenario shull_tests -- --ignored"]
+fn jkr_spheres_on_compressible_and_frictionless_layers_pull_off_at_the_axisymmetric_force_at_every_thickness() {
+    for kind in &KINDS[1..3] {
+        assert_the_pull_off_carries_the_half_space_error(*kind, &PULL_OFF_THICKNESSES);
+    }
 }
 
 /// ν = 0.3 bonded and ν = 1/2 frictionless at twice the resolution, as Shull's layer. About

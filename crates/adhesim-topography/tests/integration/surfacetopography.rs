@@ -210,60 +210,93 @@ pub fn statistics(map: &Topography) -> (f64, f64, Option<f64>) {
     )
 }
 
+/// The fixture whose harmonic filling is slow (233,009 of its 512² points invalid: 12 s of
+/// Jacobi-preconditioned CG). The default run reads it and checks its grid, size, invalid
+/// points and rms height; its slope and curvature after the filling are checked by the
+/// ignored test below. The filling itself is checked against SurfaceTopography in the
+/// default run on the other maps with invalid points (sur-2, reference.gwy, xyz-2).
+const SLOW_FILL: &str = "sur-3.sur.gz";
+
 #[test]
 fn readers_agree_with_surfacetopography() {
+    for expected in &EXPECTED {
+        agrees_with_surfacetopography(expected, expected.file != SLOW_FILL);
+    }
+}
+
+#[test]
+#[ignore = "12 s: cargo test --release -p adhesim-topography --test integration surfacetopography:: -- --ignored"]
+fn the_largest_filling_agrees_with_surfacetopography() {
+    let expected = EXPECTED.iter().find(|e| e.file == SLOW_FILL).unwrap();
+    agrees_with_surfacetopography(expected, true);
+}
+
+/// One row of the conformance table: what adhesim reads against what SurfaceTopography
+/// reports; the slope and curvature (after the filling of invalid points) if `filled`.
+fn agrees_with_surfacetopography(expected: &Expected, filled: bool) {
     let metres = ReadOptions {
         height_unit: Some("m".into()),
         lateral_unit: Some("m".into()),
         ..Default::default()
     };
-    for expected in &EXPECTED {
-        let name = expected.file;
-        let map = read(name, &metres);
-        assert_eq!((map.nx, map.ny), expected.grid, "{name}: grid");
-        assert_relative(
-            map.nx as f64 * map.dx,
-            expected.size.0,
-            1e-12,
-            &format!("{name}: x size"),
-        );
-        assert_relative(
-            map.ny as f64 * map.dy,
-            expected.size.1,
-            1e-12,
-            &format!("{name}: y size"),
-        );
-        let invalid = map.mask.as_ref().map_or(0, |m| m.iter().filter(|v| !**v).count());
-        assert_eq!(invalid, expected.invalid, "{name}: invalid points");
-        let (rms_height, rms_slope, rms_curvature) = statistics(&map);
-        // the row of the conformance table in docs/topography-files.md (cargo test -- --nocapture)
-        let relative = |got: f64, want: f64| (got / want - 1.0).abs();
-        eprintln!(
-            "| `{name}` | {} × {} | {:.6e} × {:.6e} | {} | {:.10e} / {:.10e} ({:.0e}) | {:.10e} / {:.10e} ({:.0e}) |",
-            map.nx,
-            map.ny,
-            map.nx as f64 * map.dx,
-            map.ny as f64 * map.dy,
-            invalid,
-            expected.rms_height,
-            rms_height,
-            relative(rms_height, expected.rms_height),
-            expected.rms_slope,
-            rms_slope,
-            relative(rms_slope, expected.rms_slope)
-        );
+    let name = expected.file;
+    let map = read(name, &metres);
+    assert_eq!((map.nx, map.ny), expected.grid, "{name}: grid");
+    assert_relative(
+        map.nx as f64 * map.dx,
+        expected.size.0,
+        1e-12,
+        &format!("{name}: x size"),
+    );
+    assert_relative(
+        map.ny as f64 * map.dy,
+        expected.size.1,
+        1e-12,
+        &format!("{name}: y size"),
+    );
+    let invalid = map.mask.as_ref().map_or(0, |m| m.iter().filter(|v| !**v).count());
+    assert_eq!(invalid, expected.invalid, "{name}: invalid points");
+    if !filled {
+        let rms_height = HeightMap::new(
+            (map.nx, map.ny),
+            (map.dx, map.dy),
+            &map.heights,
+            map.mask.as_deref(),
+            false,
+        )
+        .unwrap()
+        .rms_height();
         assert_relative(rms_height, expected.rms_height, 1e-9, &format!("{name}: rms height"));
-        let filled_tolerance = if expected.invalid > 0 { 1e-6 } else { 1e-9 };
-        assert_relative(
-            rms_slope,
-            expected.rms_slope,
-            filled_tolerance,
-            &format!("{name}: rms slope"),
-        );
-        if let Some(want) = expected.rms_curvature {
-            let got = rms_curvature.unwrap();
-            assert_relative(got, want, filled_tolerance, &format!("{name}: rms curvature"));
-        }
+        return;
+    }
+    let (rms_height, rms_slope, rms_curvature) = statistics(&map);
+    // the row of the conformance table in docs/topography-files.md (cargo test -- --nocapture)
+    let relative = |got: f64, want: f64| (got / want - 1.0).abs();
+    eprintln!(
+        "| `{name}` | {} × {} | {:.6e} × {:.6e} | {} | {:.10e} / {:.10e} ({:.0e}) | {:.10e} / {:.10e} ({:.0e}) |",
+        map.nx,
+        map.ny,
+        map.nx as f64 * map.dx,
+        map.ny as f64 * map.dy,
+        invalid,
+        expected.rms_height,
+        rms_height,
+        relative(rms_height, expected.rms_height),
+        expected.rms_slope,
+        rms_slope,
+        relative(rms_slope, expected.rms_slope)
+    );
+    assert_relative(rms_height, expected.rms_height, 1e-9, &format!("{name}: rms height"));
+    let filled_tolerance = if expected.invalid > 0 { 1e-6 } else { 1e-9 };
+    assert_relative(
+        rms_slope,
+        expected.rms_slope,
+        filled_tolerance,
+        &format!("{name}: rms slope"),
+    );
+    if let Some(want) = expected.rms_curvature {
+        let got = rms_curvature.unwrap();
+        assert_relative(got, want, filled_tolerance, &format!("{name}: rms curvature"));
     }
 }
 

@@ -315,16 +315,26 @@ fn dugdale_smooth_sphere_resumes_bit_for_bit() {
 
 /// The exponential law (Anderson-mixed rounds, an approach from where its pull is
 /// negligible, a pull-off that ends when the tension does) at n = 64: resumes bit for bit
-/// after every step of the retraction and in the approach.
+/// at the checkpoints of [`spread`].
 #[test]
 fn exponential_smooth_sphere_resumes_bit_for_bit() {
-    let (grid, heights, protocol) = smooth_sphere(64, 0.41, 2e-4);
-    let make = cohesive(exponential, CohesiveParams::default());
-    let at = |approach: usize, total: usize| {
+    exponential_smooth_sphere_resumes(spread);
+}
+
+/// The same after every step of the retraction (each resumed run goes to the pull-off).
+#[test]
+#[ignore = "15 s: cargo test --release -p adhesim --test integration checkpoint:: -- --ignored"]
+fn exponential_smooth_sphere_resumes_bit_for_bit_after_every_retraction_step() {
+    exponential_smooth_sphere_resumes(|approach, total| {
         let mut at = vec![1, approach / 2, approach];
         at.extend(approach + 1..total);
         at
-    };
+    });
+}
+
+fn exponential_smooth_sphere_resumes(at: impl Fn(usize, usize) -> Vec<usize>) {
+    let (grid, heights, protocol) = smooth_sphere(64, 0.41, 2e-4);
+    let make = cohesive(exponential, CohesiveParams::default());
     let ((approach, total), taken) = check_resumes_on((grid, &heights), &protocol, make, at);
     assert!(approach > 10 && total > approach + 5, "{approach} of {total}");
     assert_carries_windows(&taken);

@@ -29,12 +29,49 @@ pub fn list_frames(dir: &Path) -> Result<Vec<PathBuf>> {
 
 /// Decodes a frame as grey levels (colour frames are converted to luma).
 pub fn read_frame(path: &Path) -> Result<GrayImage> {
-    let img = image::ImageReader::open(path)?.with_guessed_format()?.decode()?;
+    let reader = image::io::Reader::open(path)?.with_guessed_format()?;
+    let img = if reader.format() == Some(image::ImageFormat::Jpeg) {
+        decode_jpeg(&std::fs::read(path)?)?
+    } else {
+        reader.decode()?
+    };
     let (w, h) = (img.width() as usize, img.height() as usize);
     Ok(match img {
         image::DynamicImage::ImageLuma8(buf) => GrayImage::from_u8(w, h, buf.as_raw())?,
         image::DynamicImage::ImageLuma16(buf) => GrayImage::from_u16(w, h, buf.as_raw())?,
         other => GrayImage::from_u16(w, h, other.to_luma16().as_raw())?,
+    })
+}
+
+/// A JPEG decoded by zune-jpeg with the options image 0.25 gave it (no strict mode, no size
+/// limit, the output in the file's colour space where it is grey or RGB(A), RGB otherwise),
+/// so that a lossy frame's grey levels are those that decoder gives (another IDCT rounds
+/// differently by a level here and there).
+fn decode_jpeg(bytes: &[u8]) -> Result<image::DynamicImage> {
+    use zune_core::colorspace::ColorSpace;
+    let options = zune_core::options::DecoderOptions::default()
+        .set_strict_mode(false)
+        .set_max_width(usize::MAX)
+        .set_max_height(usize::MAX);
+    let mut decoder = zune_jpeg::JpegDecoder::new_with_options(zune_core::bytestream::ZCursor::new(bytes), options);
+    decoder.decode_headers().map_err(|e| anyhow::anyhow!("JPEG: {e:?}"))?;
+    let colour = match decoder.input_colorspace() {
+        Some(space @ (ColorSpace::RGB | ColorSpace::RGBA | ColorSpace::Luma | ColorSpace::LumaA)) => space,
+        _ => ColorSpace::RGB,
+    };
+    decoder.set_options(decoder.options().jpeg_set_out_colorspace(colour));
+    let pixels = decoder.decode().map_err(|e| anyhow::anyhow!("JPEG: {e:?}"))?;
+    let (w, h) = decoder.dimensions().context("JPEG: no dimensions after decoding")?;
+    let (w, h) = (u32::try_from(w)?, u32::try_from(h)?);
+    let length = pixels.len();
+    let size = || anyhow::anyhow!("JPEG: {length} bytes of pixels for {w} × {h}");
+    Ok(match colour {
+        ColorSpace::Luma => image::DynamicImage::ImageLuma8(image::GrayImage::from_raw(w, h, pixels).ok_or_else(size)?),
+        ColorSpace::LumaA => {
+            image::DynamicImage::ImageLumaA8(image::GrayAlphaImage::from_raw(w, h, pixels).ok_or_else(size)?)
+        }
+        ColorSpace::RGBA => image::DynamicImage::ImageRgba8(image::RgbaImage::from_raw(w, h, pixels).ok_or_else(size)?),
+        _ => image::DynamicImage::ImageRgb8(image::RgbImage::from_raw(w, h, pixels).ok_or_else(size)?),
     })
 }
 

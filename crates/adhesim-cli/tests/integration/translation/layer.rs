@@ -106,14 +106,23 @@ fn glued_punch_on_a_thin_rubber_layer_tends_to_four_times_the_frictionless_one()
     // face hold the material that the frictionless punch squeezes out. In the thin-layer
     // limit the squeeze flux between two no-slip faces is a quarter of that under a free
     // face (t³/(12G) against t³/(3G)), so the force tends to 4× the frictionless punch's
-    // (docs/physics.md §9.5). Asserted at a/t = 8 and 16: the coupled punch is stiffer, below
-    // the limit, and its distance from 4 falls at least by √2 per halving of t/a (a rate at
-    // least (t/a)^½; measured 1.61: the ratio is 2.57 and 3.11, and 3.50 at a/t = 32 with
-    // t = 2Δ on 256², docs/validation.md §18.1).
+    // (docs/physics.md §9.5). Asserted here at a/t = 8: the coupled punch is stiffer and
+    // below the limit. The test below adds a/t = 16: its distance from 4 falls at least by
+    // √2 per halving of t/a (a rate at least (t/a)^½; measured 1.61: the ratio is 2.57 and
+    // 3.11, and 3.50 at a/t = 32 with t = 2Δ on 256², docs/validation.md §18.1).
     let dir = tempfile::tempdir().unwrap();
-    let ratio =
-        |thickness: f64| punch_on_layer(dir.path(), thickness, "full") / punch_on_layer(dir.path(), thickness, "none");
-    let (thick, thin) = (ratio(0.0625), ratio(0.03125));
+    let thick = glued_over_frictionless(dir.path(), 0.0625);
+    assert!(1.0 < thick && thick < 4.0, "{thick} at a/t = 8");
+}
+
+#[test]
+#[ignore = "the rate towards the thin-layer limit, 10 s: cargo test --release -p adhesim-cli --test integration glued_punch -- --ignored"]
+fn glued_punch_on_thinner_rubber_layers_approaches_four_times_the_frictionless_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (thick, thin) = (
+        glued_over_frictionless(dir.path(), 0.0625),
+        glued_over_frictionless(dir.path(), 0.03125),
+    );
     println!("glued over frictionless punch: {thick:.4} at a/t = 8, {thin:.4} at a/t = 16");
     assert!(1.0 < thick && thick < thin && thin < 4.0, "{thick}, {thin}");
     assert!(
@@ -121,6 +130,11 @@ fn glued_punch_on_a_thin_rubber_layer_tends_to_four_times_the_frictionless_one()
         "the distance from the thin-layer limit falls by {:.2} only",
         (4.0 - thick) / (4.0 - thin)
     );
+}
+
+/// The glued punch's normal force over the frictionless one's on a layer of `thickness`.
+fn glued_over_frictionless(dir: &std::path::Path, thickness: f64) -> f64 {
+    punch_on_layer(dir, thickness, "full") / punch_on_layer(dir, thickness, "none")
 }
 
 #[test]
