@@ -36,11 +36,46 @@ pub fn read_frame(path: &Path) -> Result<GrayImage> {
         reader.decode()?
     };
     let (w, h) = (img.width() as usize, img.height() as usize);
+    use image::DynamicImage as Image;
+    const BYTE: f32 = 1.0 / u8::MAX as f32;
+    const WORD: f32 = 1.0 / u16::MAX as f32;
     Ok(match img {
-        image::DynamicImage::ImageLuma8(buf) => GrayImage::from_u8(w, h, buf.as_raw())?,
-        image::DynamicImage::ImageLuma16(buf) => GrayImage::from_u16(w, h, buf.as_raw())?,
+        Image::ImageLuma8(buf) => GrayImage::from_u8(w, h, buf.as_raw())?,
+        Image::ImageLuma16(buf) => GrayImage::from_u16(w, h, buf.as_raw())?,
+        Image::ImageRgb8(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 3, |c| c as f32 * BYTE))?,
+        Image::ImageRgba8(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 4, |c| c as f32 * BYTE))?,
+        Image::ImageRgb16(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 3, |c| c as f32 * WORD))?,
+        Image::ImageRgba16(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 4, |c| c as f32 * WORD))?,
+        Image::ImageRgb32F(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 3, |c| c))?,
+        Image::ImageRgba32F(buf) => GrayImage::from_u16(w, h, &luma_of(buf.as_raw(), 4, |c| c))?,
+        // grey with alpha: the alpha dropped, the level widened to 16 bits
         other => GrayImage::from_u16(w, h, other.to_luma16().as_raw())?,
     })
+}
+
+/// The luma of colour pixels as image 0.25 (`to_luma16`, the reader adhesim used before)
+/// computes it, so that a colour frame gives the grey levels it gave: each channel expanded
+/// to f32 in [0, 1], Y = 0 + R·k_R + G·k_G + B·k_B in f32 (one rounding per operation, no
+/// fused multiply-add), round(65535·Y) saturated. The coefficients are the f32 values
+/// image 0.25 derives for sRGB's primaries and white point (BT.709 luma, 0.2126, 0.7152,
+/// 0.0722 to 1e-4; printed from image 0.25.10's `to_luma32f` of the three primaries).
+/// Image 0.24's integer rounding to 8 bits first would move colour frames' levels.
+fn luma_of<C: Copy>(samples: &[C], channels: usize, expand: impl Fn(C) -> f32) -> Vec<u16> {
+    const LUMA: [f32; 3] = [
+        f32::from_bits(0x3e59_c05b),
+        f32::from_bits(0x3f37_15fc),
+        f32::from_bits(0x3d93_cf75),
+    ];
+    samples
+        .chunks_exact(channels)
+        .map(|pixel| {
+            let mut luma = 0.0f32;
+            for (&channel, weight) in pixel[..3].iter().zip(LUMA) {
+                luma += expand(channel) * weight;
+            }
+            (luma * u16::MAX as f32).round() as u16
+        })
+        .collect()
 }
 
 /// A JPEG decoded by zune-jpeg with the options image 0.25 gave it (no strict mode, no size
@@ -328,5 +363,25 @@ impl ForceLog {
             v1
         };
         v.is_finite().then_some(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read_frame;
+    use std::path::PathBuf;
+
+    /// A grey and a colour JPEG (tests/data/jpeg, README there) read as the grey levels
+    /// image 0.25.10's reader gave them (written beside them as PNG, which decodes without
+    /// loss): every pixel equal. The colour frame checks the luma of `luma_of` too.
+    #[test]
+    fn jpeg_frames_read_as_image_0_25_read_them() {
+        let data = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/jpeg");
+        for name in ["grey", "colour"] {
+            let jpeg = read_frame(&data.join(format!("{name}.jpg"))).unwrap();
+            let reference = read_frame(&data.join(format!("{name}_levels.png"))).unwrap();
+            assert_eq!((jpeg.width(), jpeg.height()), (64, 48), "{name}");
+            assert_eq!(jpeg.pixels(), reference.pixels(), "{name}");
+        }
     }
 }
