@@ -210,7 +210,7 @@ pub fn statistics(map: &Topography) -> (f64, f64, Option<f64>) {
     )
 }
 
-/// The fixture whose harmonic filling is slow (233,009 of its 512² points invalid: 12 s of
+/// The fixture whose harmonic filling is slow (233,009 of its 512² points invalid: 6 s of
 /// Jacobi-preconditioned CG). The default run reads it and checks its grid, size, invalid
 /// points and rms height; its slope and curvature after the filling are checked by the
 /// ignored test below. The filling itself is checked against SurfaceTopography in the
@@ -225,7 +225,7 @@ fn readers_agree_with_surfacetopography() {
 }
 
 #[test]
-#[ignore = "12 s: cargo test --release -p adhesim-topography --test integration surfacetopography:: -- --ignored"]
+#[ignore = "6 s: cargo test --release -p adhesim-topography --test integration surfacetopography:: -- --ignored"]
 fn the_largest_filling_agrees_with_surfacetopography() {
     let expected = EXPECTED.iter().find(|e| e.file == SLOW_FILL).unwrap();
     agrees_with_surfacetopography(expected, true);

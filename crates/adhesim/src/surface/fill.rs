@@ -80,15 +80,26 @@ pub fn fill_invalid_harmonic(
                 .sum()
         })
         .collect();
-    let apply = |u: &[f64], out: &mut [f64]| {
-        for (i, &k) in unknowns.iter().enumerate() {
-            let coupled: f64 = neighbours(k)
+    // Each unknown's invalid neighbours as unknowns' indices, in the order of `neighbours`
+    // (so that the products below are summed in the same order): the stencil is looked up
+    // once, not at every iteration.
+    let mut offsets = Vec::with_capacity(unknowns.len() + 1);
+    let mut links = Vec::with_capacity(4 * unknowns.len());
+    offsets.push(0);
+    for &k in &unknowns {
+        links.extend(
+            neighbours(k)
                 .iter()
                 .flatten()
                 .filter(|&&n| !valid[n])
-                .map(|&n| u[index[n]])
-                .sum();
-            out[i] = degree[i] * u[i] - coupled;
+                .map(|&n| index[n]),
+        );
+        offsets.push(links.len());
+    }
+    let apply = |u: &[f64], out: &mut [f64]| {
+        for (i, value) in out.iter_mut().enumerate() {
+            let coupled: f64 = links[offsets[i]..offsets[i + 1]].iter().map(|&j| u[j]).sum();
+            *value = degree[i] * u[i] - coupled;
         }
     };
     let solution = conjugate_gradients(&apply, &rhs, &degree)?;
