@@ -29,9 +29,16 @@ pub fn list_frames(dir: &Path) -> Result<Vec<PathBuf>> {
 
 /// Decodes a frame as grey levels (colour frames are converted to luma).
 pub fn read_frame(path: &Path) -> Result<GrayImage> {
-    let reader = image::io::Reader::open(path)?.with_guessed_format()?;
+    // read once: the format from the extension, then from the bytes (as `Reader::open`
+    // and `with_guessed_format` set it), and a JPEG's bytes go to zune-jpeg whole
+    let bytes = std::fs::read(path)?;
+    let mut reader = image::io::Reader::new(std::io::Cursor::new(&bytes));
+    if let Ok(format) = image::ImageFormat::from_path(path) {
+        reader.set_format(format);
+    }
+    let reader = reader.with_guessed_format()?;
     let img = if reader.format() == Some(image::ImageFormat::Jpeg) {
-        decode_jpeg(&std::fs::read(path)?)?
+        decode_jpeg(&bytes)?
     } else {
         reader.decode()?
     };
