@@ -33,6 +33,10 @@ mod output;
 mod progress;
 mod resources;
 
+/// The frame reader of `adhesim experiment` (public for the integration tests, which
+/// compare it pixel by pixel with reference decodings).
+pub use commands::experiment::read_frame;
+
 use adhesim_scenario::error_text::error_line;
 use clap::{Parser, Subcommand};
 use commands::{experiment, plot, reference, run, study, sweep, topography};

@@ -27,15 +27,3 @@ pub fn clamp_threads(requested: usize) -> anyhow::Result<usize> {
     }
     Ok(requested)
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn thread_counts_are_clamped_to_the_cores() {
-        assert_eq!(clamp_threads(1_000).unwrap(), cores());
-        assert_eq!(clamp_threads(1).unwrap(), 1);
-        assert!(clamp_threads(0).is_err());
-    }
-}

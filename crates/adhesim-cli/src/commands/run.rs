@@ -103,9 +103,15 @@ pub fn command(args: &RunArgs) -> Result<()> {
             error
         }
     })?;
+    // The thread count is checked (and clamped) before anything is written.
+    let threads = args.options.threads.map(resources::clamp_threads).transpose()?;
     let out = folder::output_dir(args.out.as_deref(), path, "scenario")?;
     folder::prepare_run_folder(&out, args.force)?;
-    run(&scenario, &out, &args.options)
+    let options = RunOptions {
+        threads,
+        ..args.options.clone()
+    };
+    run(&scenario, &out, &options)
 }
 
 /// Runs a validated scenario into `out` through the scenario crate's pipeline
@@ -135,6 +141,7 @@ pub fn run_with_progress(
     let done = match options.threads {
         Some(threads) => {
             let threads = resources::clamp_threads(threads)?;
+            // A second clamp of a clamped count is silent (it is at most the cores).
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()

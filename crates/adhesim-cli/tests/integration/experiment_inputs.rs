@@ -299,3 +299,17 @@ fn arrays_of_the_wrong_length_are_errors() {
     let with_roi = spec.replace("[contact]", "[contact]\nroi = [0, 0, 10]");
     assert_error(dir.path(), &with_roi, &["roi", "expected 4 values, got 3"]);
 }
+
+/// A grey and a colour JPEG (tests/data/jpeg, README there) read as the grey levels
+/// image 0.25.10's reader gave them (written beside them as PNG, which decodes without
+/// loss): every pixel equal. The colour frame checks the luma conversion too.
+#[test]
+fn jpeg_frames_read_as_image_0_25_read_them() {
+    let data = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/jpeg");
+    for name in ["grey", "colour"] {
+        let jpeg = adhesim_cli::read_frame(&data.join(format!("{name}.jpg"))).unwrap();
+        let reference = adhesim_cli::read_frame(&data.join(format!("{name}_levels.png"))).unwrap();
+        assert_eq!((jpeg.width(), jpeg.height()), (64, 48), "{name}");
+        assert_eq!(jpeg.pixels(), reference.pixels(), "{name}");
+    }
+}

@@ -113,6 +113,13 @@ fn a_roll_beyond_the_domain_is_refused() {
 }
 
 #[test]
+fn zero_threads_are_refused() {
+    let (temp, output) = run(JKR, &["--threads", "0"], None);
+    assert_fails_with(&output, &["--threads must be >= 1, got 0"]);
+    assert!(!temp.path().join("out").exists(), "nothing written for a refused run");
+}
+
+#[test]
 fn too_many_threads_are_clamped_with_a_warning() {
     let (temp, output) = run(JKR, &["--threads", "1000"], None);
     assert!(output.status.success(), "{}", stderr(&output));

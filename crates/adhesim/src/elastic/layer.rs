@@ -10,7 +10,7 @@
 
 use super::bessel::Bessel;
 use super::influence::love_rectangle;
-use super::layer_tables::{table, TableKey};
+use super::layer_tables::{table, TableKey, TABLE_RANGE, TABLE_ROWS, TABLE_STEP};
 use super::periodic::{PeriodicKernel, PeriodicOperator};
 use super::spectral::SpectralConvolution;
 use super::ElasticOperator;
@@ -207,11 +207,6 @@ const GAUSS8_WEIGHTS: [f64; 4] = [
     0.101_228_536_290_376_3,
 ];
 
-/// ρ = r/t beyond which the layer's point kernel is below e^{−0.739·60} ≈ 2e-20 of its
-/// scale: its nearest pole is at kt = 0.739i (bonded, ν = 1/2; further out for the others).
-const TABLE_RANGE: f64 = 60.0;
-/// Table step in ρ: cubic interpolation error ≈ 0.02·h⁴·max|d''''| ≈ 1e-8 of d.
-const TABLE_STEP: f64 = 1.0 / 128.0;
 /// Panel width in s of the Hankel quadrature: J0(sρ) has period 2π/ρ ≥ 0.1 in s.
 const PANEL: f64 = 0.05;
 
@@ -235,12 +230,7 @@ impl PointCorrection {
             poisson_ratio_bits: poisson_ratio.to_bits(),
             base,
         };
-        Self::tabulate(
-            key,
-            |s| layer_compliance_factor(s, poisson_ratio, base) - 1.0,
-            Bessel::J0,
-            (-1.0, 1),
-        )
+        Self::tabulate(key, normal_table_integrand(poisson_ratio, base), Bessel::J0, (-1.0, 1))
     }
 
     /// d(ρ) = ∫0^25 `integrand`(s)·`bessel`(sρ) ds on the table, and c/ρ^n beyond it,
@@ -258,6 +248,16 @@ impl PointCorrection {
 
     /// The table's values, d(ρ) at ρ = jh.
     fn compute(integrand: impl Fn(f64) -> f64, bessel: Bessel) -> Vec<f64> {
+        Self::compute_rows(integrand, bessel, 0..TABLE_ROWS, 1)
+    }
+
+    /// d(jh) for every `stride`-th j of `rows`, each exactly as in the whole table.
+    pub(super) fn compute_rows(
+        integrand: impl Fn(f64) -> f64,
+        bessel: Bessel,
+        rows: Range<usize>,
+        stride: usize,
+    ) -> Vec<f64> {
         let panels = (SCREENED_KT / PANEL).round() as usize;
         let (mut nodes, mut weights) = (Vec::with_capacity(panels * 8), Vec::with_capacity(panels * 8));
         for panel in 0..panels {
@@ -270,8 +270,8 @@ impl PointCorrection {
                 }
             }
         }
-        let count = (TABLE_RANGE / TABLE_STEP).round() as usize + 1;
-        (0..count)
+        rows.step_by(stride)
+            .collect::<Vec<_>>()
             .into_par_iter()
             .map_init(
                 || vec![0.0; nodes.len()],
@@ -300,6 +300,12 @@ impl PointCorrection {
         let (a, b, c, d) = (x, x - 1.0, x - 2.0, x - 3.0);
         -y0 * b * c * d / 6.0 + y1 * a * c * d / 2.0 - y2 * a * b * d / 2.0 + y3 * a * b * c / 6.0
     }
+}
+
+/// The normal kernel's table integrand f(s) − 1 ([`layer_compliance_factor`] less the
+/// half-space's).
+pub(super) fn normal_table_integrand(poisson_ratio: f64, base: LayerBase) -> impl Fn(f64) -> f64 {
+    move |s| layer_compliance_factor(s, poisson_ratio, base) - 1.0
 }
 
 /// K_layer at offset (lΔx, mΔy) for 0 ≤ l < Nx, 0 ≤ m < Ny (`[m * Nx + l]`): Love's

@@ -36,6 +36,12 @@ pub(super) fn layer_coupling_compliance(kt: f64, poisson_ratio: f64) -> f64 {
     -(kt * kt - (1.0 - 2.0 * poisson_ratio) * kappa * kt.sinh().powi(2)) / bonded_denominator(kt, kappa)
 }
 
+/// s·(h(s) − (1 − 2ν)/2), the integrand of the coupling's table (J₁(x)/x).
+pub(super) fn coupling_table_integrand(nu: f64) -> impl Fn(f64) -> f64 {
+    let half_space = 0.5 * (1.0 - 2.0 * nu);
+    move |s| s * (layer_coupling_compliance(s, nu) - half_space)
+}
+
 /// (K_zx, K_zy) of the bonded layer at offsets (lΔx, mΔy), 0 ≤ l < Nx, 0 ≤ m < Ny
 /// (`[m * Nx + l]`): the half-space's [`coupling_rectangle`] plus the layer's excess
 /// integrated over the element, zero where the whole element lies beyond 60t. K_zx is odd
@@ -55,7 +61,7 @@ pub(super) fn layer_coupling_coefficients(
         TableKey::Coupling {
             poisson_ratio_bits: nu.to_bits(),
         },
-        |s| s * (layer_coupling_compliance(s, nu) - half_space),
+        coupling_table_integrand(nu),
         Bessel::J1OverX,
         (-half_space, 2),
     );

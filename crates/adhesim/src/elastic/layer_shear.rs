@@ -108,6 +108,30 @@ pub(super) fn layer_shear_multiplier(qx: f64, qy: f64, thickness: f64, poisson_r
     ]
 }
 
+/// (c_L, c_T) = ((1 − ν)(f_L − 1), tanh s − 1): the longitudinal and transverse excess of
+/// the bonded layer's tangential compliance over Cerruti's at s = kt.
+fn shear_excess(s: f64, nu: f64) -> (f64, f64) {
+    let longitudinal = (1.0 - nu) * (layer_longitudinal_factor(s, nu) - 1.0);
+    let transverse = layer_transverse_factor(s) - 1.0;
+    (longitudinal, transverse)
+}
+
+/// c0 = (c_L + c_T)/2, the integrand of the isotropic table (J₀).
+pub(super) fn isotropic_table_integrand(nu: f64) -> impl Fn(f64) -> f64 {
+    move |s| {
+        let (l, t) = shear_excess(s, nu);
+        0.5 * (l + t)
+    }
+}
+
+/// c2 = (c_L − c_T)/2, the integrand of the deviatoric table (J₂).
+pub(super) fn deviatoric_table_integrand(nu: f64) -> impl Fn(f64) -> f64 {
+    move |s| {
+        let (l, t) = shear_excess(s, nu);
+        0.5 * (l - t)
+    }
+}
+
 /// The layer's tangential point kernel minus Cerruti's, in the two radial functions of an
 /// isotropic 2-D tensor kernel: D_αβ(r) = [δ_αβ d0(ρ) − (2r̂_α r̂_β − δ_αβ) d2(ρ)]/(2πGt),
 /// ρ = r/t, with d_n(ρ) = ∫0^∞ c_n(s) J_n(sρ) ds and
@@ -123,27 +147,16 @@ pub(super) struct ShearCorrection {
 impl ShearCorrection {
     pub(super) fn new(layer: &ElasticLayer) -> Self {
         let nu = layer.poisson_ratio();
-        let excess = move |s: f64| {
-            let longitudinal = (1.0 - nu) * (layer_longitudinal_factor(s, nu) - 1.0);
-            let transverse = layer_transverse_factor(s) - 1.0;
-            (longitudinal, transverse)
-        };
         let poisson_ratio_bits = nu.to_bits();
         let isotropic = PointCorrection::tabulate(
             TableKey::ShearIsotropic { poisson_ratio_bits },
-            |s| {
-                let (l, t) = excess(s);
-                0.5 * (l + t)
-            },
+            isotropic_table_integrand(nu),
             Bessel::J0,
             (-(2.0 - nu) / 2.0, 1),
         );
         let deviatoric = PointCorrection::tabulate(
             TableKey::ShearDeviatoric { poisson_ratio_bits },
-            |s| {
-                let (l, t) = excess(s);
-                0.5 * (l - t)
-            },
+            deviatoric_table_integrand(nu),
             Bessel::J2,
             (nu / 2.0, 1),
         );

@@ -6,10 +6,26 @@
 //! layer, so a sweep, a study or a Python session that builds many operators on layers of
 //! one ν computes each table once. The tables kept are the ones computed, so a run's bits
 //! do not depend on what ran before it.
+//!
+//! The tables of an incompressible layer (ν = 1/2, the rubber of the paper's experiments)
+//! ship with the library ([`SHIPPED`], little-endian f64 files beside this one): a run on
+//! such a layer reads them instead of computing them, which is most of a small run's time
+//! there and the same bits. A test in the default suite recomputes every 8th row of each
+//! and asks for the same bits; `ADHESIM_WRITE_LAYER_TABLES=1 cargo test --release -p adhesim
+//! --lib shipped_tables` writes them anew after a change to a table's definition.
 
 use super::LayerBase;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+
+/// ρ = r/t beyond which the layer's point kernel is below e^{−0.739·60} ≈ 2e-20 of its
+/// scale: its nearest pole is at kt = 0.739i (bonded, ν = 1/2; further out for the others).
+pub(super) const TABLE_RANGE: f64 = 60.0;
+/// Table step in ρ: cubic interpolation error ≈ 0.02·h⁴·max|d''''| ≈ 1e-8 of d.
+pub(super) const TABLE_STEP: f64 = 1.0 / 128.0;
+/// Rows of a table: ρ = jh for 0 ≤ j < `TABLE_ROWS`, up to [`TABLE_RANGE`].
+pub(super) const TABLE_ROWS: usize = 7681;
+const _: () = assert!(TABLE_ROWS as f64 == TABLE_RANGE / TABLE_STEP + 1.0);
 
 /// Which table, with every parameter its values depend on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,12 +52,66 @@ pub(super) fn table(key: TableKey, compute: impl FnOnce() -> Vec<f64>) -> Arc<[f
         return Arc::clone(kept);
     }
     // Computed outside the lock: two runs asking at once compute the same values.
-    let values: Arc<[f64]> = compute().into();
+    let values: Arc<[f64]> = shipped(key).unwrap_or_else(compute).into();
     let mut kept = tables.lock().unwrap_or_else(PoisonError::into_inner);
     if kept.len() >= KEPT {
         kept.clear();
     }
     Arc::clone(kept.entry(key).or_insert(values))
+}
+
+/// ν = 1/2 (its bits).
+const HALF: u64 = 0x3FE0_0000_0000_0000;
+
+/// The tables shipped with the library: each key and its values, ρ = jh for every row j
+/// ([`TABLE_ROWS`] of them), as little-endian f64.
+pub(super) const SHIPPED: [(TableKey, &[u8]); 5] = [
+    (
+        TableKey::Normal {
+            poisson_ratio_bits: HALF,
+            base: LayerBase::Bonded,
+        },
+        include_bytes!("layer_tables/normal_bonded_half.f64"),
+    ),
+    (
+        TableKey::Normal {
+            poisson_ratio_bits: HALF,
+            base: LayerBase::Frictionless,
+        },
+        include_bytes!("layer_tables/normal_frictionless_half.f64"),
+    ),
+    (
+        TableKey::ShearIsotropic {
+            poisson_ratio_bits: HALF,
+        },
+        include_bytes!("layer_tables/shear_isotropic_half.f64"),
+    ),
+    (
+        TableKey::ShearDeviatoric {
+            poisson_ratio_bits: HALF,
+        },
+        include_bytes!("layer_tables/shear_deviatoric_half.f64"),
+    ),
+    (
+        TableKey::Coupling {
+            poisson_ratio_bits: HALF,
+        },
+        include_bytes!("layer_tables/coupling_half.f64"),
+    ),
+];
+
+/// The shipped values of `key`'s table, if the library ships it.
+fn shipped(key: TableKey) -> Option<Vec<f64>> {
+    let (_, bytes) = SHIPPED.iter().find(|(shipped, _)| *shipped == key)?;
+    // A file of another length (one being written anew) is not used: the table is computed.
+    if bytes.len() != 8 * TABLE_ROWS {
+        return None;
+    }
+    let values = bytes
+        .chunks_exact(8)
+        .map(|value| f64::from_le_bytes(value.try_into().expect("eight bytes")))
+        .collect();
+    Some(values)
 }
 
 #[cfg(test)]

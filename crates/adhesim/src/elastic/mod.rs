@@ -16,6 +16,8 @@ mod layer;
 mod layer_coupling;
 mod layer_shear;
 mod layer_tables;
+#[cfg(test)]
+mod layer_tables_shipped;
 mod periodic;
 pub(crate) mod planner;
 mod preconditioner;

@@ -372,23 +372,3 @@ impl ForceLog {
         v.is_finite().then_some(v)
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::read_frame;
-    use std::path::PathBuf;
-
-    /// A grey and a colour JPEG (tests/data/jpeg, README there) read as the grey levels
-    /// image 0.25.10's reader gave them (written beside them as PNG, which decodes without
-    /// loss): every pixel equal. The colour frame checks the luma of `luma_of` too.
-    #[test]
-    fn jpeg_frames_read_as_image_0_25_read_them() {
-        let data = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/jpeg");
-        for name in ["grey", "colour"] {
-            let jpeg = read_frame(&data.join(format!("{name}.jpg"))).unwrap();
-            let reference = read_frame(&data.join(format!("{name}_levels.png"))).unwrap();
-            assert_eq!((jpeg.width(), jpeg.height()), (64, 48), "{name}");
-            assert_eq!(jpeg.pixels(), reference.pixels(), "{name}");
-        }
-    }
-}

@@ -16,7 +16,8 @@ use adhesim_experiment::{
 use anyhow::{bail, Context, Result};
 pub use film::{run_film, FilmArgs};
 use indicatif::ProgressBar;
-use inputs::{list_frames, name_of, read_frame, read_table, ForceLog, FrameSize};
+pub use inputs::read_frame;
+use inputs::{list_frames, name_of, read_table, ForceLog, FrameSize};
 use rayon::prelude::*;
 use serde_json::json;
 use spec::{BackgroundChoice, Reference, Settings};
