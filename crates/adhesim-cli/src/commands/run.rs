@@ -124,6 +124,8 @@ pub fn run(scenario: &ValidScenario, out: &Path, options: &RunOptions) -> Result
 }
 
 /// [`run`] with the progress shown by `progress` (a sweep case's share of the sweep's bar).
+/// `options.threads` is a count [`resources::clamp_threads`] has checked (`command` checks
+/// it before the folder is made).
 pub fn run_with_progress(
     scenario: &ValidScenario,
     out: &Path,
@@ -139,15 +141,11 @@ pub fn run_with_progress(
     // size once: a second run in the same process, as the Python package's console entry
     // makes, was refused).
     let done = match options.threads {
-        Some(threads) => {
-            let threads = resources::clamp_threads(threads)?;
-            // A second clamp of a clamped count is silent (it is at most the cores).
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .context("cannot set up the thread pool")?
-                .install(|| run_case(scenario, out, folder_options, progress))?
-        }
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .context("cannot set up the thread pool")?
+            .install(|| run_case(scenario, out, folder_options, progress))?,
         None => run_case(scenario, out, folder_options, progress)?,
     };
     let outcome = &done.outcome;

@@ -248,16 +248,11 @@ impl PointCorrection {
 
     /// The table's values, d(ρ) at ρ = jh.
     fn compute(integrand: impl Fn(f64) -> f64, bessel: Bessel) -> Vec<f64> {
-        Self::compute_rows(integrand, bessel, 0..TABLE_ROWS, 1)
+        Self::compute_rows(integrand, bessel, 1)
     }
 
-    /// d(jh) for every `stride`-th j of `rows`, each exactly as in the whole table.
-    pub(super) fn compute_rows(
-        integrand: impl Fn(f64) -> f64,
-        bessel: Bessel,
-        rows: Range<usize>,
-        stride: usize,
-    ) -> Vec<f64> {
+    /// d(jh) for every `stride`-th row j of the table, each exactly as in the whole table.
+    pub(super) fn compute_rows(integrand: impl Fn(f64) -> f64, bessel: Bessel, stride: usize) -> Vec<f64> {
         let panels = (SCREENED_KT / PANEL).round() as usize;
         let (mut nodes, mut weights) = (Vec::with_capacity(panels * 8), Vec::with_capacity(panels * 8));
         for panel in 0..panels {
@@ -270,9 +265,9 @@ impl PointCorrection {
                 }
             }
         }
-        rows.step_by(stride)
-            .collect::<Vec<_>>()
+        (0..TABLE_ROWS)
             .into_par_iter()
+            .step_by(stride)
             .map_init(
                 || vec![0.0; nodes.len()],
                 |row, j| {

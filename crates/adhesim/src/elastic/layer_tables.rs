@@ -61,48 +61,59 @@ pub(super) fn table(key: TableKey, compute: impl FnOnce() -> Vec<f64>) -> Arc<[f
 }
 
 /// ν = 1/2 (its bits).
-const HALF: u64 = 0x3FE0_0000_0000_0000;
+const HALF: u64 = 0.5f64.to_bits();
 
-/// The tables shipped with the library: each key and its values, ρ = jh for every row j
+/// A shipped table: its key, its file's name in `layer_tables/` (without `.f64`) and the
+/// file's bytes.
+pub(super) type ShippedTable = (TableKey, &'static str, &'static [u8]);
+
+/// The entry of the shipped file `layer_tables/<name>.f64`.
+macro_rules! shipped_table {
+    ($key:expr, $name:literal) => {
+        ($key, $name, include_bytes!(concat!("layer_tables/", $name, ".f64")))
+    };
+}
+
+/// The tables shipped with the library: their values at ρ = jh for every row j
 /// ([`TABLE_ROWS`] of them), as little-endian f64.
-pub(super) const SHIPPED: [(TableKey, &[u8]); 5] = [
-    (
+pub(super) const SHIPPED: [ShippedTable; 5] = [
+    shipped_table!(
         TableKey::Normal {
             poisson_ratio_bits: HALF,
             base: LayerBase::Bonded,
         },
-        include_bytes!("layer_tables/normal_bonded_half.f64"),
+        "normal_bonded_half"
     ),
-    (
+    shipped_table!(
         TableKey::Normal {
             poisson_ratio_bits: HALF,
             base: LayerBase::Frictionless,
         },
-        include_bytes!("layer_tables/normal_frictionless_half.f64"),
+        "normal_frictionless_half"
     ),
-    (
+    shipped_table!(
         TableKey::ShearIsotropic {
-            poisson_ratio_bits: HALF,
+            poisson_ratio_bits: HALF
         },
-        include_bytes!("layer_tables/shear_isotropic_half.f64"),
+        "shear_isotropic_half"
     ),
-    (
+    shipped_table!(
         TableKey::ShearDeviatoric {
-            poisson_ratio_bits: HALF,
+            poisson_ratio_bits: HALF
         },
-        include_bytes!("layer_tables/shear_deviatoric_half.f64"),
+        "shear_deviatoric_half"
     ),
-    (
+    shipped_table!(
         TableKey::Coupling {
-            poisson_ratio_bits: HALF,
+            poisson_ratio_bits: HALF
         },
-        include_bytes!("layer_tables/coupling_half.f64"),
+        "coupling_half"
     ),
 ];
 
 /// The shipped values of `key`'s table, if the library ships it.
-fn shipped(key: TableKey) -> Option<Vec<f64>> {
-    let (_, bytes) = SHIPPED.iter().find(|(shipped, _)| *shipped == key)?;
+pub(super) fn shipped(key: TableKey) -> Option<Vec<f64>> {
+    let (_, _, bytes) = SHIPPED.iter().find(|(shipped, _, _)| *shipped == key)?;
     // A file of another length (one being written anew) is not used: the table is computed.
     if bytes.len() != 8 * TABLE_ROWS {
         return None;
